@@ -1,0 +1,15 @@
+# Writes a C++ source that holds every OpenCL file given as a raw string literal.
+# Run as: cmake -DOUTPUT=file.cpp -DSOURCES="a.cl;b.cl" -P embed_kernels.cmake
+set(body "// Generated from kernels/*.cl by cmake/embed_kernels.cmake: do not edit.\n")
+string(APPEND body "#include \"kernel_sources.hpp\"\n\nnamespace finflex::detail {\n\n")
+string(APPEND body "const std::vector<KernelSource>& kernel_sources() {\n")
+string(APPEND body "  static const std::vector<KernelSource> sources = {\n")
+foreach(path IN LISTS SOURCES)
+  get_filename_component(name "${path}" NAME)
+  file(READ "${path}" text)
+  string(APPEND body "    {\"${name}\", R\"FINFLEX_CL(${text})FINFLEX_CL\"},\n")
+endforeach()
+string(APPEND body "  };\n  return sources;\n}\n\n}  // namespace finflex::detail\n")
+file(WRITE "${OUTPUT}.tmp" "${body}")
+execute_process(COMMAND ${CMAKE_COMMAND} -E copy_if_different "${OUTPUT}.tmp" "${OUTPUT}")
+file(REMOVE "${OUTPUT}.tmp")

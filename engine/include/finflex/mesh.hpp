@@ -1,0 +1,42 @@
+// Host-side triangle mesh: the rest shape FinFlex deforms, and the form deformed
+// instances take when handed back as whole meshes (e.g. to write a file).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace finflex {
+
+// Vertex attributes are parallel arrays of length vertex_count(); optional ones are
+// empty when absent. Faces are triangles, three indices each, counter-clockwise seen
+// from outside (the side the normals point to).
+struct Mesh {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;    // unit length; empty: compute_vertex_normals() fills it
+  std::vector<glm::vec4> tangents;   // optional: xyz unit tangent, w = +-1 bitangent sign
+  std::vector<glm::vec2> texcoords;  // optional: passed through unchanged
+  std::vector<std::uint32_t> indices;
+
+  std::size_t vertex_count() const { return positions.size(); }
+  std::size_t triangle_count() const { return indices.size() / 3; }
+  bool has_normals() const { return !normals.empty(); }
+  bool has_tangents() const { return !tangents.empty(); }
+};
+
+// Throws finflex::Error (kInvalidMesh) naming the first bad field and value: no
+// vertices, attribute arrays of the wrong length, index count not a multiple of 3,
+// an index out of range, a non-finite position/normal/tangent, a zero normal.
+void validate_mesh(const Mesh& mesh);
+
+// Area-weighted vertex normals from the triangles (overwrites mesh.normals).
+// A vertex used by no triangle gets the normal (0, 0, 1).
+void compute_vertex_normals(Mesh& mesh);
+
+// Per-triangle unit normals (right-hand rule on the index order), for tests and tools.
+std::vector<glm::dvec3> face_normals(const std::vector<glm::vec3>& positions,
+                                     const std::vector<std::uint32_t>& indices);
+
+}  // namespace finflex

@@ -1,0 +1,25 @@
+#include "support/test_support.hpp"
+
+#include <atomic>
+#include <cstdio>
+#include <filesystem>
+
+#include <unistd.h>
+
+namespace finflex::test {
+
+std::string data_path(const std::string& relative) {
+  return std::string(FINFLEX_DATA_DIR) + "/" + relative;
+}
+
+std::string temp_path(const std::string& file_name) {
+  static std::atomic<int> counter{0};
+  const std::string dir = std::string(FINFLEX_TEST_TMP_DIR) + "/" + std::to_string(getpid()) +
+                          "_" + std::to_string(counter++);
+  std::filesystem::create_directories(dir);
+  const std::string path = dir + "/" + file_name;
+  std::filesystem::remove(path);
+  return path;
+}
+
+}  // namespace finflex::test

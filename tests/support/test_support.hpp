@@ -1,0 +1,18 @@
+// Shared helpers for the FinFlex tests: paths of bundled data and scratch files.
+#pragma once
+
+#include <string>
+
+namespace finflex::test {
+
+// Absolute path of a file under the project's data/ folder, e.g. "blub/fish.obj".
+std::string data_path(const std::string& relative);
+
+// A fresh path under the test build's tmp/ folder (the file does not exist).
+std::string temp_path(const std::string& file_name);
+
+// Every bundled real fish, as data/-relative paths.
+const char* const kBundledFish[] = {"blub/fish.obj", "blub/fish_low_resolution.obj",
+                                    "barramundi/BarramundiFish.gltf"};
+
+}  // namespace finflex::test
