@@ -1,1 +1,62 @@
-// placeholder
+/* Batched bend: one work-item per (vertex, instance), NDRange (plane_stride, instances).
+ *
+ * rest:  the rest mesh in the body frame, planes of plane_stride floats:
+ *        px py pz nx ny nz [tx ty tz]; padding vertices are harmless zeros / e_z.
+ * m:     one bend parameter per instance, checked on the host.
+ * out_*: planes as finflex/batch.hpp describes: (instance * 3 + component) * stride + v.
+ * back_*: the way back to mesh coordinates, M^-1 of (2):
+ *        p_b = origin + s (x e_x + y e_y + z e_z), n_b = x e_x + y e_y + z e_z;
+ *        scaled_axis_* = s e_*, axis_* = e_* (all in mesh coordinates).
+ *
+ * Build options: those of bend.cl, and FF_TANGENTS (0/1).
+ * No branch depends on the vertex: the planes are padded to the work-group size. */
+#ifndef FF_TANGENTS
+#define FF_TANGENTS 0
+#endif
+
+inline float3 load_plane3(__global const float* planes, size_t first_plane, size_t stride,
+                          size_t v) {
+  return (float3)(planes[first_plane * stride + v], planes[(first_plane + 1) * stride + v],
+                  planes[(first_plane + 2) * stride + v]);
+}
+
+inline void store_plane3(__global float* planes, size_t first_plane, size_t stride, size_t v,
+                         float3 value) {
+  planes[first_plane * stride + v] = value.x;
+  planes[(first_plane + 1) * stride + v] = value.y;
+  planes[(first_plane + 2) * stride + v] = value.z;
+}
+
+inline float3 to_mesh_vector(float3 v, float4 axis_x, float4 axis_y, float4 axis_z) {
+  return v.x * axis_x.xyz + v.y * axis_y.xyz + v.z * axis_z.xyz;
+}
+
+__kernel void bend_batch(__global const float* restrict rest,
+                         __global const float* restrict m,
+                         __global float* restrict out_positions,
+                         __global float* restrict out_normals,
+                         __global float* restrict out_tangents,
+                         const uint stride,
+                         const float4 origin,
+                         const float4 scaled_axis_x, const float4 scaled_axis_y,
+                         const float4 scaled_axis_z,
+                         const float4 axis_x, const float4 axis_y, const float4 axis_z) {
+  const size_t v = get_global_id(0);
+  const size_t instance = get_global_id(1);
+  const float m_i = m[instance];
+  const float3 p = load_plane3(rest, 0, stride, v);
+  const float3 n = load_plane3(rest, 3, stride, v);
+  const BendSample s = bend_sample(p.x, p.z, m_i);
+
+  const size_t out_plane = instance * 3;
+  const float3 p_bent = bend_position(p, s);
+  store_plane3(out_positions, out_plane, stride, v,
+               origin.xyz + to_mesh_vector(p_bent, scaled_axis_x, scaled_axis_y, scaled_axis_z));
+  store_plane3(out_normals, out_plane, stride, v,
+               to_mesh_vector(bend_normal(n, s), axis_x, axis_y, axis_z));
+#if FF_TANGENTS
+  const float3 t = load_plane3(rest, 6, stride, v);
+  store_plane3(out_tangents, out_plane, stride, v,
+               to_mesh_vector(bend_tangent(t, s), axis_x, axis_y, axis_z));
+#endif
+}

@@ -1,1 +1,162 @@
-// placeholder, replaced while the library is being written
+#include "finflex/cl_deformer.hpp"
+
+#include <string>
+
+#include "finflex/error.hpp"
+
+namespace finflex {
+namespace {
+
+cl_float4 to_cl_float4(const glm::dvec3& v) {
+  cl_float4 out;
+  out.s[0] = static_cast<float>(v.x);
+  out.s[1] = static_cast<float>(v.y);
+  out.s[2] = static_cast<float>(v.z);
+  out.s[3] = 0.0f;
+  return out;
+}
+
+// Rest planes px py pz nx ny nz [tx ty tz], padding vertices at the origin with normal e_z.
+std::vector<float> rest_planes(const LocalMesh& mesh, std::size_t stride) {
+  const std::size_t planes = mesh.has_tangents() ? 9 : 6;
+  std::vector<float> data(planes * stride, 0.0f);
+  for (std::size_t v = mesh.vertex_count(); v < stride; ++v) data[5 * stride + v] = 1.0f;
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+    for (int c = 0; c < 3; ++c) {
+      data[c * stride + v] = static_cast<float>(mesh.positions[v][c]);
+      data[(3 + c) * stride + v] = static_cast<float>(mesh.normals[v][c]);
+      if (mesh.has_tangents()) data[(6 + c) * stride + v] = static_cast<float>(mesh.tangents[v][c]);
+    }
+  }
+  return data;
+}
+
+cl::Buffer make_buffer(const cl::Context& context, cl_mem_flags flags, std::size_t bytes,
+                       void* host = nullptr) {
+  cl_int status = CL_SUCCESS;
+  cl::Buffer buffer(context, flags, bytes, host, &status);
+  check_cl(status, "clCreateBuffer");
+  return buffer;
+}
+
+}  // namespace
+
+std::string bend_build_options(const BendSettings& settings, bool tangents) {
+  return std::string("-DFF_BEND_EXACT=") + (settings.mode == BendMode::kExact ? "1" : "0") +
+         " -DFF_NORMALS_JACOBIAN=" + (settings.normals == NormalMode::kJacobian ? "1" : "0") +
+         " -DFF_TANGENTS=" + (tangents ? "1" : "0");
+}
+
+ClDeformer::ClDeformer(Context& context, const LocalMesh& mesh)
+    : context_(context), mesh_(mesh), plane_stride_(padded_plane_stride(mesh.vertex_count())) {
+  static_assert(64 % kLocalSize == 0, "plane_stride must be a multiple of the work-group size");
+  if (plane_stride_ > 0xffffffffu) {
+    throw Error(ErrorCode::kInvalidMesh, "positions", "the mesh has more than 2^32 vertices");
+  }
+  std::vector<float> planes = rest_planes(mesh_, plane_stride_);
+  rest_ = make_buffer(context_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                      planes.size() * sizeof(float), planes.data());
+  const BodyFrame& f = mesh_.frame;
+  back_transform_ = {to_cl_float4(f.origin),          to_cl_float4(f.axis_x * f.length),
+                     to_cl_float4(f.axis_y * f.length), to_cl_float4(f.axis_z * f.length),
+                     to_cl_float4(f.axis_x),          to_cl_float4(f.axis_y),
+                     to_cl_float4(f.axis_z)};
+}
+
+BatchLayout ClDeformer::layout(std::size_t instances) const {
+  BatchLayout layout;
+  layout.vertex_count = mesh_.vertex_count();
+  layout.instance_count = instances;
+  layout.plane_stride = plane_stride_;
+  layout.tangents = mesh_.has_tangents();
+  return layout;
+}
+
+DeviceBatch ClDeformer::allocate(std::size_t instances) const {
+  if (instances == 0) {
+    throw Error(ErrorCode::kInvalidArgument, "instances", "instances = 0: at least one is needed");
+  }
+  DeviceBatch batch;
+  batch.layout = layout(instances);
+  const std::size_t bytes = batch.layout.attribute_elements() * sizeof(float);
+  const std::size_t limit = context_.description().max_allocation_bytes;
+  if (bytes > limit) {
+    throw Error(ErrorCode::kOutOfRange, "instances",
+                "instances = " + std::to_string(instances) + " needs " + std::to_string(bytes) +
+                    " bytes per attribute, above the device's largest allocation (" +
+                    std::to_string(limit) + " bytes on '" + context_.description().device_name +
+                    "')");
+  }
+  const cl::Context& cl_context = context_.context();
+  batch.positions = make_buffer(cl_context, CL_MEM_WRITE_ONLY, bytes);
+  batch.normals = make_buffer(cl_context, CL_MEM_WRITE_ONLY, bytes);
+  batch.tangents =
+      make_buffer(cl_context, CL_MEM_WRITE_ONLY, batch.layout.tangents ? bytes : sizeof(float));
+  batch.parameters = make_buffer(cl_context, CL_MEM_READ_ONLY, instances * sizeof(float));
+  batch.staged_parameters.resize(instances);
+  return batch;
+}
+
+cl::Event ClDeformer::enqueue(const std::vector<float>& m, const BendSettings& settings,
+                              DeviceBatch& batch, bool clamp, const std::vector<cl::Event>* wait) {
+  if (m.size() != batch.layout.instance_count) {
+    throw Error(ErrorCode::kInvalidArgument, "m",
+                "m has " + std::to_string(m.size()) + " values for a batch of " +
+                    std::to_string(batch.layout.instance_count) + " instances");
+  }
+  std::vector<float> checked = checked_bend_params(m, mesh_.x_max, clamp);
+  // The previous upload reads staged_parameters until it completes.
+  if (batch.parameters_uploaded()) check_cl(batch.parameters_uploaded.wait(), "clWaitForEvents");
+  batch.staged_parameters.swap(checked);
+
+  cl::CommandQueue& queue = context_.queue();
+  check_cl(queue.enqueueWriteBuffer(batch.parameters, CL_FALSE, 0, m.size() * sizeof(float),
+                                    batch.staged_parameters.data(), wait,
+                                    &batch.parameters_uploaded),
+           "clEnqueueWriteBuffer m");
+
+  cl::Kernel& kernel = bend_kernel(settings);
+  cl_uint arg = 0;
+  check_cl(kernel.setArg(arg++, rest_), "clSetKernelArg rest");
+  check_cl(kernel.setArg(arg++, batch.parameters), "clSetKernelArg m");
+  check_cl(kernel.setArg(arg++, batch.positions), "clSetKernelArg out_positions");
+  check_cl(kernel.setArg(arg++, batch.normals), "clSetKernelArg out_normals");
+  check_cl(kernel.setArg(arg++, batch.tangents), "clSetKernelArg out_tangents");
+  check_cl(kernel.setArg(arg++, static_cast<cl_uint>(plane_stride_)), "clSetKernelArg stride");
+  for (const cl_float4& value : back_transform_) {
+    check_cl(kernel.setArg(arg++, value), "clSetKernelArg back transform");
+  }
+  cl::Event done;
+  check_cl(queue.enqueueNDRangeKernel(kernel, cl::NullRange,
+                                      cl::NDRange(plane_stride_, batch.layout.instance_count),
+                                      cl::NDRange(kLocalSize, 1), nullptr, &done),
+           "clEnqueueNDRangeKernel bend_batch");
+  return done;
+}
+
+cl::Kernel& ClDeformer::bend_kernel(const BendSettings& settings) {
+  const std::string options = bend_build_options(settings, mesh_.has_tangents());
+  auto found = kernels_.find(options);
+  if (found == kernels_.end()) {
+    found = kernels_.emplace(options, context_.kernel("bend_batch", options)).first;
+  }
+  return found->second;
+}
+
+DeformedBatch<float> ClDeformer::read(const DeviceBatch& batch) {
+  DeformedBatch<float> out;
+  out.resize(batch.layout);
+  cl::CommandQueue& queue = context_.queue();
+  const std::size_t bytes = batch.layout.attribute_elements() * sizeof(float);
+  check_cl(queue.enqueueReadBuffer(batch.positions, CL_TRUE, 0, bytes, out.positions.data()),
+           "clEnqueueReadBuffer positions");
+  check_cl(queue.enqueueReadBuffer(batch.normals, CL_TRUE, 0, bytes, out.normals.data()),
+           "clEnqueueReadBuffer normals");
+  if (batch.layout.tangents) {
+    check_cl(queue.enqueueReadBuffer(batch.tangents, CL_TRUE, 0, bytes, out.tangents.data()),
+             "clEnqueueReadBuffer tangents");
+  }
+  return out;
+}
+
+}  // namespace finflex

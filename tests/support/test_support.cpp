@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <filesystem>
 
+#include <cstdlib>
+
 #include <unistd.h>
 
 namespace finflex::test {
@@ -20,6 +22,15 @@ std::string temp_path(const std::string& file_name) {
   const std::string path = dir + "/" + file_name;
   std::filesystem::remove(path);
   return path;
+}
+
+Context& shared_context() {
+  static Context& context = []() -> Context& {
+    setenv("POCL_CACHE_DIR", FINFLEX_TEST_POCL_CACHE, 0);
+    static Context created;
+    return created;
+  }();
+  return context;
 }
 
 }  // namespace finflex::test

@@ -3,6 +3,8 @@
 
 #include <string>
 
+#include "finflex/cl_context.hpp"
+
 namespace finflex::test {
 
 // Absolute path of a file under the project's data/ folder, e.g. "blub/fish.obj".
@@ -14,5 +16,10 @@ std::string temp_path(const std::string& file_name);
 // Every bundled real fish, as data/-relative paths.
 const char* const kBundledFish[] = {"blub/fish.obj", "blub/fish_low_resolution.obj",
                                     "barramundi/BarramundiFish.gltf"};
+
+// One OpenCL context for a whole test program (default device: PoCL on a CPU
+// machine), so each kernel variant is compiled once. Sets POCL_CACHE_DIR to the test
+// build's own cache unless the environment already sets it.
+Context& shared_context();
 
 }  // namespace finflex::test

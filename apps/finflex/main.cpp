@@ -1,0 +1,31 @@
+// finflex: deform fish meshes with the secant-surface bend on any OpenCL device.
+//
+//   finflex deform --in PATH --out PATH --m VALUE [--mode paper|exact]
+//                  [--normals rotate|jacobian] [--frame auto|identity] [--clamp] [--device NAME]
+//   finflex info
+#include <iostream>
+
+#include "finflex/cli_errors.hpp"
+#include "finflex/commands.hpp"
+
+int main(int argc, char** argv) {
+  using namespace finflex::cli;
+  CLI::App app{"FinFlex: secant-surface deformation of fish meshes in OpenCL"};
+  app.require_subcommand(1);
+  const Command deform = add_deform_command(app);
+  const Command info = add_info_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& help) {
+    return app.exit(help);
+  } catch (const CLI::CallForAllHelp& help) {
+    return app.exit(help);
+  } catch (const CLI::ParseError& error) {
+    const std::string command = app.get_subcommands().empty()
+                                    ? std::string("")
+                                    : app.get_subcommands().front()->get_name();
+    return fail(command.empty() ? "" : command, error.what());
+  }
+  if (app.got_subcommand("deform")) return deform();
+  return info();
+}

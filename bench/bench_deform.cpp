@@ -1,0 +1,168 @@
+// Throughput of the batched bend on the default OpenCL device (or FINFLEX_DEVICE),
+// next to a write-only kernel and a copy kernel of the same NDRange and output planes,
+// measured in the same run. Times are the kernels' own, from OpenCL profiling events,
+// after a warm-up launch of every kernel shape.
+//
+//   build/bench/bench_deform --benchmark_counters_tabular=true
+//   FINFLEX_MESH=path/to/mesh.obj FINFLEX_DEVICE=H100 build/bench/bench_deform
+//
+// Counters: vertices/s (deformed vertices, all instances), bytes/s (bytes written:
+// 24 per vertex, positions + normals in float32), and for the bend the fraction of
+// the write-only kernel's bandwidth (write_fraction), both from this run.
+#include <cstdlib>
+#include <map>
+#include <memory>
+#include <string>
+
+#include <benchmark/benchmark.h>
+
+#include "finflex/finflex.hpp"
+
+namespace finflex {
+namespace {
+
+std::string env_or(const char* name, const std::string& fallback) {
+  const char* value = std::getenv(name);
+  return value && *value ? std::string(value) : fallback;
+}
+
+// One context, mesh and deformer for the whole program.
+struct Setup {
+  Context context{env_or("FINFLEX_DEVICE", "")};
+  Mesh mesh = load_mesh(env_or("FINFLEX_MESH", std::string(FINFLEX_DATA_DIR) + "/blub/fish.obj"));
+  LocalMesh local = make_local_mesh(mesh, find_body_frame(mesh));
+  ClDeformer deformer{context, local};
+  std::map<std::size_t, DeviceBatch> batches;
+  std::map<std::size_t, double> write_only_bytes_per_second;
+
+  static Setup& get() {
+    static Setup setup;
+    return setup;
+  }
+  DeviceBatch& batch(std::size_t instances) {
+    auto found = batches.find(instances);
+    if (found == batches.end()) found = batches.emplace(instances, deformer.allocate(instances)).first;
+    return found->second;
+  }
+};
+
+double event_seconds(const cl::Event& event) {
+  check_cl(event.wait(), "clWaitForEvents");
+  const cl_ulong start = event.getProfilingInfo<CL_PROFILING_COMMAND_START>();
+  const cl_ulong end = event.getProfilingInfo<CL_PROFILING_COMMAND_END>();
+  return static_cast<double>(end - start) * 1e-9;
+}
+
+void set_counters(benchmark::State& state, const BatchLayout& layout) {
+  const double vertices = static_cast<double>(layout.vertex_count * layout.instance_count);
+  const double bytes = static_cast<double>(layout.plane_stride * layout.instance_count) * 24.0;
+  const auto rate = benchmark::Counter::kIsIterationInvariantRate;
+  state.counters["vertices/s"] = benchmark::Counter(vertices, rate);
+  state.counters["bytes/s"] = benchmark::Counter(bytes, rate, benchmark::Counter::kIs1024);
+  state.counters["instances"] = static_cast<double>(layout.instance_count);
+  state.counters["vertices"] = static_cast<double>(layout.vertex_count);
+}
+
+// Runs `launch` once to warm up (PoCL compiles per work-group shape), then times it.
+template <typename Launch>
+double time_kernel(benchmark::State& state, Launch launch) {
+  event_seconds(launch());
+  double total = 0.0;
+  for (auto _ : state) {
+    const double seconds = event_seconds(launch());
+    state.SetIterationTime(seconds);
+    total += seconds;
+  }
+  return total;
+}
+
+cl::Kernel& cached_kernel(const std::string& name) {
+  static std::map<std::string, cl::Kernel> kernels;
+  auto found = kernels.find(name);
+  if (found == kernels.end()) found = kernels.emplace(name, Setup::get().context.kernel(name, "")).first;
+  return found->second;
+}
+
+void BM_WriteOnly(benchmark::State& state) {
+  Setup& setup = Setup::get();
+  DeviceBatch& batch = setup.batch(static_cast<std::size_t>(state.range(0)));
+  cl::Kernel& kernel = cached_kernel("write_planes");
+  kernel.setArg(0, batch.positions);
+  kernel.setArg(1, batch.normals);
+  kernel.setArg(2, static_cast<cl_uint>(batch.layout.plane_stride));
+  kernel.setArg(3, 1.0f);
+  const double seconds = time_kernel(state, [&] {
+    cl::Event done;
+    check_cl(setup.context.queue().enqueueNDRangeKernel(
+                 kernel, cl::NullRange, cl::NDRange(batch.layout.plane_stride, batch.layout.instance_count),
+                 cl::NDRange(ClDeformer::kLocalSize, 1), nullptr, &done),
+             "write_planes");
+    return done;
+  });
+  set_counters(state, batch.layout);
+  const double bytes = static_cast<double>(batch.layout.plane_stride * batch.layout.instance_count) * 24.0;
+  setup.write_only_bytes_per_second[batch.layout.instance_count] =
+      bytes * static_cast<double>(state.iterations()) / seconds;
+}
+
+void BM_CopyRest(benchmark::State& state) {
+  Setup& setup = Setup::get();
+  DeviceBatch& batch = setup.batch(static_cast<std::size_t>(state.range(0)));
+  // The rest planes are private to the deformer: copy from a device buffer of the same size.
+  static cl::Buffer rest;
+  const std::size_t rest_bytes = batch.layout.plane_stride * 6 * sizeof(float);
+  if (!rest()) rest = cl::Buffer(setup.context.context(), CL_MEM_READ_ONLY, rest_bytes);
+  cl::Kernel& kernel = cached_kernel("copy_rest");
+  kernel.setArg(0, rest);
+  kernel.setArg(1, batch.positions);
+  kernel.setArg(2, batch.normals);
+  kernel.setArg(3, static_cast<cl_uint>(batch.layout.plane_stride));
+  time_kernel(state, [&] {
+    cl::Event done;
+    check_cl(setup.context.queue().enqueueNDRangeKernel(
+                 kernel, cl::NullRange, cl::NDRange(batch.layout.plane_stride, batch.layout.instance_count),
+                 cl::NDRange(ClDeformer::kLocalSize, 1), nullptr, &done),
+             "copy_rest");
+    return done;
+  });
+  set_counters(state, batch.layout);
+}
+
+void BM_Bend(benchmark::State& state, BendSettings settings) {
+  Setup& setup = Setup::get();
+  const std::size_t instances = static_cast<std::size_t>(state.range(0));
+  DeviceBatch& batch = setup.batch(instances);
+  std::vector<float> m(instances);
+  const float limit = static_cast<float>(max_abs_m(setup.local.x_max));
+  for (std::size_t i = 0; i < instances; ++i) m[i] = limit * (static_cast<float>(i % 17) / 8.0f - 1.0f);
+  const double seconds =
+      time_kernel(state, [&] { return setup.deformer.enqueue(m, settings, batch); });
+  set_counters(state, batch.layout);
+  const auto write_only = setup.write_only_bytes_per_second.find(instances);
+  if (write_only != setup.write_only_bytes_per_second.end()) {
+    const double bytes = static_cast<double>(batch.layout.plane_stride * instances) * 24.0;
+    state.counters["write_fraction"] =
+        bytes * static_cast<double>(state.iterations()) / seconds / write_only->second;
+  }
+}
+
+void instance_counts(benchmark::internal::Benchmark* b) {
+  for (int n : {1, 10, 100, 1000}) b->Arg(n);
+  b->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(0.5);
+}
+
+BENCHMARK(BM_WriteOnly)->Apply(instance_counts);
+BENCHMARK(BM_CopyRest)->Apply(instance_counts);
+BENCHMARK_CAPTURE(BM_Bend, paper_rotate, BendSettings{BendMode::kPaper, NormalMode::kRotate})
+    ->Apply(instance_counts);
+BENCHMARK_CAPTURE(BM_Bend, exact_rotate, BendSettings{BendMode::kExact, NormalMode::kRotate})
+    ->Apply(instance_counts);
+BENCHMARK_CAPTURE(BM_Bend, paper_jacobian, BendSettings{BendMode::kPaper, NormalMode::kJacobian})
+    ->Apply(instance_counts);
+BENCHMARK_CAPTURE(BM_Bend, exact_jacobian, BendSettings{BendMode::kExact, NormalMode::kJacobian})
+    ->Apply(instance_counts);
+
+}  // namespace
+}  // namespace finflex
+
+BENCHMARK_MAIN();

@@ -1,0 +1,70 @@
+// Where a batch of deformed instances lives: structure-of-arrays planes.
+//
+// Every attribute (positions, normals, tangents) is one array of
+// instance_count * 3 planes; plane (i, c) holds component c (x, y or z) of instance i
+// for every vertex, `plane_stride` floats long (vertex_count rounded up so that every
+// plane starts aligned; the padding is written but means nothing):
+//
+//   positions: | i0.x[0..V) pad | i0.y[0..V) pad | i0.z[0..V) pad | i1.x ... |
+//   element (instance i, component c, vertex v) = data[(i * 3 + c) * plane_stride + v]
+//
+// Separate x/y/z planes let every work-item write whole cache lines together with its
+// neighbours, which is what keeps the kernels at the memory write bandwidth.
+// Tangent handedness (w) does not change under the bend: it stays that of the rest mesh.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace finflex {
+
+struct BatchLayout {
+  std::size_t vertex_count = 0;
+  std::size_t instance_count = 0;
+  std::size_t plane_stride = 0;  // >= vertex_count, in elements
+  bool tangents = false;
+
+  // Elements of one attribute array: instance_count * 3 * plane_stride.
+  std::size_t attribute_elements() const { return instance_count * 3 * plane_stride; }
+  std::size_t index(std::size_t instance, int component, std::size_t vertex) const {
+    return (instance * 3 + static_cast<std::size_t>(component)) * plane_stride + vertex;
+  }
+};
+
+// Rounds vertex_count up to the plane alignment FinFlex uses (64 elements).
+std::size_t padded_plane_stride(std::size_t vertex_count);
+
+// A batch on the host, in float (from a device) or double (from the reference).
+template <typename T>
+struct DeformedBatch {
+  using Vec3 = glm::vec<3, T, glm::defaultp>;
+
+  BatchLayout layout;
+  std::vector<T> positions;
+  std::vector<T> normals;
+  std::vector<T> tangents;  // empty unless layout.tangents
+
+  Vec3 position(std::size_t instance, std::size_t vertex) const { return gather(positions, instance, vertex); }
+  Vec3 normal(std::size_t instance, std::size_t vertex) const { return gather(normals, instance, vertex); }
+  Vec3 tangent(std::size_t instance, std::size_t vertex) const { return gather(tangents, instance, vertex); }
+
+  void resize(const BatchLayout& new_layout) {
+    layout = new_layout;
+    positions.assign(layout.attribute_elements(), T(0));
+    normals.assign(layout.attribute_elements(), T(0));
+    tangents.assign(layout.tangents ? layout.attribute_elements() : 0, T(0));
+  }
+  void scatter(std::vector<T>& data, std::size_t instance, std::size_t vertex, const Vec3& value) {
+    for (int c = 0; c < 3; ++c) data[layout.index(instance, c, vertex)] = value[c];
+  }
+
+ private:
+  Vec3 gather(const std::vector<T>& data, std::size_t instance, std::size_t vertex) const {
+    return Vec3(data[layout.index(instance, 0, vertex)], data[layout.index(instance, 1, vertex)],
+                data[layout.index(instance, 2, vertex)]);
+  }
+};
+
+}  // namespace finflex

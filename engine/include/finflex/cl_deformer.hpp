@@ -1,0 +1,83 @@
+// The OpenCL backend: one rest mesh on the device, N instances per launch, each with
+// its own bend parameter m; one NDRange over (vertices x instances).
+//
+//   Context context;                                  // PoCL on the CPU, or a GPU
+//   ClDeformer deformer(context, make_local_mesh(mesh, find_body_frame(mesh)));
+//   DeviceBatch batch = deformer.allocate(4000);      // once
+//   for each frame:
+//     cl::Event done = deformer.enqueue(m_for_this_frame, settings, batch);
+//     ... hand batch.positions / batch.normals (cl::Buffer) to the renderer, or read()
+//
+// Memory: the rest mesh takes 24 bytes per vertex (36 with tangents) once; every
+// instance takes 24 bytes per vertex of output (positions + normals, float32), 36 with
+// tangents, on plane_stride (vertex count rounded up to 64) vertices. 4,000 instances
+// of the 10,786-vertex fish: 4,000 * 10,816 * 24 B = 1.04 GB.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include <CL/opencl.hpp>
+
+#include "finflex/batch.hpp"
+#include "finflex/bend.hpp"
+#include "finflex/cl_context.hpp"
+#include "finflex/local_mesh.hpp"
+
+namespace finflex {
+
+// Device-side outputs of one batch, allocated once and reused every frame.
+struct DeviceBatch {
+  BatchLayout layout;
+  cl::Buffer positions;   // layout.attribute_elements() floats, finflex/batch.hpp planes
+  cl::Buffer normals;
+  cl::Buffer tangents;    // a placeholder of one float when the mesh has no tangents
+  cl::Buffer parameters;  // m, one float per instance
+
+  // Host staging of the last upload of m, kept alive until its write completes.
+  std::vector<float> staged_parameters;
+  cl::Event parameters_uploaded;
+};
+
+class ClDeformer {
+ public:
+  // Uploads the rest mesh (float32 planes) once.
+  ClDeformer(Context& context, const LocalMesh& mesh);
+
+  const LocalMesh& mesh() const { return mesh_; }
+  BatchLayout layout(std::size_t instances) const;
+
+  // Allocates the outputs of `instances` instances. Throws kInvalidArgument for 0, and
+  // kOutOfRange naming `instances` when one attribute array would exceed the device's
+  // largest allocation.
+  DeviceBatch allocate(std::size_t instances) const;
+
+  // Checks m (checked_bend_params; its size must equal the batch's instance count),
+  // uploads it without blocking, and enqueues the bend after `wait`. Returns the
+  // kernel's event (profiling enabled); nothing waits on the host except for the
+  // previous frame's parameter upload of the same batch.
+  cl::Event enqueue(const std::vector<float>& m, const BendSettings& settings, DeviceBatch& batch,
+                    bool clamp = false, const std::vector<cl::Event>* wait = nullptr);
+
+  // Blocking read of a batch (waits for the queue's work on it).
+  DeformedBatch<float> read(const DeviceBatch& batch);
+
+  // The work-group size used along the vertices (plane_stride is a multiple of it).
+  static constexpr std::size_t kLocalSize = 64;
+
+ private:
+  Context& context_;
+  LocalMesh mesh_;
+  std::size_t plane_stride_ = 0;
+  cl::Buffer rest_;
+  std::vector<cl_float4> back_transform_;  // origin, s e_x, s e_y, s e_z, e_x, e_y, e_z
+  std::map<std::string, cl::Kernel> kernels_;  // by build options: no per-frame creation
+
+  cl::Kernel& bend_kernel(const BendSettings& settings);
+};
+
+// Build options specialising the kernels for `settings` (-D FF_BEND_EXACT=...).
+std::string bend_build_options(const BendSettings& settings, bool tangents);
+
+}  // namespace finflex

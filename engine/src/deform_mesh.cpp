@@ -1,1 +1,0 @@
-// placeholder, replaced while the library is being written

@@ -1,0 +1,153 @@
+// The double-precision reference against the geometry it must have: identity at m = 0,
+// mirror symmetry in m, the spine's arc length, the paper's series error, and the
+// rotation (8) taking e_z to the secant normal (not the printed, transposed (9)).
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "finflex/error.hpp"
+#include "finflex/reference_deformer.hpp"
+#include "support/synthetic_fish.hpp"
+
+namespace finflex {
+namespace {
+
+const BendMode kModes[] = {BendMode::kPaper, BendMode::kExact};
+const NormalMode kNormalModes[] = {NormalMode::kRotate, NormalMode::kJacobian};
+
+// Length of the bent spine, sampled densely between -x_max and x_max.
+double bent_spine_length(double m, double x_max, BendMode mode) {
+  const int samples = 20001;
+  double length = 0.0;
+  glm::dvec3 previous{};
+  for (int i = 0; i < samples; ++i) {
+    const double x = -x_max + 2.0 * x_max * i / (samples - 1);
+    const LocalVertex bent =
+        bend_local_vertex({{x, 0.0, 0.0}, {0.0, 0.0, 1.0}, {}}, m, {mode, NormalMode::kRotate});
+    if (i > 0) length += glm::length(bent.position - previous);
+    previous = bent.position;
+  }
+  return length;
+}
+
+TEST(BendReference, ZeroParameterIsTheIdentity) {
+  const Mesh mesh = test::synthetic_fish(24, 16, true);
+  const ReferenceDeformer reference(make_local_mesh(mesh, BodyFrame::identity()));
+  for (BendMode mode : kModes) {
+    for (NormalMode normals : kNormalModes) {
+      const DeformedBatch<double> out = reference.run({0.0f}, {mode, normals});
+      for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+        EXPECT_LT(glm::length(out.position(0, v) - glm::dvec3(mesh.positions[v])), 1e-12);
+        EXPECT_LT(glm::length(out.normal(0, v) - glm::normalize(glm::dvec3(mesh.normals[v]))), 1e-7);
+        EXPECT_LT(glm::length(out.tangent(0, v) - glm::dvec3(glm::vec3(mesh.tangents[v]))), 1e-6);
+      }
+    }
+  }
+}
+
+TEST(BendReference, OppositeParametersMirrorInZ) {
+  for (BendMode mode : kModes) {
+    for (NormalMode normals : kNormalModes) {
+      for (double x : {-0.5, -0.2, 0.1, 0.45}) {
+        const LocalVertex rest{{x, 0.03, 0.02}, glm::normalize(glm::dvec3(0.3, -0.2, 0.9)),
+                               glm::normalize(glm::dvec3(0.9, 0.1, -0.3))};
+        const LocalVertex mirrored{{x, 0.03, -0.02}, glm::normalize(glm::dvec3(0.3, -0.2, -0.9)),
+                                   glm::normalize(glm::dvec3(0.9, 0.1, 0.3))};
+        const glm::dvec3 flip(1.0, 1.0, -1.0);
+        const LocalVertex a = bend_local_vertex(rest, 0.7, {mode, normals});
+        const LocalVertex b = bend_local_vertex(mirrored, -0.7, {mode, normals});
+        EXPECT_LT(glm::length(a.position * flip - b.position), 1e-14);
+        EXPECT_LT(glm::length(a.normal * flip - b.normal), 1e-14);
+        EXPECT_LT(glm::length(a.tangent * flip - b.tangent), 1e-14);
+      }
+    }
+  }
+}
+
+TEST(BendReference, ExactBendKeepsTheSpineArcLength) {
+  const double x_max = 0.5;
+  for (double ratio : {0.25, 0.5, 0.8, 0.95, 1.0}) {  // 2 m x_max
+    const double m = ratio / (2.0 * x_max);
+    const double length = bent_spine_length(m, x_max, BendMode::kExact);
+    EXPECT_LT(std::fabs(length - 2.0 * x_max) / (2.0 * x_max), 1e-7) << "2 m x_max = " << ratio;
+  }
+}
+
+TEST(BendReference, PaperSeriesErrorIsAsMeasured) {
+  // METHOD.md section 5: 0.01 % at 2 m x_max = 0.5, 0.25 % at 0.8, 0.96 % at 1.0,
+  // and the spine tip x' = 0.808 against the exact 0.785.
+  const double x_max = 0.5;
+  const auto relative_error = [&](double ratio) {
+    const double length = bent_spine_length(ratio / (2.0 * x_max), x_max, BendMode::kPaper);
+    return (length - 2.0 * x_max) / (2.0 * x_max);
+  };
+  EXPECT_NEAR(relative_error(0.5), 1.0e-4, 0.5e-4);
+  EXPECT_NEAR(relative_error(0.8), 2.5e-3, 0.3e-3);
+  EXPECT_NEAR(relative_error(1.0), 9.6e-3, 0.4e-3);
+  const BendSettings paper{BendMode::kPaper, NormalMode::kRotate};
+  const BendSettings exact{BendMode::kExact, NormalMode::kRotate};
+  const LocalVertex tip{{1.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, {}};
+  EXPECT_NEAR(bend_local_vertex(tip, 0.5, paper).position.x, 0.8083, 1e-3);
+  EXPECT_NEAR(bend_local_vertex(tip, 0.5, exact).position.x, 0.7854, 1e-3);
+}
+
+TEST(BendReference, SpineFollowsTheParabola) {
+  // (12): the spine point at arc length x lies on z = m x^2, for the exact bend exactly.
+  for (double x : {-0.4, 0.1, 0.5}) {
+    const LocalVertex bent =
+        bend_local_vertex({{x, 0.0, 0.0}, {0.0, 0.0, 1.0}, {}}, 0.9, {BendMode::kExact, NormalMode::kRotate});
+    EXPECT_NEAR(bent.position.z, 0.9 * x * x, 1e-15);
+    EXPECT_DOUBLE_EQ(bent.position.y, 0.0);
+  }
+}
+
+TEST(BendReference, RotationTakesEzToTheSecantNormal) {
+  // (8) with R taking e_z to n: a rest normal e_z on the secant plane becomes n (17),
+  // not (-n_x, -n_y, n_z) as the printed matrix (9) would give.
+  const double m = 0.8, x = 0.4;
+  const LocalVertex bent = bend_local_vertex({{x, 0.0, 0.0}, {0.0, 0.0, 1.0}, {1.0, 0.0, 0.0}}, m,
+                                             {BendMode::kPaper, NormalMode::kRotate});
+  const double a = 1.0 - 2.0 * m * m * x * x - 2.0 * std::pow(m * x, 4);
+  const glm::dvec3 n = glm::normalize(glm::dvec3(-2.0 * m * x, 0.0, a));
+  EXPECT_LT(glm::length(bent.normal - n), 1e-14);
+  EXPECT_NEAR(glm::dot(bent.tangent, n), 0.0, 1e-14);
+  EXPECT_GT(bent.tangent.x, 0.0);
+}
+
+TEST(BendReference, JacobianNormalsScaleTheAlongSpineComponent) {
+  // METHOD.md section 6: normals by R diag(1 / (1 - z k), 1, 1), k = 2m / sqrt(1 - 4m^2x^2).
+  const double m = 0.6, x = 0.3, z = 0.05;
+  const glm::dvec3 rest_normal = glm::normalize(glm::dvec3(0.5, 0.2, 0.8));
+  const LocalVertex bent = bend_local_vertex({{x, 0.0, z}, rest_normal, {}}, m,
+                                             {BendMode::kExact, NormalMode::kJacobian});
+  const double c = std::sqrt(1.0 - 4.0 * m * m * x * x), k = 2.0 * m / c;
+  const glm::dvec3 scaled(rest_normal.x / (1.0 - z * k), rest_normal.y, rest_normal.z);
+  const glm::dvec3 u(-2.0 * m * x, 0.0, c);  // n
+  const glm::dvec3 t(c, 0.0, 2.0 * m * x);   // unit spine tangent
+  const glm::dvec3 expected = glm::normalize(scaled.x * t + scaled.y * glm::dvec3(0, 1, 0) + scaled.z * u);
+  EXPECT_LT(glm::length(bent.normal - expected), 1e-14);
+}
+
+TEST(BendReference, RejectsBadParameters) {
+  const ReferenceDeformer reference(make_local_mesh(test::synthetic_fish(8, 8), BodyFrame::identity()));
+  const BendSettings settings;
+  EXPECT_THROW(reference.run({}, settings), Error);
+  EXPECT_THROW(reference.run({NAN}, settings), Error);
+  EXPECT_THROW(reference.run({INFINITY}, settings), Error);
+  try {
+    reference.run({0.1f, 1.5f}, settings);  // x_max = 0.5: |m| <= 1
+    FAIL() << "expected an out-of-range error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::kOutOfRange);
+    EXPECT_EQ(e.field(), "m[1]");
+    EXPECT_NE(std::string(e.what()).find("1.5"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("[-1, 1]"), std::string::npos);
+  }
+  // Clamping brings the value to the limit instead.
+  const DeformedBatch<double> clamped = reference.run({1.5f}, settings, true);
+  const DeformedBatch<double> at_limit = reference.run({1.0f}, settings);
+  EXPECT_LT(glm::length(clamped.position(0, 0) - at_limit.position(0, 0)), 1e-6);
+}
+
+}  // namespace
+}  // namespace finflex

@@ -1,0 +1,172 @@
+// The finflex command line as other tools call it: exit codes, the one-line error
+// message naming the problem, and no output file on any error.
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "finflex/finflex.hpp"
+#include "support/synthetic_fish.hpp"
+#include "support/test_support.hpp"
+
+namespace finflex {
+namespace {
+
+struct RunResult {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+std::string read_text(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  std::stringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+RunResult run_cli(const std::string& arguments) {
+  const std::string out_path = test::temp_path("stdout.txt");
+  const std::string err_path = test::temp_path("stderr.txt");
+  const std::string command = std::string("POCL_CACHE_DIR=") + FINFLEX_TEST_POCL_CACHE + " '" +
+                              FINFLEX_CLI_PATH + "' " + arguments + " >'" + out_path + "' 2>'" +
+                              err_path + "' </dev/null";
+  const int status = std::system(command.c_str());
+  RunResult result;
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  result.out = read_text(out_path);
+  result.err = read_text(err_path);
+  return result;
+}
+
+std::string fish(const char* relative) { return "'" + test::data_path(relative) + "'"; }
+
+int line_count(const std::string& text) {
+  int lines = 0;
+  for (char c : text) lines += c == '\n';
+  return lines;
+}
+
+TEST(Cli, DeformsABundledFish) {
+  const std::string out = test::temp_path("bent.ply");
+  const RunResult r = run_cli("deform --in " + fish("blub/fish_low_resolution.obj") + " --out '" +
+                              out + "' --m 0.5");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  const Mesh rest = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
+  const Mesh bent = load_mesh(out);
+  ASSERT_EQ(bent.vertex_count(), rest.vertex_count());
+  EXPECT_EQ(bent.indices, rest.indices);
+  double moved = 0.0;
+  for (std::size_t v = 0; v < rest.vertex_count(); ++v) {
+    moved = std::max(moved, double(glm::length(bent.positions[v] - rest.positions[v])));
+  }
+  EXPECT_GT(moved, 0.05);  // the fish really bent
+}
+
+TEST(Cli, MatchesTheReferenceInTheIdentityFrame) {
+  const Mesh rest = test::synthetic_fish(32, 24);
+  const std::string in = test::temp_path("synthetic.obj");
+  save_mesh(in, rest);
+  const Mesh loaded = load_mesh(in);
+  for (const char* mode : {"paper", "exact"}) {
+    for (const char* normals : {"rotate", "jacobian"}) {
+      const std::string out = test::temp_path("bent.obj");
+      const RunResult r = run_cli("deform --in '" + in + "' --out '" + out + "' --m -0.75 --mode " +
+                                  mode + " --normals " + normals + " --frame identity");
+      ASSERT_EQ(r.exit_code, 0) << r.err;
+      const Mesh bent = load_mesh(out);
+      const ReferenceDeformer reference(make_local_mesh(loaded, BodyFrame::identity()));
+      const BendSettings settings{parse_bend_mode(mode), parse_normal_mode(normals)};
+      const Mesh expected = instance_mesh(loaded, reference.run({-0.75f}, settings), 0);
+      for (std::size_t v = 0; v < rest.vertex_count(); ++v) {
+        EXPECT_LT(glm::length(bent.positions[v] - expected.positions[v]), 1e-5f) << mode << normals;
+        EXPECT_LT(glm::length(bent.normals[v] - expected.normals[v]), 1e-4f) << mode << normals;
+      }
+    }
+  }
+}
+
+TEST(Cli, WritesGltfWithTangents) {
+  const std::string out = test::temp_path("bent.glb");
+  const RunResult r = run_cli("deform --in " + fish("barramundi/BarramundiFish.gltf") + " --out '" +
+                              out + "' --m 0.4 --mode exact --normals jacobian");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Mesh bent = load_mesh(out);
+  EXPECT_EQ(bent.vertex_count(), 2188u);
+  EXPECT_TRUE(bent.has_tangents());
+}
+
+TEST(Cli, InfoListsTheDefaultDevice) {
+  const RunResult r = run_cli("info");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find(" * "), std::string::npos) << r.out;
+}
+
+struct BadCase {
+  std::string arguments;  // after "deform --out OUT"
+  std::string expected;   // substrings the one-line message must contain
+  std::string also;
+};
+
+TEST(Cli, BadInputsExitTwoWithOneLineAndWriteNothing) {
+  const std::string in = fish("blub/fish_low_resolution.obj");
+  const std::vector<BadCase> cases = {
+      {"--in " + in + " --m 7", "--m", "out of range"},
+      {"--in " + in + " --m -7", "--m", "out of range"},
+      {"--in " + in + " --m nan", "--m", "NaN"},
+      {"--in " + in + " --m inf", "--m", "infinite"},
+      {"--in " + in + " --m abc", "--m", "not a number"},
+      {"--in " + in + " --m 0.1 --mode spline", "--mode", "spline"},
+      {"--in " + in + " --m 0.1 --normals smooth", "--normals", "smooth"},
+      {"--in " + in + " --m 0.1 --frame body", "--frame", "body"},
+      {"--in " + in + " --m 0.1 --device no-such-device", "device", "no-such-device"},
+      {"--in '/nonexistent/fish.obj' --m 0.1", "/nonexistent/fish.obj", ""},
+      {"--in " + fish("blub/README.md") + " --m 0.1", "README.md", ""},
+      {"--m 0.1", "--in", ""},
+      {"--in " + in, "--m", ""},
+  };
+  for (const BadCase& c : cases) {
+    const std::string out = test::temp_path("never.obj");
+    const RunResult r = run_cli("deform --out '" + out + "' " + c.arguments);
+    SCOPED_TRACE(c.arguments);
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(line_count(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(c.expected), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(c.also), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+  }
+}
+
+TEST(Cli, AnExistingOutputIsLeftUntouchedOnError) {
+  const std::string out = test::temp_path("existing.obj");
+  { std::ofstream(out) << "previous content\n"; }
+  const RunResult r = run_cli("deform --in " + fish("blub/fish_low_resolution.obj") + " --out '" +
+                              out + "' --m 100");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(read_text(out), "previous content\n");
+}
+
+TEST(Cli, UnsupportedOutputFormatIsRejected) {
+  const std::string out = test::temp_path("bent.xyz");
+  const RunResult r = run_cli("deform --in " + fish("blub/fish_low_resolution.obj") + " --out '" +
+                              out + "' --m 0.1");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find(".xyz"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+TEST(Cli, ClampBringsParameterIntoRange) {
+  const std::string out = test::temp_path("clamped.obj");
+  const RunResult r = run_cli("deform --in " + fish("blub/fish_low_resolution.obj") + " --out '" +
+                              out + "' --m 100 --clamp");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(out));
+}
+
+}  // namespace
+}  // namespace finflex
