@@ -6,11 +6,18 @@
 //  - positions: 4e-6 * (|origin| + s_x). The kernels compute in float32 (unit
 //    roundoff 6e-8) a handful of operations on coordinates of magnitude s_x, then add
 //    the origin: a few ulps of |origin| + s_x, with margin.
-//  - normals and tangents: 2e-5 (a few float ulps of a unit vector through rsqrt),
-//    except where the problem itself is ill-conditioned: at the exact bend's limit
-//    the spine's end has sqrt(1 - 4m^2x^2) -> 0, its derivative is infinite, and the
-//    float rounding of x alone (1e-7 relative) moves the secant normal by up to
-//    sqrt(2 * 1e-7) ~ 5e-4. Vertices with 1 - (2mx)^2 < 1e-3 get 2e-3 there.
+//  - normals and tangents: 2e-5 (a few float ulps of a unit vector through rsqrt).
+//  - Where the problem itself is ill-conditioned, float32 cannot do better than its
+//    conditioning, so the bounds follow it:
+//    * near the exact bend's range limit (1 - (2mx)^2 < 1e-3) the spine's slope
+//      sqrt(1 - 4m^2x^2) has an infinite derivative: the float rounding of x alone
+//      (1e-7 relative) moves the secant normal n by up to sqrt(2e-7) ~ 5e-4, so normals
+//      get 2e-3 there and positions (p' = f + z n) 2e-3 |z| s_x more;
+//    * Jacobian normals where the offset surface folds through itself (|1 - z k| <
+//      0.05, METHOD.md section 6): the normal flips across the fold and is undefined on
+//      it; and Jacobian normals near the exact bend's limit, where k = 2m / sqrt(1 - u^2)
+//      inherits the 5e-4 uncertainty of the square root divided by a value that tends
+//      to 0. These vertices are counted (under 1 %), not compared.
 #include <cmath>
 #include <random>
 
@@ -28,25 +35,44 @@ namespace finflex {
 namespace {
 
 struct MaxErrors {
-  double position = 0.0;          // absolute, mesh units
-  double normal = 0.0;            // |difference| of unit vectors
-  double normal_singular = 0.0;   // same, only vertices near the exact limit's singularity
+  double position = 0.0;  // absolute error over the position bound, max (< 1 passes)
+  double normal = 0.0;    // |difference| of unit vectors over its bound, max (< 1 passes)
+  std::size_t folded = 0; // Jacobian normals on or near a fold, not compared
 };
 
 MaxErrors compare(const LocalMesh& local, const DeformedBatch<float>& device,
-                  const DeformedBatch<double>& reference, const std::vector<float>& m) {
+                  const DeformedBatch<double>& reference, const std::vector<float>& m,
+                  const BendSettings& settings) {
+  const BodyFrame& frame = local.frame;
+  const double position_bound = 4e-6 * (glm::length(frame.origin) + frame.length);
   MaxErrors e;
   for (std::size_t i = 0; i < m.size(); ++i) {
     for (std::size_t v = 0; v < local.vertex_count(); ++v) {
-      e.position = std::max(e.position, glm::length(glm::dvec3(device.position(i, v)) -
-                                                    reference.position(i, v)));
-      double n = glm::length(glm::dvec3(device.normal(i, v)) - reference.normal(i, v));
-      if (local.has_tangents()) {
-        n = std::max(n, glm::length(glm::dvec3(device.tangent(i, v)) - reference.tangent(i, v)));
+      const glm::dvec3& p = local.positions[v];
+      const double u = 2.0 * m[i] * p.x;
+      const bool near_limit = settings.mode == BendMode::kExact && 1.0 - u * u < 1e-3;
+      const double c = std::sqrt(std::max(1.0 - u * u, 0.0));
+      const double curvature = settings.mode == BendMode::kExact
+                                   ? 2.0 * m[i] / std::max(c, 1e-6)
+                                   : 2.0 * m[i];  // the series stays below 4 m: no fold on a fish
+      const bool folded = settings.normals == NormalMode::kJacobian &&
+                          (near_limit || std::fabs(1.0 - p.z * curvature) < 0.05);
+
+      const double position_error =
+          glm::length(glm::dvec3(device.position(i, v)) - reference.position(i, v));
+      const double bound =
+          position_bound + (near_limit ? 2e-3 * std::fabs(p.z) * frame.length : 0.0);
+      e.position = std::max(e.position, position_error / bound);
+      if (folded) {
+        ++e.folded;
+        continue;
       }
-      const double u = 2.0 * m[i] * local.positions[v].x;
-      double& slot = (1.0 - u * u < 1e-3) ? e.normal_singular : e.normal;
-      slot = std::max(slot, n);
+      double normal_error = glm::length(glm::dvec3(device.normal(i, v)) - reference.normal(i, v));
+      if (local.has_tangents()) {
+        normal_error = std::max(
+            normal_error, glm::length(glm::dvec3(device.tangent(i, v)) - reference.tangent(i, v)));
+      }
+      e.normal = std::max(e.normal, normal_error / (near_limit ? 2e-3 : 2e-5));
     }
   }
   return e;
@@ -66,16 +92,17 @@ void expect_matches_reference(const Mesh& mesh, const BodyFrame& frame, const st
   ClDeformer deformer(test::shared_context(), local);
   const ReferenceDeformer reference(local);
   DeviceBatch batch = deformer.allocate(m.size());
-  const double position_tolerance = 4e-6 * (glm::length(frame.origin) + frame.length);
   for (BendMode mode : {BendMode::kPaper, BendMode::kExact}) {
     for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {
       const BendSettings settings{mode, normals};
       deformer.enqueue(m, settings, batch, /*clamp=*/true);
-      const MaxErrors e = compare(local, deformer.read(batch), reference.run(m, settings, true), m);
+      const MaxErrors e =
+          compare(local, deformer.read(batch), reference.run(m, settings, true), m, settings);
       SCOPED_TRACE(name + " " + to_string(mode) + " " + to_string(normals));
-      EXPECT_LT(e.position, position_tolerance);
-      EXPECT_LT(e.normal, 2e-5);
-      EXPECT_LT(e.normal_singular, 2e-3);
+      EXPECT_LT(e.position, 1.0);
+      EXPECT_LT(e.normal, 1.0);
+      // Folds only appear at the ends of the spine near the range limit.
+      EXPECT_LT(e.folded, local.vertex_count() * m.size() / 100);
     }
   }
 }
