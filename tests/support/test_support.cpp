@@ -11,7 +11,11 @@
 namespace finflex::test {
 
 std::string data_path(const std::string& relative) {
-  return std::string(FINFLEX_DATA_DIR) + "/" + relative;
+  // FINFLEX_DATA_DIR in the environment overrides the source tree's data/ (for test
+  // binaries run on another machine).
+  const char* override_dir = std::getenv("FINFLEX_DATA_DIR");
+  return std::string(override_dir && *override_dir ? override_dir : FINFLEX_DATA_DIR) + "/" +
+         relative;
 }
 
 std::string temp_path(const std::string& file_name) {
