@@ -127,6 +127,10 @@ TEST(Cli, BadInputsExitTwoWithOneLineAndWriteNothing) {
       {"--in " + in + " --m 0.1 --device no-such-device", "device", "no-such-device"},
       {"--in '/nonexistent/fish.obj' --m 0.1", "/nonexistent/fish.obj", ""},
       {"--in " + fish("blub/README.md") + " --m 0.1", "README.md", ""},
+      {"--in " + in + " --m 0.1 --head 1,2", "--head", "X,Y,Z"},
+      {"--in " + in + " --m 0.1 --pivot 0,0,nan", "--pivot", "not finite"},
+      {"--in " + in + " --m 0.1 --dorsal 0,0,0", "--dorsal", ""},
+      {"--in " + in + " --m 0.1 --head 0,0,1 --frame identity", "--frame", "--head"},
       {"--m 0.1", "--in", ""},
       {"--in " + in, "--m", ""},
   };
@@ -158,6 +162,22 @@ TEST(Cli, UnsupportedOutputFormatIsRejected) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find(".xyz"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+TEST(Cli, FrameOverridesChangeTheFrame) {
+  // Blub's head is at mesh +z; saying it is at -z bends the other end about a new pivot.
+  const std::string in = fish("blub/fish_low_resolution.obj");
+  const std::string found = test::temp_path("found.obj"), flipped = test::temp_path("flipped.obj");
+  ASSERT_EQ(run_cli("deform --in " + in + " --out '" + found + "' --m 0.5").exit_code, 0);
+  const RunResult r =
+      run_cli("deform --in " + in + " --out '" + flipped + "' --m 0.5 --head 0,0,-1 --pivot 0,0,1");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Mesh a = load_mesh(found), b = load_mesh(flipped);
+  double difference = 0.0;
+  for (std::size_t v = 0; v < a.vertex_count(); ++v) {
+    difference = std::max(difference, double(glm::length(a.positions[v] - b.positions[v])));
+  }
+  EXPECT_GT(difference, 0.1);
 }
 
 TEST(Cli, ClampBringsParameterIntoRange) {

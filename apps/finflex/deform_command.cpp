@@ -1,6 +1,7 @@
 // finflex deform: bend one mesh file and write the result.
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "finflex/cli_errors.hpp"
@@ -19,22 +20,72 @@ struct DeformOptions {
   std::string frame = "auto";
   bool clamp = false;
   std::string device;
+  std::string head;    // "X,Y,Z" overrides of the automatic frame
+  std::string dorsal;
+  std::string pivot;
 };
 
-// The library names a single instance's parameter "m[0]"; on the command line it is --m.
+// Library field names of what the command line calls by its option names.
 std::string with_option_names(const Error& error) {
+  static const std::pair<const char*, const char*> kNames[] = {
+      {"m[0]", "--m"},
+      {"options.head_direction", "--head"},
+      {"options.dorsal_direction", "--dorsal"},
+      {"options.pivot", "--pivot"},
+  };
   std::string message = error.what();
-  const std::string library_name = "m[0]";
-  const std::size_t at = message.find(library_name);
-  if (error.field() == library_name && at != std::string::npos) {
-    message.replace(at, library_name.size(), "--m");
+  for (const auto& [library_name, option] : kNames) {
+    const std::size_t at = message.find(library_name);
+    if (error.field() == library_name && at != std::string::npos) {
+      message.replace(at, std::string(library_name).size(), option);
+    }
   }
   return message;
 }
 
-BodyFrame choose_frame(const Mesh& mesh, const std::string& frame) {
+// Parses "X,Y,Z" (empty: not given).
+std::optional<glm::dvec3> parse_vector(const std::string& text, const std::string& option) {
+  if (text.empty()) return std::nullopt;
+  glm::dvec3 value;
+  std::size_t begin = 0;
+  for (int c = 0; c < 3; ++c) {
+    const std::size_t comma = text.find(',', begin);
+    const bool last = c == 2;
+    if (last != (comma == std::string::npos)) {
+      throw Error(ErrorCode::kInvalidArgument, option,
+                  option + " '" + text + "' is not three comma-separated numbers X,Y,Z");
+    }
+    value[c] = parse_number(text.substr(begin, last ? std::string::npos : comma - begin), option);
+    begin = comma + 1;
+  }
+  return value;
+}
+
+FrameOptions frame_options(const DeformOptions& options) {
+  FrameOptions frame;
+  frame.head_direction = parse_vector(options.head, "--head");
+  frame.dorsal_direction = parse_vector(options.dorsal, "--dorsal");
+  frame.pivot = parse_vector(options.pivot, "--pivot");
+  if (options.frame == "identity" && (frame.head_direction || frame.dorsal_direction || frame.pivot)) {
+    throw Error(ErrorCode::kInvalidArgument, "--frame",
+                "--head, --dorsal and --pivot adjust the automatic frame: not with --frame identity");
+  }
+  return frame;
+}
+
+BodyFrame choose_frame(const Mesh& mesh, const std::string& frame, const FrameOptions& options) {
   if (frame == "identity") return BodyFrame::identity();
-  return find_body_frame(mesh);
+  return find_body_frame(mesh, options);
+}
+
+// Errors of a file operation name the option that gave the path.
+template <typename Operation>
+auto with_path_option(const std::string& option, Operation operation) {
+  try {
+    return operation();
+  } catch (const Error& error) {
+    throw Error(error.code(), option, option + ": " + error.what());
+  }
 }
 
 int run_deform(const DeformOptions& options) {
@@ -50,8 +101,10 @@ int run_deform(const DeformOptions& options) {
       throw Error(ErrorCode::kInvalidArgument, "--out", "--out '" + options.out + "' is a directory");
     }
 
-    const Mesh rest = load_mesh(options.in);
-    const LocalMesh local = make_local_mesh(rest, choose_frame(rest, options.frame));
+    const FrameOptions frame = frame_options(options);
+
+    const Mesh rest = with_path_option("--in", [&] { return load_mesh(options.in); });
+    const LocalMesh local = make_local_mesh(rest, choose_frame(rest, options.frame, frame));
     const std::vector<float> parameters =
         checked_bend_params({static_cast<float>(m)}, local.x_max, options.clamp);
 
@@ -59,7 +112,8 @@ int run_deform(const DeformOptions& options) {
     ClDeformer deformer(context, local);
     DeviceBatch batch = deformer.allocate(1);
     deformer.enqueue(parameters, settings, batch);
-    save_mesh(options.out, instance_mesh(rest, deformer.read(batch), 0));
+    const Mesh bent = instance_mesh(rest, deformer.read(batch), 0);
+    with_path_option("--out", [&] { save_mesh(options.out, bent); });
     return kExitSuccess;
   } catch (const Error& error) {
     return fail("deform", with_option_names(error));
@@ -86,6 +140,9 @@ Command add_deform_command(CLI::App& app) {
       ->check(CLI::IsMember({"auto", "identity"}))
       ->capture_default_str();
   deform->add_flag("--clamp", options->clamp, "Clamp m into its valid range instead of failing");
+  deform->add_option("--head", options->head, "Automatic frame: X,Y,Z roughly towards the head");
+  deform->add_option("--dorsal", options->dorsal, "Automatic frame: X,Y,Z roughly towards the back");
+  deform->add_option("--pivot", options->pivot, "Automatic frame: the fixed point X,Y,Z (mesh units)");
   deform->add_option("--device", options->device,
                      "OpenCL device: 'P:D' indices or a name substring (see finflex info)");
   return [options] { return run_deform(*options); };
