@@ -28,14 +28,20 @@ struct Mesh {
 
 // Throws finflex::Error (kInvalidMesh) naming the first bad field and value: no
 // vertices, attribute arrays of the wrong length, index count not a multiple of 3,
-// an index out of range, a non-finite position/normal/tangent, a zero normal.
+// an index out of range, a non-finite position/normal/tangent/texcoord, a zero normal.
+// The checks run in that order; the field is e.g. "normals", "indices[7]",
+// "positions[12].y", and the message repeats it with the value.
+// A mesh without triangles (indices empty) is valid.
 void validate_mesh(const Mesh& mesh);
 
 // Area-weighted vertex normals from the triangles (overwrites mesh.normals).
-// A vertex used by no triangle gets the normal (0, 0, 1).
+// A vertex used by no triangle, or only by zero-area ones, gets the normal (0, 0, 1).
+// Throws kInvalidMesh if the index count is not a multiple of 3 or an index is out
+// of range; the other attributes are not checked.
 void compute_vertex_normals(Mesh& mesh);
 
 // Per-triangle unit normals (right-hand rule on the index order), for tests and tools.
+// A zero-area triangle gets (0, 0, 0). Throws kInvalidMesh like compute_vertex_normals.
 std::vector<glm::dvec3> face_normals(const std::vector<glm::vec3>& positions,
                                      const std::vector<std::uint32_t>& indices);
 
