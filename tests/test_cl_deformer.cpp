@@ -2,27 +2,15 @@
 // on every bundled real fish, for both bend modes, both normal modes and m across the
 // whole valid range.
 //
-// Tolerances, and why:
-//  - positions: 4e-6 * (|origin| + s_x). The kernels compute in float32 (unit
-//    roundoff 6e-8) a handful of operations on coordinates of magnitude s_x, then add
-//    the origin: a few ulps of |origin| + s_x, with margin.
-//  - normals and tangents: 2e-5 (a few float ulps of a unit vector through rsqrt).
-//  - Where the problem itself is ill-conditioned, float32 cannot do better than its
-//    conditioning, so the bounds follow it:
-//    * near the exact bend's range limit (1 - (2mx)^2 < 1e-3) the spine's slope
-//      sqrt(1 - 4m^2x^2) has an infinite derivative: the float rounding of x alone
-//      (1e-7 relative) moves the secant normal n by up to sqrt(2e-7) ~ 5e-4, so normals
-//      get 2e-3 there and positions (p' = f + z n) 2e-3 |z| s_x more;
-//    * Jacobian normals where the offset surface folds through itself (|1 - z k| <
-//      0.05, METHOD.md section 6): the normal flips across the fold and is undefined on
-//      it; and Jacobian normals near the exact bend's limit, where k = 2m / sqrt(1 - u^2)
-//      inherits the 5e-4 uncertainty of the square root divided by a value that tends
-//      to 0. These vertices are counted (under 1 %), not compared.
+// Tolerances: those of finflex/accuracy.hpp (and docs/accuracy.md): a few float32
+// ulps where the bend is well conditioned, bounds that follow the conditioning near
+// the exact bend's range limit, and ill-defined Jacobian normals on folds skipped.
 #include <cmath>
 #include <random>
 
 #include <gtest/gtest.h>
 
+#include "finflex/accuracy.hpp"
 #include "finflex/body_frame.hpp"
 #include "finflex/cl_deformer.hpp"
 #include "finflex/error.hpp"
@@ -33,50 +21,6 @@
 
 namespace finflex {
 namespace {
-
-struct MaxErrors {
-  double position = 0.0;  // absolute error over the position bound, max (< 1 passes)
-  double normal = 0.0;    // |difference| of unit vectors over its bound, max (< 1 passes)
-  std::size_t folded = 0; // Jacobian normals on or near a fold, not compared
-};
-
-MaxErrors compare(const LocalMesh& local, const DeformedBatch<float>& device,
-                  const DeformedBatch<double>& reference, const std::vector<float>& m,
-                  const BendSettings& settings) {
-  const BodyFrame& frame = local.frame;
-  const double position_bound = 4e-6 * (glm::length(frame.origin) + frame.length);
-  MaxErrors e;
-  for (std::size_t i = 0; i < m.size(); ++i) {
-    for (std::size_t v = 0; v < local.vertex_count(); ++v) {
-      const glm::dvec3& p = local.positions[v];
-      const double u = 2.0 * m[i] * p.x;
-      const bool near_limit = settings.mode == BendMode::kExact && 1.0 - u * u < 1e-3;
-      const double c = std::sqrt(std::max(1.0 - u * u, 0.0));
-      const double curvature = settings.mode == BendMode::kExact
-                                   ? 2.0 * m[i] / std::max(c, 1e-6)
-                                   : 2.0 * m[i];  // the series stays below 4 m: no fold on a fish
-      const bool folded = settings.normals == NormalMode::kJacobian &&
-                          (near_limit || std::fabs(1.0 - p.z * curvature) < 0.05);
-
-      const double position_error =
-          glm::length(glm::dvec3(device.position(i, v)) - reference.position(i, v));
-      const double bound =
-          position_bound + (near_limit ? 2e-3 * std::fabs(p.z) * frame.length : 0.0);
-      e.position = std::max(e.position, position_error / bound);
-      if (folded) {
-        ++e.folded;
-        continue;
-      }
-      double normal_error = glm::length(glm::dvec3(device.normal(i, v)) - reference.normal(i, v));
-      if (local.has_tangents()) {
-        normal_error = std::max(
-            normal_error, glm::length(glm::dvec3(device.tangent(i, v)) - reference.tangent(i, v)));
-      }
-      e.normal = std::max(e.normal, normal_error / (near_limit ? 2e-3 : 2e-5));
-    }
-  }
-  return e;
-}
 
 // m at fractions of the limit, both signs, the limit itself included.
 std::vector<float> parameter_sweep(double x_max) {
@@ -96,13 +40,14 @@ void expect_matches_reference(const Mesh& mesh, const BodyFrame& frame, const st
     for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {
       const BendSettings settings{mode, normals};
       deformer.enqueue(m, settings, batch, /*clamp=*/true);
-      const MaxErrors e =
-          compare(local, deformer.read(batch), reference.run(m, settings, true), m, settings);
+      const AccuracyReport report = compare_to_reference(
+          local, checked_bend_params(m, local.x_max, true), settings, deformer.read(batch),
+          reference.run(m, settings, true));
       SCOPED_TRACE(name + " " + to_string(mode) + " " + to_string(normals));
-      EXPECT_LT(e.position, 1.0);
-      EXPECT_LT(e.normal, 1.0);
-      // Folds only appear at the ends of the spine near the range limit.
-      EXPECT_LT(e.folded, local.vertex_count() * m.size() / 100);
+      EXPECT_LE(report.max_position_ratio, 1.0) << report.max_position_error;
+      EXPECT_LE(report.max_normal_ratio, 1.0) << report.max_normal_error;
+      // Ill-defined normals only appear at the ends of the spine near the range limit.
+      EXPECT_LT(report.skipped_normals, local.vertex_count() * m.size() / 100);
     }
   }
 }

@@ -101,6 +101,16 @@ TEST(Cli, WritesGltfWithTangents) {
   EXPECT_TRUE(bent.has_tangents());
 }
 
+TEST(Cli, CheckPassesOnTheDefaultDevice) {
+  const RunResult r = run_cli("check --in " + fish("blub/fish_low_resolution.obj"));
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  EXPECT_NE(r.out.find("exact  jacobian"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("OUT OF TOLERANCE"), std::string::npos) << r.out;
+  const RunResult missing = run_cli("check --in '/nonexistent.obj'");
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_EQ(line_count(missing.err), 1);
+}
+
 TEST(Cli, InfoListsTheDefaultDevice) {
   const RunResult r = run_cli("info");
   ASSERT_EQ(r.exit_code, 0) << r.err;

@@ -50,21 +50,6 @@ TEST(Geometry, PaperBendShowsTheSeriesError) {
   EXPECT_NEAR(spine_length(bent, 1, samples) - 1.0, 2.5e-3, 0.3e-3);
 }
 
-// Mean angle (radians) between the deformed vertex normals and the area-weighted
-// normals of the deformed mesh's own faces.
-double mean_angle_to_face_normals(const Mesh& rest, const DeformedBatch<float>& batch) {
-  Mesh bent = instance_mesh(rest, batch, 0);
-  Mesh from_faces = bent;
-  compute_vertex_normals(from_faces);
-  double sum = 0.0;
-  for (std::size_t v = 0; v < bent.vertex_count(); ++v) {
-    const double cosine = glm::dot(glm::dvec3(glm::normalize(bent.normals[v])),
-                                   glm::dvec3(glm::normalize(from_faces.normals[v])));
-    sum += std::acos(std::clamp(cosine, -1.0, 1.0));
-  }
-  return sum / static_cast<double>(bent.vertex_count());
-}
-
 TEST(Geometry, NormalsAgreeWithTheDeformedFaces) {
   for (const char* fish : test::kBundledFish) {
     // Rest normals recomputed from the faces, so only the deformation is measured
@@ -74,9 +59,10 @@ TEST(Geometry, NormalsAgreeWithTheDeformedFaces) {
     const LocalMesh local = make_local_mesh(rest, find_body_frame(rest));
     const std::vector<float> m = {static_cast<float>(0.8 * max_abs_m(local.x_max))};
     for (BendMode mode : {BendMode::kPaper, BendMode::kExact}) {
-      const double rotate = mean_angle_to_face_normals(rest, bend_on_device(local, m, {mode, NormalMode::kRotate}));
-      const double jacobian =
-          mean_angle_to_face_normals(rest, bend_on_device(local, m, {mode, NormalMode::kJacobian}));
+      const double rotate = mean_angle_to_face_normals(
+          instance_mesh(rest, bend_on_device(local, m, {mode, NormalMode::kRotate}), 0));
+      const double jacobian = mean_angle_to_face_normals(
+          instance_mesh(rest, bend_on_device(local, m, {mode, NormalMode::kJacobian}), 0));
       SCOPED_TRACE(std::string(fish) + " " + to_string(mode));
       // Measured (docs/accuracy.md): jacobian 0.04-0.24 degrees, rotate 0.8-2.5 degrees;
       // jacobian is 3x (barramundi, coarse fins) to 55x (blub) closer to the faces.
@@ -86,6 +72,18 @@ TEST(Geometry, NormalsAgreeWithTheDeformedFaces) {
       EXPECT_LT(rotate, 3.0 * degree);
     }
   }
+}
+
+TEST(Geometry, FoldOverIsCountedWhereTheRadiusOfCurvatureIsShorterThanZ) {
+  // A vertex at height z above the spine folds where z k >= 1, k = 2m / sqrt(1 - 4m^2x^2).
+  Mesh mesh = test::spine_ribbon(101, 0.5);
+  for (glm::vec3& p : mesh.positions) p.z = 0.25f;  // the ribbon lifted off the secant plane
+  const LocalMesh local = make_local_mesh(mesh, BodyFrame::identity());
+  EXPECT_EQ(count_folded_vertices(local, 0.0, BendMode::kExact), 0u);
+  EXPECT_EQ(count_folded_vertices(local, -1.0, BendMode::kExact), 0u);  // bends away from z > 0
+  // m = 1: z k = 0.5 / sqrt(1 - 4x^2) >= 1 for |x| >= sqrt(3)/4 = 0.433: x = +-0.44 .. +-0.5.
+  EXPECT_EQ(count_folded_vertices(local, 1.0, BendMode::kExact), 2u * 2u * 7u);
+  EXPECT_EQ(count_folded_vertices(local, 1.0, BendMode::kPaper), 0u);  // the series' k < 4m
 }
 
 TEST(Geometry, RigidlyMovedFishBendsIntoTheMovedShape) {

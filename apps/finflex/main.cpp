@@ -2,6 +2,7 @@
 //
 //   finflex deform --in PATH --out PATH --m VALUE [--mode paper|exact]
 //                  [--normals rotate|jacobian] [--frame auto|identity] [--clamp] [--device NAME]
+//   finflex check --in PATH [--device NAME]
 //   finflex info
 #include <iostream>
 
@@ -13,6 +14,7 @@ int main(int argc, char** argv) {
   CLI::App app{"FinFlex: secant-surface deformation of fish meshes in OpenCL"};
   app.require_subcommand(1);
   const Command deform = add_deform_command(app);
+  const Command check = add_check_command(app);
   const Command info = add_info_command(app);
   try {
     app.parse(argc, argv);
@@ -27,5 +29,6 @@ int main(int argc, char** argv) {
     return fail(command.empty() ? "" : command, error.what());
   }
   if (app.got_subcommand("deform")) return deform();
+  if (app.got_subcommand("check")) return check();
   return info();
 }

@@ -2,6 +2,7 @@
 // instances per frame. One include for the whole public API.
 #pragma once
 
+#include "finflex/accuracy.hpp"
 #include "finflex/batch.hpp"
 #include "finflex/bend.hpp"
 #include "finflex/body_frame.hpp"
