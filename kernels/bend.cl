@@ -35,6 +35,22 @@ typedef struct {
   float along, across;
 } BendSample;
 
+/* asin(u) / u for u in [-1, 1], without branches and without the 0/0 at u = 0, so the
+ * exact bend vectorises and is smooth through m = 0. Cephes' asinf: for |u| <= 1/2,
+ * asin(u) = u + u z P(z) with z = u^2, so asin(u)/u = 1 + z P(z); for |u| > 1/2,
+ * asin(|u|) = pi/2 - 2 asin(sqrt(z)) with z = (1 - |u|)/2. Relative error 2.5e-7. */
+inline float asin_over_u(float u) {
+  const float a = fabs(u);
+  const int big = a > 0.5f;
+  const float z = big ? 0.5f * (1.0f - a) : a * a;
+  const float root = sqrt(z);
+  const float p = ((((4.2163199048e-2f * z + 2.4181311049e-2f) * z + 4.5470025998e-2f) * z +
+                    7.4953002686e-2f) * z + 1.6666752422e-1f) * z;
+  const float small_ratio = 1.0f + p;                                   /* |u| <= 1/2 */
+  const float big_ratio = (M_PI_2_F - 2.0f * (root + root * p)) / fmax(a, 0.5f);
+  return big ? big_ratio : small_ratio;
+}
+
 inline BendSample bend_sample(float x, float z, float m) {
   const float u = clamp(2.0f * m * x, -1.0f, 1.0f);
   const float u2 = u * u;
@@ -42,11 +58,9 @@ inline BendSample bend_sample(float x, float z, float m) {
   s.spine_z = 0.5f * u * x; /* m x^2 */
 #if FF_BEND_EXACT
   /* x' = x sqrt(1 - u^2) / 2 + asin(u) / (4m) = x (c + asin(u) / u) / 2;
-   * asin(u) / u -> 1 + u^2/6 + 3u^4/40 near 0. (1 - u)(1 + u) keeps c accurate at |u| -> 1. */
+   * (1 - u)(1 + u) keeps c accurate as |u| -> 1. */
   const float c = sqrt((1.0f - u) * (1.0f + u));
-  const float asin_u_over_u =
-      fabs(u) < 1e-2f ? 1.0f + u2 * (1.0f / 6.0f + u2 * (3.0f / 40.0f)) : asin(u) / u;
-  s.spine_x = 0.5f * x * (c + asin_u_over_u);
+  s.spine_x = 0.5f * x * (c + asin_over_u(u));
   s.sin_t = u;
   s.cos_t = c;
   /* |df/dx| = 1, k = 2m / c: scaled by c, (along, across) = (c, c - 2 m z). */
@@ -71,26 +85,45 @@ inline BendSample bend_sample(float x, float z, float m) {
   return s;
 }
 
+/* Vectors are plain structs of scalars, not float3: once inlined they dissolve into
+ * scalar registers, which lets PoCL vectorise across work-items (float3 operations
+ * keep its loop vectoriser from doing so). */
+typedef struct {
+  float x, y, z;
+} Vec3;
+
+inline Vec3 vec3(float x, float y, float z) {
+  Vec3 v = {x, y, z};
+  return v;
+}
+
+/* v / |v| without the library normalize()'s branches for huge and tiny vectors:
+ * rest normals are unit and the bend keeps them of order 1. */
+inline Vec3 unit(Vec3 v) {
+  const float inverse_length = rsqrt(v.x * v.x + v.y * v.y + v.z * v.z);
+  return vec3(v.x * inverse_length, v.y * inverse_length, v.z * inverse_length);
+}
+
 /* (7): p' = f(x, y, 0) + z n. */
-inline float3 bend_position(float3 p, BendSample s) {
-  return (float3)(s.spine_x - p.z * s.sin_t, p.y, s.spine_z + p.z * s.cos_t);
+inline Vec3 bend_position(Vec3 p, BendSample s) {
+  return vec3(s.spine_x - p.z * s.sin_t, p.y, s.spine_z + p.z * s.cos_t);
 }
 
 /* R v: the rotation about e_y taking e_z to n = (-sin_t, 0, cos_t). */
-inline float3 rotate_to_secant_normal(float3 v, BendSample s) {
-  return (float3)(s.cos_t * v.x - s.sin_t * v.z, v.y, s.sin_t * v.x + s.cos_t * v.z);
+inline Vec3 rotate_to_secant_normal(Vec3 v, BendSample s) {
+  return vec3(s.cos_t * v.x - s.sin_t * v.z, v.y, s.sin_t * v.x + s.cos_t * v.z);
 }
 
-inline float3 bend_normal(float3 n, BendSample s) {
+inline Vec3 bend_normal(Vec3 n, BendSample s) {
 #if FF_NORMALS_JACOBIAN
-  n = (float3)(s.along * n.x, s.across * n.y, s.across * n.z);
+  n = vec3(s.along * n.x, s.across * n.y, s.across * n.z);
 #endif
-  return normalize(rotate_to_secant_normal(n, s));
+  return unit(rotate_to_secant_normal(n, s));
 }
 
-inline float3 bend_tangent(float3 t, BendSample s) {
+inline Vec3 bend_tangent(Vec3 t, BendSample s) {
 #if FF_NORMALS_JACOBIAN
-  t = (float3)(s.across * t.x, s.along * t.y, s.along * t.z);
+  t = vec3(s.across * t.x, s.along * t.y, s.along * t.z);
 #endif
-  return normalize(rotate_to_secant_normal(t, s));
+  return unit(rotate_to_secant_normal(t, s));
 }

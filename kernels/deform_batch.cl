@@ -14,21 +14,24 @@
 #define FF_TANGENTS 0
 #endif
 
-inline float3 load_plane3(__global const float* planes, size_t first_plane, size_t stride,
-                          size_t v) {
-  return (float3)(planes[first_plane * stride + v], planes[(first_plane + 1) * stride + v],
-                  planes[(first_plane + 2) * stride + v]);
+inline Vec3 load_plane3(__global const float* planes, size_t first_plane, size_t stride,
+                        size_t v) {
+  return vec3(planes[first_plane * stride + v], planes[(first_plane + 1) * stride + v],
+              planes[(first_plane + 2) * stride + v]);
 }
 
 inline void store_plane3(__global float* planes, size_t first_plane, size_t stride, size_t v,
-                         float3 value) {
+                         Vec3 value) {
   planes[first_plane * stride + v] = value.x;
   planes[(first_plane + 1) * stride + v] = value.y;
   planes[(first_plane + 2) * stride + v] = value.z;
 }
 
-inline float3 to_mesh_vector(float3 v, float4 axis_x, float4 axis_y, float4 axis_z) {
-  return v.x * axis_x.xyz + v.y * axis_y.xyz + v.z * axis_z.xyz;
+/* x a_x + y a_y + z a_z (+ origin): the way back to mesh coordinates, M^-1 of (2). */
+inline Vec3 to_mesh(Vec3 v, float4 axis_x, float4 axis_y, float4 axis_z, float4 origin) {
+  return vec3(origin.x + v.x * axis_x.x + v.y * axis_y.x + v.z * axis_z.x,
+              origin.y + v.x * axis_x.y + v.y * axis_y.y + v.z * axis_z.y,
+              origin.z + v.x * axis_x.z + v.y * axis_y.z + v.z * axis_z.z);
 }
 
 __kernel void bend_batch(__global const float* restrict rest,
@@ -43,20 +46,19 @@ __kernel void bend_batch(__global const float* restrict rest,
                          const float4 axis_x, const float4 axis_y, const float4 axis_z) {
   const size_t v = get_global_id(0);
   const size_t instance = get_global_id(1);
-  const float m_i = m[instance];
-  const float3 p = load_plane3(rest, 0, stride, v);
-  const float3 n = load_plane3(rest, 3, stride, v);
-  const BendSample s = bend_sample(p.x, p.z, m_i);
+  const float4 no_offset = (float4)(0.0f);
+  const Vec3 p = load_plane3(rest, 0, stride, v);
+  const Vec3 n = load_plane3(rest, 3, stride, v);
+  const BendSample s = bend_sample(p.x, p.z, m[instance]);
 
   const size_t out_plane = instance * 3;
-  const float3 p_bent = bend_position(p, s);
   store_plane3(out_positions, out_plane, stride, v,
-               origin.xyz + to_mesh_vector(p_bent, scaled_axis_x, scaled_axis_y, scaled_axis_z));
+               to_mesh(bend_position(p, s), scaled_axis_x, scaled_axis_y, scaled_axis_z, origin));
   store_plane3(out_normals, out_plane, stride, v,
-               to_mesh_vector(bend_normal(n, s), axis_x, axis_y, axis_z));
+               to_mesh(bend_normal(n, s), axis_x, axis_y, axis_z, no_offset));
 #if FF_TANGENTS
-  const float3 t = load_plane3(rest, 6, stride, v);
+  const Vec3 t = load_plane3(rest, 6, stride, v);
   store_plane3(out_tangents, out_plane, stride, v,
-               to_mesh_vector(bend_tangent(t, s), axis_x, axis_y, axis_z));
+               to_mesh(bend_tangent(t, s), axis_x, axis_y, axis_z, no_offset));
 #endif
 }
