@@ -73,10 +73,11 @@ inline BendSample bend_sample(float x, float z, float m) {
    * n = (-u, 0, a) / g, g = |df/dx| (17). */
   const float a = 1.0f - u2 * (0.5f + 0.125f * u2);
   const float g2 = a * a + u2;
-  const float g = sqrt(g2);
+  const float inverse_g = rsqrt(g2);
+  const float g = g2 * inverse_g;
   s.spine_x = x * (1.0f - u2 * (1.0f / 6.0f + u2 * (1.0f / 40.0f)));
-  s.sin_t = u / g;
-  s.cos_t = a / g;
+  s.sin_t = u * inverse_g;
+  s.cos_t = a * inverse_g;
   /* k = (a u' - u a') / g^3 with u' = 2m, a' = -2m (u + u^3/2):
    * D g^2 = g^3 - z 2m (1 + u^2/2 + 3u^4/8); scaled by g^2: (along, across) = (g^2, D g^2). */
   s.along = g2;
