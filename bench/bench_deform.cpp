@@ -45,7 +45,8 @@ struct Setup {
   }
   DeviceBatch& batch(std::size_t instances) {
     auto found = batches.find(instances);
-    if (found == batches.end()) found = batches.emplace(instances, deformer.allocate(instances)).first;
+    if (found == batches.end())
+      found = batches.emplace(instances, deformer.allocate(instances)).first;
     return found->second;
   }
   cl::Kernel& kernel(const std::string& name) {
@@ -96,13 +97,15 @@ void BM_WriteOnly(benchmark::State& state) {
   const double seconds = time_kernel(state, [&] {
     cl::Event done;
     check_cl(setup.context.queue().enqueueNDRangeKernel(
-                 kernel, cl::NullRange, cl::NDRange(batch.layout.plane_stride, batch.layout.instance_count),
+                 kernel, cl::NullRange,
+                 cl::NDRange(batch.layout.plane_stride, batch.layout.instance_count),
                  cl::NDRange(ClDeformer::kLocalSize, 1), nullptr, &done),
              "write_planes");
     return done;
   });
   set_counters(state, batch.layout);
-  const double bytes = static_cast<double>(batch.layout.plane_stride * batch.layout.instance_count) * 24.0;
+  const double bytes =
+      static_cast<double>(batch.layout.plane_stride * batch.layout.instance_count) * 24.0;
   setup.write_only_bytes_per_second[batch.layout.instance_count] =
       bytes * static_cast<double>(state.iterations()) / seconds;
 }
@@ -118,7 +121,8 @@ void BM_CopyRest(benchmark::State& state) {
   time_kernel(state, [&] {
     cl::Event done;
     check_cl(setup.context.queue().enqueueNDRangeKernel(
-                 kernel, cl::NullRange, cl::NDRange(batch.layout.plane_stride, batch.layout.instance_count),
+                 kernel, cl::NullRange,
+                 cl::NDRange(batch.layout.plane_stride, batch.layout.instance_count),
                  cl::NDRange(ClDeformer::kLocalSize, 1), nullptr, &done),
              "copy_rest");
     return done;
@@ -132,7 +136,8 @@ void BM_Bend(benchmark::State& state, BendSettings settings) {
   DeviceBatch& batch = setup.batch(instances);
   std::vector<float> m(instances);
   const float limit = static_cast<float>(max_abs_m(setup.local.x_max));
-  for (std::size_t i = 0; i < instances; ++i) m[i] = limit * (static_cast<float>(i % 17) / 8.0f - 1.0f);
+  for (std::size_t i = 0; i < instances; ++i)
+    m[i] = limit * (static_cast<float>(i % 17) / 8.0f - 1.0f);
   const double seconds =
       time_kernel(state, [&] { return setup.deformer.enqueue(m, settings, batch); });
   set_counters(state, batch.layout);

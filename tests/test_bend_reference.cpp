@@ -38,7 +38,8 @@ TEST(BendReference, ZeroParameterIsTheIdentity) {
       const DeformedBatch<double> out = reference.run({0.0f}, {mode, normals});
       for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
         EXPECT_LT(glm::length(out.position(0, v) - glm::dvec3(mesh.positions[v])), 1e-12);
-        EXPECT_LT(glm::length(out.normal(0, v) - glm::normalize(glm::dvec3(mesh.normals[v]))), 1e-7);
+        EXPECT_LT(glm::length(out.normal(0, v) - glm::normalize(glm::dvec3(mesh.normals[v]))),
+                  1e-7);
         EXPECT_LT(glm::length(out.tangent(0, v) - glm::dvec3(glm::vec3(mesh.tangents[v]))), 1e-6);
       }
     }
@@ -49,9 +50,11 @@ TEST(BendReference, OppositeParametersMirrorInZ) {
   for (BendMode mode : kModes) {
     for (NormalMode normals : kNormalModes) {
       for (double x : {-0.5, -0.2, 0.1, 0.45}) {
-        const LocalVertex rest{{x, 0.03, 0.02}, glm::normalize(glm::dvec3(0.3, -0.2, 0.9)),
+        const LocalVertex rest{{x, 0.03, 0.02},
+                               glm::normalize(glm::dvec3(0.3, -0.2, 0.9)),
                                glm::normalize(glm::dvec3(0.9, 0.1, -0.3))};
-        const LocalVertex mirrored{{x, 0.03, -0.02}, glm::normalize(glm::dvec3(0.3, -0.2, -0.9)),
+        const LocalVertex mirrored{{x, 0.03, -0.02},
+                                   glm::normalize(glm::dvec3(0.3, -0.2, -0.9)),
                                    glm::normalize(glm::dvec3(0.9, 0.1, 0.3))};
         const glm::dvec3 flip(1.0, 1.0, -1.0);
         const LocalVertex a = bend_local_vertex(rest, 0.7, {mode, normals});
@@ -94,8 +97,8 @@ TEST(BendReference, PaperSeriesErrorIsAsMeasured) {
 TEST(BendReference, SpineFollowsTheParabola) {
   // (12): the spine point at arc length x lies on z = m x^2, for the exact bend exactly.
   for (double x : {-0.4, 0.1, 0.5}) {
-    const LocalVertex bent =
-        bend_local_vertex({{x, 0.0, 0.0}, {0.0, 0.0, 1.0}, {}}, 0.9, {BendMode::kExact, NormalMode::kRotate});
+    const LocalVertex bent = bend_local_vertex({{x, 0.0, 0.0}, {0.0, 0.0, 1.0}, {}}, 0.9,
+                                               {BendMode::kExact, NormalMode::kRotate});
     EXPECT_NEAR(bent.position.z, 0.9 * x * x, 1e-15);
     EXPECT_DOUBLE_EQ(bent.position.y, 0.0);
   }
@@ -124,12 +127,14 @@ TEST(BendReference, JacobianNormalsScaleTheAlongSpineComponent) {
   const glm::dvec3 scaled(rest_normal.x / (1.0 - z * k), rest_normal.y, rest_normal.z);
   const glm::dvec3 u(-2.0 * m * x, 0.0, c);  // n
   const glm::dvec3 t(c, 0.0, 2.0 * m * x);   // unit spine tangent
-  const glm::dvec3 expected = glm::normalize(scaled.x * t + scaled.y * glm::dvec3(0, 1, 0) + scaled.z * u);
+  const glm::dvec3 expected =
+      glm::normalize(scaled.x * t + scaled.y * glm::dvec3(0, 1, 0) + scaled.z * u);
   EXPECT_LT(glm::length(bent.normal - expected), 1e-14);
 }
 
 TEST(BendReference, RejectsBadParameters) {
-  const ReferenceDeformer reference(make_local_mesh(test::synthetic_fish(8, 8), BodyFrame::identity()));
+  const ReferenceDeformer reference(
+      make_local_mesh(test::synthetic_fish(8, 8), BodyFrame::identity()));
   const BendSettings settings;
   EXPECT_THROW(reference.run({}, settings), Error);
   EXPECT_THROW(reference.run({NAN}, settings), Error);

@@ -6,6 +6,7 @@
 // ulps where the bend is well conditioned, bounds that follow the conditioning near
 // the exact bend's range limit, and ill-defined Jacobian normals on folds skipped.
 #include <cmath>
+#include <cstddef>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -26,7 +27,8 @@ namespace {
 std::vector<float> parameter_sweep(double x_max) {
   const double limit = max_abs_m(x_max);
   std::vector<float> m;
-  for (double f : {0.0, 0.1, -0.35, 0.6, -0.85, 1.0, -1.0}) m.push_back(static_cast<float>(f * limit));
+  for (double f : {0.0, 0.1, -0.35, 0.6, -0.85, 1.0, -1.0})
+    m.push_back(static_cast<float>(f * limit));
   return m;
 }
 
@@ -40,9 +42,9 @@ void expect_matches_reference(const Mesh& mesh, const BodyFrame& frame, const st
     for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {
       const BendSettings settings{mode, normals};
       deformer.enqueue(m, settings, batch, /*clamp=*/true);
-      const AccuracyReport report = compare_to_reference(
-          local, checked_bend_params(m, local.x_max, true), settings, deformer.read(batch),
-          reference.run(m, settings, true));
+      const AccuracyReport report =
+          compare_to_reference(local, checked_bend_params(m, local.x_max, true), settings,
+                               deformer.read(batch), reference.run(m, settings, true));
       SCOPED_TRACE(name + " " + to_string(mode) + " " + to_string(normals));
       EXPECT_LE(report.max_position_ratio, 1.0) << report.max_position_error;
       EXPECT_LE(report.max_normal_ratio, 1.0) << report.max_normal_error;
@@ -66,7 +68,8 @@ TEST(ClDeformer, MatchesReferenceOnSyntheticFishInAnOffsetFrame) {
   Mesh mesh = test::synthetic_fish(32, 24, true);
   for (glm::vec3& p : mesh.positions) p = glm::vec3(frame.point_to_mesh(glm::dvec3(p)));
   for (glm::vec3& n : mesh.normals) n = glm::vec3(frame.vector_to_mesh(glm::dvec3(n)));
-  for (glm::vec4& t : mesh.tangents) t = glm::vec4(glm::vec3(frame.vector_to_mesh(glm::dvec3(t))), t.w);
+  for (glm::vec4& t : mesh.tangents)
+    t = glm::vec4(glm::vec3(frame.vector_to_mesh(glm::dvec3(t))), t.w);
   expect_matches_reference(mesh, frame, "offset synthetic");
 }
 
@@ -116,6 +119,35 @@ TEST(ClDeformer, BatchEqualsSingleRuns) {
     for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
       ASSERT_EQ(one.position(0, v), all.position(i, v)) << "instance " << i << " vertex " << v;
       ASSERT_EQ(one.normal(0, v), all.normal(i, v)) << "instance " << i << " vertex " << v;
+    }
+  }
+}
+
+TEST(ClDeformer, FourThousandInstancesOfTheFullFish) {
+  // 4,000 x 10,786 vertices: 2 x 519 MB of float32 outputs in one launch.
+  const Mesh mesh = load_mesh(test::data_path("blub/fish.obj"));
+  const LocalMesh local = make_local_mesh(mesh, find_body_frame(mesh));
+  ClDeformer deformer(test::shared_context(), local);
+  const std::size_t instances = 4000;
+  std::vector<float> m(instances);
+  for (std::size_t i = 0; i < instances; ++i) {
+    m[i] = static_cast<float>(max_abs_m(local.x_max) * std::sin(0.01 * static_cast<double>(i)));
+  }
+  DeviceBatch batch = deformer.allocate(instances);
+  const BendSettings settings{BendMode::kPaper, NormalMode::kRotate};
+  deformer.enqueue(m, settings, batch);
+  const DeformedBatch<float> all = deformer.read(batch);
+  // Spot-check instances across the whole batch against the reference.
+  const std::vector<std::size_t> checked = {0, 1, 777, 2048, 3999};
+  std::vector<float> checked_m;
+  for (std::size_t i : checked) checked_m.push_back(m[i]);
+  const DeformedBatch<double> reference = ReferenceDeformer(local).run(checked_m, settings);
+  const double bound = 4e-6 * (glm::length(local.frame.origin) + local.frame.length);
+  for (std::size_t k = 0; k < checked.size(); ++k) {
+    for (std::size_t v = 0; v < local.vertex_count(); v += 7) {
+      ASSERT_LT(glm::length(glm::dvec3(all.position(checked[k], v)) - reference.position(k, v)),
+                bound)
+          << "instance " << checked[k] << " vertex " << v;
     }
   }
 }

@@ -3,8 +3,8 @@
 // the fish (a rigidly moved fish bends into the rigidly moved shape).
 #include <cmath>
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "finflex/finflex.hpp"
 #include "support/synthetic_fish.hpp"
@@ -34,7 +34,8 @@ TEST(Geometry, ExactBendKeepsTheSpineArcLength) {
   const int samples = 4001;
   const LocalMesh local = make_local_mesh(test::spine_ribbon(samples, 0.5), BodyFrame::identity());
   const std::vector<float> m = {0.25f, -0.5f, 0.8f, -0.95f};  // 2 m x_max = |m|
-  const DeformedBatch<float> bent = bend_on_device(local, m, {BendMode::kExact, NormalMode::kRotate});
+  const DeformedBatch<float> bent =
+      bend_on_device(local, m, {BendMode::kExact, NormalMode::kRotate});
   for (std::size_t i = 0; i < m.size(); ++i) {
     EXPECT_LT(std::fabs(spine_length(bent, i, samples) - 1.0), 1e-5) << "m = " << m[i];
   }
@@ -96,7 +97,8 @@ TEST(Geometry, RigidlyMovedFishBendsIntoTheMovedShape) {
     Mesh moved = mesh;
     for (glm::vec3& p : moved.positions) p = glm::vec3(motion * glm::dvec4(glm::dvec3(p), 1.0));
     for (glm::vec3& n : moved.normals) n = glm::vec3(motion * glm::dvec4(glm::dvec3(n), 0.0));
-    for (glm::vec4& t : moved.tangents) t = glm::vec4(glm::vec3(motion * glm::dvec4(glm::dvec3(t), 0.0)), t.w);
+    for (glm::vec4& t : moved.tangents)
+      t = glm::vec4(glm::vec3(motion * glm::dvec4(glm::dvec3(t), 0.0)), t.w);
 
     const LocalMesh local = make_local_mesh(mesh, frame);
     const std::vector<float> m = {static_cast<float>(0.7 * max_abs_m(local.x_max))};
@@ -106,10 +108,14 @@ TEST(Geometry, RigidlyMovedFishBendsIntoTheMovedShape) {
         bend_on_device(make_local_mesh(moved, find_body_frame(moved)), m, settings);
     double position_error = 0.0, normal_error = 0.0;
     for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
-      const glm::dvec3 expected = glm::dvec3(motion * glm::dvec4(glm::dvec3(original.position(0, v)), 1.0));
-      const glm::dvec3 expected_normal = glm::dvec3(motion * glm::dvec4(glm::dvec3(original.normal(0, v)), 0.0));
-      position_error = std::max(position_error, glm::length(glm::dvec3(bent_moved.position(0, v)) - expected));
-      normal_error = std::max(normal_error, glm::length(glm::dvec3(bent_moved.normal(0, v)) - expected_normal));
+      const glm::dvec3 expected =
+          glm::dvec3(motion * glm::dvec4(glm::dvec3(original.position(0, v)), 1.0));
+      const glm::dvec3 expected_normal =
+          glm::dvec3(motion * glm::dvec4(glm::dvec3(original.normal(0, v)), 0.0));
+      position_error =
+          std::max(position_error, glm::length(glm::dvec3(bent_moved.position(0, v)) - expected));
+      normal_error = std::max(normal_error,
+                              glm::length(glm::dvec3(bent_moved.normal(0, v)) - expected_normal));
     }
     SCOPED_TRACE(fish);
     EXPECT_LT(position_error, 2e-5 * (frame.length + 20.0));

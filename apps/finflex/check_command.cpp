@@ -40,11 +40,10 @@ int run_check(const CheckOptions& options) {
     DeviceBatch batch = deformer.allocate(m.size());
 
     std::printf("device: %s\nmesh: %s (%zu vertices), s_x %.6g, x_max %.4f, m in [%.4f, %.4f]\n",
-                context.description().device_name.c_str(), options.in.c_str(),
-                local.vertex_count(), local.frame.length, local.x_max, -max_abs_m(local.x_max),
-                max_abs_m(local.x_max));
-    std::printf("%-6s %-9s %14s %14s %10s %12s %s\n", "mode", "normals", "position/s_x",
-                "normal", "skipped", "face angle", "verdict");
+                context.description().device_name.c_str(), options.in.c_str(), local.vertex_count(),
+                local.frame.length, local.x_max, -max_abs_m(local.x_max), max_abs_m(local.x_max));
+    std::printf("%-6s %-9s %14s %14s %10s %12s %s\n", "mode", "normals", "position/s_x", "normal",
+                "skipped", "face angle", "verdict");
     bool all_within = true;
     for (BendMode mode : {BendMode::kPaper, BendMode::kExact}) {
       for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {

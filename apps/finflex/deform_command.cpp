@@ -1,4 +1,5 @@
 // finflex deform: bend one mesh file and write the result.
+#include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -20,7 +21,7 @@ struct DeformOptions {
   std::string frame = "auto";
   bool clamp = false;
   std::string device;
-  std::string head;    // "X,Y,Z" overrides of the automatic frame
+  std::string head;  // "X,Y,Z" overrides of the automatic frame
   std::string dorsal;
   std::string pivot;
 };
@@ -66,9 +67,11 @@ FrameOptions frame_options(const DeformOptions& options) {
   frame.head_direction = parse_vector(options.head, "--head");
   frame.dorsal_direction = parse_vector(options.dorsal, "--dorsal");
   frame.pivot = parse_vector(options.pivot, "--pivot");
-  if (options.frame == "identity" && (frame.head_direction || frame.dorsal_direction || frame.pivot)) {
-    throw Error(ErrorCode::kInvalidArgument, "--frame",
-                "--head, --dorsal and --pivot adjust the automatic frame: not with --frame identity");
+  if (options.frame == "identity" &&
+      (frame.head_direction || frame.dorsal_direction || frame.pivot)) {
+    throw Error(
+        ErrorCode::kInvalidArgument, "--frame",
+        "--head, --dorsal and --pivot adjust the automatic frame: not with --frame identity");
   }
   return frame;
 }
@@ -98,7 +101,8 @@ int run_deform(const DeformOptions& options) {
       throw Error(ErrorCode::kInvalidArgument, "--out", "--out is empty");
     }
     if (std::filesystem::is_directory(options.out)) {
-      throw Error(ErrorCode::kInvalidArgument, "--out", "--out '" + options.out + "' is a directory");
+      throw Error(ErrorCode::kInvalidArgument, "--out",
+                  "--out '" + options.out + "' is a directory");
     }
 
     const FrameOptions frame = frame_options(options);
@@ -114,6 +118,10 @@ int run_deform(const DeformOptions& options) {
     deformer.enqueue(parameters, settings, batch);
     const Mesh bent = instance_mesh(rest, deformer.read(batch), 0);
     with_path_option("--out", [&] { save_mesh(options.out, bent); });
+    std::printf("bent %zu vertices with m = %g (%s bend, %s normals, x_max %.4f) on %s -> %s\n",
+                rest.vertex_count(), static_cast<double>(parameters[0]), to_string(settings.mode),
+                to_string(settings.normals), local.x_max, context.description().device_name.c_str(),
+                options.out.c_str());
     return kExitSuccess;
   } catch (const Error& error) {
     return fail("deform", with_option_names(error));
@@ -127,7 +135,8 @@ int run_deform(const DeformOptions& options) {
 Command add_deform_command(CLI::App& app) {
   auto options = std::make_shared<DeformOptions>();
   CLI::App* deform = app.add_subcommand("deform", "Bend a mesh with the paper's fish bend");
-  deform->add_option("--in", options->in, "Input mesh (.obj .ply .off .stl .gltf .glb)")->required();
+  deform->add_option("--in", options->in, "Input mesh (.obj .ply .off .stl .gltf .glb)")
+      ->required();
   deform->add_option("--out", options->out, "Output mesh; the format follows the extension")
       ->required();
   deform->add_option("--m", options->m, "Bend parameter m, |m| <= 0.5 / x_max")->required();
@@ -135,14 +144,17 @@ Command add_deform_command(CLI::App& app) {
       ->capture_default_str();
   deform->add_option("--normals", options->normals, "rotate (the paper's (8)) or jacobian (exact)")
       ->capture_default_str();
-  deform->add_option("--frame", options->frame,
-                     "auto (found from the mesh) or identity (mesh coordinates are the frame)")
+  deform
+      ->add_option("--frame", options->frame,
+                   "auto (found from the mesh) or identity (mesh coordinates are the frame)")
       ->check(CLI::IsMember({"auto", "identity"}))
       ->capture_default_str();
   deform->add_flag("--clamp", options->clamp, "Clamp m into its valid range instead of failing");
   deform->add_option("--head", options->head, "Automatic frame: X,Y,Z roughly towards the head");
-  deform->add_option("--dorsal", options->dorsal, "Automatic frame: X,Y,Z roughly towards the back");
-  deform->add_option("--pivot", options->pivot, "Automatic frame: the fixed point X,Y,Z (mesh units)");
+  deform->add_option("--dorsal", options->dorsal,
+                     "Automatic frame: X,Y,Z roughly towards the back");
+  deform->add_option("--pivot", options->pivot,
+                     "Automatic frame: the fixed point X,Y,Z (mesh units)");
   deform->add_option("--device", options->device,
                      "OpenCL device: 'P:D' indices or a name substring (see finflex info)");
   return [options] { return run_deform(*options); };

@@ -13,7 +13,9 @@ int run_info() {
   try {
     const std::vector<DeviceDescription> devices = list_devices();
     if (devices.empty()) {
-      return fail("info", "no OpenCL platform or device found (is an ICD such as pocl-opencl-icd installed?)");
+      return fail(
+          "info",
+          "no OpenCL platform or device found (is an ICD such as pocl-opencl-icd installed?)");
     }
     for (const DeviceDescription& d : devices) {
       std::cout << d.platform_index << ":" << d.device_index << (d.is_default ? " * " : "   ")

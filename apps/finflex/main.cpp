@@ -23,9 +23,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForAllHelp& help) {
     return app.exit(help);
   } catch (const CLI::ParseError& error) {
-    const std::string command = app.get_subcommands().empty()
-                                    ? std::string("")
-                                    : app.get_subcommands().front()->get_name();
+    const std::string command =
+        app.get_subcommands().empty() ? std::string("") : app.get_subcommands().front()->get_name();
     return fail(command.empty() ? "" : command, error.what());
   }
   if (app.got_subcommand("deform")) return deform();

@@ -9,11 +9,11 @@
 namespace finflex {
 namespace {
 
-constexpr double kPositionBound = 4e-6;       // times (|origin| + s_x)
+constexpr double kPositionBound = 4e-6;  // times (|origin| + s_x)
 constexpr double kNormalBound = 2e-5;
-constexpr double kNearLimit = 1e-3;           // 1 - (2mx)^2 below this: near the exact limit
+constexpr double kNearLimit = 1e-3;  // 1 - (2mx)^2 below this: near the exact limit
 constexpr double kNearLimitBound = 2e-3;
-constexpr double kFoldMargin = 0.05;          // |1 - z k| below this: on a fold
+constexpr double kFoldMargin = 0.05;  // |1 - z k| below this: on a fold
 
 // Spine curvature k at x (METHOD.md section 6): exact 2m / sqrt(1 - u^2); the series'
 // (a u' - u a') / |df/dx|^3 with u = 2mx, a = 1 - u^2/2 - u^4/8.
@@ -72,8 +72,8 @@ AccuracyReport compare_to_reference(const LocalMesh& local, const std::vector<fl
       }
       ++report.compared;
       report.max_normal_error = std::max(report.max_normal_error, normal_error);
-      report.max_normal_ratio =
-          std::max(report.max_normal_ratio, normal_error / (near_limit ? kNearLimitBound : kNormalBound));
+      report.max_normal_ratio = std::max(
+          report.max_normal_ratio, normal_error / (near_limit ? kNearLimitBound : kNormalBound));
     }
   }
   return report;

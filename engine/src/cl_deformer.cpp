@@ -57,9 +57,12 @@ ClDeformer::ClDeformer(Context& context, const LocalMesh& mesh)
   rest_ = make_buffer(context_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
                       planes.size() * sizeof(float), planes.data());
   const BodyFrame& f = mesh_.frame;
-  back_transform_ = {to_cl_float4(f.origin),          to_cl_float4(f.axis_x * f.length),
-                     to_cl_float4(f.axis_y * f.length), to_cl_float4(f.axis_z * f.length),
-                     to_cl_float4(f.axis_x),          to_cl_float4(f.axis_y),
+  back_transform_ = {to_cl_float4(f.origin),
+                     to_cl_float4(f.axis_x * f.length),
+                     to_cl_float4(f.axis_y * f.length),
+                     to_cl_float4(f.axis_z * f.length),
+                     to_cl_float4(f.axis_x),
+                     to_cl_float4(f.axis_y),
                      to_cl_float4(f.axis_z)};
 }
 
@@ -110,10 +113,10 @@ cl::Event ClDeformer::enqueue(const std::vector<float>& m, const BendSettings& s
   batch.staged_parameters.swap(checked);
 
   cl::CommandQueue& queue = context_.queue();
-  check_cl(queue.enqueueWriteBuffer(batch.parameters, CL_FALSE, 0, m.size() * sizeof(float),
-                                    batch.staged_parameters.data(), wait,
-                                    &batch.parameters_uploaded),
-           "clEnqueueWriteBuffer m");
+  check_cl(
+      queue.enqueueWriteBuffer(batch.parameters, CL_FALSE, 0, m.size() * sizeof(float),
+                               batch.staged_parameters.data(), wait, &batch.parameters_uploaded),
+      "clEnqueueWriteBuffer m");
 
   cl::Kernel& kernel = bend_kernel(settings);
   cl_uint arg = 0;

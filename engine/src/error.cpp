@@ -4,13 +4,20 @@ namespace finflex {
 
 const char* error_code_name(ErrorCode code) {
   switch (code) {
-    case ErrorCode::kInvalidArgument: return "invalid_argument";
-    case ErrorCode::kOutOfRange: return "out_of_range";
-    case ErrorCode::kInvalidMesh: return "invalid_mesh";
-    case ErrorCode::kIo: return "io";
-    case ErrorCode::kFormat: return "format";
-    case ErrorCode::kDevice: return "device";
-    case ErrorCode::kOpenCL: return "opencl";
+    case ErrorCode::kInvalidArgument:
+      return "invalid_argument";
+    case ErrorCode::kOutOfRange:
+      return "out_of_range";
+    case ErrorCode::kInvalidMesh:
+      return "invalid_mesh";
+    case ErrorCode::kIo:
+      return "io";
+    case ErrorCode::kFormat:
+      return "format";
+    case ErrorCode::kDevice:
+      return "device";
+    case ErrorCode::kOpenCL:
+      return "opencl";
   }
   return "unknown";
 }

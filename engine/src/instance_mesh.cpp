@@ -17,15 +17,15 @@ Mesh instance_mesh_impl(const Mesh& rest, const DeformedBatch<T>& batch, std::si
   if (batch.layout.vertex_count != rest.vertex_count()) {
     throw Error(ErrorCode::kInvalidArgument, "batch",
                 "the batch has " + std::to_string(batch.layout.vertex_count) +
-                    " vertices per instance, the rest mesh " +
-                    std::to_string(rest.vertex_count()));
+                    " vertices per instance, the rest mesh " + std::to_string(rest.vertex_count()));
   }
   Mesh out = rest;
   const bool tangents = rest.has_tangents() && batch.layout.tangents;
   for (std::size_t v = 0; v < rest.vertex_count(); ++v) {
     out.positions[v] = glm::vec3(batch.position(instance, v));
     out.normals[v] = glm::vec3(batch.normal(instance, v));
-    if (tangents) out.tangents[v] = glm::vec4(glm::vec3(batch.tangent(instance, v)), rest.tangents[v].w);
+    if (tangents)
+      out.tangents[v] = glm::vec4(glm::vec3(batch.tangent(instance, v)), rest.tangents[v].w);
   }
   return out;
 }

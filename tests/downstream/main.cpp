@@ -18,16 +18,19 @@ int main() {
   const finflex::BendSettings settings{finflex::BendMode::kExact, finflex::NormalMode::kJacobian};
   deformer.enqueue(m, settings, batch);
   const finflex::DeformedBatch<float> device = deformer.read(batch);
-  const finflex::DeformedBatch<double> reference = finflex::ReferenceDeformer(local).run(m, settings);
+  const finflex::DeformedBatch<double> reference =
+      finflex::ReferenceDeformer(local).run(m, settings);
   for (std::size_t i = 0; i < m.size(); ++i) {
     for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
-      const double error = glm::length(glm::dvec3(device.position(i, v)) - reference.position(i, v));
+      const double error =
+          glm::length(glm::dvec3(device.position(i, v)) - reference.position(i, v));
       if (error > 1e-5) {
         std::printf("instance %zu vertex %zu differs by %g\n", i, v, error);
         return 1;
       }
     }
   }
-  std::printf("downstream: %s agrees with the reference\n", context.description().device_name.c_str());
+  std::printf("downstream: %s agrees with the reference\n",
+              context.description().device_name.c_str());
   return 0;
 }

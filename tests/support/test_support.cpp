@@ -20,8 +20,8 @@ std::string data_path(const std::string& relative) {
 
 std::string temp_path(const std::string& file_name) {
   static std::atomic<int> counter{0};
-  const std::string dir = std::string(FINFLEX_TEST_TMP_DIR) + "/" + std::to_string(getpid()) +
-                          "_" + std::to_string(counter++);
+  const std::string dir = std::string(FINFLEX_TEST_TMP_DIR) + "/" + std::to_string(getpid()) + "_" +
+                          std::to_string(counter++);
   std::filesystem::create_directories(dir);
   const std::string path = dir + "/" + file_name;
   std::filesystem::remove(path);

@@ -46,9 +46,15 @@ struct DeformedBatch {
   std::vector<T> normals;
   std::vector<T> tangents;  // empty unless layout.tangents
 
-  Vec3 position(std::size_t instance, std::size_t vertex) const { return gather(positions, instance, vertex); }
-  Vec3 normal(std::size_t instance, std::size_t vertex) const { return gather(normals, instance, vertex); }
-  Vec3 tangent(std::size_t instance, std::size_t vertex) const { return gather(tangents, instance, vertex); }
+  Vec3 position(std::size_t instance, std::size_t vertex) const {
+    return gather(positions, instance, vertex);
+  }
+  Vec3 normal(std::size_t instance, std::size_t vertex) const {
+    return gather(normals, instance, vertex);
+  }
+  Vec3 tangent(std::size_t instance, std::size_t vertex) const {
+    return gather(tangents, instance, vertex);
+  }
 
   void resize(const BatchLayout& new_layout) {
     layout = new_layout;

@@ -30,7 +30,7 @@ namespace finflex {
 // Device-side outputs of one batch, allocated once and reused every frame.
 struct DeviceBatch {
   BatchLayout layout;
-  cl::Buffer positions;   // layout.attribute_elements() floats, finflex/batch.hpp planes
+  cl::Buffer positions;  // layout.attribute_elements() floats, finflex/batch.hpp planes
   cl::Buffer normals;
   cl::Buffer tangents;    // a placeholder of one float when the mesh has no tangents
   cl::Buffer parameters;  // m, one float per instance
@@ -71,7 +71,7 @@ class ClDeformer {
   LocalMesh mesh_;
   std::size_t plane_stride_ = 0;
   cl::Buffer rest_;
-  std::vector<cl_float4> back_transform_;  // origin, s e_x, s e_y, s e_z, e_x, e_y, e_z
+  std::vector<cl_float4> back_transform_;      // origin, s e_x, s e_y, s e_z, e_x, e_y, e_z
   std::map<std::string, cl::Kernel> kernels_;  // by build options: no per-frame creation
 
   cl::Kernel& bend_kernel(const BendSettings& settings);

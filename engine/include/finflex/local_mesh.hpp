@@ -12,12 +12,12 @@
 namespace finflex {
 
 struct LocalMesh {
-  BodyFrame frame;                       // local <-> mesh coordinates
-  std::vector<glm::dvec3> positions;     // p = M p_b
-  std::vector<glm::dvec3> normals;       // n = R_b n_b, unit
-  std::vector<glm::dvec4> tangents;      // xyz = R_b t_b (unit), w = bitangent sign; may be empty
-  std::vector<std::uint32_t> indices;    // the mesh's triangles, unchanged
-  double x_max = 0.0;                    // largest |x|: sets the valid range of m (13)
+  BodyFrame frame;                     // local <-> mesh coordinates
+  std::vector<glm::dvec3> positions;   // p = M p_b
+  std::vector<glm::dvec3> normals;     // n = R_b n_b, unit
+  std::vector<glm::dvec4> tangents;    // xyz = R_b t_b (unit), w = bitangent sign; may be empty
+  std::vector<std::uint32_t> indices;  // the mesh's triangles, unchanged
+  double x_max = 0.0;                  // largest |x|: sets the valid range of m (13)
 
   std::size_t vertex_count() const { return positions.size(); }
   bool has_tangents() const { return !tangents.empty(); }
