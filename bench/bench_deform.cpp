@@ -63,9 +63,14 @@ double event_seconds(const cl::Event& event) {
   return static_cast<double>(end - start) * 1e-9;
 }
 
+// Bytes one launch writes: positions and normals in float32 over the padded planes.
+double written_bytes(const BatchLayout& layout) {
+  return static_cast<double>(layout.plane_stride * layout.instance_count) * 24.0;
+}
+
 void set_counters(benchmark::State& state, const BatchLayout& layout) {
   const double vertices = static_cast<double>(layout.vertex_count * layout.instance_count);
-  const double bytes = static_cast<double>(layout.plane_stride * layout.instance_count) * 24.0;
+  const double bytes = written_bytes(layout);
   const auto rate = benchmark::Counter::kIsIterationInvariantRate;
   state.counters["vertices/s"] = benchmark::Counter(vertices, rate);
   state.counters["bytes/s"] = benchmark::Counter(bytes, rate);  // SI: 1 G = 1e9
@@ -86,6 +91,19 @@ double time_kernel(benchmark::State& state, Launch launch) {
   return total;
 }
 
+// Times `kernel` (arguments set) over the batch's NDRange, as bend_batch runs.
+double time_batch_kernel(benchmark::State& state, cl::Kernel& kernel, const BatchLayout& layout) {
+  Setup& setup = Setup::get();
+  return time_kernel(state, [&] {
+    cl::Event done;
+    check_cl(setup.context.queue().enqueueNDRangeKernel(
+                 kernel, cl::NullRange, cl::NDRange(layout.plane_stride, layout.instance_count),
+                 cl::NDRange(ClDeformer::kLocalSize, 1), nullptr, &done),
+             "clEnqueueNDRangeKernel");
+    return done;
+  });
+}
+
 void BM_WriteOnly(benchmark::State& state) {
   Setup& setup = Setup::get();
   DeviceBatch& batch = setup.batch(static_cast<std::size_t>(state.range(0)));
@@ -94,20 +112,10 @@ void BM_WriteOnly(benchmark::State& state) {
   kernel.setArg(1, batch.normals);
   kernel.setArg(2, static_cast<cl_uint>(batch.layout.plane_stride));
   kernel.setArg(3, 1.0f);
-  const double seconds = time_kernel(state, [&] {
-    cl::Event done;
-    check_cl(setup.context.queue().enqueueNDRangeKernel(
-                 kernel, cl::NullRange,
-                 cl::NDRange(batch.layout.plane_stride, batch.layout.instance_count),
-                 cl::NDRange(ClDeformer::kLocalSize, 1), nullptr, &done),
-             "write_planes");
-    return done;
-  });
+  const double seconds = time_batch_kernel(state, kernel, batch.layout);
   set_counters(state, batch.layout);
-  const double bytes =
-      static_cast<double>(batch.layout.plane_stride * batch.layout.instance_count) * 24.0;
   setup.write_only_bytes_per_second[batch.layout.instance_count] =
-      bytes * static_cast<double>(state.iterations()) / seconds;
+      written_bytes(batch.layout) * static_cast<double>(state.iterations()) / seconds;
 }
 
 void BM_CopyRest(benchmark::State& state) {
@@ -118,15 +126,7 @@ void BM_CopyRest(benchmark::State& state) {
   kernel.setArg(1, batch.positions);
   kernel.setArg(2, batch.normals);
   kernel.setArg(3, static_cast<cl_uint>(batch.layout.plane_stride));
-  time_kernel(state, [&] {
-    cl::Event done;
-    check_cl(setup.context.queue().enqueueNDRangeKernel(
-                 kernel, cl::NullRange,
-                 cl::NDRange(batch.layout.plane_stride, batch.layout.instance_count),
-                 cl::NDRange(ClDeformer::kLocalSize, 1), nullptr, &done),
-             "copy_rest");
-    return done;
-  });
+  time_batch_kernel(state, kernel, batch.layout);
   set_counters(state, batch.layout);
 }
 
@@ -143,9 +143,9 @@ void BM_Bend(benchmark::State& state, BendSettings settings) {
   set_counters(state, batch.layout);
   const auto write_only = setup.write_only_bytes_per_second.find(instances);
   if (write_only != setup.write_only_bytes_per_second.end()) {
-    const double bytes = static_cast<double>(batch.layout.plane_stride * instances) * 24.0;
-    state.counters["write_fraction"] =
-        bytes * static_cast<double>(state.iterations()) / seconds / write_only->second;
+    state.counters["write_fraction"] = written_bytes(batch.layout) *
+                                       static_cast<double>(state.iterations()) / seconds /
+                                       write_only->second;
   }
 }
 
