@@ -29,6 +29,13 @@ NormalMode parse_normal_mode(const std::string& text, const std::string& field) 
 double max_abs_m(double x_max) { return 0.5 / x_max; }
 
 std::vector<float> checked_bend_params(const std::vector<float>& m, double x_max, bool clamp) {
+  std::vector<float> checked;
+  check_bend_params_into(m, x_max, clamp, checked);
+  return checked;
+}
+
+void check_bend_params_into(const std::vector<float>& m, double x_max, bool clamp,
+                            std::vector<float>& checked) {
   if (m.empty()) {
     throw Error(ErrorCode::kInvalidArgument, "m", "m is empty: at least one instance is needed");
   }
@@ -36,7 +43,7 @@ std::vector<float> checked_bend_params(const std::vector<float>& m, double x_max
   // A float at the limit may round a hair above it; the kernels clamp 2mx into [-1, 1].
   const double accepted = limit * (1.0 + 1e-6);
   const float clamped = std::nextafter(static_cast<float>(limit), 0.0f);
-  std::vector<float> checked(m);
+  checked.assign(m.begin(), m.end());
   for (std::size_t i = 0; i < checked.size(); ++i) {
     const float value = checked[i];
     if (!std::isfinite(value)) {
@@ -55,7 +62,6 @@ std::vector<float> checked_bend_params(const std::vector<float>& m, double x_max
             << "] (|m| <= 0.5 / x_max, x_max = " << x_max << ")";
     throw Error(ErrorCode::kOutOfRange, "m[" + std::to_string(i) + "]", message.str());
   }
-  return checked;
 }
 
 }  // namespace finflex

@@ -107,10 +107,10 @@ cl::Event ClDeformer::enqueue(const std::vector<float>& m, const BendSettings& s
                 "m has " + std::to_string(m.size()) + " values for a batch of " +
                     std::to_string(batch.layout.instance_count) + " instances");
   }
-  std::vector<float> checked = checked_bend_params(m, mesh_.x_max, clamp);
-  // The previous upload reads staged_parameters until it completes.
+  // The previous upload reads staged_parameters until it completes (long done, in a
+  // steady frame loop); then m is checked into it, reusing its memory.
   if (batch.parameters_uploaded()) check_cl(batch.parameters_uploaded.wait(), "clWaitForEvents");
-  batch.staged_parameters.swap(checked);
+  check_bend_params_into(m, mesh_.x_max, clamp, batch.staged_parameters);
 
   cl::CommandQueue& queue = context_.queue();
   check_cl(

@@ -41,4 +41,10 @@ double max_abs_m(double x_max);
 // in which case the value is clamped into the range. An empty list: kInvalidArgument.
 std::vector<float> checked_bend_params(const std::vector<float>& m, double x_max, bool clamp);
 
+// The same, written into `out` (resized to m.size(); its capacity is reused, so a
+// caller checking every frame allocates nothing after the first). On error `out`
+// holds an unspecified prefix.
+void check_bend_params_into(const std::vector<float>& m, double x_max, bool clamp,
+                            std::vector<float>& out);
+
 }  // namespace finflex
