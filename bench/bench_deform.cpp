@@ -51,7 +51,7 @@ struct Setup {
   }
   cl::Kernel& kernel(const std::string& name) {
     auto found = kernels.find(name);
-    if (found == kernels.end()) found = kernels.emplace(name, context.kernel(name, "")).first;
+    if (found == kernels.end()) found = kernels.emplace(name, context.kernel(name, ProgramSource::bend_batch(), "")).first;
     return found->second;
   }
 };

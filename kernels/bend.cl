@@ -1,4 +1,5 @@
-/* The fish bend of the paper (METHOD.md section 5), one vertex in the body frame.
+/* Secant-surface deformers of one vertex in its stage's local frame: the fish bend of
+ * the paper (METHOD.md section 5), paper and exact, and the hinge (section 6).
  *
  * Everything is written with u = 2 m x, the slope of the bent spine z = m x^2.
  * Valid range (13): |m| <= 0.5 / x_max, so u lies in [-1, 1]; u is clamped there so
@@ -51,38 +52,95 @@ inline float asin_over_u(float u) {
   return big ? big_ratio : small_ratio;
 }
 
-inline BendSample bend_sample(float x, float z, float m) {
+/* Exact bend: x' = x sqrt(1 - u^2) / 2 + asin(u) / (4m) = x (c + asin(u) / u) / 2;
+ * (1 - u)(1 + u) keeps c accurate as |u| -> 1. |df/dx| = 1, k = 2m / c: scaled by c,
+ * (along, across) = (c, c - 2 m z). */
+inline BendSample bend_sample_exact(float x, float z, float m) {
   const float u = clamp(2.0f * m * x, -1.0f, 1.0f);
-  const float u2 = u * u;
-  BendSample s;
-  s.spine_z = 0.5f * u * x; /* m x^2 */
-#if FF_BEND_EXACT
-  /* x' = x sqrt(1 - u^2) / 2 + asin(u) / (4m) = x (c + asin(u) / u) / 2;
-   * (1 - u)(1 + u) keeps c accurate as |u| -> 1. */
   const float c = sqrt((1.0f - u) * (1.0f + u));
+  const float c_floor = fmax(c, FF_MIN_SPINE_COSINE);
+  BendSample s;
   s.spine_x = 0.5f * x * (c + asin_over_u(u));
+  s.spine_z = 0.5f * u * x; /* m x^2 */
   s.sin_t = u;
   s.cos_t = c;
-  /* |df/dx| = 1, k = 2m / c: scaled by c, (along, across) = (c, c - 2 m z). */
-  const float c_floor = fmax(c, FF_MIN_SPINE_COSINE);
   s.along = c_floor;
   s.across = c_floor - 2.0f * m * z;
-#else
-  /* (15): x' = x (1 - 2/3 m^2x^2 - 2/5 m^4x^4) = x (1 - u^2/6 - u^4/40);
-   * df/dx = (a, 0, u), a = 1 - 2m^2x^2 - 2m^4x^4 = 1 - u^2/2 - u^4/8 (16);
-   * n = (-u, 0, a) / g, g = |df/dx| (17). */
+  return s;
+}
+
+/* The paper's bend. (15): x' = x (1 - 2/3 m^2x^2 - 2/5 m^4x^4) = x (1 - u^2/6 - u^4/40);
+ * df/dx = (a, 0, u), a = 1 - 2m^2x^2 - 2m^4x^4 = 1 - u^2/2 - u^4/8 (16);
+ * n = (-u, 0, a) / g, g = |df/dx| (17). k = (a u' - u a') / g^3 with u' = 2m,
+ * a' = -2m (u + u^3/2): D g^2 = g^3 - z 2m (1 + u^2/2 + 3u^4/8); scaled by g^2,
+ * (along, across) = (g^2, D g^2). */
+inline BendSample bend_sample_paper(float x, float z, float m) {
+  const float u = clamp(2.0f * m * x, -1.0f, 1.0f);
+  const float u2 = u * u;
   const float a = 1.0f - u2 * (0.5f + 0.125f * u2);
   const float g2 = a * a + u2;
   const float inverse_g = rsqrt(g2);
   const float g = g2 * inverse_g;
+  BendSample s;
   s.spine_x = x * (1.0f - u2 * (1.0f / 6.0f + u2 * (1.0f / 40.0f)));
+  s.spine_z = 0.5f * u * x; /* m x^2 */
   s.sin_t = u * inverse_g;
   s.cos_t = a * inverse_g;
-  /* k = (a u' - u a') / g^3 with u' = 2m, a' = -2m (u + u^3/2):
-   * D g^2 = g^3 - z 2m (1 + u^2/2 + 3u^4/8); scaled by g^2: (along, across) = (g^2, D g^2). */
   s.along = g2;
   s.across = g2 * g - z * 2.0f * m * (1.0f + u2 * (0.5f + 0.375f * u2));
+  return s;
+}
+
+/* The bend chosen by FF_BEND_EXACT, for kernels specialised to one mode. */
+inline BendSample bend_sample(float x, float z, float m) {
+#if FF_BEND_EXACT
+  return bend_sample_exact(x, z, m);
+#else
+  return bend_sample_paper(x, z, m);
 #endif
+}
+
+/* sin(h) / h and cos(h) for |h| <= pi/2 by their Taylor series to h^12 (truncation
+ * below 1e-8): no calls and no branches, so it vectorises. */
+inline float sin_over_h(float h) {
+  const float q = h * h;
+  return 1.0f + q * (-1.0f / 6.0f + q * (1.0f / 120.0f + q * (-1.0f / 5040.0f +
+         q * (1.0f / 362880.0f + q * (-1.0f / 39916800.0f + q * (1.0f / 6227020800.0f))))));
+}
+
+inline float cos_of_h(float h) {
+  const float q = h * h;
+  return 1.0f + q * (-0.5f + q * (1.0f / 24.0f + q * (-1.0f / 720.0f +
+         q * (1.0f / 40320.0f + q * (-1.0f / 3628800.0f + q * (1.0f / 479001600.0f))))));
+}
+
+/* Hinge (METHOD.md section 6, the general inextensible spine): the spine's angle
+ * theta(x) ramps linearly from 0 at x = 0 to `angle` at x = width (a step at 0 when
+ * width = 0), |angle| <= pi. x < 0 is untouched; the ramp bends into a circular arc
+ * (no crease); beyond it the part is rigidly rotated about e_y:
+ *   X = min(x, 0) + r sin(theta)/theta + b cos(theta),
+ *   Z =             r (1 - cos(theta))/theta + b sin(theta),
+ * r = clamp(x, 0, width), b = max(x - width, 0), theta = angle r / width (angle past
+ * the ramp). With h = theta / 2: sin(theta)/theta = (sin h / h) cos h and
+ * (1 - cos theta)/theta = (sin h / h) sin h. Curvature k = angle / width inside the
+ * ramp, 0 elsewhere: (along, across) = (1, 1 - z k). */
+inline BendSample hinge_sample(float x, float z, float angle, float width) {
+  const int has_ramp = width > 0.0f;
+  const float ramp = has_ramp ? clamp(x, 0.0f, width) : 0.0f;
+  const float beyond = fmax(x - width, 0.0f);
+  const float fraction = has_ramp ? ramp / fmax(width, FLT_MIN) : (x > 0.0f ? 1.0f : 0.0f);
+  const float half_theta = 0.5f * angle * fraction;
+  const float sinc_h = sin_over_h(half_theta);
+  const float sin_h = sinc_h * half_theta;
+  const float cos_h = cos_of_h(half_theta);
+  BendSample s;
+  s.sin_t = 2.0f * sin_h * cos_h;
+  s.cos_t = 1.0f - 2.0f * sin_h * sin_h;
+  s.spine_x = fmin(x, 0.0f) + ramp * sinc_h * cos_h + beyond * s.cos_t;
+  s.spine_z = ramp * sinc_h * sin_h + beyond * s.sin_t;
+  const int in_ramp = has_ramp & (x > 0.0f) & (x < width);
+  s.along = 1.0f;
+  s.across = 1.0f - z * (in_ramp ? angle / fmax(width, FLT_MIN) : 0.0f);
   return s;
 }
 

@@ -14,19 +14,6 @@
 #define FF_TANGENTS 0
 #endif
 
-inline Vec3 load_plane3(__global const float* planes, size_t first_plane, size_t stride,
-                        size_t v) {
-  return vec3(planes[first_plane * stride + v], planes[(first_plane + 1) * stride + v],
-              planes[(first_plane + 2) * stride + v]);
-}
-
-inline void store_plane3(__global float* planes, size_t first_plane, size_t stride, size_t v,
-                         Vec3 value) {
-  planes[first_plane * stride + v] = value.x;
-  planes[(first_plane + 1) * stride + v] = value.y;
-  planes[(first_plane + 2) * stride + v] = value.z;
-}
-
 /* x a_x + y a_y + z a_z (+ origin): the way back to mesh coordinates, M^-1 of (2). */
 inline Vec3 to_mesh(Vec3 v, float4 axis_x, float4 axis_y, float4 axis_z, float4 origin) {
   return vec3(origin.x + v.x * axis_x.x + v.y * axis_y.x + v.z * axis_z.x,

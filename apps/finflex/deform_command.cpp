@@ -4,6 +4,8 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "finflex/cli_errors.hpp"
 #include "finflex/commands.hpp"
@@ -16,9 +18,12 @@ struct DeformOptions {
   std::string in;
   std::string out;
   std::string m;
-  std::string mode = "paper";
+  std::string mode;  // empty: paper
   std::string normals = "rotate";
-  std::string frame = "auto";
+  std::string frame;             // empty: auto
+  std::string rig;               // a rig file instead of --m
+  std::vector<std::string> set;  // NAME=VALUE rig parameters
+  std::string path = "auto";
   bool clamp = false;
   std::string device;
   std::string head;  // "X,Y,Z" overrides of the automatic frame
@@ -91,12 +96,84 @@ auto with_path_option(const std::string& option, Operation operation) {
   }
 }
 
+// The plain bend of the whole body: --m, --mode, --frame.
+std::string bend_whole_body(const DeformOptions& options, const Mesh& rest, NormalMode normals,
+                            Context& context, Mesh& bent) {
+  if (options.m.empty())
+    throw Error(ErrorCode::kInvalidArgument, "--m", "--m is required (or --rig)");
+  const double m = parse_number(options.m, "--m");
+  const BendSettings settings{
+      parse_bend_mode(options.mode.empty() ? "paper" : options.mode, "--mode"), normals};
+  const FrameOptions frame = frame_options(options);
+  const LocalMesh local = make_local_mesh(rest, choose_frame(rest, options.frame, frame));
+  const std::vector<float> parameters =
+      checked_bend_params({static_cast<float>(m)}, local.x_max, options.clamp);
+  ClDeformer deformer(context, local);
+  DeviceBatch batch = deformer.allocate(1);
+  deformer.enqueue(parameters, settings, batch);
+  bent = instance_mesh(rest, deformer.read(batch), 0);
+  char summary[160];
+  std::snprintf(summary, sizeof summary, "m = %g (%s bend, %s normals, x_max %.4f)",
+                static_cast<double>(parameters[0]), to_string(settings.mode), to_string(normals),
+                local.x_max);
+  return summary;
+}
+
+// Parses "NAME=VALUE".
+std::pair<std::string, float> parse_assignment(const std::string& text) {
+  const std::size_t equals = text.find('=');
+  if (equals == std::string::npos || equals == 0) {
+    throw Error(ErrorCode::kInvalidArgument, "--set", "--set '" + text + "' is not NAME=VALUE");
+  }
+  const std::string name = text.substr(0, equals);
+  return {name, static_cast<float>(parse_number(text.substr(equals + 1), "--set " + name))};
+}
+
+// A rigged deformation: --rig, --set, --path.
+std::string deform_rig(const DeformOptions& options, const Mesh& rest, NormalMode normals,
+                       Context& context, Mesh& bent) {
+  const std::pair<const char*, const std::string*> plain_bend_only[] = {
+      {"--m", &options.m},       {"--mode", &options.mode},     {"--frame", &options.frame},
+      {"--head", &options.head}, {"--dorsal", &options.dorsal}, {"--pivot", &options.pivot}};
+  for (const auto& [option, value] : plain_bend_only) {
+    if (!value->empty()) {
+      throw Error(ErrorCode::kInvalidArgument, option,
+                  std::string(option) + " does not go with --rig: the rig file says it");
+    }
+  }
+  const RigPath path = parse_rig_path(options.path, "--path");
+  const Rig rig =
+      resolve_rig(with_path_option("--rig", [&] { return load_rig_file(options.rig); }), rest);
+  RigParameters values(rig, 1);
+  for (const std::string& assignment : options.set) {
+    const auto [name, value] = parse_assignment(assignment);
+    try {
+      values.set(0, name, value);
+    } catch (const Error& error) {
+      throw Error(error.code(), "--set", "--set: " + std::string(error.what()));
+    }
+  }
+  ClRigDeformer deformer(context, rest, rig);
+  DeviceBatch batch = deformer.allocate(1);
+  deformer.enqueue(values, normals, batch, path, options.clamp);
+  bent = instance_mesh(rest, deformer.read(batch), 0);
+  std::string summary = "rig " + options.rig + " (" + std::to_string(rig.components.size()) +
+                        " components, " +
+                        to_string(path == RigPath::kAuto ? deformer.automatic_path() : path) +
+                        " path, " + to_string(normals) + " normals)";
+  for (std::size_t p = 0; p < rig.params.size(); ++p) {
+    char value[64];
+    std::snprintf(value, sizeof value, "%s%s = %g", p == 0 ? ": " : ", ", rig.params[p].c_str(),
+                  static_cast<double>(values.get(0, p)));
+    summary += value;
+  }
+  return summary;
+}
+
 int run_deform(const DeformOptions& options) {
   try {
     // Everything that can be checked before reading a file is checked first.
-    const double m = parse_number(options.m, "--m");
-    const BendSettings settings{parse_bend_mode(options.mode, "--mode"),
-                                parse_normal_mode(options.normals, "--normals")};
+    const NormalMode normals = parse_normal_mode(options.normals, "--normals");
     if (options.out.empty()) {
       throw Error(ErrorCode::kInvalidArgument, "--out", "--out is empty");
     }
@@ -104,24 +181,19 @@ int run_deform(const DeformOptions& options) {
       throw Error(ErrorCode::kInvalidArgument, "--out",
                   "--out '" + options.out + "' is a directory");
     }
-
-    const FrameOptions frame = frame_options(options);
+    if (options.rig.empty() && !options.set.empty()) {
+      throw Error(ErrorCode::kInvalidArgument, "--set", "--set needs --rig");
+    }
 
     const Mesh rest = with_path_option("--in", [&] { return load_mesh(options.in); });
-    const LocalMesh local = make_local_mesh(rest, choose_frame(rest, options.frame, frame));
-    const std::vector<float> parameters =
-        checked_bend_params({static_cast<float>(m)}, local.x_max, options.clamp);
-
     Context context(options.device);
-    ClDeformer deformer(context, local);
-    DeviceBatch batch = deformer.allocate(1);
-    deformer.enqueue(parameters, settings, batch);
-    const Mesh bent = instance_mesh(rest, deformer.read(batch), 0);
+    Mesh bent;
+    const std::string what = options.rig.empty()
+                                 ? bend_whole_body(options, rest, normals, context, bent)
+                                 : deform_rig(options, rest, normals, context, bent);
     with_path_option("--out", [&] { save_mesh(options.out, bent); });
-    std::printf("bent %zu vertices with m = %g (%s bend, %s normals, x_max %.4f) on %s -> %s\n",
-                rest.vertex_count(), static_cast<double>(parameters[0]), to_string(settings.mode),
-                to_string(settings.normals), local.x_max, context.description().device_name.c_str(),
-                options.out.c_str());
+    std::printf("bent %zu vertices with %s on %s -> %s\n", rest.vertex_count(), what.c_str(),
+                context.description().device_name.c_str(), options.out.c_str());
     return kExitSuccess;
   } catch (const Error& error) {
     return fail("deform", with_option_names(error));
@@ -134,27 +206,32 @@ int run_deform(const DeformOptions& options) {
 
 Command add_deform_command(CLI::App& app) {
   auto options = std::make_shared<DeformOptions>();
-  CLI::App* deform = app.add_subcommand("deform", "Bend a mesh with the paper's fish bend");
+  CLI::App* deform = app.add_subcommand(
+      "deform", "Bend a mesh with the paper's fish bend, or deform it with a rig");
   deform->add_option("--in", options->in, "Input mesh (.obj .ply .off .stl .gltf .glb)")
       ->required();
   deform->add_option("--out", options->out, "Output mesh; the format follows the extension")
       ->required();
-  deform->add_option("--m", options->m, "Bend parameter m, |m| <= 0.5 / x_max")->required();
-  deform->add_option("--mode", options->mode, "paper (series (15)-(17)) or exact (asin)")
-      ->capture_default_str();
+  deform->add_option("--m", options->m, "Bend parameter m, |m| <= 0.5 / x_max (without --rig)");
+  deform->add_option("--mode", options->mode, "paper (series (15)-(17), default) or exact (asin)");
   deform->add_option("--normals", options->normals, "rotate (the paper's (8)) or jacobian (exact)")
       ->capture_default_str();
   deform
-      ->add_option("--frame", options->frame,
-                   "auto (found from the mesh) or identity (mesh coordinates are the frame)")
-      ->check(CLI::IsMember({"auto", "identity"}))
-      ->capture_default_str();
+      ->add_option(
+          "--frame", options->frame,
+          "auto (found from the mesh, default) or identity (mesh coordinates are the frame)")
+      ->check(CLI::IsMember({"auto", "identity"}));
   deform->add_flag("--clamp", options->clamp, "Clamp m into its valid range instead of failing");
   deform->add_option("--head", options->head, "Automatic frame: X,Y,Z roughly towards the head");
   deform->add_option("--dorsal", options->dorsal,
                      "Automatic frame: X,Y,Z roughly towards the back");
   deform->add_option("--pivot", options->pivot,
                      "Automatic frame: the fixed point X,Y,Z (mesh units)");
+  deform->add_option("--rig", options->rig, "Rig file (JSON, docs/rigs.md) instead of --m");
+  deform->add_option("--set", options->set, "NAME=VALUE: a rig parameter (repeatable; unset: 0)")
+      ->allow_extra_args(false);
+  deform->add_option("--path", options->path, "With --rig: auto, fused or passes")
+      ->capture_default_str();
   deform->add_option("--device", options->device,
                      "OpenCL device: 'P:D' indices or a name substring (see finflex info)");
   return [options] { return run_deform(*options); };

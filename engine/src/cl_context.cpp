@@ -147,14 +147,27 @@ Context::Context(const std::string& device) {
   check_cl(status, "clCreateCommandQueue");
 }
 
-const cl::Program& Context::program(const std::string& options) {
+ProgramSource ProgramSource::bend_batch() {
+  return {{"bend.cl", "planes.cl", "deform_batch.cl", "bandwidth.cl"}, ""};
+}
+
+const cl::Program& Context::program(const ProgramSource& source, const std::string& options) {
+  std::string key = options + '\n' + source.generated;
+  for (const std::string& file : source.files) key += '\n' + file;
   std::lock_guard<std::mutex> lock(cache_mutex_);
-  auto cached = programs_.find(options);
+  auto cached = programs_.find(key);
   if (cached != programs_.end()) return cached->second;
 
   cl::Program::Sources sources;
-  for (const detail::KernelSource& source : detail::kernel_sources()) {
-    sources.push_back(source.text);
+  if (!source.generated.empty()) sources.push_back(source.generated);
+  for (const std::string& file : source.files) {
+    const auto& embedded = detail::kernel_sources();
+    auto found = std::find_if(embedded.begin(), embedded.end(),
+                              [&](const detail::KernelSource& k) { return k.file_name == file; });
+    if (found == embedded.end()) {
+      throw Error(ErrorCode::kOpenCL, "kernels", "no embedded kernel file '" + file + "'");
+    }
+    sources.push_back(found->text);
   }
   cl_int status = CL_SUCCESS;
   cl::Program program(context_, sources, &status);
@@ -168,12 +181,13 @@ const cl::Program& Context::program(const std::string& options) {
                 "building the kernels with '" + full_options + "' failed on '" +
                     description_.device_name + "': " + log);
   }
-  return programs_.emplace(options, std::move(program)).first->second;
+  return programs_.emplace(key, std::move(program)).first->second;
 }
 
-cl::Kernel Context::kernel(const std::string& name, const std::string& options) {
+cl::Kernel Context::kernel(const std::string& name, const ProgramSource& source,
+                           const std::string& options) {
   cl_int status = CL_SUCCESS;
-  cl::Kernel kernel(program(options), name.c_str(), &status);
+  cl::Kernel kernel(program(source, options), name.c_str(), &status);
   check_cl(status, ("clCreateKernel " + name).c_str());
   return kernel;
 }

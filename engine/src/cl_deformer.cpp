@@ -141,7 +141,10 @@ cl::Kernel& ClDeformer::bend_kernel(const BendSettings& settings) {
   const std::string options = bend_build_options(settings, mesh_.has_tangents());
   auto found = kernels_.find(options);
   if (found == kernels_.end()) {
-    found = kernels_.emplace(options, context_.kernel("bend_batch", options)).first;
+    found =
+        kernels_
+            .emplace(options, context_.kernel("bend_batch", ProgramSource::bend_batch(), options))
+            .first;
   }
   return found->second;
 }

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -21,7 +22,7 @@
 namespace finflex {
 
 struct BatchLayout {
-  std::size_t vertex_count = 0;
+  std::size_t vertex_count = 0;  // the mesh's vertices (slots may be more, with padding)
   std::size_t instance_count = 0;
   std::size_t plane_stride = 0;  // >= vertex_count, in elements
   bool tangents = false;
@@ -37,6 +38,8 @@ struct BatchLayout {
 std::size_t padded_plane_stride(std::size_t vertex_count);
 
 // A batch on the host, in float (from a device) or double (from the reference).
+// Accessors take the mesh's own vertex index: where the engine reordered vertices
+// (rigs: each component a contiguous range of slots), slot_of_vertex maps it.
 template <typename T>
 struct DeformedBatch {
   using Vec3 = glm::vec<3, T, glm::defaultp>;
@@ -44,7 +47,8 @@ struct DeformedBatch {
   BatchLayout layout;
   std::vector<T> positions;
   std::vector<T> normals;
-  std::vector<T> tangents;  // empty unless layout.tangents
+  std::vector<T> tangents;                    // empty unless layout.tangents
+  std::vector<std::uint32_t> slot_of_vertex;  // empty: slot = vertex
 
   Vec3 position(std::size_t instance, std::size_t vertex) const {
     return gather(positions, instance, vertex);
@@ -68,8 +72,9 @@ struct DeformedBatch {
 
  private:
   Vec3 gather(const std::vector<T>& data, std::size_t instance, std::size_t vertex) const {
-    return Vec3(data[layout.index(instance, 0, vertex)], data[layout.index(instance, 1, vertex)],
-                data[layout.index(instance, 2, vertex)]);
+    const std::size_t slot = slot_of_vertex.empty() ? vertex : slot_of_vertex[vertex];
+    return Vec3(data[layout.index(instance, 0, slot)], data[layout.index(instance, 1, slot)],
+                data[layout.index(instance, 2, slot)]);
   }
 };
 

@@ -28,6 +28,15 @@ struct DeviceDescription {
 // first CPU device (PoCL), else the first device. Empty when no platform exists.
 std::vector<DeviceDescription> list_devices();
 
+// The source of one OpenCL program: embedded kernel files and generated text before them.
+struct ProgramSource {
+  std::vector<std::string> files;
+  std::string generated;
+
+  // bend.cl, planes.cl, deform_batch.cl, bandwidth.cl: the single-bend batch kernels.
+  static ProgramSource bend_batch();
+};
+
 class Context {
  public:
   // `device` selects the device: empty for the default, "P:D" for platform P device D
@@ -43,10 +52,12 @@ class Context {
   const cl::Context& context() const { return context_; }
   cl::CommandQueue& queue() { return queue_; }
 
-  // The program made of every embedded kernel file, built once per `options` string
-  // (-D specialisations) and cached. Build failures throw kOpenCL with the build log.
-  const cl::Program& program(const std::string& options);
-  cl::Kernel kernel(const std::string& name, const std::string& options);
+  // A program made of embedded kernel files (kernels/*.cl, by file name, in order),
+  // after `generated` source text (e.g. a rig's dispatch macros), built once per
+  // (files, options, generated) and cached. Build failures throw kOpenCL with the log.
+  const cl::Program& program(const ProgramSource& source, const std::string& options);
+  cl::Kernel kernel(const std::string& name, const ProgramSource& source,
+                    const std::string& options);
 
  private:
   DeviceDescription description_;

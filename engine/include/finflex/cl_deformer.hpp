@@ -33,7 +33,11 @@ struct DeviceBatch {
   cl::Buffer positions;  // layout.attribute_elements() floats, finflex/batch.hpp planes
   cl::Buffer normals;
   cl::Buffer tangents;    // a placeholder of one float when the mesh has no tangents
-  cl::Buffer parameters;  // m, one float per instance
+  cl::Buffer parameters;  // per instance: m, or a rig's parameter values
+
+  // The other half of the ping-pong pair of the multi-pass rig path (allocated on its
+  // first use; the outputs above are the half the last pass writes).
+  cl::Buffer scratch_positions, scratch_normals, scratch_tangents;
 
   // Host staging of the last upload of m, kept alive until its write completes.
   std::vector<float> staged_parameters;

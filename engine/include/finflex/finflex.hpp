@@ -14,3 +14,5 @@
 #include "finflex/mesh.hpp"
 #include "finflex/mesh_io.hpp"
 #include "finflex/reference_deformer.hpp"
+#include "finflex/rig.hpp"
+#include "finflex/rig_deformer.hpp"

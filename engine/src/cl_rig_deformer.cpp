@@ -1,0 +1,217 @@
+#include <string>
+
+#include "finflex/error.hpp"
+#include "finflex/rig_deformer.hpp"
+#include "rig_program.hpp"
+
+namespace finflex {
+namespace {
+
+constexpr std::size_t kGroupSize = ClDeformer::kLocalSize;
+
+cl::Buffer make_buffer(const cl::Context& context, cl_mem_flags flags, std::size_t bytes,
+                       const void* host = nullptr) {
+  cl_int status = CL_SUCCESS;
+  cl::Buffer buffer(context, flags | (host ? CL_MEM_COPY_HOST_PTR : 0), bytes,
+                    const_cast<void*>(host), &status);
+  check_cl(status, "clCreateBuffer");
+  return buffer;
+}
+
+// One instance's planes of an attribute over slots; padding slots get `padding`.
+template <typename Attribute>
+std::vector<float> slot_planes(const std::vector<Attribute>& values,
+                               const detail::SlotLayout& slots, glm::vec3 padding, bool normalise) {
+  std::vector<float> planes(3 * slots.slot_count);
+  for (std::size_t slot = 0; slot < slots.slot_count; ++slot) {
+    const std::int64_t v = slots.vertex_of_slot[slot];
+    glm::vec3 value = v < 0 ? padding : glm::vec3(values[static_cast<std::size_t>(v)]);
+    if (normalise && v >= 0) value = glm::normalize(value);
+    for (int c = 0; c < 3; ++c)
+      planes[static_cast<std::size_t>(c) * slots.slot_count + slot] = value[c];
+  }
+  return planes;
+}
+
+void set_args(cl::Kernel& kernel, cl_uint first, std::initializer_list<const cl::Buffer*> buffers,
+              const char* what) {
+  cl_uint arg = first;
+  for (const cl::Buffer* buffer : buffers) check_cl(kernel.setArg(arg++, *buffer), what);
+}
+
+}  // namespace
+
+ClRigDeformer::ClRigDeformer(Context& context, const Mesh& mesh, const Rig& rig)
+    : context_(context), rig_(rig), limits_(rig_param_limits(rig)) {
+  validate_mesh(mesh);
+  vertex_count_ = mesh.vertex_count();
+  tangents_ = mesh.has_tangents();
+  const detail::SlotLayout slots = detail::make_slot_layout(rig_, vertex_count_, kGroupSize);
+  slot_count_ = slots.slot_count;
+  slot_of_vertex_ = slots.slot_of_vertex;
+  remapped_indices_.reserve(mesh.indices.size());
+  for (std::uint32_t index : mesh.indices) remapped_indices_.push_back(slot_of_vertex_[index]);
+
+  const cl::Context& cl_context = context_.context();
+  const std::size_t plane_bytes = 3 * slot_count_ * sizeof(float);
+  rest_positions_ = make_buffer(cl_context, CL_MEM_READ_ONLY, plane_bytes,
+                                slot_planes(mesh.positions, slots, glm::vec3(0.0f), false).data());
+  rest_normals_ = make_buffer(cl_context, CL_MEM_READ_ONLY, plane_bytes,
+                              slot_planes(mesh.normals, slots, glm::vec3(0, 0, 1), true).data());
+  rest_tangents_ =
+      tangents_ ? make_buffer(cl_context, CL_MEM_READ_ONLY, plane_bytes,
+                              slot_planes(mesh.tangents, slots, glm::vec3(1, 0, 0), true).data())
+                : make_buffer(cl_context, CL_MEM_READ_ONLY, sizeof(float));
+  const std::vector<float> frames = detail::stage_frames(rig_);
+  stages_ = make_buffer(cl_context, CL_MEM_READ_ONLY, frames.size() * sizeof(float), frames.data());
+
+  const std::vector<detail::Pass> passes = detail::make_passes(rig_);
+  pass_count_ = passes.size();
+  program_ = {{"bend.cl", "planes.cl", "rig.cl"},
+              detail::rig_dispatch_source(rig_, slots, passes, kGroupSize)};
+}
+
+BatchLayout ClRigDeformer::layout(std::size_t instances) const {
+  BatchLayout layout;
+  layout.vertex_count = vertex_count_;
+  layout.instance_count = instances;
+  layout.plane_stride = slot_count_;
+  layout.tangents = tangents_;
+  return layout;
+}
+
+RigPath ClRigDeformer::automatic_path() const {
+  return detail::longest_path(rig_) <= kMaxFusedStages ? RigPath::kFused : RigPath::kPasses;
+}
+
+DeviceBatch ClRigDeformer::allocate(std::size_t instances) const {
+  if (instances == 0) {
+    throw Error(ErrorCode::kInvalidArgument, "instances", "instances = 0: at least one is needed");
+  }
+  DeviceBatch batch;
+  batch.layout = layout(instances);
+  const std::size_t bytes = batch.layout.attribute_elements() * sizeof(float);
+  const std::size_t limit = context_.description().max_allocation_bytes;
+  if (bytes > limit) {
+    throw Error(ErrorCode::kOutOfRange, "instances",
+                "instances = " + std::to_string(instances) + " needs " + std::to_string(bytes) +
+                    " bytes per attribute, above the device's largest allocation (" +
+                    std::to_string(limit) + " bytes)");
+  }
+  const cl::Context& cl_context = context_.context();
+  batch.positions = make_buffer(cl_context, CL_MEM_READ_WRITE, bytes);
+  batch.normals = make_buffer(cl_context, CL_MEM_READ_WRITE, bytes);
+  batch.tangents = make_buffer(cl_context, CL_MEM_READ_WRITE, tangents_ ? bytes : sizeof(float));
+  const std::size_t values = std::max<std::size_t>(instances * rig_.params.size(), 1);
+  batch.parameters = make_buffer(cl_context, CL_MEM_READ_ONLY, values * sizeof(float));
+  return batch;
+}
+
+void ClRigDeformer::ensure_scratch(DeviceBatch& batch) const {
+  if (batch.scratch_positions()) return;
+  const std::size_t bytes = batch.layout.attribute_elements() * sizeof(float);
+  const cl::Context& cl_context = context_.context();
+  batch.scratch_positions = make_buffer(cl_context, CL_MEM_READ_WRITE, bytes);
+  batch.scratch_normals = make_buffer(cl_context, CL_MEM_READ_WRITE, bytes);
+  batch.scratch_tangents =
+      make_buffer(cl_context, CL_MEM_READ_WRITE, tangents_ ? bytes : sizeof(float));
+}
+
+cl::Kernel& ClRigDeformer::kernel(const std::string& name, NormalMode normals) {
+  const std::string options = std::string("-DFF_NORMALS_JACOBIAN=") +
+                              (normals == NormalMode::kJacobian ? "1" : "0") +
+                              " -DFF_TANGENTS=" + (tangents_ ? "1" : "0");
+  const std::string key = name + " " + options;
+  auto found = kernels_.find(key);
+  if (found == kernels_.end()) {
+    found = kernels_.emplace(key, context_.kernel(name, program_, options)).first;
+  }
+  return found->second;
+}
+
+cl::Event ClRigDeformer::enqueue(const RigParameters& parameters, NormalMode normals,
+                                 DeviceBatch& batch, RigPath path, bool clamp,
+                                 const std::vector<cl::Event>* wait) {
+  if (parameters.instance_count() != batch.layout.instance_count ||
+      batch.layout.plane_stride != slot_count_) {
+    throw Error(ErrorCode::kInvalidArgument, "parameters",
+                "the parameters are for " + std::to_string(parameters.instance_count()) +
+                    " instances, the batch holds " + std::to_string(batch.layout.instance_count) +
+                    " of this rig");
+  }
+  // The previous upload reads staged_parameters until it completes.
+  if (batch.parameters_uploaded()) check_cl(batch.parameters_uploaded.wait(), "clWaitForEvents");
+  check_rig_params_into(rig_, limits_, parameters, clamp, batch.staged_parameters);
+  if (path == RigPath::kAuto) path = automatic_path();
+
+  cl::CommandQueue& queue = context_.queue();
+  if (!batch.staged_parameters.empty()) {
+    check_cl(queue.enqueueWriteBuffer(
+                 batch.parameters, CL_FALSE, 0, batch.staged_parameters.size() * sizeof(float),
+                 batch.staged_parameters.data(), wait, &batch.parameters_uploaded),
+             "clEnqueueWriteBuffer parameters");
+  }
+  const cl::NDRange global(slot_count_, batch.layout.instance_count);
+  const cl::NDRange local(kGroupSize, 1);
+  const auto param_count = static_cast<cl_uint>(rig_.params.size());
+  const auto stride = static_cast<cl_uint>(slot_count_);
+  cl::Event done;
+
+  if (path == RigPath::kFused || pass_count_ == 0) {
+    cl::Kernel& fused = kernel("rig_fused", normals);
+    set_args(fused, 0, {&rest_positions_, &rest_normals_, &rest_tangents_, &batch.parameters},
+             "clSetKernelArg rig_fused");
+    check_cl(fused.setArg(4, param_count), "clSetKernelArg param_count");
+    check_cl(fused.setArg(5, stages_), "clSetKernelArg stages");
+    set_args(fused, 6, {&batch.positions, &batch.normals, &batch.tangents}, "clSetKernelArg out");
+    check_cl(fused.setArg(9, stride), "clSetKernelArg stride");
+    check_cl(queue.enqueueNDRangeKernel(fused, cl::NullRange, global, local, nullptr, &done),
+             "clEnqueueNDRangeKernel rig_fused");
+    return done;
+  }
+
+  // Ping-pong: the last pass writes the outputs, so pass q writes them when
+  // (passes - 1 - q) is even and the scratch buffers otherwise.
+  ensure_scratch(batch);
+  cl::Kernel& pass_kernel = kernel("rig_pass", normals);
+  check_cl(pass_kernel.setArg(5, batch.parameters), "clSetKernelArg params");
+  check_cl(pass_kernel.setArg(6, param_count), "clSetKernelArg param_count");
+  check_cl(pass_kernel.setArg(7, stages_), "clSetKernelArg stages");
+  check_cl(pass_kernel.setArg(11, stride), "clSetKernelArg stride");
+  const cl::Buffer* out[3] = {&batch.positions, &batch.normals, &batch.tangents};
+  const cl::Buffer* scratch[3] = {&batch.scratch_positions, &batch.scratch_normals,
+                                  &batch.scratch_tangents};
+  const cl::Buffer* rest[3] = {&rest_positions_, &rest_normals_, &rest_tangents_};
+  const cl::Buffer* const* source = rest;
+  for (std::size_t q = 0; q < pass_count_; ++q) {
+    const cl::Buffer* const* target = (pass_count_ - 1 - q) % 2 == 0 ? out : scratch;
+    check_cl(pass_kernel.setArg(0, static_cast<cl_uint>(q)), "clSetKernelArg pass");
+    set_args(pass_kernel, 1, {source[0], source[1], source[2]}, "clSetKernelArg src");
+    check_cl(pass_kernel.setArg(4, static_cast<cl_uint>(q == 0 ? 0 : 3)),
+             "clSetKernelArg src planes");
+    set_args(pass_kernel, 8, {target[0], target[1], target[2]}, "clSetKernelArg dst");
+    check_cl(queue.enqueueNDRangeKernel(pass_kernel, cl::NullRange, global, local, nullptr, &done),
+             "clEnqueueNDRangeKernel rig_pass");
+    source = target;
+  }
+  return done;
+}
+
+DeformedBatch<float> ClRigDeformer::read(const DeviceBatch& batch) {
+  DeformedBatch<float> out;
+  out.resize(batch.layout);
+  out.slot_of_vertex = slot_of_vertex_;
+  cl::CommandQueue& queue = context_.queue();
+  const std::size_t bytes = batch.layout.attribute_elements() * sizeof(float);
+  check_cl(queue.enqueueReadBuffer(batch.positions, CL_TRUE, 0, bytes, out.positions.data()),
+           "clEnqueueReadBuffer positions");
+  check_cl(queue.enqueueReadBuffer(batch.normals, CL_TRUE, 0, bytes, out.normals.data()),
+           "clEnqueueReadBuffer normals");
+  if (batch.layout.tangents) {
+    check_cl(queue.enqueueReadBuffer(batch.tangents, CL_TRUE, 0, bytes, out.tangents.data()),
+             "clEnqueueReadBuffer tangents");
+  }
+  return out;
+}
+
+}  // namespace finflex

@@ -1,0 +1,134 @@
+#include "rig_program.hpp"
+
+#include <algorithm>
+#include <sstream>
+
+namespace finflex::detail {
+namespace {
+
+std::size_t round_up(std::size_t value, std::size_t multiple) {
+  return (value + multiple - 1) / multiple * multiple;
+}
+
+// The kernels/rig.cl function that applies one stage.
+const char* stage_function(const RigStage& stage) {
+  if (stage.deformer == DeformerKind::kHinge) return "apply_hinge";
+  return stage.mode == BendMode::kExact ? "apply_bend_exact" : "apply_bend_paper";
+}
+
+// "x = apply_...(x, stages + k, p[param]);"
+std::string stage_call(const Rig& rig, std::size_t component, std::size_t stage) {
+  const RigStage& s = rig.components[component].chain[stage];
+  std::ostringstream call;
+  call << "x = " << stage_function(s) << "(x, stages + " << stage_index(rig, component, stage)
+       << ", p[" << s.param << "]);";
+  return call.str();
+}
+
+}  // namespace
+
+SlotLayout make_slot_layout(const Rig& rig, std::size_t vertex_count, std::size_t group_size) {
+  SlotLayout slots;
+  slots.slot_of_vertex.assign(vertex_count, 0);
+  slots.first_slot.push_back(0);
+  for (const RigComponent& component : rig.components) {
+    std::size_t slot = slots.first_slot.back();
+    for (std::uint32_t v : component.vertices)
+      slots.slot_of_vertex[v] = static_cast<std::uint32_t>(slot++);
+    slots.first_slot.push_back(round_up(slot, group_size));
+  }
+  slots.slot_count = std::max(slots.first_slot.back(), group_size);
+  slots.vertex_of_slot.assign(slots.slot_count, -1);
+  for (std::size_t v = 0; v < vertex_count; ++v)
+    slots.vertex_of_slot[slots.slot_of_vertex[v]] = static_cast<std::int64_t>(v);
+  return slots;
+}
+
+std::size_t stage_index(const Rig& rig, std::size_t component, std::size_t stage) {
+  std::size_t index = 0;
+  for (std::size_t c = 0; c < component; ++c) index += rig.components[c].chain.size();
+  return index + stage;
+}
+
+std::size_t stage_count(const Rig& rig) { return stage_index(rig, rig.components.size(), 0); }
+
+std::vector<float> stage_frames(const Rig& rig) {
+  std::vector<float> table;
+  for (const RigComponent& component : rig.components) {
+    for (const RigStage& stage : component.chain) {
+      const BodyFrame& f = stage.frame;
+      const float values[16] = {
+          float(f.axis_x.x), float(f.axis_x.y), float(f.axis_x.z), float(1.0 / f.length),
+          float(f.axis_y.x), float(f.axis_y.y), float(f.axis_y.z), float(stage.width),
+          float(f.axis_z.x), float(f.axis_z.y), float(f.axis_z.z), 0.0f,
+          float(f.origin.x), float(f.origin.y), float(f.origin.z), float(f.length)};
+      table.insert(table.end(), values, values + 16);
+    }
+  }
+  if (table.empty()) table.assign(16, 0.0f);  // a valid (unused) table for a rig without stages
+  return table;
+}
+
+std::vector<Pass> make_passes(const Rig& rig) {
+  std::size_t max_depth = 0;
+  for (std::size_t c = 0; c < rig.components.size(); ++c)
+    max_depth = std::max(max_depth, rig.depth(c));
+  std::vector<Pass> passes;
+  for (std::size_t depth = max_depth + 1; depth-- > 0;) {
+    for (std::size_t position = 0;; ++position) {
+      Pass pass;
+      for (std::size_t c = 0; c < rig.components.size(); ++c) {
+        if (rig.depth(c) == depth && rig.components[c].chain.size() > position)
+          pass.emplace_back(c, position);
+      }
+      if (pass.empty()) break;
+      passes.push_back(pass);
+    }
+  }
+  return passes;
+}
+
+std::size_t longest_path(const Rig& rig) {
+  std::size_t longest = 0;
+  for (std::size_t c = 0; c < rig.components.size(); ++c)
+    longest = std::max(longest, rig.path(c).size());
+  return longest;
+}
+
+std::string rig_dispatch_source(const Rig& rig, const SlotLayout& slots,
+                                const std::vector<Pass>& passes, std::size_t group_size) {
+  std::ostringstream out;
+  out << "/* Generated for one rig by engine/src/rig_program.cpp: which stages apply to\n"
+         " * which work-groups (kernels/rig.cl). */\n";
+  // Fused: the group's component's whole path, bottom-up.
+  out << "#define FF_RIG_FUSED_STAGES";
+  const char* keyword = "if";
+  for (std::size_t c = 0; c < rig.components.size(); ++c) {
+    if (slots.first_slot[c + 1] == slots.first_slot[c]) continue;  // no own vertices
+    out << " \\\n  " << keyword << " (group < " << slots.first_slot[c + 1] / group_size << "u) {";
+    for (const auto& [component, stage] : rig.path(c))
+      out << " " << stage_call(rig, component, stage);
+    out << " }";
+    keyword = "else if";
+  }
+  out << "\n";
+  // Passes: each applies its stages to the components' whole subtrees.
+  out << "#define FF_RIG_PASS_STAGES";
+  for (std::size_t q = 0; q < passes.size(); ++q) {
+    out << " \\\n  " << (q == 0 ? "if" : "else if") << " (pass == " << q << "u) {";
+    const char* branch = "if";
+    for (const auto& [component, stage] : passes[q]) {
+      const std::size_t begin = slots.first_slot[component] / group_size;
+      const std::size_t end = slots.first_slot[rig.subtree_end[component]] / group_size;
+      if (begin == end) continue;
+      out << " " << branch << " (group >= " << begin << "u && group < " << end << "u) { "
+          << stage_call(rig, component, stage) << " }";
+      branch = "else if";
+    }
+    out << " }";
+  }
+  out << "\n";
+  return out.str();
+}
+
+}  // namespace finflex::detail

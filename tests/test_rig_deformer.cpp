@@ -1,0 +1,346 @@
+// Rigged deformation: the fused and multi-pass OpenCL paths against each other and
+// against the CPU reference that applies the chains literally (METHOD.md section 2),
+// on every shipped rig and on deep and long synthetic rigs.
+//
+// Tolerances, and why:
+//  - fused vs passes: the same float32 operations in the same order, the passes only
+//    storing intermediate float32 values: 1e-6 (|origin| + s_x) for positions, 1e-5 for
+//    normals (the compilers may contract a multiply-add differently per kernel);
+//  - against the double reference: every stage adds a few float32 ulps, so the
+//    single-bend bounds (finflex/accuracy.hpp) times the length of the longest path.
+//    Parameters stay below 0.8 of their limits, away from the exact bend's
+//    ill-conditioned end and from folds.
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "finflex/finflex.hpp"
+#include "support/synthetic_fish.hpp"
+#include "support/test_support.hpp"
+
+namespace finflex {
+namespace {
+
+StageSpec bend(const std::string& param, BendMode mode = BendMode::kExact) {
+  StageSpec s;
+  s.deformer = DeformerKind::kBend;
+  s.mode = mode;
+  s.param = param;
+  return s;
+}
+
+StageSpec hinge(const std::string& param, double width) {
+  StageSpec s;
+  s.deformer = DeformerKind::kHinge;
+  s.width = width;
+  s.param = param;
+  return s;
+}
+
+ComponentSpec box_component(const std::string& name, const std::string& parent, glm::dvec3 min,
+                            glm::dvec3 max, std::vector<StageSpec> chain) {
+  ComponentSpec c;
+  c.name = name;
+  c.parent = parent;
+  c.select.kind = SelectorSpec::Kind::kBox;
+  c.select.box_min = min;
+  c.select.box_max = max;
+  c.chain = std::move(chain);
+  return c;
+}
+
+ComponentSpec root(std::vector<StageSpec> chain) {
+  ComponentSpec c;
+  c.name = "body";
+  c.chain = std::move(chain);
+  return c;
+}
+
+// A tail cut four times: body > tail1 > tail2 > tail3 > tail4, each with its own stage,
+// boxes in the parent's local frame (each child's auto frame starts at its cut).
+RigSpec deep_tail_rig() {
+  RigSpec spec;
+  spec.frame.mode = FrameSpec::Mode::kIdentity;
+  spec.components.push_back(root({bend("body_m")}));
+  const double big = 10.0;
+  std::string parent = "body";
+  for (int level = 1; level <= 4; ++level) {
+    const std::string name = "tail" + std::to_string(level);
+    // Each auto child frame has x pointing tailwards from its cut, length its extent:
+    // the next cut is at 40 % of it.
+    const double cut = level == 1 ? -0.1 : 0.4;
+    const glm::dvec3 min = level == 1 ? glm::dvec3(-big) : glm::dvec3(cut, -big, -big);
+    const glm::dvec3 max = level == 1 ? glm::dvec3(cut, big, big) : glm::dvec3(big);
+    spec.components.push_back(box_component(
+        name, parent, min, max,
+        {level % 2 ? hinge(name + "_angle", 0.3) : bend(name + "_m", BendMode::kPaper)}));
+    parent = name;
+  }
+  return spec;
+}
+
+// One component with a chain of five stages.
+RigSpec long_chain_rig() {
+  RigSpec spec;
+  spec.frame.mode = FrameSpec::Mode::kIdentity;
+  spec.components.push_back(root({bend("a"), hinge("b", 0.2), bend("c", BendMode::kPaper),
+                                  hinge("d", 0.0), bend("e")}));
+  return spec;
+}
+
+// Random parameters within `fraction` of each one's limit.
+RigParameters random_parameters(const Rig& rig, std::size_t instances, double fraction,
+                                unsigned seed) {
+  const std::vector<double> limits = rig_param_limits(rig);
+  RigParameters values(rig, instances);
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> uniform(-fraction, fraction);
+  for (std::size_t i = 0; i < instances; ++i) {
+    for (std::size_t p = 0; p < rig.params.size(); ++p) {
+      values.values()[i * rig.params.size() + p] = static_cast<float>(uniform(random) * limits[p]);
+    }
+  }
+  return values;
+}
+
+struct Difference {
+  double position = 0.0;
+  double normal = 0.0;
+};
+
+template <typename A, typename B>
+Difference max_difference(const A& a, const B& b, std::size_t vertices, std::size_t instances) {
+  Difference d;
+  for (std::size_t i = 0; i < instances; ++i) {
+    for (std::size_t v = 0; v < vertices; ++v) {
+      d.position = std::max(d.position, glm::length(glm::dvec3(a.position(i, v)) -
+                                                    glm::dvec3(b.position(i, v))));
+      d.normal = std::max(d.normal,
+                          glm::length(glm::dvec3(a.normal(i, v)) - glm::dvec3(b.normal(i, v))));
+      if (a.layout.tangents) {
+        d.normal = std::max(d.normal, glm::length(glm::dvec3(a.tangent(i, v)) -
+                                                  glm::dvec3(b.tangent(i, v))));
+      }
+    }
+  }
+  return d;
+}
+
+// Scale of the coordinates the kernels handle: the root frame's origin and length.
+double coordinate_scale(const Rig& rig) {
+  const BodyFrame& f = rig.components.front().frame;
+  return glm::length(f.origin) + f.length;
+}
+
+void expect_paths_agree_with_each_other_and_the_reference(const Mesh& mesh, const Rig& rig,
+                                                          const std::string& name) {
+  ClRigDeformer deformer(test::shared_context(), mesh, rig);
+  const RigReference reference(mesh, rig);
+  const std::size_t instances = 5;
+  const RigParameters values = random_parameters(rig, instances, 0.8, 11);
+  DeviceBatch batch = deformer.allocate(instances);
+  std::size_t longest = 1;
+  for (std::size_t c = 0; c < rig.components.size(); ++c) longest = std::max(longest, rig.path(c).size());
+  const double scale = coordinate_scale(rig);
+  for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {
+    SCOPED_TRACE(name + " " + to_string(normals));
+    deformer.enqueue(values, normals, batch, RigPath::kFused);
+    const DeformedBatch<float> fused = deformer.read(batch);
+    deformer.enqueue(values, normals, batch, RigPath::kPasses);
+    const DeformedBatch<float> passes = deformer.read(batch);
+    const DeformedBatch<double> exact = reference.run(values, normals);
+
+    const Difference between = max_difference(fused, passes, mesh.vertex_count(), instances);
+    EXPECT_LT(between.position, 1e-6 * scale);
+    EXPECT_LT(between.normal, 1e-5);
+    const Difference to_reference = max_difference(fused, exact, mesh.vertex_count(), instances);
+    EXPECT_LT(to_reference.position, 4e-6 * scale * static_cast<double>(longest));
+    EXPECT_LT(to_reference.normal, 2e-5 * static_cast<double>(longest));
+  }
+}
+
+TEST(RigDeformer, DeepTreeFusedPassesAndReferenceAgree) {
+  const Mesh mesh = test::synthetic_fish(96, 32, true);
+  const Rig rig = resolve_rig(deep_tail_rig(), mesh);
+  ASSERT_EQ(rig.components.size(), 5u);
+  EXPECT_EQ(rig.depth(4), 4u);
+  ClRigDeformer deformer(test::shared_context(), mesh, rig);
+  EXPECT_EQ(deformer.pass_count(), 5u);  // one stage per level
+  expect_paths_agree_with_each_other_and_the_reference(mesh, rig, "deep tree");
+}
+
+TEST(RigDeformer, LongChainFusedPassesAndReferenceAgree) {
+  const Mesh mesh = test::synthetic_fish(96, 32, true);
+  const Rig rig = resolve_rig(long_chain_rig(), mesh);
+  ClRigDeformer deformer(test::shared_context(), mesh, rig);
+  EXPECT_EQ(deformer.pass_count(), 5u);  // one per chain position
+  expect_paths_agree_with_each_other_and_the_reference(mesh, rig, "long chain");
+}
+
+TEST(RigDeformer, ShippedRigsFusedPassesAndReferenceAgree) {
+  const std::pair<const char*, const char*> shipped[] = {
+      {"blub/fish.obj", "rigs/blub.rig.json"},
+      {"blub/fish_low_resolution.obj", "rigs/blub.rig.json"},
+      {"barramundi/BarramundiFish.gltf", "rigs/barramundi.rig.json"}};
+  for (const auto& [fish, rig_file] : shipped) {
+    const Mesh mesh = load_mesh(test::data_path(fish));
+    const Rig rig = resolve_rig(load_rig_file(test::data_path(rig_file)), mesh);
+    EXPECT_GE(rig.components.size(), 3u) << rig_file;  // body, caudal fin, a paired fin
+    expect_paths_agree_with_each_other_and_the_reference(mesh, rig, fish);
+  }
+}
+
+TEST(RigDeformer, SingleBendRigMatchesTheBendKernel) {
+  const Mesh mesh = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
+  const BodyFrame frame = find_body_frame(mesh);
+  const LocalMesh local = make_local_mesh(mesh, frame);
+  const float m = static_cast<float>(0.7 * max_abs_m(local.x_max));
+  for (BendMode mode : {BendMode::kPaper, BendMode::kExact}) {
+    const Rig rig = single_bend_rig(mesh, frame, mode);
+    ClRigDeformer rig_deformer(test::shared_context(), mesh, rig);
+    DeviceBatch rig_batch = rig_deformer.allocate(1);
+    RigParameters values(rig, 1);
+    values.set(0, "m", m);
+    rig_deformer.enqueue(values, NormalMode::kJacobian, rig_batch);
+    ClDeformer bend_deformer(test::shared_context(), local);
+    DeviceBatch bend_batch = bend_deformer.allocate(1);
+    bend_deformer.enqueue({m}, {mode, NormalMode::kJacobian}, bend_batch);
+    const Difference d = max_difference(rig_deformer.read(rig_batch), bend_deformer.read(bend_batch),
+                                        mesh.vertex_count(), 1);
+    EXPECT_LT(d.position, 2e-6 * coordinate_scale(rig));
+    EXPECT_LT(d.normal, 2e-5);
+  }
+}
+
+TEST(RigDeformer, ComponentMovesOnlyItsOwnVerticesUntilItsParentDoes) {
+  const Mesh mesh = test::synthetic_fish(96, 32);
+  const Rig rig = resolve_rig(deep_tail_rig(), mesh);
+  ClRigDeformer deformer(test::shared_context(), mesh, rig);
+  DeviceBatch batch = deformer.allocate(1);
+  RigParameters values(rig, 1);
+  values.set(0, "tail3_angle", 0.6f);  // level 3 only; every other stage at rest
+  for (RigPath path : {RigPath::kFused, RigPath::kPasses}) {
+    deformer.enqueue(values, NormalMode::kRotate, batch, path);
+    const DeformedBatch<float> out = deformer.read(batch);
+    // Components in depth-first order: 0 body, 1 tail1, 2 tail2, 3 tail3, 4 tail4.
+    std::vector<bool> in_tail3(mesh.vertex_count(), false);
+    for (std::size_t c = 3; c < 5; ++c) {
+      for (std::uint32_t v : rig.components[c].vertices) in_tail3[v] = true;
+    }
+    double outside = 0.0, inside = 0.0;
+    for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+      const double moved = glm::length(glm::dvec3(out.position(0, v)) - glm::dvec3(mesh.positions[v]));
+      (in_tail3[v] ? inside : outside) = std::max(in_tail3[v] ? inside : outside, moved);
+    }
+    EXPECT_LT(outside, 1e-6) << to_string(path);
+    EXPECT_GT(inside, 1e-3) << to_string(path);
+  }
+}
+
+TEST(RigDeformer, ChildFollowsItsParent) {
+  // Deforming with (body_m, tail angle) equals bending, with the body's frame, the mesh
+  // that the tail hinge alone produced: the child's result rides on the parent's bend.
+  const Mesh mesh = test::synthetic_fish(96, 32);
+  RigSpec spec;
+  spec.frame.mode = FrameSpec::Mode::kIdentity;
+  spec.components.push_back(root({bend("body_m")}));
+  spec.components.push_back(box_component("tail", "body", glm::dvec3(-10.0),
+                                          glm::dvec3(-0.2, 10.0, 10.0), {hinge("tail_angle", 0.2)}));
+  const Rig rig = resolve_rig(spec, mesh);
+  const RigReference reference(mesh, rig);
+  RigParameters both(rig, 1), tail_only(rig, 1);
+  both.set(0, "body_m", 0.6f);
+  both.set(0, "tail_angle", 0.5f);
+  tail_only.set(0, "tail_angle", 0.5f);
+  const Mesh hinged = instance_mesh(mesh, reference.run(tail_only, NormalMode::kRotate), 0);
+  const Rig body_only = single_bend_rig(hinged, BodyFrame::identity(), BendMode::kExact);
+  RigParameters m(body_only, 1);
+  m.set(0, "m", 0.6f);
+  const DeformedBatch<double> composed = RigReference(hinged, body_only).run(m, NormalMode::kRotate);
+  const DeformedBatch<double> direct = reference.run(both, NormalMode::kRotate);
+  const Difference d = max_difference(direct, composed, mesh.vertex_count(), 1);
+  EXPECT_LT(d.position, 1e-6);  // float rounding of the intermediate mesh only
+  EXPECT_LT(d.normal, 1e-6);
+}
+
+TEST(RigDeformer, SlotsKeepComponentsContiguousAndIndicesRemapped) {
+  const Mesh mesh = test::synthetic_fish(96, 32);
+  const Rig rig = resolve_rig(deep_tail_rig(), mesh);
+  ClRigDeformer deformer(test::shared_context(), mesh, rig);
+  const std::vector<std::uint32_t>& slots = deformer.slot_of_vertex();
+  const std::size_t slot_count = deformer.layout(1).plane_stride;
+  EXPECT_EQ(slot_count % ClDeformer::kLocalSize, 0u);
+  std::vector<bool> used(slot_count, false);
+  for (std::uint32_t slot : slots) {
+    ASSERT_LT(slot, slot_count);
+    EXPECT_FALSE(used[slot]);
+    used[slot] = true;
+  }
+  for (const RigComponent& component : rig.components) {
+    std::uint32_t low = UINT32_MAX, high = 0;
+    for (std::uint32_t v : component.vertices) {
+      low = std::min(low, slots[v]);
+      high = std::max(high, slots[v]);
+    }
+    EXPECT_EQ(high - low + 1, component.vertices.size()) << component.name;
+    EXPECT_EQ(low % ClDeformer::kLocalSize, 0u) << component.name;
+  }
+  ASSERT_EQ(deformer.remapped_indices().size(), mesh.indices.size());
+  for (std::size_t k = 0; k < mesh.indices.size(); ++k) {
+    EXPECT_EQ(deformer.remapped_indices()[k], slots[mesh.indices[k]]);
+  }
+}
+
+TEST(RigDeformer, HeterogeneousFrameEqualsSeparateRuns) {
+  // Two species in one frame: the synthetic fish with its deep rig and the Blub with
+  // its shipped rig, different instance counts, one enqueue.
+  const Mesh synthetic = test::synthetic_fish(64, 24);
+  const Mesh blub = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
+  const Rig synthetic_rig = resolve_rig(deep_tail_rig(), synthetic);
+  const Rig blub_rig = resolve_rig(load_rig_file(test::data_path("rigs/blub.rig.json")), blub);
+  ClRigDeformer a(test::shared_context(), synthetic, synthetic_rig);
+  ClRigDeformer b(test::shared_context(), blub, blub_rig);
+  RigFrame frame;
+  const std::size_t first = frame.add(a, 7);
+  const std::size_t second = frame.add(b, 3);
+  frame.parameters(first) = random_parameters(synthetic_rig, 7, 0.7, 1);
+  frame.parameters(second) = random_parameters(blub_rig, 3, 0.7, 2);
+  const std::vector<cl::Event> done = frame.enqueue(NormalMode::kJacobian);
+  ASSERT_EQ(done.size(), 2u);
+  const DeformedBatch<float> together_a = a.read(frame.batch(first));
+  const DeformedBatch<float> together_b = b.read(frame.batch(second));
+
+  DeviceBatch alone = a.allocate(7);
+  a.enqueue(frame.parameters(first), NormalMode::kJacobian, alone);
+  EXPECT_EQ(max_difference(a.read(alone), together_a, synthetic.vertex_count(), 7).position, 0.0);
+  DeviceBatch alone_b = b.allocate(3);
+  b.enqueue(frame.parameters(second), NormalMode::kJacobian, alone_b);
+  EXPECT_EQ(max_difference(b.read(alone_b), together_b, blub.vertex_count(), 3).position, 0.0);
+}
+
+TEST(RigDeformer, BadParametersAreRejectedByName) {
+  const Mesh mesh = test::synthetic_fish(48, 16);
+  const Rig rig = resolve_rig(deep_tail_rig(), mesh);
+  ClRigDeformer deformer(test::shared_context(), mesh, rig);
+  DeviceBatch batch = deformer.allocate(2);
+  RigParameters values(rig, 2);
+  EXPECT_THROW(values.set(0, "no_such_param", 1.0f), Error);
+  EXPECT_THROW(values.set(2, "body_m", 1.0f), Error);
+  values.set(1, "tail1_angle", 4.0f);  // beyond pi
+  try {
+    deformer.enqueue(values, NormalMode::kRotate, batch);
+    FAIL() << "expected an out-of-range error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::kOutOfRange);
+    EXPECT_EQ(e.field(), "tail1_angle[1]");
+  }
+  values.set(1, "tail1_angle", NAN);
+  EXPECT_THROW(deformer.enqueue(values, NormalMode::kRotate, batch), Error);
+  RigParameters wrong_count(rig, 3);
+  EXPECT_THROW(deformer.enqueue(wrong_count, NormalMode::kRotate, batch), Error);
+  EXPECT_THROW(parse_rig_path("sideways"), Error);
+}
+
+}  // namespace
+}  // namespace finflex
