@@ -9,6 +9,10 @@
  *   FF_BEND_EXACT        0: the paper's series (15)-(17); 1: the closed form (asin)
  *   FF_NORMALS_JACOBIAN  0: normals rotated by (8); 1: normals by the Jacobian's cofactor
  */
+/* Every helper is inlined into its kernel: PoCL vectorises a kernel across work-items
+ * only when no call is left in it. */
+#define FF_INLINE inline __attribute__((always_inline))
+
 #ifndef FF_BEND_EXACT
 #define FF_BEND_EXACT 0
 #endif
@@ -40,7 +44,7 @@ typedef struct {
  * exact bend vectorises and is smooth through m = 0. Cephes' asinf: for |u| <= 1/2,
  * asin(u) = u + u z P(z) with z = u^2, so asin(u)/u = 1 + z P(z); for |u| > 1/2,
  * asin(|u|) = pi/2 - 2 asin(sqrt(z)) with z = (1 - |u|)/2. Relative error 2.5e-7. */
-inline float asin_over_u(float u) {
+FF_INLINE float asin_over_u(float u) {
   const float a = fabs(u);
   const int big = a > 0.5f;
   const float z = big ? 0.5f * (1.0f - a) : a * a;
@@ -55,7 +59,7 @@ inline float asin_over_u(float u) {
 /* Exact bend: x' = x sqrt(1 - u^2) / 2 + asin(u) / (4m) = x (c + asin(u) / u) / 2;
  * (1 - u)(1 + u) keeps c accurate as |u| -> 1. |df/dx| = 1, k = 2m / c: scaled by c,
  * (along, across) = (c, c - 2 m z). */
-inline BendSample bend_sample_exact(float x, float z, float m) {
+FF_INLINE BendSample bend_sample_exact(float x, float z, float m) {
   const float u = clamp(2.0f * m * x, -1.0f, 1.0f);
   const float c = sqrt((1.0f - u) * (1.0f + u));
   const float c_floor = fmax(c, FF_MIN_SPINE_COSINE);
@@ -74,7 +78,7 @@ inline BendSample bend_sample_exact(float x, float z, float m) {
  * n = (-u, 0, a) / g, g = |df/dx| (17). k = (a u' - u a') / g^3 with u' = 2m,
  * a' = -2m (u + u^3/2): D g^2 = g^3 - z 2m (1 + u^2/2 + 3u^4/8); scaled by g^2,
  * (along, across) = (g^2, D g^2). */
-inline BendSample bend_sample_paper(float x, float z, float m) {
+FF_INLINE BendSample bend_sample_paper(float x, float z, float m) {
   const float u = clamp(2.0f * m * x, -1.0f, 1.0f);
   const float u2 = u * u;
   const float a = 1.0f - u2 * (0.5f + 0.125f * u2);
@@ -92,7 +96,7 @@ inline BendSample bend_sample_paper(float x, float z, float m) {
 }
 
 /* The bend chosen by FF_BEND_EXACT, for kernels specialised to one mode. */
-inline BendSample bend_sample(float x, float z, float m) {
+FF_INLINE BendSample bend_sample(float x, float z, float m) {
 #if FF_BEND_EXACT
   return bend_sample_exact(x, z, m);
 #else
@@ -102,13 +106,13 @@ inline BendSample bend_sample(float x, float z, float m) {
 
 /* sin(h) / h and cos(h) for |h| <= pi/2 by their Taylor series to h^12 (truncation
  * below 1e-8): no calls and no branches, so it vectorises. */
-inline float sin_over_h(float h) {
+FF_INLINE float sin_over_h(float h) {
   const float q = h * h;
   return 1.0f + q * (-1.0f / 6.0f + q * (1.0f / 120.0f + q * (-1.0f / 5040.0f +
          q * (1.0f / 362880.0f + q * (-1.0f / 39916800.0f + q * (1.0f / 6227020800.0f))))));
 }
 
-inline float cos_of_h(float h) {
+FF_INLINE float cos_of_h(float h) {
   const float q = h * h;
   return 1.0f + q * (-0.5f + q * (1.0f / 24.0f + q * (-1.0f / 720.0f +
          q * (1.0f / 40320.0f + q * (-1.0f / 3628800.0f + q * (1.0f / 479001600.0f))))));
@@ -124,7 +128,7 @@ inline float cos_of_h(float h) {
  * the ramp). With h = theta / 2: sin(theta)/theta = (sin h / h) cos h and
  * (1 - cos theta)/theta = (sin h / h) sin h. Curvature k = angle / width inside the
  * ramp, 0 elsewhere: (along, across) = (1, 1 - z k). */
-inline BendSample hinge_sample(float x, float z, float angle, float width) {
+FF_INLINE BendSample hinge_sample(float x, float z, float angle, float width) {
   const int has_ramp = width > 0.0f;
   const float ramp = has_ramp ? clamp(x, 0.0f, width) : 0.0f;
   const float beyond = fmax(x - width, 0.0f);
@@ -146,41 +150,45 @@ inline BendSample hinge_sample(float x, float z, float angle, float width) {
 
 /* Vectors are plain structs of scalars, not float3: once inlined they dissolve into
  * scalar registers, which lets PoCL vectorise across work-items (float3 operations
- * keep its loop vectoriser from doing so). */
+ * keep its loop vectoriser from doing so). Two unused floats make the struct larger
+ * than 16 bytes: PoCL compiles for the host's calling convention, which passes
+ * structs of up to 16 bytes as 2-float vectors, and such vectors, once formed, also
+ * stop the vectoriser; larger structs dissolve into scalars. */
 typedef struct {
   float x, y, z;
+  float unused0, unused1;
 } Vec3;
 
-inline Vec3 vec3(float x, float y, float z) {
-  Vec3 v = {x, y, z};
+FF_INLINE Vec3 vec3(float x, float y, float z) {
+  Vec3 v = {x, y, z, 0.0f, 0.0f};
   return v;
 }
 
 /* v / |v| without the library normalize()'s branches for huge and tiny vectors:
  * rest normals are unit and the bend keeps them of order 1. */
-inline Vec3 unit(Vec3 v) {
+FF_INLINE Vec3 unit(Vec3 v) {
   const float inverse_length = rsqrt(v.x * v.x + v.y * v.y + v.z * v.z);
   return vec3(v.x * inverse_length, v.y * inverse_length, v.z * inverse_length);
 }
 
 /* (7): p' = f(x, y, 0) + z n. */
-inline Vec3 bend_position(Vec3 p, BendSample s) {
+FF_INLINE Vec3 bend_position(Vec3 p, BendSample s) {
   return vec3(s.spine_x - p.z * s.sin_t, p.y, s.spine_z + p.z * s.cos_t);
 }
 
 /* R v: the rotation about e_y taking e_z to n = (-sin_t, 0, cos_t). */
-inline Vec3 rotate_to_secant_normal(Vec3 v, BendSample s) {
+FF_INLINE Vec3 rotate_to_secant_normal(Vec3 v, BendSample s) {
   return vec3(s.cos_t * v.x - s.sin_t * v.z, v.y, s.sin_t * v.x + s.cos_t * v.z);
 }
 
-inline Vec3 bend_normal(Vec3 n, BendSample s) {
+FF_INLINE Vec3 bend_normal(Vec3 n, BendSample s) {
 #if FF_NORMALS_JACOBIAN
   n = vec3(s.along * n.x, s.across * n.y, s.across * n.z);
 #endif
   return unit(rotate_to_secant_normal(n, s));
 }
 
-inline Vec3 bend_tangent(Vec3 t, BendSample s) {
+FF_INLINE Vec3 bend_tangent(Vec3 t, BendSample s) {
 #if FF_NORMALS_JACOBIAN
   t = vec3(s.across * t.x, s.along * t.y, s.along * t.z);
 #endif

@@ -15,7 +15,7 @@
 #endif
 
 /* x a_x + y a_y + z a_z (+ origin): the way back to mesh coordinates, M^-1 of (2). */
-inline Vec3 to_mesh(Vec3 v, float4 axis_x, float4 axis_y, float4 axis_z, float4 origin) {
+FF_INLINE Vec3 to_mesh(Vec3 v, float4 axis_x, float4 axis_y, float4 axis_z, float4 origin) {
   return vec3(origin.x + v.x * axis_x.x + v.y * axis_y.x + v.z * axis_z.x,
               origin.y + v.x * axis_x.y + v.y * axis_y.y + v.z * axis_z.y,
               origin.z + v.x * axis_x.z + v.y * axis_y.z + v.z * axis_z.z);

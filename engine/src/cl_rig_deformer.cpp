@@ -131,7 +131,9 @@ cl::Kernel& ClRigDeformer::kernel(const std::string& name, NormalMode normals) {
 
 cl::Event ClRigDeformer::enqueue(const RigParameters& parameters, NormalMode normals,
                                  DeviceBatch& batch, RigPath path, bool clamp,
-                                 const std::vector<cl::Event>* wait) {
+                                 const std::vector<cl::Event>* wait,
+                                 std::vector<cl::Event>* kernel_events) {
+  if (kernel_events) kernel_events->clear();
   if (parameters.instance_count() != batch.layout.instance_count ||
       batch.layout.plane_stride != slot_count_) {
     throw Error(ErrorCode::kInvalidArgument, "parameters",
@@ -167,17 +169,13 @@ cl::Event ClRigDeformer::enqueue(const RigParameters& parameters, NormalMode nor
     check_cl(fused.setArg(9, stride), "clSetKernelArg stride");
     check_cl(queue.enqueueNDRangeKernel(fused, cl::NullRange, global, local, nullptr, &done),
              "clEnqueueNDRangeKernel rig_fused");
+    if (kernel_events) kernel_events->push_back(done);
     return done;
   }
 
   // Ping-pong: the last pass writes the outputs, so pass q writes them when
   // (passes - 1 - q) is even and the scratch buffers otherwise.
   ensure_scratch(batch);
-  cl::Kernel& pass_kernel = kernel("rig_pass", normals);
-  check_cl(pass_kernel.setArg(5, batch.parameters), "clSetKernelArg params");
-  check_cl(pass_kernel.setArg(6, param_count), "clSetKernelArg param_count");
-  check_cl(pass_kernel.setArg(7, stages_), "clSetKernelArg stages");
-  check_cl(pass_kernel.setArg(11, stride), "clSetKernelArg stride");
   const cl::Buffer* out[3] = {&batch.positions, &batch.normals, &batch.tangents};
   const cl::Buffer* scratch[3] = {&batch.scratch_positions, &batch.scratch_normals,
                                   &batch.scratch_tangents};
@@ -185,13 +183,18 @@ cl::Event ClRigDeformer::enqueue(const RigParameters& parameters, NormalMode nor
   const cl::Buffer* const* source = rest;
   for (std::size_t q = 0; q < pass_count_; ++q) {
     const cl::Buffer* const* target = (pass_count_ - 1 - q) % 2 == 0 ? out : scratch;
-    check_cl(pass_kernel.setArg(0, static_cast<cl_uint>(q)), "clSetKernelArg pass");
-    set_args(pass_kernel, 1, {source[0], source[1], source[2]}, "clSetKernelArg src");
-    check_cl(pass_kernel.setArg(4, static_cast<cl_uint>(q == 0 ? 0 : 3)),
+    cl::Kernel& pass_kernel = kernel("rig_pass_" + std::to_string(q), normals);
+    set_args(pass_kernel, 0, {source[0], source[1], source[2]}, "clSetKernelArg src");
+    check_cl(pass_kernel.setArg(3, static_cast<cl_uint>(q == 0 ? 0 : 3)),
              "clSetKernelArg src planes");
-    set_args(pass_kernel, 8, {target[0], target[1], target[2]}, "clSetKernelArg dst");
+    check_cl(pass_kernel.setArg(4, batch.parameters), "clSetKernelArg params");
+    check_cl(pass_kernel.setArg(5, param_count), "clSetKernelArg param_count");
+    check_cl(pass_kernel.setArg(6, stages_), "clSetKernelArg stages");
+    set_args(pass_kernel, 7, {target[0], target[1], target[2]}, "clSetKernelArg dst");
+    check_cl(pass_kernel.setArg(10, stride), "clSetKernelArg stride");
     check_cl(queue.enqueueNDRangeKernel(pass_kernel, cl::NullRange, global, local, nullptr, &done),
              "clEnqueueNDRangeKernel rig_pass");
+    if (kernel_events) kernel_events->push_back(done);
     source = target;
   }
   return done;

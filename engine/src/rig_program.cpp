@@ -16,12 +16,12 @@ const char* stage_function(const RigStage& stage) {
   return stage.mode == BendMode::kExact ? "apply_bend_exact" : "apply_bend_paper";
 }
 
-// "x = apply_...(x, stages + k, p[param]);"
+// "apply_...(&p, &n, &t, stages + k, values[param]);"
 std::string stage_call(const Rig& rig, std::size_t component, std::size_t stage) {
   const RigStage& s = rig.components[component].chain[stage];
   std::ostringstream call;
-  call << "x = " << stage_function(s) << "(x, stages + " << stage_index(rig, component, stage)
-       << ", p[" << s.param << "]);";
+  call << stage_function(s) << "(&p, &n, &t, stages + " << stage_index(rig, component, stage)
+       << ", values[" << s.param << "]);";
   return call.str();
 }
 
@@ -53,19 +53,20 @@ std::size_t stage_index(const Rig& rig, std::size_t component, std::size_t stage
 std::size_t stage_count(const Rig& rig) { return stage_index(rig, rig.components.size(), 0); }
 
 std::vector<float> stage_frames(const Rig& rig) {
-  std::vector<float> table;
+  const std::size_t count = std::max<std::size_t>(stage_count(rig), 1);
+  std::vector<float> table(16 * count, 0.0f);  // a valid (unused) table without stages
+  std::size_t k = 0;
   for (const RigComponent& component : rig.components) {
     for (const RigStage& stage : component.chain) {
       const BodyFrame& f = stage.frame;
-      const float values[16] = {
-          float(f.axis_x.x), float(f.axis_x.y), float(f.axis_x.z), float(1.0 / f.length),
-          float(f.axis_y.x), float(f.axis_y.y), float(f.axis_y.z), float(stage.width),
-          float(f.axis_z.x), float(f.axis_z.y), float(f.axis_z.z), 0.0f,
-          float(f.origin.x), float(f.origin.y), float(f.origin.z), float(f.length)};
-      table.insert(table.end(), values, values + 16);
+      const double values[16] = {f.axis_x.x, f.axis_x.y, f.axis_x.z, 1.0 / f.length,
+                                 f.axis_y.x, f.axis_y.y, f.axis_y.z, stage.width,
+                                 f.axis_z.x, f.axis_z.y, f.axis_z.z, 0.0,
+                                 f.origin.x, f.origin.y, f.origin.z, f.length};
+      for (std::size_t c = 0; c < 16; ++c) table[c * count + k] = static_cast<float>(values[c]);
+      ++k;
     }
   }
-  if (table.empty()) table.assign(16, 0.0f);  // a valid (unused) table for a rig without stages
   return table;
 }
 
@@ -100,6 +101,7 @@ std::string rig_dispatch_source(const Rig& rig, const SlotLayout& slots,
   std::ostringstream out;
   out << "/* Generated for one rig by engine/src/rig_program.cpp: which stages apply to\n"
          " * which work-groups (kernels/rig.cl). */\n";
+  out << "#define FF_RIG_STAGE_COUNT " << std::max<std::size_t>(stage_count(rig), 1) << "u\n";
   // Fused: the group's component's whole path, bottom-up.
   out << "#define FF_RIG_FUSED_STAGES";
   const char* keyword = "if";
@@ -113,20 +115,21 @@ std::string rig_dispatch_source(const Rig& rig, const SlotLayout& slots,
   }
   out << "\n";
   // Passes: each applies its stages to the components' whole subtrees.
-  out << "#define FF_RIG_PASS_STAGES";
   for (std::size_t q = 0; q < passes.size(); ++q) {
-    out << " \\\n  " << (q == 0 ? "if" : "else if") << " (pass == " << q << "u) {";
+    out << "#define FF_RIG_PASS_" << q;
     const char* branch = "if";
     for (const auto& [component, stage] : passes[q]) {
       const std::size_t begin = slots.first_slot[component] / group_size;
       const std::size_t end = slots.first_slot[rig.subtree_end[component]] / group_size;
       if (begin == end) continue;
-      out << " " << branch << " (group >= " << begin << "u && group < " << end << "u) { "
+      out << " \\\n  " << branch << " (group >= " << begin << "u && group < " << end << "u) { "
           << stage_call(rig, component, stage) << " }";
       branch = "else if";
     }
-    out << " }";
+    out << "\n";
   }
+  out << "#define FF_RIG_PASS_KERNELS";
+  for (std::size_t q = 0; q < passes.size(); ++q) out << " FF_DEFINE_RIG_PASS(" << q << ")";
   out << "\n";
   return out.str();
 }

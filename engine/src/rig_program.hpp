@@ -29,7 +29,7 @@ SlotLayout make_slot_layout(const Rig& rig, std::size_t vertex_count, std::size_
 std::size_t stage_index(const Rig& rig, std::size_t component, std::size_t stage);
 std::size_t stage_count(const Rig& rig);
 
-// The StageFrame table of kernels/rig.cl: 16 floats per stage.
+// The stage table of kernels/rig.cl: 16 values per stage, stage-interleaved.
 std::vector<float> stage_frames(const Rig& rig);
 
 // One pass of the multi-pass path: the (component, stage) pairs it applies, each to
@@ -40,7 +40,8 @@ std::vector<Pass> make_passes(const Rig& rig);
 // Longest bottom-up path (stages) of any component.
 std::size_t longest_path(const Rig& rig);
 
-// "#define FF_RIG_FUSED_STAGES ..." and "#define FF_RIG_PASS_STAGES ..." for the rig.
+// The generated macros of kernels/rig.cl for the rig: FF_RIG_STAGE_COUNT,
+// FF_RIG_FUSED_STAGES, FF_RIG_PASS_<q> and FF_RIG_PASS_KERNELS.
 std::string rig_dispatch_source(const Rig& rig, const SlotLayout& slots,
                                 const std::vector<Pass>& passes, std::size_t group_size);
 

@@ -110,9 +110,12 @@ class ClRigDeformer {
 
   // Checks the values (check_rig_params_into), uploads them without blocking, and
   // enqueues the deformation; returns the event of the last kernel.
+  // `kernel_events`, when given, receives the event of every kernel launched (one for
+  // the fused path, one per pass), e.g. for profiling.
   cl::Event enqueue(const RigParameters& parameters, NormalMode normals, DeviceBatch& batch,
                     RigPath path = RigPath::kAuto, bool clamp = false,
-                    const std::vector<cl::Event>* wait = nullptr);
+                    const std::vector<cl::Event>* wait = nullptr,
+                    std::vector<cl::Event>* kernel_events = nullptr);
 
   // Throws as enqueue() would for these parameters, touching nothing.
   void check(const RigParameters& parameters, bool clamp) const {

@@ -1,0 +1,40 @@
+// FinFlex throughput benchmarks on the default OpenCL device (or FINFLEX_DEVICE):
+// the single bend and a rigged fish (fused and multi-pass), next to a write-only
+// kernel and a copy kernel of the same NDRange and output planes, measured in the
+// same run. Times are the kernels' own, from OpenCL profiling events, after a warm-up
+// launch of every kernel shape.
+//
+//   build/bench/bench_deform --benchmark_counters_tabular=true
+//   FINFLEX_MESH=mesh.obj FINFLEX_RIG=mesh.rig.json FINFLEX_DEVICE=H100 build/bench/bench_deform
+//
+// Counters: vertices/s (deformed vertices, all instances), bytes/s (bytes written:
+// 24 per vertex, positions + normals in float32), write_fraction (bytes/s over the
+// write-only kernel's, this run), and for rigs passes and bytes/vertex moved.
+#include "bench_support.hpp"
+
+namespace finflex::bench {
+namespace {
+
+void instance_counts(benchmark::internal::Benchmark* b) {
+  for (int n : {1, 10, 100, 1000, 4000}) b->Arg(n);
+  b->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(0.5);
+}
+
+// Registered in this order: the write-only kernel first, so the others can compare.
+BENCHMARK(BM_WriteOnly)->Apply(instance_counts);
+BENCHMARK(BM_CopyRest)->Apply(instance_counts);
+BENCHMARK_CAPTURE(BM_Bend, paper_rotate, BendSettings{BendMode::kPaper, NormalMode::kRotate})
+    ->Apply(instance_counts);
+BENCHMARK_CAPTURE(BM_Bend, exact_rotate, BendSettings{BendMode::kExact, NormalMode::kRotate})
+    ->Apply(instance_counts);
+BENCHMARK_CAPTURE(BM_Bend, paper_jacobian, BendSettings{BendMode::kPaper, NormalMode::kJacobian})
+    ->Apply(instance_counts);
+BENCHMARK_CAPTURE(BM_Bend, exact_jacobian, BendSettings{BendMode::kExact, NormalMode::kJacobian})
+    ->Apply(instance_counts);
+BENCHMARK_CAPTURE(BM_Rig, fused, RigPath::kFused)->Apply(instance_counts);
+BENCHMARK_CAPTURE(BM_Rig, passes, RigPath::kPasses)->Apply(instance_counts);
+
+}  // namespace
+}  // namespace finflex::bench
+
+BENCHMARK_MAIN();
