@@ -190,6 +190,62 @@ TEST(Cli, FrameOverridesChangeTheFrame) {
   EXPECT_GT(difference, 0.1);
 }
 
+TEST(Cli, DeformsWithARigOnBothPaths) {
+  const std::string in = fish("blub/fish_low_resolution.obj");
+  const std::string rig = fish("rigs/blub.rig.json");
+  const Mesh rest = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
+  Mesh bent[2];
+  int k = 0;
+  for (const char* path : {"fused", "passes"}) {
+    const std::string out = test::temp_path(std::string("rigged_") + path + ".ply");
+    const RunResult r = run_cli("deform --in " + in + " --rig " + rig +
+                                " --set body_m=0.4 --set tail_angle=-0.5 --out '" + out +
+                                "' --path " + path + " --normals jacobian");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find(std::string(path) + " path"), std::string::npos) << r.out;
+    bent[k] = load_mesh(out);
+    ASSERT_EQ(bent[k].vertex_count(), rest.vertex_count());  // the file keeps the input's order
+    EXPECT_EQ(bent[k].indices, rest.indices);
+    ++k;
+  }
+  double between = 0.0, moved = 0.0;
+  for (std::size_t v = 0; v < rest.vertex_count(); ++v) {
+    between = std::max(between, double(glm::length(bent[0].positions[v] - bent[1].positions[v])));
+    moved = std::max(moved, double(glm::length(bent[0].positions[v] - rest.positions[v])));
+  }
+  EXPECT_LT(between, 1e-5);
+  EXPECT_GT(moved, 0.05);
+}
+
+TEST(Cli, BadRigInputsExitTwoAndWriteNothing) {
+  const std::string in = fish("blub/fish_low_resolution.obj");
+  const std::string rig = fish("rigs/blub.rig.json");
+  const std::string broken = test::temp_path("broken.rig.json");
+  { std::ofstream(broken) << "{\"components\": [ {\"name\": \"body\", \"select\": \"all\",}"; }
+  const std::vector<BadCase> cases = {
+      {"--in " + in + " --rig " + rig + " --set no_such=1", "--set", "no_such"},
+      {"--in " + in + " --rig " + rig + " --set body_m", "--set", "NAME=VALUE"},
+      {"--in " + in + " --rig " + rig + " --set body_m=abc", "body_m", "not a number"},
+      {"--in " + in + " --rig " + rig + " --set body_m=50", "body_m[0]", "out of range"},
+      {"--in " + in + " --rig " + rig + " --set tail_angle=nan", "tail_angle[0]", "NaN"},
+      {"--in " + in + " --rig " + rig + " --path sideways", "--path", "sideways"},
+      {"--in " + in + " --rig " + rig + " --m 0.3", "--m", "--rig"},
+      {"--in " + in + " --rig '/nonexistent.rig.json'", "--rig", "nonexistent"},
+      {"--in " + in + " --rig '" + broken + "'", "--rig", ""},
+      {"--in " + in + " --m 0.1 --set body_m=1", "--set", "--rig"},
+  };
+  for (const BadCase& c : cases) {
+    const std::string out = test::temp_path("never.obj");
+    const RunResult r = run_cli("deform --out '" + out + "' " + c.arguments);
+    SCOPED_TRACE(c.arguments);
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(line_count(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(c.expected), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(c.also), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+  }
+}
+
 TEST(Cli, ClampBringsParameterIntoRange) {
   const std::string out = test::temp_path("clamped.obj");
   const RunResult r = run_cli("deform --in " + fish("blub/fish_low_resolution.obj") + " --out '" +

@@ -985,5 +985,94 @@ TEST(SaveErrorsOther, FormatLimitFailsAfterTheTemporaryFileAndStillLeavesNoTrace
   EXPECT_EQ(folder_entries(fs::path(path).parent_path()), std::vector<std::string>{"points.glb"});
 }
 
+// ---------------------------------------------------------------------------------
+// Face groups: OBJ "g" (or "o") lines and glTF primitives
+
+::testing::AssertionResult HasGroups(
+    const Mesh& mesh,
+    const std::vector<std::tuple<std::string, std::size_t, std::size_t>>& expected) {
+  std::vector<std::tuple<std::string, std::size_t, std::size_t>> actual;
+  for (const FaceGroup& g : mesh.groups) {
+    actual.emplace_back(g.name, g.first_triangle, g.triangle_count);
+  }
+  if (actual == expected) return ::testing::AssertionSuccess();
+  ::testing::AssertionResult failure = ::testing::AssertionFailure();
+  failure << "groups:";
+  for (const auto& [name, first, count] : actual) {
+    failure << " {'" << name << "', " << first << ", " << count << "}";
+  }
+  return failure;
+}
+
+TEST(FaceGroups, ObjGroupLinesCoverTheTrianglesOfTheFacesAfterThem) {
+  // Faces: an ungrouped triangle, a quad and a pentagon in "fin" (2 + 3 triangles),
+  // a degenerate face the reader skips, a bare "g" (no group), "body" with a
+  // negative-index triangle, then "fin" again (a second run of the same name). The
+  // "o" line is ignored because the file has "g" lines.
+  const std::string path = temp_path("groups.obj");
+  write_file(path,
+             "# groups\n"
+             "o fish\n"
+             "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 1.5 0\nv 2 0 0\n"
+             "f 1 2 3\n"
+             "g fin\n"
+             "f 1 2 3 4\n"
+             "f 1/1 2/1 3/1 5/1 4/1\n"
+             "f 1 1 2\n"
+             "g\n"
+             "f 2 6 3\n"
+             "  g   body  \r\n"
+             "f -5 -1 -4\n"
+             "g fin\n"
+             "f 2 6 3\n");
+  const Mesh mesh = load_mesh(path);
+  ASSERT_EQ(mesh.triangle_count(), 9u);
+  EXPECT_TRUE(HasGroups(mesh, {{"fin", 1, 5}, {"body", 7, 1}, {"fin", 8, 1}}));
+  EXPECT_EQ(std::vector<std::uint32_t>(mesh.indices.begin() + 21, mesh.indices.begin() + 24),
+            (std::vector<std::uint32_t>{1, 5, 2}));  // "body": -5 -1 -4 after 6 "v" lines
+}
+
+TEST(FaceGroups, ObjObjectLinesCountWhenThereIsNoGroupLine) {
+  const std::string path = temp_path("objects.obj");
+  write_file(path,
+             "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+             "o first\nf 1 2 3\nf 1 3 4\n"
+             "o second\nf 1 2 3 4\n");
+  EXPECT_TRUE(HasGroups(load_mesh(path), {{"first", 0, 2}, {"second", 2, 2}}));
+}
+
+TEST(FaceGroups, FilesWithoutGroupsAndSavedMeshesHaveNone) {
+  for (const char* relative : {"blub/fish.obj", "blub/fish_low_resolution.obj"}) {
+    EXPECT_TRUE(load_mesh(data_path(relative)).groups.empty()) << relative;
+  }
+  Mesh square = flat_square();
+  square.groups = {{"ignored", 0, 1}};
+  for (const char* extension : {"obj", "ply", "off", "stl"}) {
+    const std::string path = temp_path(std::string("square.") + extension);
+    save_mesh(path, square);
+    EXPECT_TRUE(load_mesh(path).groups.empty()) << extension;
+  }
+}
+
+TEST(FaceGroups, GltfPrimitivesAreGroupsNamedByMeshAndPrimitive) {
+  // Saved glTF: one unnamed mesh with one primitive.
+  const Mesh low = load_mesh(data_path("blub/fish_low_resolution.obj"));
+  const std::string path = temp_path("fish.glb");
+  save_mesh(path, low);
+  EXPECT_TRUE(HasGroups(load_mesh(path), {{"0/0", 0, low.triangle_count()}}));
+
+  // The Barramundi: every triangle in exactly one group, groups in order.
+  const Mesh fish = load_mesh(data_path("barramundi/BarramundiFish.gltf"));
+  ASSERT_FALSE(fish.groups.empty());
+  std::size_t next = 0;
+  for (const FaceGroup& g : fish.groups) {
+    EXPECT_EQ(g.first_triangle, next) << g.name;
+    EXPECT_GT(g.triangle_count, 0u) << g.name;
+    EXPECT_NE(g.name.find('/'), std::string::npos) << g.name;
+    next += g.triangle_count;
+  }
+  EXPECT_EQ(next, fish.triangle_count());
+}
+
 }  // namespace
 }  // namespace finflex

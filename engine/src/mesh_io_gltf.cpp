@@ -2,7 +2,8 @@
 //
 // Reading flattens the scene into one Mesh: every node that carries a mesh adds the
 // TRIANGLES primitives of that mesh, in depth-first node order, transformed to world
-// space. Writing produces one mesh, one primitive, one node without transform.
+// space; each primitive becomes a FaceGroup named "<mesh name or index>/<primitive
+// index>". Writing produces one mesh, one primitive, one node without transform.
 #include <tiny_gltf.h>  // implementation compiled into libtinygltf (Debian package)
 
 #include <algorithm>
@@ -319,6 +320,7 @@ struct Part {
   Mesh mesh;
   bool has_tangents = false;
   bool has_texcoords = false;
+  std::string group;  // its FaceGroup's name: "<mesh name or index>/<primitive index>"
 };
 
 Part read_primitive(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
@@ -462,6 +464,8 @@ class SceneFlattener {
       const std::string field = indexed(mesh_field + ".primitives", p);
       try {
         parts_.push_back(read_primitive(model_, mesh.primitives[p], transform, field));
+        parts_.back().group =
+            (mesh.name.empty() ? std::to_string(mesh_index) : mesh.name) + "/" + std::to_string(p);
       } catch (const Error& e) {
         // Messages start with the field ("meshes[0].primitives[1]..."): add the
         // mesh's name after "meshes[0]"; the field itself stays as it is.
@@ -506,7 +510,8 @@ std::vector<int> root_nodes(const tinygltf::Model& model) {
 }
 
 // Concatenates the parts. Tangents survive only if every part has them; texcoords
-// if any part has them (the others get (0, 0)).
+// if any part has them (the others get (0, 0)). Each part with triangles becomes a
+// FaceGroup (a mesh placed by several nodes gives several groups of the same name).
 Mesh concatenate(const std::vector<Part>& parts) {
   const bool all_tangents =
       std::all_of(parts.begin(), parts.end(), [](const Part& p) { return p.has_tangents; });
@@ -529,8 +534,12 @@ Mesh concatenate(const std::vector<Part>& parts) {
         out.texcoords.resize(out.texcoords.size() + m.positions.size(), glm::vec2(0.0f));
       }
     }
+    const std::size_t first_triangle = out.triangle_count();
     for (const std::uint32_t index : m.indices) {
       out.indices.push_back(static_cast<std::uint32_t>(base) + index);
+    }
+    if (m.triangle_count() > 0) {
+      out.groups.push_back(FaceGroup{part.group, first_triangle, m.triangle_count()});
     }
   }
   return out;

@@ -10,11 +10,17 @@
 #include <OpenMesh/Core/Mesh/BaseKernel.hh>
 #include <OpenMesh/Core/System/omstream.hh>
 #include <algorithm>
+#include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <mutex>
+#include <optional>
+#include <sstream>
 #include <string>
 #include <system_error>
 #include <vector>
@@ -178,6 +184,9 @@ class MeshImporter final : public omio::BaseImporter {
   size_t n_vertices() const override { return positions_.size(); }
   size_t n_faces() const override { return corners_.size() / 3; }
   size_t n_edges() const override { return 0; }
+  // Per polygon reported (in order): its corner count; its fan's triangles follow
+  // those of the polygons before it.
+  const std::vector<std::size_t>& polygon_sizes() const { return polygon_sizes_; }
 
   // Everything else a reader may report (colors, status, halfedge connectivity,
   // face normals such as STL's, 3D texcoords, materials) is not kept.
@@ -255,11 +264,13 @@ class MeshImporter final : public omio::BaseImporter {
   std::vector<int> corners_;          // three vertex indices per triangle, unchecked
   std::vector<std::size_t> face_of_;  // per triangle: the file's polygon number
   std::size_t polygon_count_ = 0;
+  std::vector<std::size_t> polygon_sizes_;
   std::string face_error_;  // first malformed polygon, if any
 };
 
 om::FaceHandle MeshImporter::add_face(const VHandles& polygon) {
   const std::size_t face = polygon_count_++;
+  polygon_sizes_.push_back(polygon.size());
   corner_count_ += polygon.size();
   if (corner_count_ > max_corners_) throw_truncated("polygon corners");
   if (polygon.size() < 3) {
@@ -334,6 +345,179 @@ Mesh MeshImporter::take_mesh() {
     for (const TexcoordSlot& slot : texcoords_) mesh.texcoords.push_back(slot.value);
   }
   return mesh;
+}
+
+// ---------------------------------------------------------------------------------
+// OBJ groups
+//
+// OpenMesh's OBJ reader skips "g" and "o" lines, so a light second pass over the text
+// finds them. It reads the face lines as that reader does (the first field of each
+// corner; negative indices count back from the "v" lines so far; repeated vertices
+// dropped; a face left with fewer than 3 is skipped) and checks that its faces match
+// the importer's one to one, vertex for vertex, so that a group can never be put on
+// the wrong triangles.
+
+// One "f" line that the reader turns into a polygon.
+struct ObjFace {
+  std::size_t line = 0;        // 1-based
+  std::size_t g = 0;           // 1 + index into ObjScan::g_names; 0: no group
+  std::size_t o = 0;           // 1 + index into ObjScan::o_names; 0: no object
+  bool readable = true;        // false: a corner the reader would read as garbage
+  std::vector<long> vertices;  // 0-based, as the reader passes them (maybe out of range)
+};
+
+struct ObjScan {
+  std::vector<std::string> g_names;
+  std::vector<std::string> o_names;
+  std::vector<ObjFace> faces;
+};
+
+// What the reader trims off both ends of a line.
+constexpr const char* kObjTrimmed = " \t\r\n";
+
+std::string trim_obj(const std::string& text) {
+  const std::size_t begin = text.find_first_not_of(kObjTrimmed);
+  if (begin == std::string::npos) return "";
+  return text.substr(begin, text.find_last_not_of(kObjTrimmed) - begin + 1);
+}
+
+bool is_space(char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; }
+
+// 1 + the index of `name` in `names` (added if new); 0 for an empty name.
+std::size_t intern(std::vector<std::string>& names, const std::string& name) {
+  if (name.empty()) return 0;
+  const auto it = std::find(names.begin(), names.end(), name);
+  if (it != names.end()) return static_cast<std::size_t>(it - names.begin()) + 1;
+  names.push_back(name);
+  return names.size();
+}
+
+// A leading integer of `text`, as `stream >> int` reads it.
+std::optional<long> leading_int(const std::string& text) {
+  errno = 0;
+  char* end = nullptr;
+  const long value = std::strtol(text.c_str(), &end, 10);
+  if (end == text.c_str() || errno == ERANGE || value < std::numeric_limits<int>::min() ||
+      value > std::numeric_limits<int>::max()) {
+    return std::nullopt;
+  }
+  return value;
+}
+
+// The corners of an "f" line (`rest`: the text after "f"), as the reader sees them.
+void read_obj_face(const std::string& rest, long positions_so_far, ObjFace& face) {
+  std::istringstream tokens(rest);
+  std::string token;
+  while (tokens >> token) {
+    const std::size_t slash = token.find('/');
+    const std::string first = token.substr(0, slash);
+    if (first.empty()) continue;  // "/2/3": no position given
+    const std::optional<long> value = leading_int(first);
+    if (!value) {
+      // Without '/', the reader skips the corner; with one, it keeps a stale value.
+      if (slash != std::string::npos) face.readable = false;
+      continue;
+    }
+    const long index = *value < 0 ? positions_so_far + *value : *value - 1;
+    if (std::find(face.vertices.begin(), face.vertices.end(), index) == face.vertices.end()) {
+      face.vertices.push_back(index);
+    }
+  }
+}
+
+ObjScan scan_obj(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(ErrorCode::kIo, "path", "cannot reopen the OBJ file to read its groups");
+  ObjScan scan;
+  std::size_t g = 0;
+  std::size_t o = 0;
+  long positions = 0;
+  std::string line;
+  for (std::size_t number = 1; std::getline(in, line); ++number) {
+    const std::string text = trim_obj(line);
+    if (text.empty() || text[0] == '#' || is_space(text[0])) continue;
+    const std::size_t space =
+        static_cast<std::size_t>(std::find_if(text.begin(), text.end(), is_space) - text.begin());
+    const std::string keyword = text.substr(0, space);
+    const std::string rest = trim_obj(text.substr(space));
+    if (keyword == "v") {
+      ++positions;
+    } else if (keyword == "g") {
+      g = intern(scan.g_names, rest);
+    } else if (keyword == "o") {
+      o = intern(scan.o_names, rest);
+    } else if (keyword == "f") {
+      ObjFace face;
+      face.line = number;
+      face.g = g;
+      face.o = o;
+      read_obj_face(rest, positions, face);
+      if (face.vertices.size() >= 3 || !face.readable) scan.faces.push_back(std::move(face));
+    }
+  }
+  if (in.bad()) throw Error(ErrorCode::kIo, "path", "reading the OBJ file's groups failed");
+  return scan;
+}
+
+[[noreturn]] void throw_misaligned(const std::string& where) {
+  throw Error(ErrorCode::kFormat, "groups",
+              "groups: " + where +
+                  " does not match the faces the OBJ reader reported, so the g/o groups "
+                  "cannot be placed on the triangles");
+}
+
+// True if triangles [first, first + size - 2) of `indices` are the fan of `face`.
+bool is_fan_of(const ObjFace& face, const std::vector<std::uint32_t>& indices, std::size_t first) {
+  const auto& v = face.vertices;
+  for (std::size_t k = 1; k + 1 < v.size(); ++k) {
+    const std::size_t t = 3 * (first + k - 1);
+    if (t + 2 >= indices.size() || static_cast<long>(indices[t]) != v[0] ||
+        static_cast<long>(indices[t + 1]) != v[k] ||
+        static_cast<long>(indices[t + 2]) != v[k + 1]) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// The OBJ file's groups: its "g" lines, or its "o" lines when it has no "g" line. A
+// group is the run of triangles from the faces after its line up to the next g (o)
+// line; faces before the first such line, or after one without a name, are in no
+// group; runs without triangles are dropped. `polygon_sizes` and `indices` are what
+// the importer collected from the same file.
+std::vector<FaceGroup> obj_groups(const std::string& path,
+                                  const std::vector<std::size_t>& polygon_sizes,
+                                  const std::vector<std::uint32_t>& indices) {
+  const ObjScan scan = scan_obj(path);
+  const bool by_g = !scan.g_names.empty();
+  const std::vector<std::string>& names = by_g ? scan.g_names : scan.o_names;
+  std::vector<FaceGroup> groups;
+  if (names.empty()) return groups;
+  if (scan.faces.size() != polygon_sizes.size()) {
+    throw_misaligned(std::to_string(scan.faces.size()) + " face lines against " +
+                     std::to_string(polygon_sizes.size()) + " polygons read");
+  }
+  std::size_t triangle = 0;
+  for (std::size_t p = 0; p < scan.faces.size(); ++p) {
+    const ObjFace& face = scan.faces[p];
+    if (!face.readable || face.vertices.size() != polygon_sizes[p] ||
+        !is_fan_of(face, indices, triangle)) {
+      throw_misaligned("the face on line " + std::to_string(face.line));
+    }
+    const std::size_t count = polygon_sizes[p] - 2;
+    const std::size_t id = by_g ? face.g : face.o;
+    if (id != 0) {
+      const std::string& name = names[id - 1];
+      if (!groups.empty() && groups.back().name == name &&
+          groups.back().first_triangle + groups.back().triangle_count == triangle) {
+        groups.back().triangle_count += count;
+      } else {
+        groups.push_back(FaceGroup{name, triangle, count});
+      }
+    }
+    triangle += count;
+  }
+  return groups;
 }
 
 // ---------------------------------------------------------------------------------
@@ -461,7 +645,11 @@ Mesh read_openmesh(const std::string& path, MeshFormat format) {
   if (importer.n_vertices() == 0) {
     throw Error(ErrorCode::kFormat, "positions", "no vertices found in the " + name + " data");
   }
-  return importer.take_mesh();
+  Mesh mesh = importer.take_mesh();
+  if (format == MeshFormat::kObj) {
+    mesh.groups = obj_groups(path, importer.polygon_sizes(), mesh.indices);
+  }
+  return mesh;
 }
 
 void write_openmesh(std::ostream& out, MeshFormat format, const Mesh& mesh) {

@@ -4,11 +4,20 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 namespace finflex {
+
+// A named run of consecutive triangles: an OBJ group ("g name"), or a glTF mesh
+// primitive ("mesh name/primitive index"). Rig selectors pick components by name.
+struct FaceGroup {
+  std::string name;
+  std::size_t first_triangle = 0;
+  std::size_t triangle_count = 0;
+};
 
 // Vertex attributes are parallel arrays of length vertex_count(); optional ones are
 // empty when absent. Faces are triangles, three indices each, counter-clockwise seen
@@ -19,6 +28,7 @@ struct Mesh {
   std::vector<glm::vec4> tangents;   // optional: xyz unit tangent, w = +-1 bitangent sign
   std::vector<glm::vec2> texcoords;  // optional: passed through unchanged
   std::vector<std::uint32_t> indices;
+  std::vector<FaceGroup> groups;  // optional: empty when the file names none
 
   std::size_t vertex_count() const { return positions.size(); }
   std::size_t triangle_count() const { return indices.size() / 3; }

@@ -1,0 +1,420 @@
+// Rig files: JSON -> RigSpec (the schema is in finflex/rig.hpp).
+//
+// Strict on purpose: every key must be known, every value of the documented type, no
+// key may appear twice in an object, so that a typo in a rig file is an error naming
+// where it is instead of a silently ignored setting. Checks that need the mesh or the
+// whole component tree (names, parents, vertices, frame geometry) are resolve_rig's.
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <limits>
+#include <set>
+#include <sstream>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
+
+#include "finflex/bend.hpp"
+#include "finflex/error.hpp"
+#include "finflex/rig.hpp"
+
+namespace finflex {
+namespace {
+
+using nlohmann::json;
+
+// Values quoted in messages are cut to this many characters.
+constexpr std::size_t kMaxShownChars = 80;
+
+// ---------------------------------------------------------------------------------
+// Fields and errors. A field is a path such as "components[1] 'tail'.select.box.min";
+// messages start with it and name the value found and what was expected.
+
+std::string member(const std::string& path, const std::string& key) {
+  return path.empty() ? key : path + "." + key;
+}
+
+std::string element(const std::string& path, std::size_t index) {
+  return path + "[" + std::to_string(index) + "]";
+}
+
+// The JSON text of `value`, shortened to kMaxShownChars.
+std::string shown(const json& value) {
+  std::string text = value.dump();
+  if (text.size() > kMaxShownChars) text = text.substr(0, kMaxShownChars - 3) + "...";
+  return text;
+}
+
+[[noreturn]] void fail(const std::string& field, const std::string& message) {
+  throw Error(ErrorCode::kInvalidArgument, field, field + ": " + message);
+}
+
+// "<field> = <value>: expected <expected>".
+[[noreturn]] void fail_value(const std::string& field, const json& value,
+                             const std::string& expected) {
+  throw Error(ErrorCode::kInvalidArgument, field,
+              field + " = " + shown(value) + ": expected " + expected);
+}
+
+std::string joined(std::initializer_list<const char*> names) {
+  std::string list;
+  for (const char* name : names) list += (list.empty() ? "" : ", ") + std::string(name);
+  return list;
+}
+
+// Throws for the first key of `object` not in `allowed`.
+void check_keys(const json& object, const std::string& path,
+                std::initializer_list<const char*> allowed) {
+  for (const auto& item : object.items()) {
+    bool known = false;
+    for (const char* name : allowed) known = known || item.key() == name;
+    if (!known) {
+      fail(member(path, item.key()),
+           "unknown key '" + item.key() + "' (expected one of: " + joined(allowed) + ")");
+    }
+  }
+}
+
+const json& required(const json& object, const std::string& path, const char* key,
+                     const std::string& what) {
+  const auto it = object.find(key);
+  if (it == object.end()) fail(member(path, key), "missing (" + what + ")");
+  return *it;
+}
+
+void expect_object(const json& value, const std::string& field, const std::string& expected) {
+  if (!value.is_object()) fail_value(field, value, expected);
+}
+
+// ---------------------------------------------------------------------------------
+// Scalars and vectors
+
+std::string parse_name(const json& value, const std::string& field, const std::string& what) {
+  if (!value.is_string() || value.get_ref<const std::string&>().empty()) {
+    fail_value(field, value, "a non-empty string (" + what + ")");
+  }
+  return value.get<std::string>();
+}
+
+double parse_number(const json& value, const std::string& field, const std::string& expected) {
+  if (!value.is_number()) fail_value(field, value, expected);
+  const double number = value.get<double>();
+  if (!std::isfinite(number)) fail_value(field, value, expected);
+  return number;
+}
+
+double parse_positive(const json& value, const std::string& field) {
+  const double number = parse_number(value, field, "a finite number > 0");
+  if (!(number > 0.0)) fail_value(field, value, "a finite number > 0");
+  return number;
+}
+
+glm::dvec3 parse_vec3(const json& value, const std::string& field) {
+  const char* const expected = "an array of 3 finite numbers";
+  if (!value.is_array() || value.size() != 3) fail_value(field, value, expected);
+  glm::dvec3 v{0.0};
+  for (glm::length_t i = 0; i < 3; ++i) {
+    const json& component = value[static_cast<std::size_t>(i)];
+    if (!component.is_number()) fail_value(field, value, expected);
+    v[i] = component.get<double>();
+    if (!std::isfinite(v[i])) fail_value(field, value, expected);
+  }
+  return v;
+}
+
+// ---------------------------------------------------------------------------------
+// Frames
+
+// {"mode": "auto"} | {"mode": "identity"} | {["mode": "explicit",] "origin", "x", "y"
+// [, "length"]}.
+FrameSpec parse_frame(const json& value, const std::string& field) {
+  expect_object(value, field,
+                "an object: {\"mode\": \"auto\"}, {\"mode\": \"identity\"} or "
+                "{\"origin\": [x, y, z], \"x\": [..], \"y\": [..], \"length\": s}");
+  FrameSpec frame;
+  frame.mode = FrameSpec::Mode::kExplicit;
+  if (const auto it = value.find("mode"); it != value.end()) {
+    const std::string mode_field = member(field, "mode");
+    const char* const modes = "\"auto\", \"identity\" or \"explicit\"";
+    if (!it->is_string()) fail_value(mode_field, *it, modes);
+    const std::string& mode = it->get_ref<const std::string&>();
+    if (mode == "auto" || mode == "identity") {
+      frame.mode = mode == "auto" ? FrameSpec::Mode::kAuto : FrameSpec::Mode::kIdentity;
+      for (const auto& item : value.items()) {
+        if (item.key() != "mode") {
+          fail(member(field, item.key()), "unexpected with mode '" + mode +
+                                              "' (origin, x, y and length belong to an explicit "
+                                              "frame: drop the mode or this key)");
+        }
+      }
+      return frame;
+    }
+    if (mode != "explicit") fail_value(mode_field, *it, modes);
+  }
+  check_keys(value, field, {"mode", "origin", "x", "y", "length"});
+  const char* const what = "an explicit frame needs origin, x and y";
+  frame.origin = parse_vec3(required(value, field, "origin", what), member(field, "origin"));
+  frame.x = parse_vec3(required(value, field, "x", what), member(field, "x"));
+  frame.y = parse_vec3(required(value, field, "y", what), member(field, "y"));
+  if (const auto it = value.find("length"); it != value.end()) {
+    frame.length = parse_positive(*it, member(field, "length"));
+  }
+  return frame;
+}
+
+// ---------------------------------------------------------------------------------
+// Selectors
+
+std::vector<std::uint32_t> parse_indices(const json& value, const std::string& field) {
+  if (!value.is_array()) fail_value(field, value, "an array of vertex indices");
+  std::vector<std::uint32_t> indices;
+  indices.reserve(value.size());
+  for (std::size_t i = 0; i < value.size(); ++i) {
+    const json& index = value[i];
+    if (!index.is_number_unsigned() ||
+        index.get<std::uint64_t>() > std::numeric_limits<std::uint32_t>::max()) {
+      fail_value(element(field, i), index, "a vertex index (an integer in [0, 2^32))");
+    }
+    indices.push_back(static_cast<std::uint32_t>(index.get<std::uint64_t>()));
+  }
+  return indices;
+}
+
+// "all" | {"indices": [..]} | {"group": "name"} | {"box": {"min", "max"}} |
+// {"half_space": {"point", "normal"}}.
+SelectorSpec parse_selector(const json& value, const std::string& field) {
+  const char* const expected =
+      "\"all\" or an object with one key: indices, group, box or half_space";
+  SelectorSpec select;
+  if (value.is_string()) {
+    if (value.get_ref<const std::string&>() != "all") fail_value(field, value, expected);
+    select.kind = SelectorSpec::Kind::kAll;
+    return select;
+  }
+  if (!value.is_object() || value.empty()) fail_value(field, value, expected);
+  check_keys(value, field, {"indices", "group", "box", "half_space"});
+  if (value.size() != 1) fail_value(field, value, expected + std::string(" (not several)"));
+  const std::string key = value.begin().key();
+  const json& body = value.begin().value();
+  const std::string body_field = member(field, key);
+  if (key == "indices") {
+    select.kind = SelectorSpec::Kind::kIndices;
+    select.indices = parse_indices(body, body_field);
+  } else if (key == "group") {
+    select.kind = SelectorSpec::Kind::kGroup;
+    select.group = parse_name(body, body_field, "a face group of the mesh");
+  } else if (key == "box") {
+    select.kind = SelectorSpec::Kind::kBox;
+    expect_object(body, body_field, "an object {\"min\": [x, y, z], \"max\": [x, y, z]}");
+    check_keys(body, body_field, {"min", "max"});
+    const char* const what = "a box needs min and max";
+    select.box_min = parse_vec3(required(body, body_field, "min", what), member(body_field, "min"));
+    select.box_max = parse_vec3(required(body, body_field, "max", what), member(body_field, "max"));
+    for (glm::length_t i = 0; i < 3; ++i) {
+      if (select.box_max[i] < select.box_min[i]) {
+        fail_value(member(body_field, "max"), body["max"],
+                   "max >= min = " + shown(body["min"]) + " in every coordinate");
+      }
+    }
+  } else {
+    select.kind = SelectorSpec::Kind::kHalfSpace;
+    expect_object(body, body_field, "an object {\"point\": [x, y, z], \"normal\": [x, y, z]}");
+    check_keys(body, body_field, {"point", "normal"});
+    const char* const what = "a half-space needs point and normal";
+    select.point =
+        parse_vec3(required(body, body_field, "point", what), member(body_field, "point"));
+    select.normal =
+        parse_vec3(required(body, body_field, "normal", what), member(body_field, "normal"));
+  }
+  return select;
+}
+
+// ---------------------------------------------------------------------------------
+// Stages and components
+
+// {"deformer": "bend", ["mode": "paper" | "exact",] "param": p} |
+// {"deformer": "hinge", ["width": w >= 0,] "param": p}.
+StageSpec parse_stage(const json& value, const std::string& field) {
+  expect_object(value, field, "an object {\"deformer\": \"bend\" | \"hinge\", \"param\": ...}");
+  check_keys(value, field, {"deformer", "mode", "width", "param"});
+  StageSpec stage;
+  const std::string deformer_field = member(field, "deformer");
+  const json& deformer = required(value, field, "deformer", "bend or hinge");
+  if (deformer == "bend") {
+    stage.deformer = DeformerKind::kBend;
+  } else if (deformer == "hinge") {
+    stage.deformer = DeformerKind::kHinge;
+  } else {
+    fail_value(deformer_field, deformer, "\"bend\" or \"hinge\"");
+  }
+  const bool bend = stage.deformer == DeformerKind::kBend;
+  stage.param = parse_name(required(value, field, "param", "the parameter this stage reads"),
+                           member(field, "param"), "the parameter this stage reads");
+  if (const auto it = value.find("mode"); it != value.end()) {
+    const std::string mode_field = member(field, "mode");
+    if (!bend) fail(mode_field, "applies to the bend only (this stage is a hinge)");
+    if (*it == "paper") {
+      stage.mode = BendMode::kPaper;
+    } else if (*it == "exact") {
+      stage.mode = BendMode::kExact;
+    } else {
+      fail_value(mode_field, *it, "\"paper\" or \"exact\"");
+    }
+  }
+  if (const auto it = value.find("width"); it != value.end()) {
+    const std::string width_field = member(field, "width");
+    if (bend) fail(width_field, "applies to the hinge only (this stage is a bend)");
+    const char* const expected = "a finite number >= 0 (the hinge's width in x)";
+    stage.width = parse_number(*it, width_field, expected);
+    if (stage.width < 0.0) fail_value(width_field, *it, expected);
+  }
+  return stage;
+}
+
+ComponentSpec parse_component(const json& value, std::size_t index) {
+  const std::string at = element("components", index);
+  expect_object(value, at, "an object {\"name\", [\"parent\",] \"select\", \"chain\"}");
+  ComponentSpec component;
+  component.name = parse_name(required(value, at, "name", "every component needs a name"),
+                              member(at, "name"), "the component's name");
+  const std::string field = at + " '" + component.name + "'";
+  check_keys(value, field, {"name", "parent", "select", "frame", "chain"});
+  if (const auto it = value.find("parent"); it != value.end()) {
+    component.parent =
+        parse_name(*it, member(field, "parent"), "a component's name; omit the key for the root");
+  }
+  component.select = parse_selector(
+      required(value, field, "select", "\"all\" for the root, else which vertices of the parent"),
+      member(field, "select"));
+  if (const auto it = value.find("frame"); it != value.end()) {
+    if (component.parent.empty()) {
+      fail(member(field, "frame"),
+           "the root component takes no frame: its frame is the rig's top-level \"frame\"");
+    }
+    component.frame = parse_frame(*it, member(field, "frame"));
+  }
+  const std::string chain_field = member(field, "chain");
+  const json& chain = required(value, field, "chain", "the component's deformers; [] for none");
+  if (!chain.is_array()) fail_value(chain_field, chain, "an array of deformer stages");
+  for (std::size_t i = 0; i < chain.size(); ++i) {
+    component.chain.push_back(parse_stage(chain[i], element(chain_field, i)));
+  }
+  return component;
+}
+
+// ---------------------------------------------------------------------------------
+// The document
+
+// nlohmann keeps the last of two equal keys without a word; this parser callback makes
+// that an error naming where. It tracks the path of the value being parsed.
+class DuplicateKeyCheck {
+ public:
+  bool operator()(int /*depth*/, json::parse_event_t event, json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start:
+      case json::parse_event_t::array_start:
+        count_array_element();
+        levels_.push_back(Level{event == json::parse_event_t::object_start, {}, {}, 0});
+        break;
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        levels_.pop_back();
+        break;
+      case json::parse_event_t::key:
+        add_key(parsed.get<std::string>());
+        break;
+      case json::parse_event_t::value:
+        count_array_element();
+        break;
+    }
+    return true;
+  }
+
+ private:
+  struct Level {
+    bool object = true;
+    std::set<std::string> keys;
+    std::string key;           // object: the key being parsed
+    std::size_t elements = 0;  // array: elements started so far
+  };
+
+  void count_array_element() {
+    if (!levels_.empty() && !levels_.back().object) ++levels_.back().elements;
+  }
+
+  void add_key(const std::string& key) {
+    Level& level = levels_.back();
+    level.key = key;
+    if (level.keys.insert(key).second) return;
+    std::string path;
+    for (const Level& l : levels_) {
+      path = l.object ? member(path, l.key) : element(path, l.elements - 1);
+    }
+    fail(path, "duplicate key '" + key + "' (the later value would silently replace the earlier)");
+  }
+
+  std::vector<Level> levels_;
+};
+
+json parse_document(const std::string& text) {
+  try {
+    return json::parse(text, DuplicateKeyCheck());
+  } catch (const json::exception& e) {
+    // "[json.exception.parse_error.101] parse error at line 3, column 5: ...", or
+    // out_of_range.406 for a number beyond double ("number overflow parsing '1e999'").
+    std::string message = e.what();
+    if (const std::size_t end = message.find("] ");
+        message.rfind("[json.", 0) == 0 && end != std::string::npos) {
+      message.erase(0, end + 2);
+    }
+    throw Error(ErrorCode::kFormat, "rig", "rig: malformed JSON: " + message);
+  }
+}
+
+}  // namespace
+
+RigSpec parse_rig_json(const std::string& text) {
+  const json document = parse_document(text);
+  expect_object(document, "rig", "an object {[\"frame\": ...,] \"components\": [...]}");
+  check_keys(document, "", {"frame", "components"});
+  RigSpec spec;
+  if (const auto it = document.find("frame"); it != document.end()) {
+    spec.frame = parse_frame(*it, "frame");
+  }
+  const json& components =
+      required(document, "", "components", "the rig's components, the root first or not");
+  if (!components.is_array()) {
+    fail_value("components", components, "an array of components");
+  }
+  for (std::size_t i = 0; i < components.size(); ++i) {
+    spec.components.push_back(parse_component(components[i], i));
+  }
+  return spec;
+}
+
+RigSpec load_rig_file(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    throw Error(ErrorCode::kIo, "path", "'" + path + "': is a directory, not a rig file");
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    throw Error(ErrorCode::kIo, "path", "'" + path + "': cannot open the rig file for reading");
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw Error(ErrorCode::kIo, "path", "'" + path + "': reading the rig file failed");
+  try {
+    return parse_rig_json(text.str());
+  } catch (const Error& e) {
+    throw Error(e.code(), e.field(), "'" + path + "': " + e.what());
+  }
+}
+
+}  // namespace finflex

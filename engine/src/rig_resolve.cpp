@@ -1,0 +1,747 @@
+// RigSpec + Mesh -> Rig: the component tree, each component's vertices and frame, the
+// stages with their parameter indices and bend ranges (contracts in finflex/rig.hpp).
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "finflex/body_frame.hpp"
+#include "finflex/error.hpp"
+#include "finflex/mesh.hpp"
+#include "finflex/rig.hpp"
+
+namespace finflex {
+namespace {
+
+constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
+// |sin| of the angle between a frame's y and x below which y is taken as parallel.
+constexpr double kParallelTolerance = 1e-6;
+// Automatic child frames: when the parent's axis_y has less than this much left
+// across the child's x (x within ~5.7 degrees of it), the parent's axis_z gives y.
+constexpr double kAutoYTolerance = 0.1;
+// Automatic child frames: the attachment and the centroid coincide when closer than
+// this fraction of the component's bounding-box diagonal.
+constexpr double kCoincideTolerance = 1e-9;
+
+// ---------------------------------------------------------------------------------
+// Formatting and errors
+
+std::string format_double(double value) {
+  std::ostringstream out;
+  out.precision(9);
+  out << value;
+  return out.str();
+}
+
+std::string format_vec(const glm::dvec3& v) {
+  return "(" + format_double(v.x) + ", " + format_double(v.y) + ", " + format_double(v.z) + ")";
+}
+
+bool is_finite(const glm::dvec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+// Throws kInvalidArgument: "<field>: <message>", or "<field> = <value> ..." when the
+// message starts with "= ".
+[[noreturn]] void fail(const std::string& field, const std::string& message) {
+  const char* const separator = message.rfind("= ", 0) == 0 ? " " : ": ";
+  throw Error(ErrorCode::kInvalidArgument, field, field + separator + message);
+}
+
+std::string component_field(const RigSpec& spec, std::size_t i) {
+  return "components[" + std::to_string(i) + "] '" + spec.components[i].name + "'";
+}
+
+std::string name_list(const RigSpec& spec) {
+  std::string list;
+  for (const ComponentSpec& c : spec.components) list += (list.empty() ? "" : ", ") + c.name;
+  return list;
+}
+
+glm::dvec3 position(const Mesh& mesh, std::uint32_t v) { return glm::dvec3(mesh.positions[v]); }
+
+// ---------------------------------------------------------------------------------
+// The component tree (spec indices)
+
+struct Tree {
+  std::size_t root = kNone;
+  std::vector<std::size_t> parent;                 // kNone for the root
+  std::vector<std::vector<std::size_t>> children;  // in spec order
+};
+
+void check_names(const RigSpec& spec) {
+  std::map<std::string, std::size_t> seen;
+  for (std::size_t i = 0; i < spec.components.size(); ++i) {
+    const std::string& name = spec.components[i].name;
+    const std::string at = "components[" + std::to_string(i) + "]";
+    if (name.empty()) fail(at + ".name", "is empty: every component needs a name");
+    const auto [it, inserted] = seen.emplace(name, i);
+    if (!inserted) {
+      fail(component_field(spec, i) + ".name", "'" + name + "' is also the name of components[" +
+                                                   std::to_string(it->second) +
+                                                   "]: names must be unique");
+    }
+  }
+}
+
+// Parent links by name; exactly one root. Names are unique (check_names).
+Tree link_parents(const RigSpec& spec) {
+  const std::size_t n = spec.components.size();
+  std::map<std::string, std::size_t> index;
+  for (std::size_t i = 0; i < n; ++i) index.emplace(spec.components[i].name, i);
+  Tree tree;
+  tree.parent.assign(n, kNone);
+  tree.children.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::string& parent = spec.components[i].parent;
+    if (parent.empty()) continue;
+    const auto it = index.find(parent);
+    if (it == index.end()) {
+      fail(component_field(spec, i) + ".parent",
+           "'" + parent + "' is not a component of the rig (its components: " + name_list(spec) +
+               ")");
+    }
+    tree.parent[i] = it->second;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (tree.parent[i] != kNone) continue;
+    if (tree.root != kNone) {
+      fail(component_field(spec, i) + ".parent",
+           "missing, and '" + spec.components[tree.root].name + "' (components[" +
+               std::to_string(tree.root) +
+               "]) has no parent either: a rig has exactly one root, every other component "
+               "names its parent");
+    }
+    tree.root = i;
+  }
+  if (tree.root == kNone) {
+    fail("components", "no root component: every component names a parent (" + name_list(spec) +
+                           "); the root (the whole body) has none");
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (tree.parent[i] != kNone) tree.children[tree.parent[i]].push_back(i);
+  }
+  return tree;
+}
+
+// Throws for a component whose parent chain loops (never reaches the root), naming
+// the loop. With one root and every parent known, those are the unreachable ones.
+void check_cycles(const RigSpec& spec, const Tree& tree) {
+  const std::size_t n = spec.components.size();
+  std::vector<bool> reached(n, false);
+  std::vector<std::size_t> stack = {tree.root};
+  while (!stack.empty()) {
+    const std::size_t c = stack.back();
+    stack.pop_back();
+    reached[c] = true;
+    for (const std::size_t child : tree.children[c]) stack.push_back(child);
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (reached[i]) continue;
+    std::size_t first = i;  // n steps up from i surely land on the loop
+    for (std::size_t k = 0; k < n; ++k) first = tree.parent[first];
+    for (std::size_t c = tree.parent[first], start = first; c != start; c = tree.parent[c]) {
+      first = std::min(first, c);  // the loop's first component in the spec
+    }
+    std::string loop = "'" + spec.components[first].name + "'";
+    for (std::size_t c = tree.parent[first]; c != first; c = tree.parent[c]) {
+      loop += " -> '" + spec.components[c].name + "'";
+    }
+    loop += " -> '" + spec.components[first].name + "'";
+    fail(component_field(spec, first) + ".parent",
+         "the parent chain loops (" + loop + ", child -> parent) and never reaches the root '" +
+             spec.components[tree.root].name + "'");
+  }
+}
+
+Tree build_tree(const RigSpec& spec) {
+  if (spec.components.empty()) {
+    fail("components", "is empty: a rig needs at least its root component (select \"all\")");
+  }
+  check_names(spec);
+  Tree tree = link_parents(spec);
+  check_cycles(spec, tree);
+  const ComponentSpec& root = spec.components[tree.root];
+  const std::string field = component_field(spec, tree.root);
+  if (root.select.kind != SelectorSpec::Kind::kAll) {
+    fail(field + ".select", "the root component must select \"all\" (its children select parts)");
+  }
+  if (root.frame) {
+    fail(field + ".frame",
+         "the root component takes no frame: its frame is the rig's top-level \"frame\"");
+  }
+  return tree;
+}
+
+// ---------------------------------------------------------------------------------
+// Vertex selection. A set is a sorted vector of vertex indices.
+
+using VertexSet = std::vector<std::uint32_t>;
+
+// Membership flags over all vertices for `set`.
+std::vector<char> membership(const VertexSet& set, std::size_t vertex_count) {
+  std::vector<char> in(vertex_count, 0);
+  for (const std::uint32_t v : set) in[v] = 1;
+  return in;
+}
+
+// What a child selects from its parent: the parent's subtree vertices, their flags,
+// its mesh-space frame and its name (for messages).
+struct ParentView {
+  const VertexSet* vertices;
+  const std::vector<char>* in;
+  const BodyFrame* frame;
+  std::string name;
+};
+
+VertexSet sorted_unique(VertexSet set) {
+  std::sort(set.begin(), set.end());
+  set.erase(std::unique(set.begin(), set.end()), set.end());
+  return set;
+}
+
+VertexSet select_indices(const Mesh& mesh, const SelectorSpec& select, const ParentView& parent,
+                         const std::string& field) {
+  const std::string indices_field = field + ".indices";
+  for (std::size_t k = 0; k < select.indices.size(); ++k) {
+    const std::uint32_t v = select.indices[k];
+    const std::string at = indices_field + "[" + std::to_string(k) + "]";
+    if (v >= mesh.vertex_count()) {
+      fail(at, "vertex " + std::to_string(v) + " is out of range (the mesh has " +
+                   std::to_string(mesh.vertex_count()) + " vertices)");
+    }
+    if (!(*parent.in)[v]) {
+      fail(at, "vertex " + std::to_string(v) + " is outside the parent '" + parent.name +
+                   "' (a child selects from its parent's vertices)");
+    }
+  }
+  return sorted_unique(select.indices);
+}
+
+VertexSet select_group(const Mesh& mesh, const SelectorSpec& select, const ParentView& parent,
+                       const std::string& field) {
+  const std::string group_field = field + ".group";
+  VertexSet set;
+  bool found = false;
+  for (std::size_t g = 0; g < mesh.groups.size(); ++g) {
+    const FaceGroup& group = mesh.groups[g];
+    if (group.name != select.group) continue;
+    found = true;
+    if (group.first_triangle > mesh.triangle_count() ||
+        group.triangle_count > mesh.triangle_count() - group.first_triangle) {
+      const std::string at = "groups[" + std::to_string(g) + "]";
+      throw Error(ErrorCode::kInvalidMesh, at,
+                  at + ": group '" + group.name + "' (triangles " +
+                      std::to_string(group.first_triangle) + " + " +
+                      std::to_string(group.triangle_count) + ") exceeds the mesh's " +
+                      std::to_string(mesh.triangle_count()) + " triangles");
+    }
+    const std::size_t begin = 3 * group.first_triangle;
+    const std::size_t end = begin + 3 * group.triangle_count;
+    set.insert(set.end(), mesh.indices.begin() + static_cast<std::ptrdiff_t>(begin),
+               mesh.indices.begin() + static_cast<std::ptrdiff_t>(end));
+  }
+  if (!found) {
+    std::string names;
+    for (const FaceGroup& group : mesh.groups) {
+      if (names.find("'" + group.name + "'") == std::string::npos) {
+        names += (names.empty() ? "'" : ", '") + group.name + "'";
+      }
+    }
+    fail(group_field, "'" + select.group + "' is not a face group of the mesh (" +
+                          (names.empty() ? std::string("the mesh has no groups: OBJ g/o lines "
+                                                       "or glTF primitives name them")
+                                         : "its groups: " + names) +
+                          ")");
+  }
+  set = sorted_unique(std::move(set));
+  for (const std::uint32_t v : set) {
+    if (!(*parent.in)[v]) {
+      fail(group_field, "group '" + select.group + "' takes vertex " + std::to_string(v) +
+                            ", which is outside the parent '" + parent.name +
+                            "' (a child selects from its parent's vertices)");
+    }
+  }
+  return set;
+}
+
+// Box and half-space: tested on the parent's vertices in the parent's local frame.
+VertexSet select_region(const Mesh& mesh, const SelectorSpec& select, const ParentView& parent,
+                        const std::string& field) {
+  const bool box = select.kind == SelectorSpec::Kind::kBox;
+  if (box) {
+    if (!is_finite(select.box_min)) {
+      fail(field + ".box.min", "= " + format_vec(select.box_min) + " is not finite");
+    }
+    if (!is_finite(select.box_max)) {
+      fail(field + ".box.max", "= " + format_vec(select.box_max) + " is not finite");
+    }
+  } else {
+    if (!is_finite(select.point)) {
+      fail(field + ".half_space.point", "= " + format_vec(select.point) + " is not finite");
+    }
+    if (!is_finite(select.normal) || !(glm::length(select.normal) > 0.0)) {
+      fail(field + ".half_space.normal",
+           "= " + format_vec(select.normal) + " must be a finite, non-zero direction");
+    }
+  }
+  VertexSet set;
+  for (const std::uint32_t v : *parent.vertices) {
+    const glm::dvec3 p = parent.frame->point_to_local(position(mesh, v));
+    const bool inside = box ? glm::all(glm::greaterThanEqual(p, select.box_min)) &&
+                                  glm::all(glm::lessThanEqual(p, select.box_max))
+                            : glm::dot(p - select.point, select.normal) > 0.0;
+    if (inside) set.push_back(v);
+  }
+  return set;
+}
+
+std::string describe(const SelectorSpec& select) {
+  switch (select.kind) {
+    case SelectorSpec::Kind::kAll:
+      return "\"all\"";
+    case SelectorSpec::Kind::kIndices:
+      return std::to_string(select.indices.size()) + " indices";
+    case SelectorSpec::Kind::kGroup:
+      return "group '" + select.group + "'";
+    case SelectorSpec::Kind::kBox:
+      return "box min " + format_vec(select.box_min) + " max " + format_vec(select.box_max);
+    case SelectorSpec::Kind::kHalfSpace:
+      return "half-space point " + format_vec(select.point) + " normal " +
+             format_vec(select.normal);
+  }
+  return "?";
+}
+
+// A child's subtree vertices, from its parent's (field: the component's).
+VertexSet select_vertices(const Mesh& mesh, const ComponentSpec& component,
+                          const ParentView& parent, const std::string& field) {
+  const std::string select_field = field + ".select";
+  VertexSet set;
+  switch (component.select.kind) {
+    case SelectorSpec::Kind::kAll:
+      set = *parent.vertices;
+      break;
+    case SelectorSpec::Kind::kIndices:
+      set = select_indices(mesh, component.select, parent, select_field);
+      break;
+    case SelectorSpec::Kind::kGroup:
+      set = select_group(mesh, component.select, parent, select_field);
+      break;
+    case SelectorSpec::Kind::kBox:
+    case SelectorSpec::Kind::kHalfSpace:
+      set = select_region(mesh, component.select, parent, select_field);
+      break;
+  }
+  if (set.empty()) {
+    fail(select_field, describe(component.select) + " selects no vertex of the parent '" +
+                           parent.name + "' (" + std::to_string(parent.vertices->size()) +
+                           " vertices; boxes and half-spaces are in the parent's local frame)");
+  }
+  return set;
+}
+
+// ---------------------------------------------------------------------------------
+// Frames
+
+// [min, max] of (p - origin) . axis over `vertices`.
+std::pair<double, double> extent(const Mesh& mesh, const VertexSet& vertices,
+                                 const glm::dvec3& origin, const glm::dvec3& axis) {
+  double lo = std::numeric_limits<double>::infinity();
+  double hi = -lo;
+  for (const std::uint32_t v : vertices) {
+    const double x = glm::dot(position(mesh, v) - origin, axis);
+    lo = std::min(lo, x);
+    hi = std::max(hi, x);
+  }
+  return {lo, hi};
+}
+
+glm::dvec3 centroid(const Mesh& mesh, const VertexSet& vertices) {
+  glm::dvec3 sum{0.0};
+  for (const std::uint32_t v : vertices) sum += position(mesh, v);
+  return sum / static_cast<double>(vertices.size());
+}
+
+// Unit x and y (y made orthogonal to x) of an explicit frame as written; `field` is
+// the frame's ("frame", "components[1] 'tail'.frame"), `note` ends the messages.
+std::pair<glm::dvec3, glm::dvec3> explicit_axes(const FrameSpec& spec, const std::string& field,
+                                                const std::string& note) {
+  if (!is_finite(spec.origin)) {
+    fail(field + ".origin", "= " + format_vec(spec.origin) + " is not finite" + note);
+  }
+  const double x_norm = glm::length(spec.x);
+  if (!is_finite(spec.x) || !(x_norm > 0.0)) {
+    fail(field + ".x", "= " + format_vec(spec.x) + " must be a finite, non-zero direction" + note);
+  }
+  const glm::dvec3 x = spec.x / x_norm;
+  if (!is_finite(spec.y)) fail(field + ".y", "= " + format_vec(spec.y) + " is not finite" + note);
+  const glm::dvec3 across = spec.y - glm::dot(spec.y, x) * x;
+  const double across_norm = glm::length(across);
+  if (!(across_norm > kParallelTolerance * glm::length(spec.y))) {
+    fail(field + ".y", "= " + format_vec(spec.y) + " is zero or parallel to x = " +
+                           format_vec(spec.x) + ": it cannot fix the dorsal direction" + note);
+  }
+  return {x, across / across_norm};
+}
+
+double checked_length(double length, const std::string& field, const std::string& note) {
+  if (!std::isfinite(length) || !(length > 0.0)) {
+    fail(field + ".length", "= " + format_double(length) + " must be finite and > 0" + note);
+  }
+  return length;
+}
+
+// A frame from mesh-space origin and unit, orthogonal x and y; length given or the
+// extent of `subtree` along x.
+BodyFrame assemble(const Mesh& mesh, const VertexSet& subtree, const glm::dvec3& origin,
+                   const glm::dvec3& x, const glm::dvec3& y, std::optional<double> length,
+                   const std::string& field, const std::string& note) {
+  BodyFrame frame;
+  frame.origin = origin;
+  frame.axis_x = x;
+  frame.axis_y = y;
+  frame.axis_z = glm::cross(x, y);
+  if (length) {
+    frame.length = *length;
+  } else {
+    const auto [lo, hi] = extent(mesh, subtree, origin, x);
+    frame.length = hi - lo;
+    if (!(frame.length > 0.0)) {
+      fail(field + ".length", "omitted, and the component's vertices have no extent along x = " +
+                                  format_vec(x) + ": give the length" + note);
+    }
+  }
+  try {
+    frame.validate();
+  } catch (const Error& e) {  // cannot happen after the checks above; never let it pass
+    fail(field + "." + e.field(), e.what() + note);
+  }
+  return frame;
+}
+
+// The root's frame (in mesh coordinates); the root owns every vertex.
+BodyFrame root_frame(const Mesh& mesh, const RigSpec& spec, const Tree& tree,
+                     const VertexSet& all) {
+  const std::string note =
+      " (frame of the root component '" + spec.components[tree.root].name + "')";
+  switch (spec.frame.mode) {
+    case FrameSpec::Mode::kAuto:
+      try {
+        return find_body_frame(mesh);
+      } catch (const Error& e) {
+        throw Error(e.code(), e.field(),
+                    std::string("frame: the automatic body frame") + note + " failed: " + e.what() +
+                        " (give the frame explicitly)");
+      }
+    case FrameSpec::Mode::kIdentity:
+      return BodyFrame::identity();
+    case FrameSpec::Mode::kExplicit:
+      break;
+  }
+  const auto [x, y] = explicit_axes(spec.frame, "frame", note);
+  std::optional<double> length;
+  if (spec.frame.length) length = checked_length(*spec.frame.length, "frame", note);
+  return assemble(mesh, all, spec.frame.origin, x, y, length, "frame", note);
+}
+
+// The vertices of `subtree` on its boundary with the rest of the mesh: those sharing a
+// triangle with a vertex outside it.
+VertexSet boundary(const Mesh& mesh, const std::vector<char>& in_subtree) {
+  std::vector<char> on(mesh.vertex_count(), 0);
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+    const std::uint32_t* corner = &mesh.indices[3 * t];
+    const int inside = in_subtree[corner[0]] + in_subtree[corner[1]] + in_subtree[corner[2]];
+    if (inside == 0 || inside == 3) continue;
+    for (int k = 0; k < 3; ++k) {
+      if (in_subtree[corner[k]]) on[corner[k]] = 1;
+    }
+  }
+  VertexSet set;
+  for (std::size_t v = 0; v < on.size(); ++v) {
+    if (on[v]) set.push_back(static_cast<std::uint32_t>(v));
+  }
+  return set;
+}
+
+// The automatic frame of a child (rule in rig.hpp).
+BodyFrame auto_child_frame(const Mesh& mesh, const VertexSet& subtree, const BodyFrame& parent,
+                           const std::string& field) {
+  const VertexSet attachment = boundary(mesh, membership(subtree, mesh.vertex_count()));
+  glm::dvec3 origin{0.0};
+  if (!attachment.empty()) {
+    origin = centroid(mesh, attachment);
+  } else {  // a separate piece: its vertex closest to the parent's origin
+    double best = std::numeric_limits<double>::infinity();
+    for (const std::uint32_t v : subtree) {
+      const double d = glm::length(position(mesh, v) - parent.origin);
+      if (d < best) {
+        best = d;
+        origin = position(mesh, v);
+      }
+    }
+  }
+  const glm::dvec3 towards = centroid(mesh, subtree) - origin;
+  glm::dvec3 lo(std::numeric_limits<double>::infinity());
+  glm::dvec3 hi = -lo;
+  for (const std::uint32_t v : subtree) {
+    lo = glm::min(lo, position(mesh, v));
+    hi = glm::max(hi, position(mesh, v));
+  }
+  const double size = glm::length(hi - lo);
+  if (!(glm::length(towards) > kCoincideTolerance * size)) {
+    fail(field, "automatic frame: the component's centroid coincides with its attachment " +
+                    format_vec(origin) + ", so its x axis is undefined (" +
+                    std::to_string(subtree.size()) + " vertices): give the frame explicitly");
+  }
+  const glm::dvec3 x = glm::normalize(towards);
+  glm::dvec3 y = parent.axis_y - glm::dot(parent.axis_y, x) * x;
+  if (glm::length(y) < kAutoYTolerance) y = parent.axis_z - glm::dot(parent.axis_z, x) * x;
+  return assemble(mesh, subtree, origin, x, glm::normalize(y), std::nullopt, field, "");
+}
+
+// A child's frame in mesh coordinates, from its spec (in the parent's local frame).
+BodyFrame child_frame(const Mesh& mesh, const ComponentSpec& component, const VertexSet& subtree,
+                      const BodyFrame& parent, const std::string& component_field_name) {
+  const std::string field = component_field_name + ".frame";
+  if (!component.frame || component.frame->mode == FrameSpec::Mode::kAuto) {
+    return auto_child_frame(mesh, subtree, parent, field);
+  }
+  if (component.frame->mode == FrameSpec::Mode::kIdentity) return parent;
+  const FrameSpec& spec = *component.frame;
+  const auto [x, y] = explicit_axes(spec, field, " (in the parent's local frame)");
+  std::optional<double> length;
+  if (spec.length) {
+    length = checked_length(*spec.length, field, " (in the parent's local frame)") * parent.length;
+  }
+  const glm::dvec3 mesh_x = glm::normalize(parent.vector_to_mesh(x));
+  glm::dvec3 mesh_y = parent.vector_to_mesh(y);
+  mesh_y = glm::normalize(mesh_y - glm::dot(mesh_y, mesh_x) * mesh_x);
+  return assemble(mesh, subtree, parent.point_to_mesh(spec.origin), mesh_x, mesh_y, length, field,
+                  "");
+}
+
+// ---------------------------------------------------------------------------------
+// Walking the tree
+
+// Per spec component: its subtree vertices, own vertices and frame.
+struct Resolved {
+  std::vector<VertexSet> subtree;
+  std::vector<VertexSet> own;
+  std::vector<BodyFrame> frame;
+};
+
+// Selects the children of `c` (whose subtree and frame are known) and places their
+// frames; fills own[c]; recurses.
+void resolve_children(const Mesh& mesh, const RigSpec& spec, const Tree& tree, std::size_t c,
+                      Resolved& out) {
+  const std::vector<char> in_parent = membership(out.subtree[c], mesh.vertex_count());
+  const ParentView parent{&out.subtree[c], &in_parent, &out.frame[c], spec.components[c].name};
+  std::vector<std::size_t> taken_by(mesh.vertex_count(), kNone);
+  for (const std::size_t child : tree.children[c]) {
+    const std::string field = component_field(spec, child);
+    out.subtree[child] = select_vertices(mesh, spec.components[child], parent, field);
+    for (const std::uint32_t v : out.subtree[child]) {
+      if (taken_by[v] != kNone) {
+        fail(field + ".select", "takes vertex " + std::to_string(v) + ", which its sibling '" +
+                                    spec.components[taken_by[v]].name + "' (components[" +
+                                    std::to_string(taken_by[v]) +
+                                    "]) also takes: siblings must be disjoint");
+      }
+      taken_by[v] = child;
+    }
+    out.frame[child] =
+        child_frame(mesh, spec.components[child], out.subtree[child], out.frame[c], field);
+  }
+  for (const std::uint32_t v : out.subtree[c]) {
+    if (taken_by[v] == kNone) out.own[c].push_back(v);
+  }
+  for (const std::size_t child : tree.children[c]) resolve_children(mesh, spec, tree, child, out);
+}
+
+// Spec indices in depth-first order (children in spec order).
+std::vector<std::size_t> depth_first(const Tree& tree) {
+  std::vector<std::size_t> order;
+  std::vector<std::size_t> stack = {tree.root};
+  while (!stack.empty()) {
+    const std::size_t c = stack.back();
+    stack.pop_back();
+    order.push_back(c);
+    for (auto it = tree.children[c].rbegin(); it != tree.children[c].rend(); ++it) {
+      stack.push_back(*it);
+    }
+  }
+  return order;
+}
+
+// Parameter names in order of first use (components and chains in spec order).
+std::vector<std::string> collect_params(const RigSpec& spec) {
+  std::vector<std::string> params;
+  for (std::size_t i = 0; i < spec.components.size(); ++i) {
+    const std::vector<StageSpec>& chain = spec.components[i].chain;
+    for (std::size_t k = 0; k < chain.size(); ++k) {
+      const std::string& param = chain[k].param;
+      if (param.empty()) {
+        fail(component_field(spec, i) + ".chain[" + std::to_string(k) + "].param",
+             "is empty: every stage names the parameter it reads");
+      }
+      if (std::find(params.begin(), params.end(), param) == params.end()) params.push_back(param);
+    }
+  }
+  return params;
+}
+
+double largest_abs_x(const Mesh& mesh, const VertexSet& vertices, const BodyFrame& frame) {
+  double x_max = 0.0;
+  for (const std::uint32_t v : vertices) {
+    x_max = std::max(x_max, std::abs(frame.point_to_local(position(mesh, v)).x));
+  }
+  return x_max;
+}
+
+std::vector<RigStage> resolve_chain(const Mesh& mesh, const RigSpec& spec, std::size_t c,
+                                    const Resolved& resolved, const Rig& rig) {
+  std::vector<RigStage> stages;
+  const BodyFrame& frame = resolved.frame[c];
+  const double x_max = largest_abs_x(mesh, resolved.subtree[c], frame);
+  const std::vector<StageSpec>& chain = spec.components[c].chain;
+  for (std::size_t k = 0; k < chain.size(); ++k) {
+    const StageSpec& stage = chain[k];
+    if (stage.deformer == DeformerKind::kHinge &&
+        (!std::isfinite(stage.width) || stage.width < 0.0)) {
+      fail(component_field(spec, c) + ".chain[" + std::to_string(k) + "].width",
+           "= " + format_double(stage.width) + " must be finite and >= 0 (the hinge's width)");
+    }
+    RigStage out;
+    out.deformer = stage.deformer;
+    out.mode = stage.mode;
+    out.width = stage.deformer == DeformerKind::kHinge ? stage.width : 0.0;
+    out.param = static_cast<std::size_t>(
+        std::find(rig.params.begin(), rig.params.end(), stage.param) - rig.params.begin());
+    out.frame = frame;
+    out.x_max = x_max;
+    stages.push_back(out);
+  }
+  return stages;
+}
+
+void check_component(const Rig& rig, std::size_t component) {
+  if (component >= rig.components.size()) {
+    throw Error(ErrorCode::kInvalidArgument, "component",
+                "component = " + std::to_string(component) + " is out of range (the rig has " +
+                    std::to_string(rig.components.size()) + " components)");
+  }
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------
+
+std::size_t Rig::param_index(const std::string& name) const {
+  const auto it = std::find(params.begin(), params.end(), name);
+  if (it != params.end()) return static_cast<std::size_t>(it - params.begin());
+  std::string list;
+  for (const std::string& p : params) list += (list.empty() ? "" : ", ") + p;
+  throw Error(ErrorCode::kInvalidArgument, name,
+              "'" + name + "' is not a parameter of the rig (its parameters: " + list + ")");
+}
+
+std::vector<std::pair<std::size_t, std::size_t>> Rig::path(std::size_t component) const {
+  check_component(*this, component);
+  std::vector<std::pair<std::size_t, std::size_t>> stages;
+  for (int c = static_cast<int>(component); c >= 0;
+       c = components[static_cast<std::size_t>(c)].parent) {
+    const std::size_t index = static_cast<std::size_t>(c);
+    for (std::size_t k = 0; k < components[index].chain.size(); ++k) stages.emplace_back(index, k);
+  }
+  return stages;
+}
+
+std::size_t Rig::depth(std::size_t component) const {
+  check_component(*this, component);
+  std::size_t depth = 0;
+  for (int c = components[component].parent; c >= 0;
+       c = components[static_cast<std::size_t>(c)].parent) {
+    ++depth;
+  }
+  return depth;
+}
+
+Rig resolve_rig(const RigSpec& spec, const Mesh& mesh) {
+  validate_mesh(mesh);
+  const Tree tree = build_tree(spec);
+  Rig rig;
+  rig.params = collect_params(spec);
+
+  const std::size_t n = spec.components.size();
+  Resolved resolved;
+  resolved.subtree.resize(n);
+  resolved.own.resize(n);
+  resolved.frame.resize(n);
+  VertexSet& all = resolved.subtree[tree.root];
+  all.resize(mesh.vertex_count());
+  for (std::size_t v = 0; v < all.size(); ++v) all[v] = static_cast<std::uint32_t>(v);
+  resolved.frame[tree.root] = root_frame(mesh, spec, tree, all);
+  resolve_children(mesh, spec, tree, tree.root, resolved);
+
+  const std::vector<std::size_t> order = depth_first(tree);
+  std::vector<std::size_t> position_of(n, kNone);
+  for (std::size_t k = 0; k < order.size(); ++k) position_of[order[k]] = k;
+  rig.components.resize(n);
+  rig.subtree_end.assign(n, 0);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t c = order[k];
+    RigComponent& out = rig.components[k];
+    out.name = spec.components[c].name;
+    out.parent = tree.parent[c] == kNone ? -1 : static_cast<int>(position_of[tree.parent[c]]);
+    out.vertices = std::move(resolved.own[c]);
+    out.frame = resolved.frame[c];
+    out.chain = resolve_chain(mesh, spec, c, resolved, rig);
+  }
+  // Subtrees are contiguous: a component's ends where the next non-descendant starts.
+  for (std::size_t k = n; k-- > 0;) {
+    std::size_t end = k + 1;
+    while (end < n && rig.depth(end) > rig.depth(k)) end = rig.subtree_end[end];
+    rig.subtree_end[k] = end;
+  }
+  return rig;
+}
+
+Rig single_bend_rig(const Mesh& mesh, const BodyFrame& frame, BendMode mode) {
+  validate_mesh(mesh);
+  try {
+    frame.validate();
+  } catch (const Error& e) {
+    throw Error(e.code(), "frame." + e.field(), std::string("frame.") + e.what());
+  }
+  Rig rig;
+  rig.params = {"m"};
+  RigComponent body;
+  body.name = "body";
+  body.vertices.resize(mesh.vertex_count());
+  for (std::size_t v = 0; v < body.vertices.size(); ++v) {
+    body.vertices[v] = static_cast<std::uint32_t>(v);
+  }
+  body.frame = frame;
+  RigStage stage;
+  stage.deformer = DeformerKind::kBend;
+  stage.mode = mode;
+  stage.param = 0;
+  stage.frame = frame;
+  stage.x_max = largest_abs_x(mesh, body.vertices, frame);
+  body.chain.push_back(stage);
+  rig.components.push_back(std::move(body));
+  rig.subtree_end = {1};
+  return rig;
+}
+
+}  // namespace finflex
