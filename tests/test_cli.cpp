@@ -123,6 +123,20 @@ struct BadCase {
   std::string also;
 };
 
+// Each case exits 2 with one line on stderr naming the problem, and writes nothing.
+void expect_deform_fails(const std::vector<BadCase>& cases) {
+  for (const BadCase& c : cases) {
+    const std::string out = test::temp_path("never.obj");
+    const RunResult r = run_cli("deform --out '" + out + "' " + c.arguments);
+    SCOPED_TRACE(c.arguments);
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(line_count(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(c.expected), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(c.also), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+  }
+}
+
 TEST(Cli, BadInputsExitTwoWithOneLineAndWriteNothing) {
   const std::string in = fish("blub/fish_low_resolution.obj");
   const std::vector<BadCase> cases = {
@@ -144,16 +158,7 @@ TEST(Cli, BadInputsExitTwoWithOneLineAndWriteNothing) {
       {"--m 0.1", "--in", ""},
       {"--in " + in, "--m", ""},
   };
-  for (const BadCase& c : cases) {
-    const std::string out = test::temp_path("never.obj");
-    const RunResult r = run_cli("deform --out '" + out + "' " + c.arguments);
-    SCOPED_TRACE(c.arguments);
-    EXPECT_EQ(r.exit_code, 2);
-    EXPECT_EQ(line_count(r.err), 1) << r.err;
-    EXPECT_NE(r.err.find(c.expected), std::string::npos) << r.err;
-    EXPECT_NE(r.err.find(c.also), std::string::npos) << r.err;
-    EXPECT_FALSE(std::filesystem::exists(out));
-  }
+  expect_deform_fails(cases);
 }
 
 TEST(Cli, AnExistingOutputIsLeftUntouchedOnError) {
@@ -234,16 +239,7 @@ TEST(Cli, BadRigInputsExitTwoAndWriteNothing) {
       {"--in " + in + " --rig '" + broken + "'", "--rig", ""},
       {"--in " + in + " --m 0.1 --set body_m=1", "--set", "--rig"},
   };
-  for (const BadCase& c : cases) {
-    const std::string out = test::temp_path("never.obj");
-    const RunResult r = run_cli("deform --out '" + out + "' " + c.arguments);
-    SCOPED_TRACE(c.arguments);
-    EXPECT_EQ(r.exit_code, 2);
-    EXPECT_EQ(line_count(r.err), 1) << r.err;
-    EXPECT_NE(r.err.find(c.expected), std::string::npos) << r.err;
-    EXPECT_NE(r.err.find(c.also), std::string::npos) << r.err;
-    EXPECT_FALSE(std::filesystem::exists(out));
-  }
+  expect_deform_fails(cases);
 }
 
 TEST(Cli, ClampBringsParameterIntoRange) {

@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "device_batch.hpp"
 #include "finflex/error.hpp"
 
 namespace finflex {
@@ -31,14 +32,6 @@ std::vector<float> rest_planes(const LocalMesh& mesh, std::size_t stride) {
   return data;
 }
 
-cl::Buffer make_buffer(const cl::Context& context, cl_mem_flags flags, std::size_t bytes,
-                       void* host = nullptr) {
-  cl_int status = CL_SUCCESS;
-  cl::Buffer buffer(context, flags, bytes, host, &status);
-  check_cl(status, "clCreateBuffer");
-  return buffer;
-}
-
 }  // namespace
 
 std::string bend_build_options(const BendSettings& settings, bool tangents) {
@@ -54,8 +47,8 @@ ClDeformer::ClDeformer(Context& context, const LocalMesh& mesh)
     throw Error(ErrorCode::kInvalidMesh, "positions", "the mesh has more than 2^32 vertices");
   }
   std::vector<float> planes = rest_planes(mesh_, plane_stride_);
-  rest_ = make_buffer(context_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-                      planes.size() * sizeof(float), planes.data());
+  rest_ = detail::make_buffer(context_.context(), CL_MEM_READ_ONLY, planes.size() * sizeof(float),
+                              planes.data());
   const BodyFrame& f = mesh_.frame;
   back_transform_ = {to_cl_float4(f.origin),
                      to_cl_float4(f.axis_x * f.length),
@@ -76,28 +69,7 @@ BatchLayout ClDeformer::layout(std::size_t instances) const {
 }
 
 DeviceBatch ClDeformer::allocate(std::size_t instances) const {
-  if (instances == 0) {
-    throw Error(ErrorCode::kInvalidArgument, "instances", "instances = 0: at least one is needed");
-  }
-  DeviceBatch batch;
-  batch.layout = layout(instances);
-  const std::size_t bytes = batch.layout.attribute_elements() * sizeof(float);
-  const std::size_t limit = context_.description().max_allocation_bytes;
-  if (bytes > limit) {
-    throw Error(ErrorCode::kOutOfRange, "instances",
-                "instances = " + std::to_string(instances) + " needs " + std::to_string(bytes) +
-                    " bytes per attribute, above the device's largest allocation (" +
-                    std::to_string(limit) + " bytes on '" + context_.description().device_name +
-                    "')");
-  }
-  const cl::Context& cl_context = context_.context();
-  batch.positions = make_buffer(cl_context, CL_MEM_WRITE_ONLY, bytes);
-  batch.normals = make_buffer(cl_context, CL_MEM_WRITE_ONLY, bytes);
-  batch.tangents =
-      make_buffer(cl_context, CL_MEM_WRITE_ONLY, batch.layout.tangents ? bytes : sizeof(float));
-  batch.parameters = make_buffer(cl_context, CL_MEM_READ_ONLY, instances * sizeof(float));
-  batch.staged_parameters.resize(instances);
-  return batch;
+  return detail::allocate_batch(context_, layout(instances), 1);
 }
 
 cl::Event ClDeformer::enqueue(const std::vector<float>& m, const BendSettings& settings,
@@ -107,16 +79,11 @@ cl::Event ClDeformer::enqueue(const std::vector<float>& m, const BendSettings& s
                 "m has " + std::to_string(m.size()) + " values for a batch of " +
                     std::to_string(batch.layout.instance_count) + " instances");
   }
-  // The previous upload reads staged_parameters until it completes (long done, in a
-  // steady frame loop); then m is checked into it, reusing its memory.
-  if (batch.parameters_uploaded()) check_cl(batch.parameters_uploaded.wait(), "clWaitForEvents");
+  detail::wait_for_previous_upload(batch);
   check_bend_params_into(m, mesh_.x_max, clamp, batch.staged_parameters);
+  detail::upload_parameters(context_, batch, wait);
 
   cl::CommandQueue& queue = context_.queue();
-  check_cl(
-      queue.enqueueWriteBuffer(batch.parameters, CL_FALSE, 0, m.size() * sizeof(float),
-                               batch.staged_parameters.data(), wait, &batch.parameters_uploaded),
-      "clEnqueueWriteBuffer m");
 
   cl::Kernel& kernel = bend_kernel(settings);
   cl_uint arg = 0;
@@ -150,19 +117,7 @@ cl::Kernel& ClDeformer::bend_kernel(const BendSettings& settings) {
 }
 
 DeformedBatch<float> ClDeformer::read(const DeviceBatch& batch) {
-  DeformedBatch<float> out;
-  out.resize(batch.layout);
-  cl::CommandQueue& queue = context_.queue();
-  const std::size_t bytes = batch.layout.attribute_elements() * sizeof(float);
-  check_cl(queue.enqueueReadBuffer(batch.positions, CL_TRUE, 0, bytes, out.positions.data()),
-           "clEnqueueReadBuffer positions");
-  check_cl(queue.enqueueReadBuffer(batch.normals, CL_TRUE, 0, bytes, out.normals.data()),
-           "clEnqueueReadBuffer normals");
-  if (batch.layout.tangents) {
-    check_cl(queue.enqueueReadBuffer(batch.tangents, CL_TRUE, 0, bytes, out.tangents.data()),
-             "clEnqueueReadBuffer tangents");
-  }
-  return out;
+  return detail::read_batch(context_, batch);
 }
 
 }  // namespace finflex

@@ -1,5 +1,6 @@
 #include <string>
 
+#include "device_batch.hpp"
 #include "finflex/error.hpp"
 #include "finflex/rig_deformer.hpp"
 #include "rig_program.hpp"
@@ -8,15 +9,6 @@ namespace finflex {
 namespace {
 
 constexpr std::size_t kGroupSize = ClDeformer::kLocalSize;
-
-cl::Buffer make_buffer(const cl::Context& context, cl_mem_flags flags, std::size_t bytes,
-                       const void* host = nullptr) {
-  cl_int status = CL_SUCCESS;
-  cl::Buffer buffer(context, flags | (host ? CL_MEM_COPY_HOST_PTR : 0), bytes,
-                    const_cast<void*>(host), &status);
-  check_cl(status, "clCreateBuffer");
-  return buffer;
-}
 
 // One instance's planes of an attribute over slots; padding slots get `padding`.
 template <typename Attribute>
@@ -54,16 +46,20 @@ ClRigDeformer::ClRigDeformer(Context& context, const Mesh& mesh, const Rig& rig)
 
   const cl::Context& cl_context = context_.context();
   const std::size_t plane_bytes = 3 * slot_count_ * sizeof(float);
-  rest_positions_ = make_buffer(cl_context, CL_MEM_READ_ONLY, plane_bytes,
-                                slot_planes(mesh.positions, slots, glm::vec3(0.0f), false).data());
-  rest_normals_ = make_buffer(cl_context, CL_MEM_READ_ONLY, plane_bytes,
-                              slot_planes(mesh.normals, slots, glm::vec3(0, 0, 1), true).data());
+  rest_positions_ =
+      detail::make_buffer(cl_context, CL_MEM_READ_ONLY, plane_bytes,
+                          slot_planes(mesh.positions, slots, glm::vec3(0.0f), false).data());
+  rest_normals_ =
+      detail::make_buffer(cl_context, CL_MEM_READ_ONLY, plane_bytes,
+                          slot_planes(mesh.normals, slots, glm::vec3(0, 0, 1), true).data());
   rest_tangents_ =
-      tangents_ ? make_buffer(cl_context, CL_MEM_READ_ONLY, plane_bytes,
-                              slot_planes(mesh.tangents, slots, glm::vec3(1, 0, 0), true).data())
-                : make_buffer(cl_context, CL_MEM_READ_ONLY, sizeof(float));
+      tangents_
+          ? detail::make_buffer(cl_context, CL_MEM_READ_ONLY, plane_bytes,
+                                slot_planes(mesh.tangents, slots, glm::vec3(1, 0, 0), true).data())
+          : detail::make_buffer(cl_context, CL_MEM_READ_ONLY, sizeof(float));
   const std::vector<float> frames = detail::stage_frames(rig_);
-  stages_ = make_buffer(cl_context, CL_MEM_READ_ONLY, frames.size() * sizeof(float), frames.data());
+  stages_ = detail::make_buffer(cl_context, CL_MEM_READ_ONLY, frames.size() * sizeof(float),
+                                frames.data());
 
   const std::vector<detail::Pass> passes = detail::make_passes(rig_);
   pass_count_ = passes.size();
@@ -85,36 +81,17 @@ RigPath ClRigDeformer::automatic_path() const {
 }
 
 DeviceBatch ClRigDeformer::allocate(std::size_t instances) const {
-  if (instances == 0) {
-    throw Error(ErrorCode::kInvalidArgument, "instances", "instances = 0: at least one is needed");
-  }
-  DeviceBatch batch;
-  batch.layout = layout(instances);
-  const std::size_t bytes = batch.layout.attribute_elements() * sizeof(float);
-  const std::size_t limit = context_.description().max_allocation_bytes;
-  if (bytes > limit) {
-    throw Error(ErrorCode::kOutOfRange, "instances",
-                "instances = " + std::to_string(instances) + " needs " + std::to_string(bytes) +
-                    " bytes per attribute, above the device's largest allocation (" +
-                    std::to_string(limit) + " bytes)");
-  }
-  const cl::Context& cl_context = context_.context();
-  batch.positions = make_buffer(cl_context, CL_MEM_READ_WRITE, bytes);
-  batch.normals = make_buffer(cl_context, CL_MEM_READ_WRITE, bytes);
-  batch.tangents = make_buffer(cl_context, CL_MEM_READ_WRITE, tangents_ ? bytes : sizeof(float));
-  const std::size_t values = std::max<std::size_t>(instances * rig_.params.size(), 1);
-  batch.parameters = make_buffer(cl_context, CL_MEM_READ_ONLY, values * sizeof(float));
-  return batch;
+  return detail::allocate_batch(context_, layout(instances), rig_.params.size());
 }
 
 void ClRigDeformer::ensure_scratch(DeviceBatch& batch) const {
   if (batch.scratch_positions()) return;
   const std::size_t bytes = batch.layout.attribute_elements() * sizeof(float);
   const cl::Context& cl_context = context_.context();
-  batch.scratch_positions = make_buffer(cl_context, CL_MEM_READ_WRITE, bytes);
-  batch.scratch_normals = make_buffer(cl_context, CL_MEM_READ_WRITE, bytes);
+  batch.scratch_positions = detail::make_buffer(cl_context, CL_MEM_READ_WRITE, bytes);
+  batch.scratch_normals = detail::make_buffer(cl_context, CL_MEM_READ_WRITE, bytes);
   batch.scratch_tangents =
-      make_buffer(cl_context, CL_MEM_READ_WRITE, tangents_ ? bytes : sizeof(float));
+      detail::make_buffer(cl_context, CL_MEM_READ_WRITE, tangents_ ? bytes : sizeof(float));
 }
 
 cl::Kernel& ClRigDeformer::kernel(const std::string& name, NormalMode normals) {
@@ -141,18 +118,12 @@ cl::Event ClRigDeformer::enqueue(const RigParameters& parameters, NormalMode nor
                     " instances, the batch holds " + std::to_string(batch.layout.instance_count) +
                     " of this rig");
   }
-  // The previous upload reads staged_parameters until it completes.
-  if (batch.parameters_uploaded()) check_cl(batch.parameters_uploaded.wait(), "clWaitForEvents");
+  detail::wait_for_previous_upload(batch);
   check_rig_params_into(rig_, limits_, parameters, clamp, batch.staged_parameters);
+  detail::upload_parameters(context_, batch, wait);
   if (path == RigPath::kAuto) path = automatic_path();
 
   cl::CommandQueue& queue = context_.queue();
-  if (!batch.staged_parameters.empty()) {
-    check_cl(queue.enqueueWriteBuffer(
-                 batch.parameters, CL_FALSE, 0, batch.staged_parameters.size() * sizeof(float),
-                 batch.staged_parameters.data(), wait, &batch.parameters_uploaded),
-             "clEnqueueWriteBuffer parameters");
-  }
   const cl::NDRange global(slot_count_, batch.layout.instance_count);
   const cl::NDRange local(kGroupSize, 1);
   const auto param_count = static_cast<cl_uint>(rig_.params.size());
@@ -201,19 +172,8 @@ cl::Event ClRigDeformer::enqueue(const RigParameters& parameters, NormalMode nor
 }
 
 DeformedBatch<float> ClRigDeformer::read(const DeviceBatch& batch) {
-  DeformedBatch<float> out;
-  out.resize(batch.layout);
+  DeformedBatch<float> out = detail::read_batch(context_, batch);
   out.slot_of_vertex = slot_of_vertex_;
-  cl::CommandQueue& queue = context_.queue();
-  const std::size_t bytes = batch.layout.attribute_elements() * sizeof(float);
-  check_cl(queue.enqueueReadBuffer(batch.positions, CL_TRUE, 0, bytes, out.positions.data()),
-           "clEnqueueReadBuffer positions");
-  check_cl(queue.enqueueReadBuffer(batch.normals, CL_TRUE, 0, bytes, out.normals.data()),
-           "clEnqueueReadBuffer normals");
-  if (batch.layout.tangents) {
-    check_cl(queue.enqueueReadBuffer(batch.tangents, CL_TRUE, 0, bytes, out.tangents.data()),
-             "clEnqueueReadBuffer tangents");
-  }
   return out;
 }
 
