@@ -227,6 +227,17 @@ TEST(Cli, BadRigInputsExitTwoAndWriteNothing) {
   const std::string rig = fish("rigs/blub.rig.json");
   const std::string broken = test::temp_path("broken.rig.json");
   { std::ofstream(broken) << "{\"components\": [ {\"name\": \"body\", \"select\": \"all\",}"; }
+  // Two siblings taking the same vertices: resolves only against the mesh.
+  const std::string overlapping = test::temp_path("overlapping.rig.json");
+  {
+    std::ofstream(overlapping)
+        << R"({"components": [
+             {"name": "body", "select": "all", "chain": []},
+             {"name": "tail", "parent": "body", "select": {"box": {"min": [-9, -9, -9], "max": [-0.2, 9, 9]}},
+              "chain": [{"deformer": "hinge", "param": "a"}]},
+             {"name": "fin", "parent": "body", "select": {"box": {"min": [-9, -9, -9], "max": [-0.3, 9, 9]}},
+              "chain": [{"deformer": "hinge", "param": "b"}]}]})";
+  }
   const std::vector<BadCase> cases = {
       {"--in " + in + " --rig " + rig + " --set no_such=1", "--set", "no_such"},
       {"--in " + in + " --rig " + rig + " --set body_m", "--set", "NAME=VALUE"},
@@ -237,6 +248,7 @@ TEST(Cli, BadRigInputsExitTwoAndWriteNothing) {
       {"--in " + in + " --rig " + rig + " --m 0.3", "--m", "--rig"},
       {"--in " + in + " --rig '/nonexistent.rig.json'", "--rig", "nonexistent"},
       {"--in " + in + " --rig '" + broken + "'", "--rig", ""},
+      {"--in " + in + " --rig '" + overlapping + "'", "'fin'", "'tail'"},
       {"--in " + in + " --m 0.1 --set body_m=1", "--set", "--rig"},
   };
   expect_deform_fails(cases);
