@@ -13,5 +13,6 @@ using Command = std::function<int()>;
 Command add_deform_command(CLI::App& app);
 Command add_info_command(CLI::App& app);
 Command add_check_command(CLI::App& app);
+Command add_rig_info_command(CLI::App& app);
 
 }  // namespace finflex::cli

@@ -3,6 +3,7 @@
 //   finflex deform --in PATH --out PATH --m VALUE [--mode paper|exact]
 //                  [--normals rotate|jacobian] [--frame auto|identity] [--clamp] [--device NAME]
 //   finflex check --in PATH [--device NAME]
+//   finflex rig-info --in PATH --rig RIG.json [--labels FILE]
 //   finflex info
 #include <iostream>
 
@@ -15,6 +16,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   const Command deform = add_deform_command(app);
   const Command check = add_check_command(app);
+  const Command rig_info = add_rig_info_command(app);
   const Command info = add_info_command(app);
   try {
     app.parse(argc, argv);
@@ -29,5 +31,6 @@ int main(int argc, char** argv) {
   }
   if (app.got_subcommand("deform")) return deform();
   if (app.got_subcommand("check")) return check();
+  if (app.got_subcommand("rig-info")) return rig_info();
   return info();
 }
