@@ -111,6 +111,21 @@ TEST(Cli, CheckPassesOnTheDefaultDevice) {
   EXPECT_EQ(line_count(missing.err), 1);
 }
 
+TEST(Cli, BenchPrintsOneJsonObject) {
+  for (const std::string extra : {"", " --rig " + fish("rigs/blub.rig.json") + " --path passes"}) {
+    const RunResult r = run_cli("bench --mesh " + fish("blub/fish_low_resolution.obj") +
+                                " --instances 8 --frames 3 --json" + extra);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(line_count(r.out), 1) << r.out;
+    for (const char* key : {"\"device\"", "\"vertices\":945", "\"instances\":8", "\"frames\":3",
+                            "\"seconds_per_frame_median\"", "\"vertices_per_second\"",
+                            "\"output_bytes_per_second\"", "\"write_bandwidth_bytes_per_second\""}) {
+      EXPECT_NE(r.out.find(key), std::string::npos) << key << " in " << r.out;
+    }
+  }
+  EXPECT_EQ(run_cli("bench --mesh " + fish("blub/fish_low_resolution.obj") + " --instances 0").exit_code, 2);
+}
+
 TEST(Cli, InfoListsTheDefaultDevice) {
   const RunResult r = run_cli("info");
   ASSERT_EQ(r.exit_code, 0) << r.err;

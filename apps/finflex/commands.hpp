@@ -14,5 +14,6 @@ Command add_deform_command(CLI::App& app);
 Command add_info_command(CLI::App& app);
 Command add_check_command(CLI::App& app);
 Command add_rig_info_command(CLI::App& app);
+Command add_bench_command(CLI::App& app);
 
 }  // namespace finflex::cli

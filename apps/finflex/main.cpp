@@ -4,6 +4,8 @@
 //                  [--normals rotate|jacobian] [--frame auto|identity] [--clamp] [--device NAME]
 //   finflex check --in PATH [--device NAME]
 //   finflex rig-info --in PATH --rig RIG.json [--labels FILE]
+//   finflex bench --mesh PATH --instances N --frames F [--mode paper|exact]
+//                 [--rig RIG.json [--path fused|passes]] [--device NAME] [--json]
 //   finflex info
 #include <iostream>
 
@@ -17,6 +19,7 @@ int main(int argc, char** argv) {
   const Command deform = add_deform_command(app);
   const Command check = add_check_command(app);
   const Command rig_info = add_rig_info_command(app);
+  const Command bench = add_bench_command(app);
   const Command info = add_info_command(app);
   try {
     app.parse(argc, argv);
@@ -32,5 +35,6 @@ int main(int argc, char** argv) {
   if (app.got_subcommand("deform")) return deform();
   if (app.got_subcommand("check")) return check();
   if (app.got_subcommand("rig-info")) return rig_info();
+  if (app.got_subcommand("bench")) return bench();
   return info();
 }
