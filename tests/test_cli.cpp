@@ -112,7 +112,8 @@ TEST(Cli, CheckPassesOnTheDefaultDevice) {
 }
 
 TEST(Cli, BenchPrintsOneJsonObject) {
-  for (const std::string extra : {"", " --rig " + fish("rigs/blub.rig.json") + " --path passes"}) {
+  for (const std::string& extra :
+       std::vector<std::string>{"", " --rig " + fish("rigs/blub.rig.json") + " --path passes"}) {
     const RunResult r = run_cli("bench --mesh " + fish("blub/fish_low_resolution.obj") +
                                 " --instances 8 --frames 3 --json" + extra);
     ASSERT_EQ(r.exit_code, 0) << r.err;
