@@ -6,6 +6,7 @@
 //   finflex rig-info --in PATH --rig RIG.json [--labels FILE]
 //   finflex bench --mesh PATH --instances N --frames F [--mode paper|exact]
 //                 [--rig RIG.json [--path fused|passes]] [--device NAME] [--json]
+//   finflex subdivide --in PATH --levels N --out PATH
 //   finflex info
 #include <iostream>
 
@@ -20,6 +21,7 @@ int main(int argc, char** argv) {
   const Command check = add_check_command(app);
   const Command rig_info = add_rig_info_command(app);
   const Command bench = add_bench_command(app);
+  const Command subdivide = add_subdivide_command(app);
   const Command info = add_info_command(app);
   try {
     app.parse(argc, argv);
@@ -36,5 +38,6 @@ int main(int argc, char** argv) {
   if (app.got_subcommand("check")) return check();
   if (app.got_subcommand("rig-info")) return rig_info();
   if (app.got_subcommand("bench")) return bench();
+  if (app.got_subcommand("subdivide")) return subdivide();
   return info();
 }

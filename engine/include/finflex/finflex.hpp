@@ -16,3 +16,4 @@
 #include "finflex/reference_deformer.hpp"
 #include "finflex/rig.hpp"
 #include "finflex/rig_deformer.hpp"
+#include "finflex/subdivide.hpp"
