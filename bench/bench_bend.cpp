@@ -1,5 +1,7 @@
 // The single-bend kernel next to a write-only kernel and a copy kernel of the same
 // NDRange and output planes.
+#include <chrono>
+
 #include "bench_support.hpp"
 
 namespace finflex::bench {
@@ -57,6 +59,29 @@ void BM_Bend(benchmark::State& state, BendSettings settings) {
   const double seconds =
       time_frames(state, [&] { return event_seconds(setup.deformer.enqueue(m, settings, batch)); });
   set_counters(state, batch.layout, seconds);
+}
+
+}  // namespace finflex::bench
+
+namespace finflex::bench {
+
+// Host time of one frame's enqueue (parameter check, non-blocking upload, launch),
+// without the device's work: each frame waits for the previous one to finish first.
+void BM_HostOverhead(benchmark::State& state) {
+  Setup& setup = Setup::get();
+  const std::size_t instances = static_cast<std::size_t>(state.range(0));
+  DeviceBatch& batch = setup.batch(instances);
+  std::vector<float> m(instances, 0.1f);
+  const BendSettings settings{BendMode::kPaper, NormalMode::kRotate};
+  check_cl(setup.deformer.enqueue(m, settings, batch).wait(), "clWaitForEvents");
+  for (auto _ : state) {
+    const auto start = std::chrono::steady_clock::now();
+    const cl::Event done = setup.deformer.enqueue(m, settings, batch);
+    state.SetIterationTime(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    check_cl(done.wait(), "clWaitForEvents");
+  }
+  state.counters["instances"] = static_cast<double>(instances);
 }
 
 }  // namespace finflex::bench

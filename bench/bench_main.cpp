@@ -10,6 +10,8 @@
 // Counters: vertices/s (deformed vertices, all instances), bytes/s (bytes written:
 // 24 per vertex, positions + normals in float32), write_fraction (bytes/s over the
 // write-only kernel's, this run), and for rigs passes and bytes/vertex moved.
+// Baselines: the same bend as a plain OpenMP C++ loop over float3 arrays (-O3
+// -march=native), and the double-precision reference.
 #include "bench_support.hpp"
 
 namespace finflex::bench {
@@ -31,6 +33,14 @@ BENCHMARK_CAPTURE(BM_Bend, paper_jacobian, BendSettings{BendMode::kPaper, Normal
     ->Apply(instance_counts);
 BENCHMARK_CAPTURE(BM_Bend, exact_jacobian, BendSettings{BendMode::kExact, NormalMode::kJacobian})
     ->Apply(instance_counts);
+BENCHMARK(BM_OpenMPBaseline)->Apply(instance_counts);
+BENCHMARK(BM_HostOverhead)->Arg(4000)->UseManualTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_DoubleReference)
+    ->Arg(1)
+    ->Arg(10)
+    ->Arg(100)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Rig, fused, RigPath::kFused)->Apply(instance_counts);
 BENCHMARK_CAPTURE(BM_Rig, passes, RigPath::kPasses)->Apply(instance_counts);
 

@@ -61,10 +61,14 @@ double time_frames(benchmark::State& state, Launch launch) {
   return total;
 }
 
-// Benchmark bodies (bench_bend.cpp, bench_rig.cpp); registered in bench_main.cpp.
+// Benchmark bodies (bench_bend.cpp, bench_rig.cpp, bench_baselines.cpp); registered in
+// bench_main.cpp.
 void BM_WriteOnly(benchmark::State& state);
 void BM_CopyRest(benchmark::State& state);
 void BM_Bend(benchmark::State& state, BendSettings settings);
 void BM_Rig(benchmark::State& state, RigPath path);
+void BM_OpenMPBaseline(benchmark::State& state);
+void BM_HostOverhead(benchmark::State& state);
+void BM_DoubleReference(benchmark::State& state);
 
 }  // namespace finflex::bench
