@@ -22,16 +22,16 @@ double time_batch_kernel(benchmark::State& state, cl::Kernel& kernel, const Batc
 
 }  // namespace
 
-void BM_WriteOnly(benchmark::State& state) {
+void BM_WriteOnly(benchmark::State& state, NormalFormat format) {
   Setup& setup = Setup::get();
-  DeviceBatch& batch = setup.batch(static_cast<std::size_t>(state.range(0)));
-  cl::Kernel& kernel = setup.kernel("write_planes");
+  DeviceBatch& batch = setup.batch(static_cast<std::size_t>(state.range(0)), format);
+  cl::Kernel& kernel = setup.kernel("write_planes", format);
   kernel.setArg(0, batch.positions);
   kernel.setArg(1, batch.normals);
   kernel.setArg(2, static_cast<cl_uint>(batch.layout.plane_stride));
   kernel.setArg(3, 1.0f);
   const double seconds = time_batch_kernel(state, kernel, batch.layout);
-  setup.write_only_bytes_per_second[batch.layout.instance_count] =
+  setup.write_only_bytes_per_second[{batch.layout.instance_count, format}] =
       written_bytes(batch.layout) * static_cast<double>(state.iterations()) / seconds;
   set_counters(state, batch.layout, 0.0);
 }
@@ -47,10 +47,10 @@ void BM_CopyRest(benchmark::State& state) {
   set_counters(state, batch.layout, time_batch_kernel(state, kernel, batch.layout));
 }
 
-void BM_Bend(benchmark::State& state, BendSettings settings) {
+void BM_Bend(benchmark::State& state, BendSettings settings, NormalFormat format) {
   Setup& setup = Setup::get();
   const std::size_t instances = static_cast<std::size_t>(state.range(0));
-  DeviceBatch& batch = setup.batch(instances);
+  DeviceBatch& batch = setup.batch(instances, format);
   std::vector<float> m(instances);
   const float limit = static_cast<float>(max_abs_m(setup.local.x_max));
   for (std::size_t i = 0; i < instances; ++i) {

@@ -23,15 +23,23 @@ void instance_counts(benchmark::internal::Benchmark* b) {
 }
 
 // Registered in this order: the write-only kernel first, so the others can compare.
-BENCHMARK(BM_WriteOnly)->Apply(instance_counts);
+BENCHMARK_CAPTURE(BM_WriteOnly, float32, NormalFormat::kFloat32)->Apply(instance_counts);
+BENCHMARK_CAPTURE(BM_WriteOnly, half, NormalFormat::kHalf)->Apply(instance_counts);
 BENCHMARK(BM_CopyRest)->Apply(instance_counts);
-BENCHMARK_CAPTURE(BM_Bend, paper_rotate, BendSettings{BendMode::kPaper, NormalMode::kRotate})
+BENCHMARK_CAPTURE(BM_Bend, paper_rotate, BendSettings{BendMode::kPaper, NormalMode::kRotate},
+                  NormalFormat::kFloat32)
     ->Apply(instance_counts);
-BENCHMARK_CAPTURE(BM_Bend, exact_rotate, BendSettings{BendMode::kExact, NormalMode::kRotate})
+BENCHMARK_CAPTURE(BM_Bend, exact_rotate, BendSettings{BendMode::kExact, NormalMode::kRotate},
+                  NormalFormat::kFloat32)
     ->Apply(instance_counts);
-BENCHMARK_CAPTURE(BM_Bend, paper_jacobian, BendSettings{BendMode::kPaper, NormalMode::kJacobian})
+BENCHMARK_CAPTURE(BM_Bend, paper_jacobian, BendSettings{BendMode::kPaper, NormalMode::kJacobian},
+                  NormalFormat::kFloat32)
     ->Apply(instance_counts);
-BENCHMARK_CAPTURE(BM_Bend, exact_jacobian, BendSettings{BendMode::kExact, NormalMode::kJacobian})
+BENCHMARK_CAPTURE(BM_Bend, exact_jacobian, BendSettings{BendMode::kExact, NormalMode::kJacobian},
+                  NormalFormat::kFloat32)
+    ->Apply(instance_counts);
+BENCHMARK_CAPTURE(BM_Bend, paper_rotate_half, BendSettings{BendMode::kPaper, NormalMode::kRotate},
+                  NormalFormat::kHalf)
     ->Apply(instance_counts);
 BENCHMARK(BM_OpenMPBaseline)->Apply(instance_counts);
 BENCHMARK(BM_HostOverhead)->Arg(4000)->UseManualTime()->Unit(benchmark::kMicrosecond);

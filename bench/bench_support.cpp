@@ -12,17 +12,21 @@ Setup& Setup::get() {
   return setup;
 }
 
-DeviceBatch& Setup::batch(std::size_t instances) {
-  auto found = batches.find(instances);
-  if (found == batches.end())
-    found = batches.emplace(instances, deformer.allocate(instances)).first;
+DeviceBatch& Setup::batch(std::size_t instances, NormalFormat format) {
+  const auto key = std::make_pair(instances, format);
+  auto found = batches.find(key);
+  if (found == batches.end()) {
+    found = batches.emplace(key, deformer.allocate(instances, format)).first;
+  }
   return found->second;
 }
 
-cl::Kernel& Setup::kernel(const std::string& name) {
-  auto found = kernels.find(name);
+cl::Kernel& Setup::kernel(const std::string& name, NormalFormat format) {
+  const std::string options = format == NormalFormat::kHalf ? "-DFF_HALF_NORMALS=1" : "";
+  auto found = kernels.find(name + options);
   if (found == kernels.end()) {
-    found = kernels.emplace(name, context.kernel(name, ProgramSource::bend_batch(), "")).first;
+    cl::Kernel kernel = context.kernel(name, ProgramSource::bend_batch(), options);
+    found = kernels.emplace(name + options, kernel).first;
   }
   return found->second;
 }
@@ -37,7 +41,8 @@ double span_seconds(const cl::Event& first, const cl::Event& last) {
 }
 
 double written_bytes(const BatchLayout& layout) {
-  return static_cast<double>(layout.plane_stride * layout.instance_count) * 24.0;
+  return static_cast<double>(layout.plane_stride * layout.instance_count *
+                             layout.bytes_per_vertex());
 }
 
 void set_counters(benchmark::State& state, const BatchLayout& layout, double seconds) {
@@ -48,7 +53,7 @@ void set_counters(benchmark::State& state, const BatchLayout& layout, double sec
   state.counters["instances"] = static_cast<double>(layout.instance_count);
   state.counters["vertices"] = static_cast<double>(layout.vertex_count);
   const auto& write_only = Setup::get().write_only_bytes_per_second;
-  const auto found = write_only.find(layout.instance_count);
+  const auto found = write_only.find({layout.instance_count, layout.normal_format});
   if (found != write_only.end() && seconds > 0.0) {
     const double bytes_per_second =
         written_bytes(layout) * static_cast<double>(state.iterations()) / seconds;

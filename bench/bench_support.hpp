@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <map>
 #include <string>
+#include <utility>
 
 #include <benchmark/benchmark.h>
 
@@ -22,17 +23,18 @@ struct Setup {
   Mesh mesh = load_mesh(mesh_path);
   LocalMesh local = make_local_mesh(mesh, find_body_frame(mesh));
   ClDeformer deformer{context, local};
-  std::map<std::size_t, DeviceBatch> batches;
-  // Bytes/s of the write-only kernel by instance count, measured earlier in this run.
-  std::map<std::size_t, double> write_only_bytes_per_second;
+  std::map<std::pair<std::size_t, NormalFormat>, DeviceBatch> batches;
+  // Bytes/s of the write-only kernel by (instances, normal format), measured earlier
+  // in this run.
+  std::map<std::pair<std::size_t, NormalFormat>, double> write_only_bytes_per_second;
   std::map<std::string, cl::Kernel> kernels;
   // Source of the copy kernel: rest-sized planes (the deformer's own are private).
   cl::Buffer copy_source{context.context(), CL_MEM_READ_ONLY,
                          padded_plane_stride(local.vertex_count()) * 6 * sizeof(float)};
 
   static Setup& get();
-  DeviceBatch& batch(std::size_t instances);
-  cl::Kernel& kernel(const std::string& name);
+  DeviceBatch& batch(std::size_t instances, NormalFormat format = NormalFormat::kFloat32);
+  cl::Kernel& kernel(const std::string& name, NormalFormat format = NormalFormat::kFloat32);
 };
 
 // Waits for `event` and returns its device time (end - start).
@@ -40,7 +42,8 @@ double event_seconds(const cl::Event& event);
 // From the start of `first` to the end of `last` (a sequence of kernels).
 double span_seconds(const cl::Event& first, const cl::Event& last);
 
-// Bytes one launch writes: positions and normals in float32 over the padded planes.
+// Bytes one launch writes: positions and normals (in the layout's format) over the
+// padded planes.
 double written_bytes(const BatchLayout& layout);
 
 // vertices/s, bytes/s (written), instances, vertices; and write_fraction when the
@@ -63,9 +66,9 @@ double time_frames(benchmark::State& state, Launch launch) {
 
 // Benchmark bodies (bench_bend.cpp, bench_rig.cpp, bench_baselines.cpp); registered in
 // bench_main.cpp.
-void BM_WriteOnly(benchmark::State& state);
+void BM_WriteOnly(benchmark::State& state, NormalFormat format);
 void BM_CopyRest(benchmark::State& state);
-void BM_Bend(benchmark::State& state, BendSettings settings);
+void BM_Bend(benchmark::State& state, BendSettings settings, NormalFormat format);
 void BM_Rig(benchmark::State& state, RigPath path);
 void BM_OpenMPBaseline(benchmark::State& state);
 void BM_HostOverhead(benchmark::State& state);

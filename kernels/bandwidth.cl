@@ -1,19 +1,17 @@
 /* Reference kernels for the benchmarks: the same NDRange shape and output planes as
  * bend_batch (finflex/batch.hpp), with no arithmetic. write_planes gives the device's
  * write bandwidth; copy_rest reads the rest planes and writes them out per instance.
- * Written with scalar stores only, like bend_batch, so PoCL vectorises them alike. */
+ * Written with scalar stores only, like bend_batch, so PoCL vectorises them alike;
+ * write_planes honours FF_HALF_NORMALS as the deformers do. */
 
 __kernel void write_planes(__global float* restrict out_positions,
                            __global float* restrict out_normals, const uint stride,
                            const float value) {
   const size_t v = get_global_id(0);
-  const size_t base = get_global_id(1) * 3 * (size_t)stride + v;
-  out_positions[base] = value;
-  out_positions[base + stride] = value;
-  out_positions[base + 2 * (size_t)stride] = value;
-  out_normals[base] = value;
-  out_normals[base + stride] = value;
-  out_normals[base + 2 * (size_t)stride] = value;
+  const size_t instance = get_global_id(1);
+  const Vec3 filler = vec3(value, value, value);
+  store_plane3(out_positions, instance * 3, stride, v, filler);
+  store_direction3(out_normals, instance * 3, stride, v, filler);  /* float32 or half */
 }
 
 __kernel void copy_rest(__global const float* restrict rest,

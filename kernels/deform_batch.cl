@@ -8,7 +8,7 @@
  *        p_b = origin + s (x e_x + y e_y + z e_z), n_b = x e_x + y e_y + z e_z;
  *        scaled_axis_* = s e_*, axis_* = e_* (all in mesh coordinates).
  *
- * Build options: those of bend.cl, and FF_TANGENTS (0/1).
+ * Build options: those of bend.cl and planes.cl, and FF_TANGENTS (0/1).
  * No branch depends on the vertex: the planes are padded to the work-group size. */
 #ifndef FF_TANGENTS
 #define FF_TANGENTS 0
@@ -41,11 +41,11 @@ __kernel void bend_batch(__global const float* restrict rest,
   const size_t out_plane = instance * 3;
   store_plane3(out_positions, out_plane, stride, v,
                to_mesh(bend_position(p, s), scaled_axis_x, scaled_axis_y, scaled_axis_z, origin));
-  store_plane3(out_normals, out_plane, stride, v,
+  store_direction3(out_normals, out_plane, stride, v,
                to_mesh(bend_normal(n, s), axis_x, axis_y, axis_z, no_offset));
 #if FF_TANGENTS
   const Vec3 t = load_plane3(rest, 6, stride, v);
-  store_plane3(out_tangents, out_plane, stride, v,
+  store_direction3(out_tangents, out_plane, stride, v,
                to_mesh(bend_tangent(t, s), axis_x, axis_y, axis_z, no_offset));
 #endif
 }

@@ -12,7 +12,8 @@
  * Their conditions are on get_group_id(0) only, uniform over a work-group, so every
  * branch is straight-line code that PoCL vectorises across work-items.
  *
- * Build options: FF_NORMALS_JACOBIAN (bend.cl), FF_TANGENTS (0/1). */
+ * Build options: FF_NORMALS_JACOBIAN (bend.cl), FF_HALF_NORMALS (planes.cl; the
+ * passes that write scratch buffers are built without it), FF_TANGENTS (0/1). */
 #ifndef FF_TANGENTS
 #define FF_TANGENTS 0
 #endif
@@ -75,7 +76,7 @@ FF_INLINE void apply_hinge(Vec3* p, Vec3* n, Vec3* t, StageFrame f, float angle)
 
 #if FF_TANGENTS
 #define FF_LOAD_TANGENT(planes, first, stride, v) load_plane3(planes, first, stride, v)
-#define FF_STORE_TANGENT(planes, first, stride, v, value) store_plane3(planes, first, stride, v, value)
+#define FF_STORE_TANGENT(planes, first, stride, v, value) store_direction3(planes, first, stride, v, value)
 #else
 #define FF_LOAD_TANGENT(planes, first, stride, v) vec3(1.0f, 0.0f, 0.0f)
 #define FF_STORE_TANGENT(planes, first, stride, v, value)
@@ -101,7 +102,7 @@ __kernel void rig_fused(__global const float* restrict rest_positions,
   Vec3 t = FF_LOAD_TANGENT(rest_tangents, 0, stride, v);
   FF_RIG_FUSED_STAGES
   store_plane3(out_positions, instance * 3, stride, v, p);
-  store_plane3(out_normals, instance * 3, stride, v, n);
+  store_direction3(out_normals, instance * 3, stride, v, n);
   FF_STORE_TANGENT(out_tangents, instance * 3, stride, v, t);
 }
 
@@ -130,7 +131,7 @@ __kernel void rig_fused(__global const float* restrict rest_positions,
     Vec3 t = FF_LOAD_TANGENT(src_tangents, first, stride, v);                       \
     FF_RIG_PASS_##q                                                                 \
     store_plane3(dst_positions, instance * 3, stride, v, p);                        \
-    store_plane3(dst_normals, instance * 3, stride, v, n);                          \
+    store_direction3(dst_normals, instance * 3, stride, v, n);                      \
     FF_STORE_TANGENT(dst_tangents, instance * 3, stride, v, t);                     \
   }
 

@@ -3,6 +3,7 @@
 // write bandwidth, measured in the same run).
 //
 //   finflex bench --mesh PATH --instances N --frames F [--mode paper|exact]
+//                 [--normals rotate|jacobian] [--normal-format float32|half]
 //                 [--rig RIG.json [--path fused|passes]] [--device NAME] [--json]
 #include <algorithm>
 #include <chrono>
@@ -27,6 +28,7 @@ struct BenchOptions {
   std::size_t frames = 100;
   std::string mode = "paper";
   std::string normals = "rotate";
+  std::string normal_format = "float32";
   std::string rig;
   std::string path = "auto";
   std::string device;
@@ -72,7 +74,9 @@ FrameTimes time_frames(std::size_t frames, Enqueue enqueue) {
 
 // The write-only kernel over the batch's planes, same NDRange as the deformers.
 double write_only_median(Context& context, DeviceBatch& batch, std::size_t frames) {
-  cl::Kernel kernel = context.kernel("write_planes", ProgramSource::bend_batch(), "");
+  const bool half = batch.layout.normal_format == NormalFormat::kHalf;
+  cl::Kernel kernel = context.kernel("write_planes", ProgramSource::bend_batch(),
+                                     half ? "-DFF_HALF_NORMALS=1" : "");
   check_cl(kernel.setArg(0, batch.positions), "clSetKernelArg");
   check_cl(kernel.setArg(1, batch.normals), "clSetKernelArg");
   check_cl(kernel.setArg(2, static_cast<cl_uint>(batch.layout.plane_stride)), "clSetKernelArg");
@@ -100,6 +104,7 @@ int run_bench(const BenchOptions& options) {
     if (options.frames == 0)
       throw Error(ErrorCode::kInvalidArgument, "--frames", "--frames must be > 0");
     const NormalMode normals = parse_normal_mode(options.normals, "--normals");
+    const NormalFormat format = parse_normal_format(options.normal_format, "--normal-format");
     const Mesh mesh = load_mesh(options.mesh);
     Context context(options.device);
     DeviceBatch batch;
@@ -110,7 +115,7 @@ int run_bench(const BenchOptions& options) {
       const BendSettings settings{parse_bend_mode(options.mode, "--mode"), normals};
       const LocalMesh local = make_local_mesh(mesh, find_body_frame(mesh));
       ClDeformer deformer(context, local);
-      batch = deformer.allocate(options.instances);
+      batch = deformer.allocate(options.instances, format);
       std::vector<float> m(options.instances);
       const double limit = max_abs_m(local.x_max);
       times = time_frames(options.frames, [&](std::size_t f, std::vector<cl::Event>& events) {
@@ -122,7 +127,7 @@ int run_bench(const BenchOptions& options) {
       const RigPath path = parse_rig_path(options.path, "--path");
       const Rig rig = resolve_rig(load_rig_file(options.rig), mesh);
       ClRigDeformer deformer(context, mesh, rig);
-      batch = deformer.allocate(options.instances);
+      batch = deformer.allocate(options.instances, format);
       RigParameters values(rig, options.instances);
       const std::vector<double> limits = rig_param_limits(rig);
       const RigPath chosen = path == RigPath::kAuto ? deformer.automatic_path() : path;
@@ -140,13 +145,16 @@ int run_bench(const BenchOptions& options) {
     const double seconds = median(times.device);
     const double write_seconds = write_only_median(context, batch, options.frames);
     const double vertices = double(mesh.vertex_count()) * double(options.instances);
-    const double written = double(batch.layout.plane_stride) * double(options.instances) * 24.0;
+    const double bytes_per_vertex = double(batch.layout.bytes_per_vertex());
+    const double written =
+        double(batch.layout.plane_stride) * double(options.instances) * bytes_per_vertex;
 
     nlohmann::ordered_json result;
     result["device"] = context.description().device_name;
     result["mesh"] = options.mesh;
     result["deformation"] = what;
     result["normals"] = to_string(normals);
+    result["normal_format"] = to_string(format);
     result["vertices"] = mesh.vertex_count();
     result["instances"] = options.instances;
     result["frames"] = options.frames;
@@ -155,7 +163,8 @@ int run_bench(const BenchOptions& options) {
     result["seconds_per_frame_min"] = *std::min_element(times.device.begin(), times.device.end());
     result["vertices_per_second"] = vertices / seconds;
     result["output_bytes_per_second"] = written / seconds;
-    result["moved_bytes_per_vertex"] = 24.0 * (2.0 * double(passes) - 1.0);
+    // Passes after the first read and write float32 intermediates (24 B each way).
+    result["moved_bytes_per_vertex"] = bytes_per_vertex + 48.0 * double(passes - 1);
     result["write_bandwidth_bytes_per_second"] = written / write_seconds;
     result["write_fraction"] = write_seconds / seconds;
     result["host_enqueue_seconds_median"] = median(times.host);
@@ -184,6 +193,8 @@ Command add_bench_command(CLI::App& app) {
   bench->add_option("--mode", options->mode, "paper or exact (without --rig)")
       ->capture_default_str();
   bench->add_option("--normals", options->normals, "rotate or jacobian")->capture_default_str();
+  bench->add_option("--normal-format", options->normal_format, "float32 or half")
+      ->capture_default_str();
   bench->add_option("--rig", options->rig, "Rig file: time the rig instead of the single bend");
   bench->add_option("--path", options->path, "With --rig: auto, fused or passes")
       ->capture_default_str();

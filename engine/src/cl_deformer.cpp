@@ -34,10 +34,11 @@ std::vector<float> rest_planes(const LocalMesh& mesh, std::size_t stride) {
 
 }  // namespace
 
-std::string bend_build_options(const BendSettings& settings, bool tangents) {
+std::string bend_build_options(const BendSettings& settings, bool tangents, NormalFormat format) {
   return std::string("-DFF_BEND_EXACT=") + (settings.mode == BendMode::kExact ? "1" : "0") +
          " -DFF_NORMALS_JACOBIAN=" + (settings.normals == NormalMode::kJacobian ? "1" : "0") +
-         " -DFF_TANGENTS=" + (tangents ? "1" : "0");
+         " -DFF_TANGENTS=" + (tangents ? "1" : "0") +
+         " -DFF_HALF_NORMALS=" + (format == NormalFormat::kHalf ? "1" : "0");
 }
 
 ClDeformer::ClDeformer(Context& context, const LocalMesh& mesh)
@@ -59,8 +60,9 @@ ClDeformer::ClDeformer(Context& context, const LocalMesh& mesh)
                      to_cl_float4(f.axis_z)};
 }
 
-BatchLayout ClDeformer::layout(std::size_t instances) const {
+BatchLayout ClDeformer::layout(std::size_t instances, NormalFormat format) const {
   BatchLayout layout;
+  layout.normal_format = format;
   layout.vertex_count = mesh_.vertex_count();
   layout.instance_count = instances;
   layout.plane_stride = plane_stride_;
@@ -68,8 +70,8 @@ BatchLayout ClDeformer::layout(std::size_t instances) const {
   return layout;
 }
 
-DeviceBatch ClDeformer::allocate(std::size_t instances) const {
-  return detail::allocate_batch(context_, layout(instances), 1);
+DeviceBatch ClDeformer::allocate(std::size_t instances, NormalFormat format) const {
+  return detail::allocate_batch(context_, layout(instances, format), 1);
 }
 
 cl::Event ClDeformer::enqueue(const std::vector<float>& m, const BendSettings& settings,
@@ -85,7 +87,7 @@ cl::Event ClDeformer::enqueue(const std::vector<float>& m, const BendSettings& s
 
   cl::CommandQueue& queue = context_.queue();
 
-  cl::Kernel& kernel = bend_kernel(settings);
+  cl::Kernel& kernel = bend_kernel(settings, batch.layout.normal_format);
   cl_uint arg = 0;
   check_cl(kernel.setArg(arg++, rest_), "clSetKernelArg rest");
   check_cl(kernel.setArg(arg++, batch.parameters), "clSetKernelArg m");
@@ -104,8 +106,8 @@ cl::Event ClDeformer::enqueue(const std::vector<float>& m, const BendSettings& s
   return done;
 }
 
-cl::Kernel& ClDeformer::bend_kernel(const BendSettings& settings) {
-  const std::string options = bend_build_options(settings, mesh_.has_tangents());
+cl::Kernel& ClDeformer::bend_kernel(const BendSettings& settings, NormalFormat format) {
+  const std::string options = bend_build_options(settings, mesh_.has_tangents(), format);
   auto found = kernels_.find(options);
   if (found == kernels_.end()) {
     found =

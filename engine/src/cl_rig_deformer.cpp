@@ -67,8 +67,9 @@ ClRigDeformer::ClRigDeformer(Context& context, const Mesh& mesh, const Rig& rig)
               detail::rig_dispatch_source(rig_, slots, passes, kGroupSize)};
 }
 
-BatchLayout ClRigDeformer::layout(std::size_t instances) const {
+BatchLayout ClRigDeformer::layout(std::size_t instances, NormalFormat format) const {
   BatchLayout layout;
+  layout.normal_format = format;
   layout.vertex_count = vertex_count_;
   layout.instance_count = instances;
   layout.plane_stride = slot_count_;
@@ -80,24 +81,26 @@ RigPath ClRigDeformer::automatic_path() const {
   return detail::longest_path(rig_) <= kMaxFusedStages ? RigPath::kFused : RigPath::kPasses;
 }
 
-DeviceBatch ClRigDeformer::allocate(std::size_t instances) const {
-  return detail::allocate_batch(context_, layout(instances), rig_.params.size());
+DeviceBatch ClRigDeformer::allocate(std::size_t instances, NormalFormat format) const {
+  return detail::allocate_batch(context_, layout(instances, format), rig_.params.size());
 }
 
-void ClRigDeformer::ensure_scratch(DeviceBatch& batch) const {
-  if (batch.scratch_positions()) return;
+void ClRigDeformer::ensure_scratch(DeviceBatch& batch, std::size_t sets) const {
   const std::size_t bytes = batch.layout.attribute_elements() * sizeof(float);
   const cl::Context& cl_context = context_.context();
-  batch.scratch_positions = detail::make_buffer(cl_context, CL_MEM_READ_WRITE, bytes);
-  batch.scratch_normals = detail::make_buffer(cl_context, CL_MEM_READ_WRITE, bytes);
-  batch.scratch_tangents =
-      detail::make_buffer(cl_context, CL_MEM_READ_WRITE, tangents_ ? bytes : sizeof(float));
+  while (batch.scratch.size() < 3 * sets) {
+    const bool tangent = batch.scratch.size() % 3 == 2;
+    batch.scratch.push_back(detail::make_buffer(cl_context, CL_MEM_READ_WRITE,
+                                                tangent && !tangents_ ? sizeof(float) : bytes));
+  }
 }
 
-cl::Kernel& ClRigDeformer::kernel(const std::string& name, NormalMode normals) {
+cl::Kernel& ClRigDeformer::kernel(const std::string& name, NormalMode normals,
+                                  NormalFormat format) {
   const std::string options = std::string("-DFF_NORMALS_JACOBIAN=") +
                               (normals == NormalMode::kJacobian ? "1" : "0") +
-                              " -DFF_TANGENTS=" + (tangents_ ? "1" : "0");
+                              " -DFF_TANGENTS=" + (tangents_ ? "1" : "0") +
+                              " -DFF_HALF_NORMALS=" + (format == NormalFormat::kHalf ? "1" : "0");
   const std::string key = name + " " + options;
   auto found = kernels_.find(key);
   if (found == kernels_.end()) {
@@ -131,7 +134,7 @@ cl::Event ClRigDeformer::enqueue(const RigParameters& parameters, NormalMode nor
   cl::Event done;
 
   if (path == RigPath::kFused || pass_count_ == 0) {
-    cl::Kernel& fused = kernel("rig_fused", normals);
+    cl::Kernel& fused = kernel("rig_fused", normals, batch.layout.normal_format);
     set_args(fused, 0, {&rest_positions_, &rest_normals_, &rest_tangents_, &batch.parameters},
              "clSetKernelArg rig_fused");
     check_cl(fused.setArg(4, param_count), "clSetKernelArg param_count");
@@ -144,17 +147,19 @@ cl::Event ClRigDeformer::enqueue(const RigParameters& parameters, NormalMode nor
     return done;
   }
 
-  // Ping-pong: the last pass writes the outputs, so pass q writes them when
-  // (passes - 1 - q) is even and the scratch buffers otherwise.
-  ensure_scratch(batch);
-  const cl::Buffer* out[3] = {&batch.positions, &batch.normals, &batch.tangents};
-  const cl::Buffer* scratch[3] = {&batch.scratch_positions, &batch.scratch_normals,
-                                  &batch.scratch_tangents};
+  // Ping-pong: pass q < passes - 1 writes float32 scratch set q % 2, the last pass
+  // writes the outputs (in the batch's normal format); pass 0 reads the rest mesh.
+  ensure_scratch(batch, std::min<std::size_t>(pass_count_ - 1, 2));
   const cl::Buffer* rest[3] = {&rest_positions_, &rest_normals_, &rest_tangents_};
+  const cl::Buffer* out[3] = {&batch.positions, &batch.normals, &batch.tangents};
+  const cl::Buffer* scratch[2][3] = {};
+  for (std::size_t k = 0; k < batch.scratch.size(); ++k) scratch[k / 3][k % 3] = &batch.scratch[k];
   const cl::Buffer* const* source = rest;
   for (std::size_t q = 0; q < pass_count_; ++q) {
-    const cl::Buffer* const* target = (pass_count_ - 1 - q) % 2 == 0 ? out : scratch;
-    cl::Kernel& pass_kernel = kernel("rig_pass_" + std::to_string(q), normals);
+    const bool last = q + 1 == pass_count_;
+    const cl::Buffer* const* target = last ? out : scratch[q % 2];
+    cl::Kernel& pass_kernel = kernel("rig_pass_" + std::to_string(q), normals,
+                                     last ? batch.layout.normal_format : NormalFormat::kFloat32);
     set_args(pass_kernel, 0, {source[0], source[1], source[2]}, "clSetKernelArg src");
     check_cl(pass_kernel.setArg(3, static_cast<cl_uint>(q == 0 ? 0 : 3)),
              "clSetKernelArg src planes");

@@ -1,6 +1,9 @@
 #include "device_batch.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
 #include <string>
 
 #include "finflex/error.hpp"
@@ -31,12 +34,13 @@ DeviceBatch allocate_batch(Context& context, const BatchLayout& layout,
                     device.device_name + "')");
   }
   const cl::Context& cl_context = context.context();
+  const std::size_t direction_bytes = layout.attribute_elements() * layout.normal_component_bytes();
   DeviceBatch batch;
   batch.layout = layout;
   batch.positions = make_buffer(cl_context, CL_MEM_READ_WRITE, bytes);
-  batch.normals = make_buffer(cl_context, CL_MEM_READ_WRITE, bytes);
+  batch.normals = make_buffer(cl_context, CL_MEM_READ_WRITE, direction_bytes);
   batch.tangents =
-      make_buffer(cl_context, CL_MEM_READ_WRITE, layout.tangents ? bytes : sizeof(float));
+      make_buffer(cl_context, CL_MEM_READ_WRITE, layout.tangents ? direction_bytes : sizeof(float));
   const std::size_t values =
       std::max<std::size_t>(layout.instance_count * parameters_per_instance, 1);
   batch.parameters = make_buffer(cl_context, CL_MEM_READ_ONLY, values * sizeof(float));
@@ -56,6 +60,44 @@ void upload_parameters(Context& context, DeviceBatch& batch, const std::vector<c
            "clEnqueueWriteBuffer parameters");
 }
 
+namespace {
+
+// IEEE 754 binary16 to float (normals and tangents are finite and in [-1, 1], but
+// every class is handled).
+float half_to_float(std::uint16_t h) {
+  const std::uint32_t sign = static_cast<std::uint32_t>(h & 0x8000u) << 16;
+  const std::uint32_t exponent = (h >> 10) & 0x1fu;
+  const std::uint32_t mantissa = h & 0x3ffu;
+  float magnitude;
+  if (exponent == 0) {
+    magnitude = std::ldexp(static_cast<float>(mantissa), -24);  // subnormal or zero
+  } else if (exponent == 31) {
+    magnitude =
+        mantissa ? std::numeric_limits<float>::quiet_NaN() : std::numeric_limits<float>::infinity();
+  } else {
+    magnitude = std::ldexp(static_cast<float>(mantissa | 0x400u), static_cast<int>(exponent) - 25);
+  }
+  return sign ? -magnitude : magnitude;
+}
+
+// Reads a normal or tangent array in the layout's format into floats.
+void read_directions(cl::CommandQueue& queue, const cl::Buffer& buffer, const BatchLayout& layout,
+                     std::vector<float>& out) {
+  const std::size_t count = layout.attribute_elements();
+  if (layout.normal_format == NormalFormat::kFloat32) {
+    check_cl(queue.enqueueReadBuffer(buffer, CL_TRUE, 0, count * sizeof(float), out.data()),
+             "clEnqueueReadBuffer");
+    return;
+  }
+  std::vector<std::uint16_t> halves(count);
+  check_cl(
+      queue.enqueueReadBuffer(buffer, CL_TRUE, 0, count * sizeof(std::uint16_t), halves.data()),
+      "clEnqueueReadBuffer");
+  for (std::size_t k = 0; k < count; ++k) out[k] = half_to_float(halves[k]);
+}
+
+}  // namespace
+
 DeformedBatch<float> read_batch(Context& context, const DeviceBatch& batch) {
   DeformedBatch<float> out;
   out.resize(batch.layout);
@@ -63,12 +105,8 @@ DeformedBatch<float> read_batch(Context& context, const DeviceBatch& batch) {
   const std::size_t bytes = batch.layout.attribute_elements() * sizeof(float);
   check_cl(queue.enqueueReadBuffer(batch.positions, CL_TRUE, 0, bytes, out.positions.data()),
            "clEnqueueReadBuffer positions");
-  check_cl(queue.enqueueReadBuffer(batch.normals, CL_TRUE, 0, bytes, out.normals.data()),
-           "clEnqueueReadBuffer normals");
-  if (batch.layout.tangents) {
-    check_cl(queue.enqueueReadBuffer(batch.tangents, CL_TRUE, 0, bytes, out.tangents.data()),
-             "clEnqueueReadBuffer tangents");
-  }
+  read_directions(queue, batch.normals, batch.layout, out.normals);
+  if (batch.layout.tangents) read_directions(queue, batch.tangents, batch.layout, out.tangents);
   return out;
 }
 

@@ -6,7 +6,8 @@
 namespace finflex {
 
 std::size_t RigFrame::add(ClRigDeformer& deformer, std::size_t instances) {
-  entries_.push_back({&deformer, deformer.allocate(instances), RigParameters(deformer.rig(), instances)});
+  entries_.push_back(
+      {&deformer, deformer.allocate(instances), RigParameters(deformer.rig(), instances)});
   return entries_.size() - 1;
 }
 

@@ -68,7 +68,8 @@ void check_rig_params(const Rig& rig, const std::vector<double>& limits,
   for (std::size_t i = 0; i < parameters.instance_count(); ++i) {
     for (std::size_t p = 0; p < count; ++p) {
       const float value = parameters.get(i, p);
-      if (std::isfinite(value) && std::fabs(static_cast<double>(value)) <= limits[p] * (1.0 + 1e-6)) {
+      if (std::isfinite(value) &&
+          std::fabs(static_cast<double>(value)) <= limits[p] * (1.0 + 1e-6)) {
         continue;  // a float at the limit may round a hair above it; the kernels clamp
       }
       const std::string field = rig.params[p] + "[" + std::to_string(i) + "]";
@@ -85,8 +86,8 @@ void check_rig_params(const Rig& rig, const std::vector<double>& limits,
       }
       std::ostringstream message;
       message.precision(9);
-      message << field << " = " << value << " is out of range [" << -limits[p] << ", "
-              << limits[p] << "] (the tightest of the stages that read " << rig.params[p] << ")";
+      message << field << " = " << value << " is out of range [" << -limits[p] << ", " << limits[p]
+              << "] (the tightest of the stages that read " << rig.params[p] << ")";
       throw Error(ErrorCode::kOutOfRange, field, message.str());
     }
   }

@@ -52,7 +52,8 @@ Mesh subdivide_loop(const Mesh& mesh, int levels) {
   }
   out.indices.reserve(3 * tri.n_faces());
   for (const auto& f : tri.faces()) {
-    for (const auto& v : tri.fv_range(f)) out.indices.push_back(static_cast<std::uint32_t>(v.idx()));
+    for (const auto& v : tri.fv_range(f))
+      out.indices.push_back(static_cast<std::uint32_t>(v.idx()));
   }
   compute_vertex_normals(out);
   return out;

@@ -15,20 +15,39 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 namespace finflex {
 
+// How normals and tangents are stored on the device. Positions are always float32.
+//   kFloat32: 4 bytes a component: 24 bytes per vertex with positions (36 with tangents)
+//   kHalf:    IEEE half, 2 bytes a component (vstore_half): 18 bytes per vertex (24);
+//             relative error 2^-11 (5e-4), ample for shading unit vectors.
+enum class NormalFormat { kFloat32, kHalf };
+const char* to_string(NormalFormat format);
+NormalFormat parse_normal_format(const std::string& text,
+                                 const std::string& field = "normal_format");
+
 struct BatchLayout {
   std::size_t vertex_count = 0;  // the mesh's vertices (slots may be more, with padding)
   std::size_t instance_count = 0;
   std::size_t plane_stride = 0;  // >= vertex_count, in elements
   bool tangents = false;
+  NormalFormat normal_format = NormalFormat::kFloat32;  // normals and tangents
 
   // Elements of one attribute array: instance_count * 3 * plane_stride.
   std::size_t attribute_elements() const { return instance_count * 3 * plane_stride; }
+  // Bytes of a normal or tangent component on the device.
+  std::size_t normal_component_bytes() const {
+    return normal_format == NormalFormat::kHalf ? 2 : 4;
+  }
+  // Bytes written per vertex and instance: positions, normals (and tangents).
+  std::size_t bytes_per_vertex() const {
+    return 12 + (tangents ? 6 : 3) * normal_component_bytes();
+  }
   std::size_t index(std::size_t instance, int component, std::size_t vertex) const {
     return (instance * 3 + static_cast<std::size_t>(component)) * plane_stride + vertex;
   }

@@ -10,8 +10,9 @@
 //
 // Memory: the rest mesh takes 24 bytes per vertex (36 with tangents) once; every
 // instance takes 24 bytes per vertex of output (positions + normals, float32), 36 with
-// tangents, on plane_stride (vertex count rounded up to 64) vertices. 4,000 instances
-// of the 10,786-vertex fish: 4,000 * 10,816 * 24 B = 1.04 GB.
+// tangents, 18 and 24 with half normals and tangents (NormalFormat::kHalf), on
+// plane_stride (vertex count rounded up to 64) vertices. 4,000 instances of the
+// 10,786-vertex fish: 4,000 * 10,816 * 24 B = 1.04 GB.
 #pragma once
 
 #include <map>
@@ -35,9 +36,10 @@ struct DeviceBatch {
   cl::Buffer tangents;    // a placeholder of one float when the mesh has no tangents
   cl::Buffer parameters;  // per instance: m, or a rig's parameter values
 
-  // The other half of the ping-pong pair of the multi-pass rig path (allocated on its
-  // first use; the outputs above are the half the last pass writes).
-  cl::Buffer scratch_positions, scratch_normals, scratch_tangents;
+  // Float32 intermediates of the multi-pass rig path, allocated on first use: up to
+  // two sets (positions, normals, tangents) that the passes ping-pong between; the
+  // last pass writes the outputs above.
+  std::vector<cl::Buffer> scratch;
 
   // Host staging of the last upload of m, kept alive until its write completes.
   std::vector<float> staged_parameters;
@@ -50,12 +52,12 @@ class ClDeformer {
   ClDeformer(Context& context, const LocalMesh& mesh);
 
   const LocalMesh& mesh() const { return mesh_; }
-  BatchLayout layout(std::size_t instances) const;
+  BatchLayout layout(std::size_t instances, NormalFormat format = NormalFormat::kFloat32) const;
 
-  // Allocates the outputs of `instances` instances. Throws kInvalidArgument for 0, and
-  // kOutOfRange naming `instances` when one attribute array would exceed the device's
-  // largest allocation.
-  DeviceBatch allocate(std::size_t instances) const;
+  // Allocates the outputs of `instances` instances, normals and tangents in `format`.
+  // Throws kInvalidArgument for 0, and kOutOfRange naming `instances` when one
+  // attribute array would exceed the device's largest allocation.
+  DeviceBatch allocate(std::size_t instances, NormalFormat format = NormalFormat::kFloat32) const;
 
   // Checks m (checked_bend_params; its size must equal the batch's instance count),
   // uploads it without blocking, and enqueues the bend after `wait`. Returns the
@@ -78,10 +80,10 @@ class ClDeformer {
   std::vector<cl_float4> back_transform_;      // origin, s e_x, s e_y, s e_z, e_x, e_y, e_z
   std::map<std::string, cl::Kernel> kernels_;  // by build options: no per-frame creation
 
-  cl::Kernel& bend_kernel(const BendSettings& settings);
+  cl::Kernel& bend_kernel(const BendSettings& settings, NormalFormat format);
 };
 
-// Build options specialising the kernels for `settings` (-D FF_BEND_EXACT=...).
-std::string bend_build_options(const BendSettings& settings, bool tangents);
+// Build options specialising the kernels (-D FF_BEND_EXACT=...).
+std::string bend_build_options(const BendSettings& settings, bool tangents, NormalFormat format);
 
 }  // namespace finflex

@@ -98,7 +98,7 @@ class ClRigDeformer {
   ClRigDeformer(Context& context, const Mesh& mesh, const Rig& rig);
 
   const Rig& rig() const { return rig_; }
-  BatchLayout layout(std::size_t instances) const;
+  BatchLayout layout(std::size_t instances, NormalFormat format = NormalFormat::kFloat32) const;
   const std::vector<std::uint32_t>& slot_of_vertex() const { return slot_of_vertex_; }
   const std::vector<std::uint32_t>& remapped_indices() const { return remapped_indices_; }
   // Passes the multi-pass path runs: one per (depth, chain position) that has a stage.
@@ -106,7 +106,7 @@ class ClRigDeformer {
   // The path kAuto resolves to for this rig.
   RigPath automatic_path() const;
 
-  DeviceBatch allocate(std::size_t instances) const;
+  DeviceBatch allocate(std::size_t instances, NormalFormat format = NormalFormat::kFloat32) const;
 
   // Checks the values (check_rig_params_into), uploads them without blocking, and
   // enqueues the deformation; returns the event of the last kernel.
@@ -143,8 +143,8 @@ class ClRigDeformer {
   ProgramSource program_;
   std::map<std::string, cl::Kernel> kernels_;
 
-  cl::Kernel& kernel(const std::string& name, NormalMode normals);
-  void ensure_scratch(DeviceBatch& batch) const;
+  cl::Kernel& kernel(const std::string& name, NormalMode normals, NormalFormat format);
+  void ensure_scratch(DeviceBatch& batch, std::size_t sets) const;
 };
 
 // Several rigged meshes (e.g. two species) deformed in one frame: each entry is a

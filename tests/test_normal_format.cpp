@@ -1,0 +1,88 @@
+// Half-precision normals and tangents (NormalFormat::kHalf): 18 bytes per vertex
+// instead of 24. Positions stay float32 and bit-identical; normals and tangents round
+// to IEEE half, relative error 2^-11 per component, so unit vectors differ from the
+// float32 ones by under 1e-3.
+#include <gtest/gtest.h>
+
+#include "finflex/finflex.hpp"
+#include "support/synthetic_fish.hpp"
+#include "support/test_support.hpp"
+
+namespace finflex {
+namespace {
+
+template <typename Batch>
+void expect_half_matches_float(const Batch& full, const Batch& half, std::size_t vertices,
+                               std::size_t instances) {
+  for (std::size_t i = 0; i < instances; ++i) {
+    for (std::size_t v = 0; v < vertices; ++v) {
+      ASSERT_EQ(full.position(i, v), half.position(i, v)) << "instance " << i << " vertex " << v;
+      ASSERT_LT(glm::length(full.normal(i, v) - half.normal(i, v)), 1e-3f) << "vertex " << v;
+      if (full.layout.tangents) {
+        ASSERT_LT(glm::length(full.tangent(i, v) - half.tangent(i, v)), 1e-3f) << "vertex " << v;
+      }
+    }
+  }
+}
+
+TEST(NormalFormat, LayoutBytesAndNames) {
+  BatchLayout layout;
+  EXPECT_EQ(layout.bytes_per_vertex(), 24u);
+  layout.normal_format = NormalFormat::kHalf;
+  EXPECT_EQ(layout.bytes_per_vertex(), 18u);
+  layout.tangents = true;
+  EXPECT_EQ(layout.bytes_per_vertex(), 24u);  // 12 + 6 + 6
+  EXPECT_EQ(parse_normal_format("half"), NormalFormat::kHalf);
+  EXPECT_EQ(parse_normal_format("float32"), NormalFormat::kFloat32);
+  EXPECT_THROW(parse_normal_format("snorm8"), Error);
+}
+
+TEST(NormalFormat, HalfBendKeepsPositionsAndRoundsNormals) {
+  const Mesh mesh = load_mesh(test::data_path("barramundi/BarramundiFish.gltf"));  // has tangents
+  const LocalMesh local = make_local_mesh(mesh, find_body_frame(mesh));
+  ClDeformer deformer(test::shared_context(), local);
+  const std::vector<float> m = {0.0f, 0.3f, -0.6f};
+  DeviceBatch full = deformer.allocate(m.size());
+  DeviceBatch half = deformer.allocate(m.size(), NormalFormat::kHalf);
+  EXPECT_EQ(half.layout.normal_format, NormalFormat::kHalf);
+  for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {
+    deformer.enqueue(m, {BendMode::kExact, normals}, full);
+    deformer.enqueue(m, {BendMode::kExact, normals}, half);
+    expect_half_matches_float(deformer.read(full), deformer.read(half), mesh.vertex_count(), m.size());
+  }
+}
+
+TEST(NormalFormat, HalfRigOnBothPathsKeepsFloatIntermediates) {
+  // Five passes: the intermediates ping-pong between two float32 scratch sets and only
+  // the last pass rounds to half, so half and float32 outputs differ by one rounding.
+  RigSpec spec;
+  spec.frame.mode = FrameSpec::Mode::kIdentity;
+  ComponentSpec body;
+  body.name = "body";
+  for (const char* param : {"a", "b", "c", "d", "e"}) {
+    StageSpec stage;
+    stage.deformer = param[0] % 2 ? DeformerKind::kBend : DeformerKind::kHinge;
+    stage.width = 0.2;
+    stage.param = param;
+    body.chain.push_back(stage);
+  }
+  spec.components.push_back(body);
+  const Mesh mesh = test::synthetic_fish(48, 24, true);
+  const Rig rig = resolve_rig(spec, mesh);
+  ClRigDeformer deformer(test::shared_context(), mesh, rig);
+  ASSERT_EQ(deformer.pass_count(), 5u);
+  RigParameters values(rig, 2);
+  values.set(0, "a", 0.4f);
+  values.set(1, "b", -0.7f);
+  values.set(1, "e", 0.5f);
+  DeviceBatch full = deformer.allocate(2);
+  DeviceBatch half = deformer.allocate(2, NormalFormat::kHalf);
+  for (RigPath path : {RigPath::kFused, RigPath::kPasses}) {
+    deformer.enqueue(values, NormalMode::kJacobian, full, path);
+    deformer.enqueue(values, NormalMode::kJacobian, half, path);
+    expect_half_matches_float(deformer.read(full), deformer.read(half), mesh.vertex_count(), 2);
+  }
+}
+
+}  // namespace
+}  // namespace finflex
