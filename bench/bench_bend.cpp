@@ -25,12 +25,8 @@ double time_batch_kernel(benchmark::State& state, cl::Kernel& kernel, const Batc
 void BM_WriteOnly(benchmark::State& state, NormalFormat format) {
   Setup& setup = Setup::get();
   DeviceBatch& batch = setup.batch(static_cast<std::size_t>(state.range(0)), format);
-  cl::Kernel& kernel = setup.kernel("write_planes", format);
-  kernel.setArg(0, batch.positions);
-  kernel.setArg(1, batch.normals);
-  kernel.setArg(2, static_cast<cl_uint>(batch.layout.plane_stride));
-  kernel.setArg(3, 1.0f);
-  const double seconds = time_batch_kernel(state, kernel, batch.layout);
+  const double seconds =
+      time_frames(state, [&] { return event_seconds(enqueue_write_only(setup.context, batch)); });
   setup.write_only_bytes_per_second[{batch.layout.instance_count, format}] =
       written_bytes(batch.layout) * static_cast<double>(state.iterations()) / seconds;
   set_counters(state, batch.layout, 0.0);

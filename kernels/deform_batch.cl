@@ -1,4 +1,7 @@
-/* Batched bend: one work-item per (vertex, instance), NDRange (plane_stride, instances).
+/* Batched bend: one work-item per (vertex, FF_INSTANCES_PER_ITEM instances), NDRange
+ * (plane_stride, ceil(instances / FF_INSTANCES_PER_ITEM)). Several instances per
+ * work-item read the rest vertex once and halve the work-items a GPU must schedule,
+ * which is what limits it below its write bandwidth with one; CPUs take 1.
  *
  * rest:  the rest mesh in the body frame, planes of plane_stride floats:
  *        px py pz nx ny nz [tx ty tz]; padding vertices are harmless zeros / e_z.
@@ -8,10 +11,15 @@
  *        p_b = origin + s (x e_x + y e_y + z e_z), n_b = x e_x + y e_y + z e_z;
  *        scaled_axis_* = s e_*, axis_* = e_* (all in mesh coordinates).
  *
- * Build options: those of bend.cl and planes.cl, and FF_TANGENTS (0/1).
- * No branch depends on the vertex: the planes are padded to the work-group size. */
+ * Build options: those of bend.cl and planes.cl, FF_TANGENTS (0/1) and
+ * FF_INSTANCES_PER_ITEM (default 1).
+ * No branch depends on the vertex: the planes are padded to the work-group size, and
+ * the instance bound is the same for a whole work-group. */
 #ifndef FF_TANGENTS
 #define FF_TANGENTS 0
+#endif
+#ifndef FF_INSTANCES_PER_ITEM
+#define FF_INSTANCES_PER_ITEM 1
 #endif
 
 /* x a_x + y a_y + z a_z (+ origin): the way back to mesh coordinates, M^-1 of (2). */
@@ -26,26 +34,31 @@ __kernel void bend_batch(__global const float* restrict rest,
                          __global float* restrict out_positions,
                          __global float* restrict out_normals,
                          __global float* restrict out_tangents,
-                         const uint stride,
+                         const uint stride, const uint instances,
                          const float4 origin,
                          const float4 scaled_axis_x, const float4 scaled_axis_y,
                          const float4 scaled_axis_z,
                          const float4 axis_x, const float4 axis_y, const float4 axis_z) {
   const size_t v = get_global_id(0);
-  const size_t instance = get_global_id(1);
+  const size_t first_instance = get_global_id(1) * FF_INSTANCES_PER_ITEM;
   const float4 no_offset = (float4)(0.0f);
   const Vec3 p = load_plane3(rest, 0, stride, v);
   const Vec3 n = load_plane3(rest, 3, stride, v);
-  const BendSample s = bend_sample(p.x, p.z, m[instance]);
-
-  const size_t out_plane = instance * 3;
-  store_plane3(out_positions, out_plane, stride, v,
-               to_mesh(bend_position(p, s), scaled_axis_x, scaled_axis_y, scaled_axis_z, origin));
-  store_direction3(out_normals, out_plane, stride, v,
-               to_mesh(bend_normal(n, s), axis_x, axis_y, axis_z, no_offset));
 #if FF_TANGENTS
   const Vec3 t = load_plane3(rest, 6, stride, v);
-  store_direction3(out_tangents, out_plane, stride, v,
-               to_mesh(bend_tangent(t, s), axis_x, axis_y, axis_z, no_offset));
 #endif
+  for (uint k = 0; k < FF_INSTANCES_PER_ITEM; ++k) {
+    const size_t instance = first_instance + k;
+    if (instance >= instances) break;
+    const BendSample s = bend_sample(p.x, p.z, m[instance]);
+    const size_t out_plane = instance * 3;
+    store_plane3(out_positions, out_plane, stride, v,
+                 to_mesh(bend_position(p, s), scaled_axis_x, scaled_axis_y, scaled_axis_z, origin));
+    store_direction3(out_normals, out_plane, stride, v,
+                     to_mesh(bend_normal(n, s), axis_x, axis_y, axis_z, no_offset));
+#if FF_TANGENTS
+    store_direction3(out_tangents, out_plane, stride, v,
+                     to_mesh(bend_tangent(t, s), axis_x, axis_y, axis_z, no_offset));
+#endif
+  }
 }

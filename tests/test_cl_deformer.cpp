@@ -123,6 +123,36 @@ TEST(ClDeformer, BatchEqualsSingleRuns) {
   }
 }
 
+TEST(ClDeformer, SeveralInstancesPerWorkItemGiveTheSameResult) {
+  // GPUs take 2 instances per work-item; every count, odd batches included, must give
+  // what one instance per work-item gives (to float32 rounding: the compiler may
+  // contract multiply-adds differently in the two kernel shapes).
+  const Mesh mesh = load_mesh(test::data_path("barramundi/BarramundiFish.gltf"));
+  const LocalMesh local = make_local_mesh(mesh, find_body_frame(mesh));
+  std::vector<float> m;
+  for (int i = 0; i < 7; ++i) m.push_back(static_cast<float>(0.1 * i * max_abs_m(local.x_max)));
+  const BendSettings settings{BendMode::kExact, NormalMode::kJacobian};
+  ClDeformer one(test::shared_context(), local, 1);
+  DeviceBatch reference_batch = one.allocate(m.size());
+  one.enqueue(m, settings, reference_batch);
+  const DeformedBatch<float> expected = one.read(reference_batch);
+  const double bound = 4e-6 * (glm::length(local.frame.origin) + local.frame.length);
+  for (std::size_t per_item : {2u, 3u, 8u}) {
+    ClDeformer several(test::shared_context(), local, per_item);
+    DeviceBatch batch = several.allocate(m.size());
+    several.enqueue(m, settings, batch);
+    const DeformedBatch<float> got = several.read(batch);
+    for (std::size_t i = 0; i < m.size(); ++i) {
+      for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+        ASSERT_LT(glm::length(got.position(i, v) - expected.position(i, v)), bound)
+            << per_item << " per item, instance " << i << " vertex " << v;
+        ASSERT_LT(glm::length(got.normal(i, v) - expected.normal(i, v)), 2e-6f);
+        ASSERT_LT(glm::length(got.tangent(i, v) - expected.tangent(i, v)), 2e-6f);
+      }
+    }
+  }
+}
+
 TEST(ClDeformer, FourThousandInstancesOfTheFullFish) {
   // 4,000 x 10,786 vertices: 2 x 519 MB of float32 outputs in one launch.
   const Mesh mesh = load_mesh(test::data_path("blub/fish.obj"));

@@ -72,22 +72,10 @@ FrameTimes time_frames(std::size_t frames, Enqueue enqueue) {
   return times;
 }
 
-// The write-only kernel over the batch's planes, same NDRange as the deformers.
+// The write-only kernel over the batch's planes, same NDRange as the bend.
 double write_only_median(Context& context, DeviceBatch& batch, std::size_t frames) {
-  const bool half = batch.layout.normal_format == NormalFormat::kHalf;
-  cl::Kernel kernel = context.kernel("write_planes", ProgramSource::bend_batch(),
-                                     half ? "-DFF_HALF_NORMALS=1" : "");
-  check_cl(kernel.setArg(0, batch.positions), "clSetKernelArg");
-  check_cl(kernel.setArg(1, batch.normals), "clSetKernelArg");
-  check_cl(kernel.setArg(2, static_cast<cl_uint>(batch.layout.plane_stride)), "clSetKernelArg");
-  check_cl(kernel.setArg(3, 1.0f), "clSetKernelArg");
   const FrameTimes times = time_frames(frames, [&](std::size_t, std::vector<cl::Event>& events) {
-    events.assign(1, cl::Event());
-    check_cl(context.queue().enqueueNDRangeKernel(
-                 kernel, cl::NullRange,
-                 cl::NDRange(batch.layout.plane_stride, batch.layout.instance_count),
-                 cl::NDRange(ClDeformer::kLocalSize, 1), nullptr, &events[0]),
-             "clEnqueueNDRangeKernel write_planes");
+    events.assign(1, enqueue_write_only(context, batch));
   });
   return median(times.device);
 }

@@ -34,15 +34,53 @@ std::vector<float> rest_planes(const LocalMesh& mesh, std::size_t stride) {
 
 }  // namespace
 
-std::string bend_build_options(const BendSettings& settings, bool tangents, NormalFormat format) {
+std::string bend_build_options(const BendSettings& settings, bool tangents, NormalFormat format,
+                               std::size_t instances_per_item) {
   return std::string("-DFF_BEND_EXACT=") + (settings.mode == BendMode::kExact ? "1" : "0") +
          " -DFF_NORMALS_JACOBIAN=" + (settings.normals == NormalMode::kJacobian ? "1" : "0") +
          " -DFF_TANGENTS=" + (tangents ? "1" : "0") +
-         " -DFF_HALF_NORMALS=" + (format == NormalFormat::kHalf ? "1" : "0");
+         " -DFF_HALF_NORMALS=" + (format == NormalFormat::kHalf ? "1" : "0") +
+         " -DFF_INSTANCES_PER_ITEM=" + std::to_string(instances_per_item);
 }
 
-ClDeformer::ClDeformer(Context& context, const LocalMesh& mesh)
-    : context_(context), mesh_(mesh), plane_stride_(padded_plane_stride(mesh.vertex_count())) {
+std::size_t instances_per_work_item(const DeviceDescription& device) {
+  return device.type == "GPU" ? 2 : 1;
+}
+
+namespace {
+
+// NDRange of the batch kernels: (plane_stride, ceil(instances / per_item)).
+cl::NDRange batch_range(const BatchLayout& layout, std::size_t per_item) {
+  return cl::NDRange(layout.plane_stride, (layout.instance_count + per_item - 1) / per_item);
+}
+
+}  // namespace
+
+cl::Event enqueue_write_only(Context& context, DeviceBatch& batch) {
+  const std::size_t per_item = instances_per_work_item(context.description());
+  const std::string options =
+      std::string("-DFF_INSTANCES_PER_ITEM=") + std::to_string(per_item) +
+      (batch.layout.normal_format == NormalFormat::kHalf ? " -DFF_HALF_NORMALS=1" : "");
+  cl::Kernel kernel = context.kernel("write_planes", ProgramSource::bend_batch(), options);
+  check_cl(kernel.setArg(0, batch.positions), "clSetKernelArg write_planes");
+  check_cl(kernel.setArg(1, batch.normals), "clSetKernelArg write_planes");
+  check_cl(kernel.setArg(2, static_cast<cl_uint>(batch.layout.plane_stride)), "clSetKernelArg");
+  check_cl(kernel.setArg(3, static_cast<cl_uint>(batch.layout.instance_count)), "clSetKernelArg");
+  check_cl(kernel.setArg(4, 1.0f), "clSetKernelArg write_planes");
+  cl::Event done;
+  check_cl(context.queue().enqueueNDRangeKernel(
+               kernel, cl::NullRange, batch_range(batch.layout, per_item),
+               cl::NDRange(ClDeformer::kLocalSize, 1), nullptr, &done),
+           "clEnqueueNDRangeKernel write_planes");
+  return done;
+}
+
+ClDeformer::ClDeformer(Context& context, const LocalMesh& mesh, std::size_t instances_per_item)
+    : context_(context),
+      mesh_(mesh),
+      plane_stride_(padded_plane_stride(mesh.vertex_count())),
+      instances_per_item_(instances_per_item ? instances_per_item
+                                             : instances_per_work_item(context.description())) {
   static_assert(64 % kLocalSize == 0, "plane_stride must be a multiple of the work-group size");
   if (plane_stride_ > 0xffffffffu) {
     throw Error(ErrorCode::kInvalidMesh, "positions", "the mesh has more than 2^32 vertices");
@@ -95,19 +133,22 @@ cl::Event ClDeformer::enqueue(const std::vector<float>& m, const BendSettings& s
   check_cl(kernel.setArg(arg++, batch.normals), "clSetKernelArg out_normals");
   check_cl(kernel.setArg(arg++, batch.tangents), "clSetKernelArg out_tangents");
   check_cl(kernel.setArg(arg++, static_cast<cl_uint>(plane_stride_)), "clSetKernelArg stride");
+  check_cl(kernel.setArg(arg++, static_cast<cl_uint>(batch.layout.instance_count)),
+           "clSetKernelArg instances");
   for (const cl_float4& value : back_transform_) {
     check_cl(kernel.setArg(arg++, value), "clSetKernelArg back transform");
   }
   cl::Event done;
   check_cl(queue.enqueueNDRangeKernel(kernel, cl::NullRange,
-                                      cl::NDRange(plane_stride_, batch.layout.instance_count),
+                                      batch_range(batch.layout, instances_per_item_),
                                       cl::NDRange(kLocalSize, 1), nullptr, &done),
            "clEnqueueNDRangeKernel bend_batch");
   return done;
 }
 
 cl::Kernel& ClDeformer::bend_kernel(const BendSettings& settings, NormalFormat format) {
-  const std::string options = bend_build_options(settings, mesh_.has_tangents(), format);
+  const std::string options =
+      bend_build_options(settings, mesh_.has_tangents(), format, instances_per_item_);
   auto found = kernels_.find(options);
   if (found == kernels_.end()) {
     found =

@@ -48,8 +48,9 @@ struct DeviceBatch {
 
 class ClDeformer {
  public:
-  // Uploads the rest mesh (float32 planes) once.
-  ClDeformer(Context& context, const LocalMesh& mesh);
+  // Uploads the rest mesh (float32 planes) once. `instances_per_item`: instances each
+  // work-item deforms; 0 takes instances_per_work_item() of the device.
+  ClDeformer(Context& context, const LocalMesh& mesh, std::size_t instances_per_item = 0);
 
   const LocalMesh& mesh() const { return mesh_; }
   BatchLayout layout(std::size_t instances, NormalFormat format = NormalFormat::kFloat32) const;
@@ -78,12 +79,23 @@ class ClDeformer {
   std::size_t plane_stride_ = 0;
   cl::Buffer rest_;
   std::vector<cl_float4> back_transform_;      // origin, s e_x, s e_y, s e_z, e_x, e_y, e_z
+  std::size_t instances_per_item_ = 1;         // instances_per_work_item() of the device
   std::map<std::string, cl::Kernel> kernels_;  // by build options: no per-frame creation
 
   cl::Kernel& bend_kernel(const BendSettings& settings, NormalFormat format);
 };
 
 // Build options specialising the kernels (-D FF_BEND_EXACT=...).
-std::string bend_build_options(const BendSettings& settings, bool tangents, NormalFormat format);
+std::string bend_build_options(const BendSettings& settings, bool tangents, NormalFormat format,
+                               std::size_t instances_per_item);
+
+// Instances one work-item deforms (reading its rest vertex once): 2 on GPUs, whose
+// rate of work-items, not of bytes, limits one instance per work-item; 1 on CPUs.
+std::size_t instances_per_work_item(const DeviceDescription& device);
+
+// The write-only reference kernel over `batch`'s outputs: writes positions and normals
+// (in the batch's format) with no arithmetic, in the bend kernel's NDRange, so that
+// benchmarks can measure the device's write bandwidth next to the deformers.
+cl::Event enqueue_write_only(Context& context, DeviceBatch& batch);
 
 }  // namespace finflex
