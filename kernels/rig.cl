@@ -13,7 +13,8 @@
  * branch is straight-line code that PoCL vectorises across work-items.
  *
  * Build options: FF_NORMALS_JACOBIAN (bend.cl), FF_HALF_NORMALS (planes.cl; the
- * passes that write scratch buffers are built without it), FF_TANGENTS (0/1). */
+ * passes that write scratch buffers are built without it), FF_TANGENTS (0/1),
+ * FF_INSTANCES_PER_ITEM (deform_batch.cl's, default 1). */
 #ifndef FF_TANGENTS
 #define FF_TANGENTS 0
 #endif
@@ -82,9 +83,14 @@ FF_INLINE void apply_hinge(Vec3* p, Vec3* n, Vec3* t, StageFrame f, float angle)
 #define FF_STORE_TANGENT(planes, first, stride, v, value)
 #endif
 
-/* Fused path: one NDRange (slots, instances); every vertex walks its whole path in
- * registers and is written once. rest_*: one instance's planes; params: param_count
- * values per instance. */
+#ifndef FF_INSTANCES_PER_ITEM
+#define FF_INSTANCES_PER_ITEM 1
+#endif
+
+/* Fused path: one NDRange (slots, ceil(instances / FF_INSTANCES_PER_ITEM)); every
+ * vertex walks its whole path in registers and is written once, for each of the
+ * work-item's instances. rest_*: one instance's planes; params: param_count values per
+ * instance. */
 __kernel void rig_fused(__global const float* restrict rest_positions,
                         __global const float* restrict rest_normals,
                         __global const float* restrict rest_tangents,
@@ -92,18 +98,24 @@ __kernel void rig_fused(__global const float* restrict rest_positions,
                         __constant const float* stages,
                         __global float* restrict out_positions,
                         __global float* restrict out_normals,
-                        __global float* restrict out_tangents, const uint stride) {
+                        __global float* restrict out_tangents, const uint stride,
+                        const uint instances) {
   const size_t v = get_global_id(0);
-  const size_t instance = get_global_id(1);
+  const size_t first_instance = get_global_id(1) * FF_INSTANCES_PER_ITEM;
   const uint group = get_group_id(0);
-  __global const float* values = params + instance * param_count;
-  Vec3 p = load_plane3(rest_positions, 0, stride, v);
-  Vec3 n = load_plane3(rest_normals, 0, stride, v);
-  Vec3 t = FF_LOAD_TANGENT(rest_tangents, 0, stride, v);
-  FF_RIG_FUSED_STAGES
-  store_plane3(out_positions, instance * 3, stride, v, p);
-  store_direction3(out_normals, instance * 3, stride, v, n);
-  FF_STORE_TANGENT(out_tangents, instance * 3, stride, v, t);
+  const Vec3 rest_p = load_plane3(rest_positions, 0, stride, v);
+  const Vec3 rest_n = load_plane3(rest_normals, 0, stride, v);
+  const Vec3 rest_t = FF_LOAD_TANGENT(rest_tangents, 0, stride, v);
+  for (uint k = 0; k < FF_INSTANCES_PER_ITEM; ++k) {
+    const size_t instance = first_instance + k;
+    if (instance >= instances) break;
+    __global const float* values = params + instance * param_count;
+    Vec3 p = rest_p, n = rest_n, t = rest_t;
+    FF_RIG_FUSED_STAGES
+    store_plane3(out_positions, instance * 3, stride, v, p);
+    store_direction3(out_normals, instance * 3, stride, v, n);
+    FF_STORE_TANGENT(out_tangents, instance * 3, stride, v, t);
+  }
 }
 
 /* Multi-pass path: pass q (kernel rig_pass_q) reads every vertex from src (the rest
@@ -120,19 +132,24 @@ __kernel void rig_fused(__global const float* restrict rest_positions,
                              const uint param_count, __constant const float* stages, \
                              __global float* restrict dst_positions,               \
                              __global float* restrict dst_normals,                 \
-                             __global float* restrict dst_tangents, const uint stride) { \
+                             __global float* restrict dst_tangents, const uint stride, \
+                             const uint instances) {                               \
     const size_t v = get_global_id(0);                                              \
-    const size_t instance = get_global_id(1);                                       \
+    const size_t first_instance = get_global_id(1) * FF_INSTANCES_PER_ITEM;        \
     const uint group = get_group_id(0);                                             \
-    __global const float* values = params + instance * param_count;                 \
-    const size_t first = instance * src_planes_per_instance;                        \
-    Vec3 p = load_plane3(src_positions, first, stride, v);                          \
-    Vec3 n = load_plane3(src_normals, first, stride, v);                            \
-    Vec3 t = FF_LOAD_TANGENT(src_tangents, first, stride, v);                       \
-    FF_RIG_PASS_##q                                                                 \
-    store_plane3(dst_positions, instance * 3, stride, v, p);                        \
-    store_direction3(dst_normals, instance * 3, stride, v, n);                      \
-    FF_STORE_TANGENT(dst_tangents, instance * 3, stride, v, t);                     \
+    for (uint k = 0; k < FF_INSTANCES_PER_ITEM; ++k) {                              \
+      const size_t instance = first_instance + k;                                   \
+      if (instance >= instances) break;                                             \
+      __global const float* values = params + instance * param_count;               \
+      const size_t first = instance * src_planes_per_instance;                      \
+      Vec3 p = load_plane3(src_positions, first, stride, v);                        \
+      Vec3 n = load_plane3(src_normals, first, stride, v);                          \
+      Vec3 t = FF_LOAD_TANGENT(src_tangents, first, stride, v);                     \
+      FF_RIG_PASS_##q                                                               \
+      store_plane3(dst_positions, instance * 3, stride, v, p);                      \
+      store_direction3(dst_normals, instance * 3, stride, v, n);                    \
+      FF_STORE_TANGENT(dst_tangents, instance * 3, stride, v, t);                   \
+    }                                                                               \
   }
 
 FF_RIG_PASS_KERNELS

@@ -319,6 +319,26 @@ TEST(RigDeformer, HeterogeneousFrameEqualsSeparateRuns) {
   EXPECT_EQ(max_difference(b.read(alone_b), together_b, blub.vertex_count(), 3).position, 0.0);
 }
 
+TEST(RigDeformer, SeveralInstancesPerWorkItemGiveTheSameResult) {
+  const Mesh mesh = load_mesh(test::data_path("barramundi/BarramundiFish.gltf"));
+  const Rig rig = resolve_rig(load_rig_file(test::data_path("rigs/barramundi.rig.json")), mesh);
+  const RigParameters values = random_parameters(rig, 7, 0.7, 5);  // an odd count
+  ClRigDeformer one(test::shared_context(), mesh, rig, 1);
+  DeviceBatch reference_batch = one.allocate(7);
+  for (RigPath path : {RigPath::kFused, RigPath::kPasses}) {
+    one.enqueue(values, NormalMode::kJacobian, reference_batch, path);
+    const DeformedBatch<float> expected = one.read(reference_batch);
+    for (std::size_t per_item : {2u, 3u}) {
+      ClRigDeformer several(test::shared_context(), mesh, rig, per_item);
+      DeviceBatch batch = several.allocate(7);
+      several.enqueue(values, NormalMode::kJacobian, batch, path);
+      const Difference d = max_difference(several.read(batch), expected, mesh.vertex_count(), 7);
+      EXPECT_LT(d.position, 1e-6 * coordinate_scale(rig)) << per_item << " " << to_string(path);
+      EXPECT_LT(d.normal, 1e-5) << per_item << " " << to_string(path);
+    }
+  }
+}
+
 TEST(RigDeformer, BadParametersAreRejectedByName) {
   const Mesh mesh = test::synthetic_fish(48, 16);
   const Rig rig = resolve_rig(deep_tail_rig(), mesh);

@@ -33,8 +33,11 @@ void set_args(cl::Kernel& kernel, cl_uint first, std::initializer_list<const cl:
 
 }  // namespace
 
-ClRigDeformer::ClRigDeformer(Context& context, const Mesh& mesh, const Rig& rig)
+ClRigDeformer::ClRigDeformer(Context& context, const Mesh& mesh, const Rig& rig,
+                             std::size_t instances_per_item)
     : context_(context), rig_(rig), limits_(rig_param_limits(rig)) {
+  instances_per_item_ =
+      instances_per_item ? instances_per_item : instances_per_work_item(context.description());
   validate_mesh(mesh);
   vertex_count_ = mesh.vertex_count();
   tangents_ = mesh.has_tangents();
@@ -100,7 +103,8 @@ cl::Kernel& ClRigDeformer::kernel(const std::string& name, NormalMode normals,
   const std::string options = std::string("-DFF_NORMALS_JACOBIAN=") +
                               (normals == NormalMode::kJacobian ? "1" : "0") +
                               " -DFF_TANGENTS=" + (tangents_ ? "1" : "0") +
-                              " -DFF_HALF_NORMALS=" + (format == NormalFormat::kHalf ? "1" : "0");
+                              " -DFF_HALF_NORMALS=" + (format == NormalFormat::kHalf ? "1" : "0") +
+                              " -DFF_INSTANCES_PER_ITEM=" + std::to_string(instances_per_item_);
   const std::string key = name + " " + options;
   auto found = kernels_.find(key);
   if (found == kernels_.end()) {
@@ -127,7 +131,9 @@ cl::Event ClRigDeformer::enqueue(const RigParameters& parameters, NormalMode nor
   if (path == RigPath::kAuto) path = automatic_path();
 
   cl::CommandQueue& queue = context_.queue();
-  const cl::NDRange global(slot_count_, batch.layout.instance_count);
+  const cl::NDRange global(
+      slot_count_, (batch.layout.instance_count + instances_per_item_ - 1) / instances_per_item_);
+  const auto instances = static_cast<cl_uint>(batch.layout.instance_count);
   const cl::NDRange local(kGroupSize, 1);
   const auto param_count = static_cast<cl_uint>(rig_.params.size());
   const auto stride = static_cast<cl_uint>(slot_count_);
@@ -141,6 +147,7 @@ cl::Event ClRigDeformer::enqueue(const RigParameters& parameters, NormalMode nor
     check_cl(fused.setArg(5, stages_), "clSetKernelArg stages");
     set_args(fused, 6, {&batch.positions, &batch.normals, &batch.tangents}, "clSetKernelArg out");
     check_cl(fused.setArg(9, stride), "clSetKernelArg stride");
+    check_cl(fused.setArg(10, instances), "clSetKernelArg instances");
     check_cl(queue.enqueueNDRangeKernel(fused, cl::NullRange, global, local, nullptr, &done),
              "clEnqueueNDRangeKernel rig_fused");
     if (kernel_events) kernel_events->push_back(done);
@@ -168,6 +175,7 @@ cl::Event ClRigDeformer::enqueue(const RigParameters& parameters, NormalMode nor
     check_cl(pass_kernel.setArg(6, stages_), "clSetKernelArg stages");
     set_args(pass_kernel, 7, {target[0], target[1], target[2]}, "clSetKernelArg dst");
     check_cl(pass_kernel.setArg(10, stride), "clSetKernelArg stride");
+    check_cl(pass_kernel.setArg(11, instances), "clSetKernelArg instances");
     check_cl(queue.enqueueNDRangeKernel(pass_kernel, cl::NullRange, global, local, nullptr, &done),
              "clEnqueueNDRangeKernel rig_pass");
     if (kernel_events) kernel_events->push_back(done);

@@ -95,7 +95,10 @@ class RigReference {
 class ClRigDeformer {
  public:
   // Reorders the vertices into slots, uploads the rest mesh and the stage frames once.
-  ClRigDeformer(Context& context, const Mesh& mesh, const Rig& rig);
+  // `instances_per_item`: instances each work-item deforms; 0 takes
+  // instances_per_work_item() of the device.
+  ClRigDeformer(Context& context, const Mesh& mesh, const Rig& rig,
+                std::size_t instances_per_item = 0);
 
   const Rig& rig() const { return rig_; }
   BatchLayout layout(std::size_t instances, NormalFormat format = NormalFormat::kFloat32) const;
@@ -136,6 +139,7 @@ class ClRigDeformer {
   std::size_t slot_count_ = 0;
   std::size_t pass_count_ = 0;
   bool tangents_ = false;
+  std::size_t instances_per_item_ = 1;
   std::vector<std::uint32_t> slot_of_vertex_;
   std::vector<std::uint32_t> remapped_indices_;
   cl::Buffer rest_positions_, rest_normals_, rest_tangents_;
