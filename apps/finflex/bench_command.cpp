@@ -55,16 +55,20 @@ struct FrameTimes {
 };
 
 // Runs one warm-up frame (PoCL compiles per work-group shape), then `frames` timed ones.
-// `enqueue(frame, kernels)` enqueues a frame and returns its kernels' events.
-template <typename Enqueue>
-FrameTimes time_frames(std::size_t frames, Enqueue enqueue) {
+// `prepare(frame)` sets the frame's parameters (not timed: that is the application's
+// animation); `enqueue(kernels)` enqueues the frame and returns its kernels' events
+// (timed on the host, then on the device).
+template <typename Prepare, typename Enqueue>
+FrameTimes time_frames(std::size_t frames, Prepare prepare, Enqueue enqueue) {
   FrameTimes times;
   std::vector<cl::Event> kernels;
-  enqueue(0, kernels);
+  prepare(0);
+  enqueue(kernels);
   device_seconds(kernels.front(), kernels.back());
   for (std::size_t f = 1; f <= frames; ++f) {
+    prepare(f);
     const auto start = std::chrono::steady_clock::now();
-    enqueue(f, kernels);
+    enqueue(kernels);
     const auto end = std::chrono::steady_clock::now();
     times.host.push_back(std::chrono::duration<double>(end - start).count());
     times.device.push_back(device_seconds(kernels.front(), kernels.back()));
@@ -74,9 +78,11 @@ FrameTimes time_frames(std::size_t frames, Enqueue enqueue) {
 
 // The write-only kernel over the batch's planes, same NDRange as the bend.
 double write_only_median(Context& context, DeviceBatch& batch, std::size_t frames) {
-  const FrameTimes times = time_frames(frames, [&](std::size_t, std::vector<cl::Event>& events) {
-    events.assign(1, enqueue_write_only(context, batch));
-  });
+  const FrameTimes times = time_frames(
+      frames, [](std::size_t) {},
+      [&](std::vector<cl::Event>& events) {
+        events.assign(1, enqueue_write_only(context, batch));
+      });
   return median(times.device);
 }
 
@@ -106,10 +112,14 @@ int run_bench(const BenchOptions& options) {
       batch = deformer.allocate(options.instances, format);
       std::vector<float> m(options.instances);
       const double limit = max_abs_m(local.x_max);
-      times = time_frames(options.frames, [&](std::size_t f, std::vector<cl::Event>& events) {
-        for (std::size_t i = 0; i < m.size(); ++i) m[i] = swing(limit, i, 0, f);
-        events.assign(1, deformer.enqueue(m, settings, batch));
-      });
+      times = time_frames(
+          options.frames,
+          [&](std::size_t f) {
+            for (std::size_t i = 0; i < m.size(); ++i) m[i] = swing(limit, i, 0, f);
+          },
+          [&](std::vector<cl::Event>& events) {
+            events.assign(1, deformer.enqueue(m, settings, batch));
+          });
       what = std::string("bend ") + to_string(settings.mode);
     } else {
       const RigPath path = parse_rig_path(options.path, "--path");
@@ -120,14 +130,18 @@ int run_bench(const BenchOptions& options) {
       const std::vector<double> limits = rig_param_limits(rig);
       const RigPath chosen = path == RigPath::kAuto ? deformer.automatic_path() : path;
       passes = chosen == RigPath::kPasses ? deformer.pass_count() : 1;
-      times = time_frames(options.frames, [&](std::size_t f, std::vector<cl::Event>& events) {
-        for (std::size_t i = 0; i < options.instances; ++i) {
-          for (std::size_t p = 0; p < rig.params.size(); ++p) {
-            values.values()[i * rig.params.size() + p] = swing(limits[p], i, p, f);
-          }
-        }
-        deformer.enqueue(values, normals, batch, chosen, false, nullptr, &events);
-      });
+      times = time_frames(
+          options.frames,
+          [&](std::size_t f) {
+            for (std::size_t i = 0; i < options.instances; ++i) {
+              for (std::size_t p = 0; p < rig.params.size(); ++p) {
+                values.values()[i * rig.params.size() + p] = swing(limits[p], i, p, f);
+              }
+            }
+          },
+          [&](std::vector<cl::Event>& events) {
+            deformer.enqueue(values, normals, batch, chosen, false, nullptr, &events);
+          });
       what = std::string("rig ") + to_string(chosen);
     }
     const double seconds = median(times.device);
