@@ -112,19 +112,22 @@ TEST(Cli, CheckPassesOnTheDefaultDevice) {
 }
 
 TEST(Cli, BenchPrintsOneJsonObject) {
-  for (const std::string& extra :
-       std::vector<std::string>{"", " --rig " + fish("rigs/blub.rig.json") + " --path passes"}) {
+  for (const std::string& extra : std::vector<std::string>{
+           "", " --rig " + fish("rigs/blub_low_resolution.rig.json") + " --path passes"}) {
     const RunResult r = run_cli("bench --mesh " + fish("blub/fish_low_resolution.obj") +
                                 " --instances 8 --frames 3 --json" + extra);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(line_count(r.out), 1) << r.out;
-    for (const char* key : {"\"device\"", "\"vertices\":945", "\"instances\":8", "\"frames\":3",
-                            "\"seconds_per_frame_median\"", "\"vertices_per_second\"",
-                            "\"output_bytes_per_second\"", "\"write_bandwidth_bytes_per_second\""}) {
+    for (const char* key :
+         {"\"device\"", "\"vertices\":945", "\"instances\":8", "\"frames\":3",
+          "\"seconds_per_frame_median\"", "\"vertices_per_second\"", "\"output_bytes_per_second\"",
+          "\"write_bandwidth_bytes_per_second\""}) {
       EXPECT_NE(r.out.find(key), std::string::npos) << key << " in " << r.out;
     }
   }
-  EXPECT_EQ(run_cli("bench --mesh " + fish("blub/fish_low_resolution.obj") + " --instances 0").exit_code, 2);
+  EXPECT_EQ(
+      run_cli("bench --mesh " + fish("blub/fish_low_resolution.obj") + " --instances 0").exit_code,
+      2);
 }
 
 TEST(Cli, InfoListsTheDefaultDevice) {
@@ -213,7 +216,7 @@ TEST(Cli, FrameOverridesChangeTheFrame) {
 
 TEST(Cli, DeformsWithARigOnBothPaths) {
   const std::string in = fish("blub/fish_low_resolution.obj");
-  const std::string rig = fish("rigs/blub.rig.json");
+  const std::string rig = fish("rigs/blub_low_resolution.rig.json");
   const Mesh rest = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
   Mesh bent[2];
   int k = 0;
@@ -240,14 +243,13 @@ TEST(Cli, DeformsWithARigOnBothPaths) {
 
 TEST(Cli, BadRigInputsExitTwoAndWriteNothing) {
   const std::string in = fish("blub/fish_low_resolution.obj");
-  const std::string rig = fish("rigs/blub.rig.json");
+  const std::string rig = fish("rigs/blub_low_resolution.rig.json");
   const std::string broken = test::temp_path("broken.rig.json");
   { std::ofstream(broken) << "{\"components\": [ {\"name\": \"body\", \"select\": \"all\",}"; }
   // Two siblings taking the same vertices: resolves only against the mesh.
   const std::string overlapping = test::temp_path("overlapping.rig.json");
   {
-    std::ofstream(overlapping)
-        << R"({"components": [
+    std::ofstream(overlapping) << R"({"components": [
              {"name": "body", "select": "all", "chain": []},
              {"name": "tail", "parent": "body", "select": {"box": {"min": [-9, -9, -9], "max": [-0.2, 9, 9]}},
               "chain": [{"deformer": "hinge", "param": "a"}]},

@@ -347,6 +347,8 @@ def select(mesh, spec, parent_vertices, parent_frame, where):
         if not np.isin(chosen, parent_vertices).all():
             sys.exit("%s.select.indices: a vertex outside the parent" % where)
     elif kind == "group":
+        if body not in [name for name, _, _ in mesh.groups]:
+            sys.exit("%s.select.group: '%s' is not a face group of the mesh" % (where, body))
         chosen = np.unique(np.concatenate(
             [mesh.triangles[first:first + count].ravel()
              for name, first, count in mesh.groups if name == body] or [np.zeros(0, np.int64)]))
@@ -385,6 +387,8 @@ def resolve(rig, mesh):
         sys.exit("a rig has exactly one root (found %d)" % len(roots))
     for c in components:
         if "parent" in c.spec:
+            if c.spec["parent"] not in by_name:
+                sys.exit("%s.parent: '%s' is not a component" % (c.where, c.spec["parent"]))
             c.parent = by_name[c.spec["parent"]]
             c.parent.children.append(c)
     root = roots[0]
@@ -410,6 +414,8 @@ def resolve(rig, mesh):
             visit(child)
 
     visit(root)
+    if len(order) != len(components):
+        sys.exit("the parent links loop: some components never reach the root")
     return order
 
 
