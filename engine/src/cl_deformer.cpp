@@ -147,13 +147,13 @@ cl::Event ClDeformer::enqueue(const std::vector<float>& m, const BendSettings& s
 }
 
 cl::Kernel& ClDeformer::bend_kernel(const BendSettings& settings, NormalFormat format) {
-  const std::string options =
-      bend_build_options(settings, mesh_.has_tangents(), format, instances_per_item_);
-  auto found = kernels_.find(options);
+  const auto key = std::make_tuple(settings.mode, settings.normals, format);
+  auto found = kernels_.find(key);
   if (found == kernels_.end()) {
+    const std::string options =
+        bend_build_options(settings, mesh_.has_tangents(), format, instances_per_item_);
     found =
-        kernels_
-            .emplace(options, context_.kernel("bend_batch", ProgramSource::bend_batch(), options))
+        kernels_.emplace(key, context_.kernel("bend_batch", ProgramSource::bend_batch(), options))
             .first;
   }
   return found->second;

@@ -66,6 +66,8 @@ ClRigDeformer::ClRigDeformer(Context& context, const Mesh& mesh, const Rig& rig,
 
   const std::vector<detail::Pass> passes = detail::make_passes(rig_);
   pass_count_ = passes.size();
+  automatic_path_ =
+      detail::longest_path(rig_) <= kMaxFusedStages ? RigPath::kFused : RigPath::kPasses;
   program_ = {{"bend.cl", "planes.cl", "rig.cl"},
               detail::rig_dispatch_source(rig_, slots, passes, kGroupSize)};
 }
@@ -78,10 +80,6 @@ BatchLayout ClRigDeformer::layout(std::size_t instances, NormalFormat format) co
   layout.plane_stride = slot_count_;
   layout.tangents = tangents_;
   return layout;
-}
-
-RigPath ClRigDeformer::automatic_path() const {
-  return detail::longest_path(rig_) <= kMaxFusedStages ? RigPath::kFused : RigPath::kPasses;
 }
 
 DeviceBatch ClRigDeformer::allocate(std::size_t instances, NormalFormat format) const {
@@ -98,16 +96,16 @@ void ClRigDeformer::ensure_scratch(DeviceBatch& batch, std::size_t sets) const {
   }
 }
 
-cl::Kernel& ClRigDeformer::kernel(const std::string& name, NormalMode normals,
-                                  NormalFormat format) {
-  const std::string options = std::string("-DFF_NORMALS_JACOBIAN=") +
-                              (normals == NormalMode::kJacobian ? "1" : "0") +
-                              " -DFF_TANGENTS=" + (tangents_ ? "1" : "0") +
-                              " -DFF_HALF_NORMALS=" + (format == NormalFormat::kHalf ? "1" : "0") +
-                              " -DFF_INSTANCES_PER_ITEM=" + std::to_string(instances_per_item_);
-  const std::string key = name + " " + options;
+cl::Kernel& ClRigDeformer::kernel(std::size_t index, NormalMode normals, NormalFormat format) {
+  const auto key = std::make_tuple(index, normals, format);
   auto found = kernels_.find(key);
   if (found == kernels_.end()) {
+    const std::string name = index == 0 ? "rig_fused" : "rig_pass_" + std::to_string(index - 1);
+    const std::string options =
+        std::string("-DFF_NORMALS_JACOBIAN=") + (normals == NormalMode::kJacobian ? "1" : "0") +
+        " -DFF_TANGENTS=" + (tangents_ ? "1" : "0") +
+        " -DFF_HALF_NORMALS=" + (format == NormalFormat::kHalf ? "1" : "0") +
+        " -DFF_INSTANCES_PER_ITEM=" + std::to_string(instances_per_item_);
     found = kernels_.emplace(key, context_.kernel(name, program_, options)).first;
   }
   return found->second;
@@ -140,7 +138,7 @@ cl::Event ClRigDeformer::enqueue(const RigParameters& parameters, NormalMode nor
   cl::Event done;
 
   if (path == RigPath::kFused || pass_count_ == 0) {
-    cl::Kernel& fused = kernel("rig_fused", normals, batch.layout.normal_format);
+    cl::Kernel& fused = kernel(0, normals, batch.layout.normal_format);
     set_args(fused, 0, {&rest_positions_, &rest_normals_, &rest_tangents_, &batch.parameters},
              "clSetKernelArg rig_fused");
     check_cl(fused.setArg(4, param_count), "clSetKernelArg param_count");
@@ -165,8 +163,8 @@ cl::Event ClRigDeformer::enqueue(const RigParameters& parameters, NormalMode nor
   for (std::size_t q = 0; q < pass_count_; ++q) {
     const bool last = q + 1 == pass_count_;
     const cl::Buffer* const* target = last ? out : scratch[q % 2];
-    cl::Kernel& pass_kernel = kernel("rig_pass_" + std::to_string(q), normals,
-                                     last ? batch.layout.normal_format : NormalFormat::kFloat32);
+    cl::Kernel& pass_kernel =
+        kernel(1 + q, normals, last ? batch.layout.normal_format : NormalFormat::kFloat32);
     set_args(pass_kernel, 0, {source[0], source[1], source[2]}, "clSetKernelArg src");
     check_cl(pass_kernel.setArg(3, static_cast<cl_uint>(q == 0 ? 0 : 3)),
              "clSetKernelArg src planes");

@@ -18,6 +18,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <CL/opencl.hpp>
@@ -101,9 +102,10 @@ class ClDeformer {
   LocalMesh mesh_;
   std::size_t plane_stride_ = 0;
   cl::Buffer rest_;
-  std::vector<cl_float4> back_transform_;      // origin, s e_x, s e_y, s e_z, e_x, e_y, e_z
-  std::size_t instances_per_item_ = 1;         // instances_per_work_item() of the device
-  std::map<std::string, cl::Kernel> kernels_;  // by build options: no per-frame creation
+  std::vector<cl_float4> back_transform_;  // origin, s e_x, s e_y, s e_z, e_x, e_y, e_z
+  std::size_t instances_per_item_ = 1;     // instances_per_work_item() of the device
+  // By (mode, normals, format): created on first use, no per-frame creation or strings.
+  std::map<std::tuple<BendMode, NormalMode, NormalFormat>, cl::Kernel> kernels_;
 
   cl::Kernel& bend_kernel(const BendSettings& settings, NormalFormat format);
 };

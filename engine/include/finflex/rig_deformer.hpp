@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <CL/opencl.hpp>
@@ -107,7 +108,7 @@ class ClRigDeformer {
   // Passes the multi-pass path runs: one per (depth, chain position) that has a stage.
   std::size_t pass_count() const { return pass_count_; }
   // The path kAuto resolves to for this rig.
-  RigPath automatic_path() const;
+  RigPath automatic_path() const { return automatic_path_; }
 
   DeviceBatch allocate(std::size_t instances, NormalFormat format = NormalFormat::kFloat32) const;
 
@@ -145,9 +146,12 @@ class ClRigDeformer {
   cl::Buffer rest_positions_, rest_normals_, rest_tangents_;
   cl::Buffer stages_;
   ProgramSource program_;
-  std::map<std::string, cl::Kernel> kernels_;
+  RigPath automatic_path_ = RigPath::kFused;
+  // By (0 for rig_fused or 1 + q for rig_pass_q, normal mode, normal format): created
+  // on first use, looked up without building strings every frame.
+  std::map<std::tuple<std::size_t, NormalMode, NormalFormat>, cl::Kernel> kernels_;
 
-  cl::Kernel& kernel(const std::string& name, NormalMode normals, NormalFormat format);
+  cl::Kernel& kernel(std::size_t index, NormalMode normals, NormalFormat format);
   void ensure_scratch(DeviceBatch& batch, std::size_t sets) const;
 };
 
