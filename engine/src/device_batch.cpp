@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <limits>
 #include <string>
 
@@ -46,7 +45,6 @@ DeviceBatch allocate_batch(Context& context, const BatchLayout& layout,
       std::max<std::size_t>(layout.instance_count * parameters_per_instance, 1);
   batch.parameters = make_buffer(cl_context, CL_MEM_READ_ONLY, values * sizeof(float));
   batch.staged_parameters.reserve(values);
-  batch.pinned_parameters = std::make_shared<PinnedHostBuffer>(context, values * sizeof(float));
   return batch;
 }
 
@@ -56,14 +54,9 @@ void wait_for_previous_upload(DeviceBatch& batch) {
 
 void upload_parameters(Context& context, DeviceBatch& batch, const std::vector<cl::Event>* wait) {
   if (batch.staged_parameters.empty()) return;
-  const std::size_t bytes = batch.staged_parameters.size() * sizeof(float);
-  const float* source = batch.staged_parameters.data();
-  if (batch.pinned_parameters && batch.pinned_parameters->bytes() >= bytes) {
-    std::memcpy(batch.pinned_parameters->data(), source, bytes);
-    source = batch.pinned_parameters->data();
-  }
-  check_cl(context.queue().enqueueWriteBuffer(batch.parameters, CL_FALSE, 0, bytes, source, wait,
-                                              &batch.parameters_uploaded),
+  check_cl(context.queue().enqueueWriteBuffer(
+               batch.parameters, CL_FALSE, 0, batch.staged_parameters.size() * sizeof(float),
+               batch.staged_parameters.data(), wait, &batch.parameters_uploaded),
            "clEnqueueWriteBuffer parameters");
 }
 
@@ -118,24 +111,3 @@ DeformedBatch<float> read_batch(Context& context, const DeviceBatch& batch) {
 }
 
 }  // namespace finflex::detail
-
-namespace finflex {
-
-PinnedHostBuffer::PinnedHostBuffer(Context& context, std::size_t bytes)
-    : queue_(context.queue()), bytes_(bytes) {
-  buffer_ =
-      detail::make_buffer(context.context(), CL_MEM_READ_WRITE | CL_MEM_ALLOC_HOST_PTR, bytes);
-  cl_int status = CL_SUCCESS;
-  data_ = static_cast<float*>(
-      queue_.enqueueMapBuffer(buffer_, CL_TRUE, CL_MAP_WRITE, 0, bytes, nullptr, nullptr, &status));
-  check_cl(status, "clEnqueueMapBuffer pinned staging");
-}
-
-PinnedHostBuffer::~PinnedHostBuffer() {
-  if (data_) {
-    queue_.enqueueUnmapMemObject(buffer_, data_);
-    queue_.finish();  // the unmap completes before the buffer goes
-  }
-}
-
-}  // namespace finflex

@@ -16,7 +16,6 @@
 #pragma once
 
 #include <map>
-#include <memory>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -29,25 +28,6 @@
 #include "finflex/local_mesh.hpp"
 
 namespace finflex {
-
-// Page-locked host memory: a buffer allocated by the OpenCL implementation
-// (CL_MEM_ALLOC_HOST_PTR) and mapped once for the host's lifetime of it.
-class PinnedHostBuffer {
- public:
-  PinnedHostBuffer(Context& context, std::size_t bytes);
-  ~PinnedHostBuffer();
-  PinnedHostBuffer(const PinnedHostBuffer&) = delete;
-  PinnedHostBuffer& operator=(const PinnedHostBuffer&) = delete;
-
-  float* data() const { return data_; }
-  std::size_t bytes() const { return bytes_; }
-
- private:
-  cl::CommandQueue queue_;
-  cl::Buffer buffer_;
-  float* data_ = nullptr;
-  std::size_t bytes_ = 0;
-};
 
 // Device-side outputs of one batch, allocated once and reused every frame.
 struct DeviceBatch {
@@ -62,11 +42,8 @@ struct DeviceBatch {
   // last pass writes the outputs above.
   std::vector<cl::Buffer> scratch;
 
-  // The checked parameters of the last frame, and a pinned (page-locked) host copy
-  // that the upload reads, kept alive until its write completes: a write from
-  // pinned memory is a DMA the host does not wait for.
+  // Host staging of the last upload of m, kept alive until its write completes.
   std::vector<float> staged_parameters;
-  std::shared_ptr<PinnedHostBuffer> pinned_parameters;
   cl::Event parameters_uploaded;
 };
 
