@@ -21,12 +21,10 @@ DeviceBatch& Setup::batch(std::size_t instances, NormalFormat format) {
   return found->second;
 }
 
-cl::Kernel& Setup::kernel(const std::string& name, NormalFormat format) {
-  const std::string options = format == NormalFormat::kHalf ? "-DFF_HALF_NORMALS=1" : "";
-  auto found = kernels.find(name + options);
+cl::Kernel& Setup::kernel(const std::string& name) {
+  auto found = kernels.find(name);
   if (found == kernels.end()) {
-    cl::Kernel kernel = context.kernel(name, ProgramSource::bend_batch(), options);
-    found = kernels.emplace(name + options, kernel).first;
+    found = kernels.emplace(name, context.kernel(name, ProgramSource::bend_batch(), "")).first;
   }
   return found->second;
 }

@@ -34,7 +34,7 @@ struct Setup {
 
   static Setup& get();
   DeviceBatch& batch(std::size_t instances, NormalFormat format = NormalFormat::kFloat32);
-  cl::Kernel& kernel(const std::string& name, NormalFormat format = NormalFormat::kFloat32);
+  cl::Kernel& kernel(const std::string& name);  // of the bend program, default options
 };
 
 // Waits for `event` and returns its device time (end - start).
