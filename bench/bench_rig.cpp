@@ -59,12 +59,13 @@ void BM_Rig(benchmark::State& state, RigPath path) {
     return span_seconds(kernels.front(), kernels.back());
   });
   set_counters(state, batch.layout, seconds);
-  // Bytes each vertex of each instance moves: the fused pass writes it once (24 B; the
-  // rest mesh is shared by all instances); every further pass reads and writes it.
-  const double passes =
-      path == RigPath::kFused ? 1.0 : static_cast<double>(setup.deformer.pass_count());
-  state.counters["passes"] = passes;
-  state.counters["bytes/vertex"] = 24.0 * (2.0 * passes - 1.0);
+  // Bytes each vertex of each instance moves: its output written once (24 B; the rest
+  // mesh is shared by all instances), and on the multi-pass path its intermediate
+  // results written and read again (24 B each way per stage after its first).
+  const bool fused = path == RigPath::kFused;
+  state.counters["passes"] = fused ? 1.0 : static_cast<double>(setup.deformer.pass_count());
+  state.counters["bytes/vertex"] =
+      24.0 * (1.0 + (fused ? 0.0 : setup.deformer.scratch_records_per_slot()));
 }
 
 }  // namespace finflex::bench

@@ -12,8 +12,8 @@
  * Their conditions are on get_group_id(0) only, uniform over a work-group, so every
  * branch is straight-line code that PoCL vectorises across work-items.
  *
- * Build options: FF_NORMALS_JACOBIAN (bend.cl), FF_HALF_NORMALS (planes.cl; the
- * passes that write scratch buffers are built without it), FF_TANGENTS (0/1),
+ * Build options: FF_NORMALS_JACOBIAN (bend.cl), FF_HALF_NORMALS (planes.cl; outputs
+ * only: scratch sets stay float32), FF_TANGENTS (0/1),
  * FF_INSTANCES_PER_ITEM (deform_batch.cl's, default 1). */
 #ifndef FF_TANGENTS
 #define FF_TANGENTS 0
@@ -118,38 +118,62 @@ __kernel void rig_fused(__global const float* restrict rest_positions,
   }
 }
 
-/* Multi-pass path: pass q (kernel rig_pass_q) reads every vertex from src (the rest
- * planes for the first pass, src_planes_per_instance = 0; an instance batch after,
- * = 3), applies its stage where it has one, and writes every vertex to dst: ping-pong
- * buffers, as the paper chains vertex-shader passes through stream-out. One kernel
- * per pass, so each holds only its own branches. */
-#define FF_DEFINE_RIG_PASS(q)                                                       \
-  __kernel void rig_pass_##q(__global const float* restrict src_positions,         \
-                             __global const float* restrict src_normals,           \
-                             __global const float* restrict src_tangents,          \
-                             const uint src_planes_per_instance,                   \
-                             __global const float* restrict params,                \
-                             const uint param_count, __constant const float* stages, \
-                             __global float* restrict dst_positions,               \
-                             __global float* restrict dst_normals,                 \
-                             __global float* restrict dst_tangents, const uint stride, \
-                             const uint instances) {                               \
-    const size_t v = get_global_id(0);                                              \
-    const size_t first_instance = get_global_id(1) * FF_INSTANCES_PER_ITEM;        \
-    const uint group = get_group_id(0);                                             \
-    for (uint k = 0; k < FF_INSTANCES_PER_ITEM; ++k) {                              \
-      const size_t instance = first_instance + k;                                   \
-      if (instance >= instances) break;                                             \
-      __global const float* values = params + instance * param_count;               \
-      const size_t first = instance * src_planes_per_instance;                      \
-      Vec3 p = load_plane3(src_positions, first, stride, v);                        \
-      Vec3 n = load_plane3(src_normals, first, stride, v);                          \
-      Vec3 t = FF_LOAD_TANGENT(src_tangents, first, stride, v);                     \
-      FF_RIG_PASS_##q                                                               \
-      store_plane3(dst_positions, instance * 3, stride, v, p);                      \
-      store_direction3(dst_normals, instance * 3, stride, v, n);                    \
-      FF_STORE_TANGENT(dst_tangents, instance * 3, stride, v, t);                   \
-    }                                                                               \
+/* Multi-pass path: pass q (kernel rig_pass_q) runs the steps engine/src/rig_program.cpp
+ * planned for it (make_pass_plan): for each range of work-groups, load the vertex from
+ * the set its previous stage wrote (the rest mesh before its first stage), apply the
+ * pass's stage, store it to the outputs if that was its last stage, else to the other
+ * float32 scratch set: ping-pong buffers, as the paper chains vertex-shader passes
+ * through stream-out, but a pass touches only the vertices it has a stage for.
+ * The generated FF_RIG_PASS_q is a chain of
+ *   if (group in range) { FF_LOAD_<set> apply_...(...); FF_STORE_<set> }
+ * with set one of REST, SCRATCH_A, SCRATCH_B, OUTPUT. One kernel per pass, so each
+ * holds only its own branches. */
+#define FF_LOAD_SET(prefix, first)                          \
+  p = load_plane3(prefix##_positions, first, stride, v);   \
+  n = load_plane3(prefix##_normals, first, stride, v);     \
+  t = FF_LOAD_TANGENT(prefix##_tangents, first, stride, v);
+#define FF_LOAD_REST FF_LOAD_SET(rest, 0)
+#define FF_LOAD_SCRATCH_A FF_LOAD_SET(a, instance * 3)
+#define FF_LOAD_SCRATCH_B FF_LOAD_SET(b, instance * 3)
+
+#if FF_TANGENTS
+#define FF_STORE_SCRATCH_TANGENT(planes, first, v, value) store_plane3(planes, first, stride, v, value)
+#else
+#define FF_STORE_SCRATCH_TANGENT(planes, first, v, value)
+#endif
+/* Scratch sets hold float32 normals whatever the output format. */
+#define FF_STORE_SCRATCH(prefix)                                        \
+  store_plane3(prefix##_positions, instance * 3, stride, v, p);         \
+  store_plane3(prefix##_normals, instance * 3, stride, v, n);           \
+  FF_STORE_SCRATCH_TANGENT(prefix##_tangents, instance * 3, v, t);
+#define FF_STORE_SCRATCH_A FF_STORE_SCRATCH(a)
+#define FF_STORE_SCRATCH_B FF_STORE_SCRATCH(b)
+#define FF_STORE_OUTPUT                                                 \
+  store_plane3(out_positions, instance * 3, stride, v, p);              \
+  store_direction3(out_normals, instance * 3, stride, v, n);            \
+  FF_STORE_TANGENT(out_tangents, instance * 3, stride, v, t);
+
+#define FF_DEFINE_RIG_PASS(q)                                                           \
+  __kernel void rig_pass_##q(                                                           \
+      __global const float* restrict rest_positions,                                    \
+      __global const float* restrict rest_normals,                                      \
+      __global const float* restrict rest_tangents, __global float* restrict a_positions, \
+      __global float* restrict a_normals, __global float* restrict a_tangents,          \
+      __global float* restrict b_positions, __global float* restrict b_normals,         \
+      __global float* restrict b_tangents, __global const float* restrict params,       \
+      const uint param_count, __constant const float* stages,                           \
+      __global float* restrict out_positions, __global float* restrict out_normals,     \
+      __global float* restrict out_tangents, const uint stride, const uint instances) {  \
+    const size_t v = get_global_id(0);                                                  \
+    const size_t first_instance = get_global_id(1) * FF_INSTANCES_PER_ITEM;            \
+    const uint group = get_group_id(0);                                                 \
+    for (uint k = 0; k < FF_INSTANCES_PER_ITEM; ++k) {                                  \
+      const size_t instance = first_instance + k;                                       \
+      if (instance >= instances) break;                                                 \
+      __global const float* values = params + instance * param_count;                   \
+      Vec3 p, n, t;                                                                     \
+      FF_RIG_PASS_##q                                                                   \
+    }                                                                                   \
   }
 
 FF_RIG_PASS_KERNELS

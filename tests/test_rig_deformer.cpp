@@ -179,6 +179,48 @@ TEST(RigDeformer, LongChainFusedPassesAndReferenceAgree) {
   expect_paths_agree_with_each_other_and_the_reference(mesh, rig, "long chain");
 }
 
+// A root and a grandchild without stages between stage-bearing components: the
+// multi-pass path copies the stage-less ones and moves the others only as often as
+// they have stages.
+RigSpec rig_with_stageless_components() {
+  RigSpec spec;
+  spec.frame.mode = FrameSpec::Mode::kIdentity;
+  spec.components.push_back(root({}));
+  const double big = 10.0;
+  spec.components.push_back(box_component("tail", "body", glm::dvec3(-big),
+                                          glm::dvec3(-0.1, big, big), {hinge("tail_angle", 0.3)}));
+  spec.components.push_back(box_component("tip", "tail", glm::dvec3(0.5, -big, -big),
+                                          glm::dvec3(big), {}));
+  spec.components.push_back(box_component("head", "body", glm::dvec3(0.3, -big, -big),
+                                          glm::dvec3(big), {bend("head_m"), hinge("nod", 0.1)}));
+  return spec;
+}
+
+TEST(RigDeformer, StagelessComponentsAreCopiedOnThePassesPath) {
+  const Mesh mesh = test::synthetic_fish(96, 32, true);
+  const Rig rig = resolve_rig(rig_with_stageless_components(), mesh);
+  ASSERT_EQ(rig.components.size(), 4u);
+  ASSERT_TRUE(rig.path(0).empty());
+  for (const RigComponent& component : rig.components)
+    ASSERT_FALSE(component.vertices.empty()) << component.name;
+  ClRigDeformer deformer(test::shared_context(), mesh, rig);
+  EXPECT_EQ(deformer.pass_count(), 2u);  // depth 1: chain positions 0 and 1
+  expect_paths_agree_with_each_other_and_the_reference(mesh, rig, "stageless components");
+}
+
+TEST(RigDeformer, PassesMoveEachVertexOnlyThroughItsOwnStages) {
+  const Mesh mesh = test::synthetic_fish(96, 32, true);
+  // Five stages on every vertex: four intermediate results, each written and read once.
+  ClRigDeformer long_chain(test::shared_context(), mesh, resolve_rig(long_chain_rig(), mesh));
+  EXPECT_DOUBLE_EQ(long_chain.scratch_records_per_slot(), 8.0);
+  // One stage on every vertex: no intermediate results.
+  RigSpec single;
+  single.frame.mode = FrameSpec::Mode::kIdentity;
+  single.components.push_back(root({bend("m")}));
+  ClRigDeformer one_stage(test::shared_context(), mesh, resolve_rig(single, mesh));
+  EXPECT_DOUBLE_EQ(one_stage.scratch_records_per_slot(), 0.0);
+}
+
 TEST(RigDeformer, ShippedRigsFusedPassesAndReferenceAgree) {
   const std::pair<const char*, const char*> shipped[] = {
       {"blub/fish.obj", "rigs/blub.rig.json"},

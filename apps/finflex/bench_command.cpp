@@ -105,6 +105,7 @@ int run_bench(const BenchOptions& options) {
     FrameTimes times;
     std::string what;
     std::size_t passes = 1;
+    double scratch_records = 0.0;  // float32 vertex records through scratch, per slot
     if (options.rig.empty()) {
       const BendSettings settings{parse_bend_mode(options.mode, "--mode"), normals};
       const LocalMesh local = make_local_mesh(mesh, find_body_frame(mesh));
@@ -130,6 +131,7 @@ int run_bench(const BenchOptions& options) {
       const std::vector<double> limits = rig_param_limits(rig);
       const RigPath chosen = path == RigPath::kAuto ? deformer.automatic_path() : path;
       passes = chosen == RigPath::kPasses ? deformer.pass_count() : 1;
+      scratch_records = chosen == RigPath::kPasses ? deformer.scratch_records_per_slot() : 0.0;
       times = time_frames(
           options.frames,
           [&](std::size_t f) {
@@ -165,8 +167,10 @@ int run_bench(const BenchOptions& options) {
     result["seconds_per_frame_min"] = *std::min_element(times.device.begin(), times.device.end());
     result["vertices_per_second"] = vertices / seconds;
     result["output_bytes_per_second"] = written / seconds;
-    // Passes after the first read and write float32 intermediates (24 B each way).
-    result["moved_bytes_per_vertex"] = bytes_per_vertex + 48.0 * double(passes - 1);
+    // Multi-pass: intermediate results go through float32 scratch sets (12 B per
+    // attribute each way).
+    const double scratch_record_bytes = 12.0 * (batch.layout.tangents ? 3.0 : 2.0);
+    result["moved_bytes_per_vertex"] = bytes_per_vertex + scratch_record_bytes * scratch_records;
     result["write_bandwidth_bytes_per_second"] = written / write_seconds;
     result["write_fraction"] = write_seconds / seconds;
     result["host_enqueue_seconds_median"] = median(times.host);

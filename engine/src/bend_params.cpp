@@ -1,8 +1,10 @@
+#include <array>
 #include <cmath>
 #include <sstream>
 
 #include "finflex/bend.hpp"
 #include "finflex/error.hpp"
+#include "param_bounds.hpp"
 
 namespace finflex {
 
@@ -43,7 +45,12 @@ void check_bend_params_into(const std::vector<float>& m, double x_max, bool clam
   // A float at the limit may round a hair above it; the kernels clamp 2mx into [-1, 1].
   const double accepted = limit * (1.0 + 1e-6);
   const float clamped = std::nextafter(static_cast<float>(limit), 0.0f);
-  checked.assign(m.begin(), m.end());
+  checked.resize(m.size());
+  std::array<float, 16> tile;
+  tile.fill(detail::float_bound(accepted));
+  if (detail::copy_if_within_bounds(m.data(), m.size(), tile.data(), tile.size(), checked.data())) {
+    return;  // the common case, in one vectorised pass
+  }
   for (std::size_t i = 0; i < checked.size(); ++i) {
     const float value = checked[i];
     if (!std::isfinite(value)) {

@@ -64,12 +64,14 @@ ClRigDeformer::ClRigDeformer(Context& context, const Mesh& mesh, const Rig& rig,
   stages_ = detail::make_buffer(cl_context, CL_MEM_READ_ONLY, frames.size() * sizeof(float),
                                 frames.data());
 
-  const std::vector<detail::Pass> passes = detail::make_passes(rig_);
-  pass_count_ = passes.size();
+  const detail::PassPlan plan = detail::make_pass_plan(rig_, slots, kGroupSize);
+  pass_count_ = plan.passes.size();
+  scratch_sets_ = plan.scratch_sets;
+  scratch_records_per_slot_ = plan.scratch_records_per_slot;
   automatic_path_ =
       detail::longest_path(rig_) <= kMaxFusedStages ? RigPath::kFused : RigPath::kPasses;
   program_ = {{"bend.cl", "planes.cl", "rig.cl"},
-              detail::rig_dispatch_source(rig_, slots, passes, kGroupSize)};
+              detail::rig_dispatch_source(rig_, slots, plan, kGroupSize)};
 }
 
 BatchLayout ClRigDeformer::layout(std::size_t instances, NormalFormat format) const {
@@ -152,32 +154,28 @@ cl::Event ClRigDeformer::enqueue(const RigParameters& parameters, NormalMode nor
     return done;
   }
 
-  // Ping-pong: pass q < passes - 1 writes float32 scratch set q % 2, the last pass
-  // writes the outputs (in the batch's normal format); pass 0 reads the rest mesh.
-  ensure_scratch(batch, std::min<std::size_t>(pass_count_ - 1, 2));
+  // Every pass gets the rest mesh, both scratch sets and the outputs; its generated
+  // steps read and write only the ones make_pass_plan chose (unused sets are bound to
+  // the rest mesh and never touched).
+  ensure_scratch(batch, scratch_sets_);
   const cl::Buffer* rest[3] = {&rest_positions_, &rest_normals_, &rest_tangents_};
-  const cl::Buffer* out[3] = {&batch.positions, &batch.normals, &batch.tangents};
-  const cl::Buffer* scratch[2][3] = {};
-  for (std::size_t k = 0; k < batch.scratch.size(); ++k) scratch[k / 3][k % 3] = &batch.scratch[k];
-  const cl::Buffer* const* source = rest;
+  const cl::Buffer* sets[2][3] = {{rest[0], rest[1], rest[2]}, {rest[0], rest[1], rest[2]}};
+  for (std::size_t k = 0; k < batch.scratch.size() && k < 6; ++k) sets[k / 3][k % 3] = &batch.scratch[k];
   for (std::size_t q = 0; q < pass_count_; ++q) {
-    const bool last = q + 1 == pass_count_;
-    const cl::Buffer* const* target = last ? out : scratch[q % 2];
-    cl::Kernel& pass_kernel =
-        kernel(1 + q, normals, last ? batch.layout.normal_format : NormalFormat::kFloat32);
-    set_args(pass_kernel, 0, {source[0], source[1], source[2]}, "clSetKernelArg src");
-    check_cl(pass_kernel.setArg(3, static_cast<cl_uint>(q == 0 ? 0 : 3)),
-             "clSetKernelArg src planes");
-    check_cl(pass_kernel.setArg(4, batch.parameters), "clSetKernelArg params");
-    check_cl(pass_kernel.setArg(5, param_count), "clSetKernelArg param_count");
-    check_cl(pass_kernel.setArg(6, stages_), "clSetKernelArg stages");
-    set_args(pass_kernel, 7, {target[0], target[1], target[2]}, "clSetKernelArg dst");
-    check_cl(pass_kernel.setArg(10, stride), "clSetKernelArg stride");
-    check_cl(pass_kernel.setArg(11, instances), "clSetKernelArg instances");
+    cl::Kernel& pass_kernel = kernel(1 + q, normals, batch.layout.normal_format);
+    set_args(pass_kernel, 0,
+             {rest[0], rest[1], rest[2], sets[0][0], sets[0][1], sets[0][2], sets[1][0],
+              sets[1][1], sets[1][2], &batch.parameters},
+             "clSetKernelArg rig_pass");
+    check_cl(pass_kernel.setArg(10, param_count), "clSetKernelArg param_count");
+    check_cl(pass_kernel.setArg(11, stages_), "clSetKernelArg stages");
+    set_args(pass_kernel, 12, {&batch.positions, &batch.normals, &batch.tangents},
+             "clSetKernelArg out");
+    check_cl(pass_kernel.setArg(15, stride), "clSetKernelArg stride");
+    check_cl(pass_kernel.setArg(16, instances), "clSetKernelArg instances");
     check_cl(queue.enqueueNDRangeKernel(pass_kernel, cl::NullRange, global, local, nullptr, &done),
              "clEnqueueNDRangeKernel rig_pass");
     if (kernel_events) kernel_events->push_back(done);
-    source = target;
   }
   return done;
 }

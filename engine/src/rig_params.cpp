@@ -1,13 +1,17 @@
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
 #include "finflex/error.hpp"
 #include "finflex/rig_deformer.hpp"
+#include "param_bounds.hpp"
 
 namespace finflex {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+// A float at the limit may round a hair above it; the kernels clamp.
+constexpr double kLimitSlack = 1.0 + 1e-6;
 
 }  // namespace
 
@@ -53,7 +57,18 @@ std::vector<double> rig_param_limits(const Rig& rig) {
 
 void check_rig_params_into(const Rig& rig, const std::vector<double>& limits,
                            const RigParameters& parameters, bool clamp, std::vector<float>& out) {
-  out.assign(parameters.values().begin(), parameters.values().end());
+  const std::vector<float>& values = parameters.values();
+  out.resize(values.size());
+  if (parameters.param_count() == rig.params.size() && !values.empty()) {
+    std::vector<double> accepted(limits.size());
+    for (std::size_t p = 0; p < limits.size(); ++p) accepted[p] = limits[p] * kLimitSlack;
+    const std::vector<float> tile = detail::bounds_tile(accepted);
+    if (detail::copy_if_within_bounds(values.data(), values.size(), tile.data(), tile.size(),
+                                      out.data())) {
+      return;  // the common case, in one vectorised pass
+    }
+  }
+  std::copy(values.begin(), values.end(), out.begin());
   check_rig_params(rig, limits, parameters, clamp, &out);
 }
 
@@ -69,8 +84,8 @@ void check_rig_params(const Rig& rig, const std::vector<double>& limits,
     for (std::size_t p = 0; p < count; ++p) {
       const float value = parameters.get(i, p);
       if (std::isfinite(value) &&
-          std::fabs(static_cast<double>(value)) <= limits[p] * (1.0 + 1e-6)) {
-        continue;  // a float at the limit may round a hair above it; the kernels clamp
+          std::fabs(static_cast<double>(value)) <= limits[p] * kLimitSlack) {
+        continue;
       }
       const std::string field = rig.params[p] + "[" + std::to_string(i) + "]";
       if (!std::isfinite(value)) {

@@ -25,6 +25,21 @@ std::string stage_call(const Rig& rig, std::size_t component, std::size_t stage)
   return call.str();
 }
 
+// The suffix of kernels/rig.cl's FF_LOAD_* and FF_STORE_* macros for a set.
+const char* plane_set_name(PlaneSet set) {
+  switch (set) {
+    case PlaneSet::kRest:
+      return "REST";
+    case PlaneSet::kScratchA:
+      return "SCRATCH_A";
+    case PlaneSet::kScratchB:
+      return "SCRATCH_B";
+    case PlaneSet::kOutput:
+      return "OUTPUT";
+  }
+  return "REST";
+}
+
 }  // namespace
 
 SlotLayout make_slot_layout(const Rig& rig, std::size_t vertex_count, std::size_t group_size) {
@@ -70,23 +85,71 @@ std::vector<float> stage_frames(const Rig& rig) {
   return table;
 }
 
-std::vector<Pass> make_passes(const Rig& rig) {
+PassPlan make_pass_plan(const Rig& rig, const SlotLayout& slots, std::size_t group_size) {
+  const std::size_t count = rig.components.size();
+  std::vector<std::vector<std::pair<std::size_t, std::size_t>>> paths(count);
+  for (std::size_t c = 0; c < count; ++c) paths[c] = rig.path(c);
+  std::vector<PlaneSet> location(count, PlaneSet::kRest);  // where component c's vertices are
+  std::vector<std::size_t> applied(count, 0);              // stages applied to them so far
+  auto groups_of = [&](std::size_t c) {
+    return std::make_pair(slots.first_slot[c] / group_size, slots.first_slot[c + 1] / group_size);
+  };
+
+  PassPlan plan;
+  double scratch_records = 0.0;
+  auto add_step = [&](std::vector<PassStep>& steps, PassStep step) {
+    const double slots_in_step = double((step.end_group - step.first_group) * group_size);
+    if (step.source != PlaneSet::kRest) scratch_records += slots_in_step;
+    if (step.target != PlaneSet::kOutput) scratch_records += slots_in_step;
+    if (!steps.empty()) {
+      PassStep& previous = steps.back();
+      if (previous.end_group == step.first_group && previous.source == step.source &&
+          previous.target == step.target && previous.applies_stage == step.applies_stage &&
+          previous.component == step.component && previous.stage == step.stage) {
+        previous.end_group = step.end_group;  // contiguous and alike: one branch
+        return;
+      }
+    }
+    steps.push_back(step);
+  };
+
   std::size_t max_depth = 0;
-  for (std::size_t c = 0; c < rig.components.size(); ++c)
-    max_depth = std::max(max_depth, rig.depth(c));
-  std::vector<Pass> passes;
+  for (std::size_t c = 0; c < count; ++c) max_depth = std::max(max_depth, rig.depth(c));
   for (std::size_t depth = max_depth + 1; depth-- > 0;) {
     for (std::size_t position = 0;; ++position) {
-      Pass pass;
-      for (std::size_t c = 0; c < rig.components.size(); ++c) {
-        if (rig.depth(c) == depth && rig.components[c].chain.size() > position)
-          pass.emplace_back(c, position);
+      std::vector<PassStep> steps;
+      bool any_stage = false;
+      for (std::size_t c = 0; c < count; ++c) {
+        if (rig.depth(c) != depth || rig.components[c].chain.size() <= position) continue;
+        any_stage = true;
+        for (std::size_t d = c; d < rig.subtree_end[c]; ++d) {
+          const auto [first, end] = groups_of(d);
+          if (first == end) continue;  // no own vertices
+          const bool last = ++applied[d] == paths[d].size();
+          const PlaneSet target = last ? PlaneSet::kOutput
+                                  : location[d] == PlaneSet::kScratchA ? PlaneSet::kScratchB
+                                                                       : PlaneSet::kScratchA;
+          add_step(steps, {first, end, location[d], target, true, c, position});
+          location[d] = target;
+        }
       }
-      if (pass.empty()) break;
-      passes.push_back(pass);
+      if (!any_stage) break;
+      plan.passes.push_back(std::move(steps));
     }
   }
-  return passes;
+  for (std::size_t c = 0; c < count && !plan.passes.empty(); ++c) {
+    const auto [first, end] = groups_of(c);
+    if (paths[c].empty() && first != end) {
+      add_step(plan.passes.front(), {first, end, PlaneSet::kRest, PlaneSet::kOutput, false, 0, 0});
+    }
+  }
+  for (std::size_t c = 0; c < count; ++c) {
+    if (groups_of(c).first == groups_of(c).second) continue;
+    plan.scratch_sets = std::max(plan.scratch_sets, std::min<std::size_t>(
+                                                        paths[c].empty() ? 0 : paths[c].size() - 1, 2));
+  }
+  plan.scratch_records_per_slot = scratch_records / double(slots.slot_count);
+  return plan;
 }
 
 std::size_t longest_path(const Rig& rig) {
@@ -96,8 +159,8 @@ std::size_t longest_path(const Rig& rig) {
   return longest;
 }
 
-std::string rig_dispatch_source(const Rig& rig, const SlotLayout& slots,
-                                const std::vector<Pass>& passes, std::size_t group_size) {
+std::string rig_dispatch_source(const Rig& rig, const SlotLayout& slots, const PassPlan& plan,
+                                std::size_t group_size) {
   std::ostringstream out;
   out << "/* Generated for one rig by engine/src/rig_program.cpp: which stages apply to\n"
          " * which work-groups (kernels/rig.cl). */\n";
@@ -114,22 +177,21 @@ std::string rig_dispatch_source(const Rig& rig, const SlotLayout& slots,
     keyword = "else if";
   }
   out << "\n";
-  // Passes: each applies its stages to the components' whole subtrees.
-  for (std::size_t q = 0; q < passes.size(); ++q) {
+  // Passes: a branch per step, loading from its source set and storing to its target.
+  for (std::size_t q = 0; q < plan.passes.size(); ++q) {
     out << "#define FF_RIG_PASS_" << q;
     const char* branch = "if";
-    for (const auto& [component, stage] : passes[q]) {
-      const std::size_t begin = slots.first_slot[component] / group_size;
-      const std::size_t end = slots.first_slot[rig.subtree_end[component]] / group_size;
-      if (begin == end) continue;
-      out << " \\\n  " << branch << " (group >= " << begin << "u && group < " << end << "u) { "
-          << stage_call(rig, component, stage) << " }";
+    for (const PassStep& step : plan.passes[q]) {
+      out << " \\\n  " << branch << " (group >= " << step.first_group << "u && group < "
+          << step.end_group << "u) { FF_LOAD_" << plane_set_name(step.source) << " ";
+      if (step.applies_stage) out << stage_call(rig, step.component, step.stage) << " ";
+      out << "FF_STORE_" << plane_set_name(step.target) << " }";
       branch = "else if";
     }
     out << "\n";
   }
   out << "#define FF_RIG_PASS_KERNELS";
-  for (std::size_t q = 0; q < passes.size(); ++q) out << " FF_DEFINE_RIG_PASS(" << q << ")";
+  for (std::size_t q = 0; q < plan.passes.size(); ++q) out << " FF_DEFINE_RIG_PASS(" << q << ")";
   out << "\n";
   return out.str();
 }

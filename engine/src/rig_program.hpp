@@ -32,17 +32,40 @@ std::size_t stage_count(const Rig& rig);
 // The stage table of kernels/rig.cl: 16 values per stage, stage-interleaved.
 std::vector<float> stage_frames(const Rig& rig);
 
-// One pass of the multi-pass path: the (component, stage) pairs it applies, each to
-// the component's whole subtree. Passes go deepest level first, then chain position.
-using Pass = std::vector<std::pair<std::size_t, std::size_t>>;
-std::vector<Pass> make_passes(const Rig& rig);
+// The multi-pass path. Pass q applies the stages at one (depth, chain position),
+// deepest first, each to its component's whole subtree. A vertex is read from where its
+// previous stage left it (the rest mesh before its first) and written to the outputs by
+// its last stage; the stages in between ping-pong between two float32 scratch sets.
+// Work-groups a pass has no stage for are not touched, so a vertex moves only as many
+// times as it has stages. Components without any stage are copied by pass 0.
+enum class PlaneSet { kRest, kScratchA, kScratchB, kOutput };
+
+// One branch of a pass over a range of work-groups: load from `source`, apply the
+// stage (or nothing, a copy), store to `target`.
+struct PassStep {
+  std::size_t first_group = 0;
+  std::size_t end_group = 0;
+  PlaneSet source = PlaneSet::kRest;
+  PlaneSet target = PlaneSet::kOutput;
+  bool applies_stage = false;
+  std::size_t component = 0;
+  std::size_t stage = 0;
+};
+
+struct PassPlan {
+  std::vector<std::vector<PassStep>> passes;
+  std::size_t scratch_sets = 0;  // 0, 1 or 2
+  // Vertex records read from or written to scratch sets, over all passes, per slot.
+  double scratch_records_per_slot = 0.0;
+};
+PassPlan make_pass_plan(const Rig& rig, const SlotLayout& slots, std::size_t group_size);
 
 // Longest bottom-up path (stages) of any component.
 std::size_t longest_path(const Rig& rig);
 
 // The generated macros of kernels/rig.cl for the rig: FF_RIG_STAGE_COUNT,
 // FF_RIG_FUSED_STAGES, FF_RIG_PASS_<q> and FF_RIG_PASS_KERNELS.
-std::string rig_dispatch_source(const Rig& rig, const SlotLayout& slots,
-                                const std::vector<Pass>& passes, std::size_t group_size);
+std::string rig_dispatch_source(const Rig& rig, const SlotLayout& slots, const PassPlan& plan,
+                                std::size_t group_size);
 
 }  // namespace finflex::detail

@@ -73,7 +73,8 @@ void check_rig_params(const Rig& rig, const std::vector<double>& limits,
 enum class RigPath {
   kAuto,    // fused where it applies (every path of at most kMaxFusedStages stages)
   kFused,   // one pass: each vertex applies its whole bottom-up path in registers
-  kPasses,  // one pass per (hierarchy level, chain position), ping-pong buffers
+  kPasses,  // one pass per (hierarchy level, chain position), ping-pong buffers; a
+            // pass touches only the vertices it has a stage for
 };
 const char* to_string(RigPath path);
 RigPath parse_rig_path(const std::string& text, const std::string& field = "path");
@@ -107,6 +108,10 @@ class ClRigDeformer {
   const std::vector<std::uint32_t>& remapped_indices() const { return remapped_indices_; }
   // Passes the multi-pass path runs: one per (depth, chain position) that has a stage.
   std::size_t pass_count() const { return pass_count_; }
+  // Float32 vertex records the multi-pass path moves through its scratch sets (reads
+  // plus writes, all passes), per slot: 0 when no vertex has more than one stage; each
+  // vertex also reads the shared rest mesh once and writes its output once.
+  double scratch_records_per_slot() const { return scratch_records_per_slot_; }
   // The path kAuto resolves to for this rig.
   RigPath automatic_path() const { return automatic_path_; }
 
@@ -139,6 +144,8 @@ class ClRigDeformer {
   std::size_t vertex_count_ = 0;
   std::size_t slot_count_ = 0;
   std::size_t pass_count_ = 0;
+  std::size_t scratch_sets_ = 0;
+  double scratch_records_per_slot_ = 0.0;
   bool tangents_ = false;
   std::size_t instances_per_item_ = 1;
   std::vector<std::uint32_t> slot_of_vertex_;
