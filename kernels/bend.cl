@@ -127,12 +127,14 @@ FF_INLINE float cos_of_h(float h) {
  * r = clamp(x, 0, width), b = max(x - width, 0), theta = angle r / width (angle past
  * the ramp). With h = theta / 2: sin(theta)/theta = (sin h / h) cos h and
  * (1 - cos theta)/theta = (sin h / h) sin h. Curvature k = angle / width inside the
- * ramp, 0 elsewhere: (along, across) = (1, 1 - z k). */
-FF_INLINE BendSample hinge_sample(float x, float z, float angle, float width) {
+ * ramp, 0 elsewhere: (along, across) = (1, 1 - z k). inverse_width = 1 / width
+ * (any value when width = 0), from the host: no division per vertex. */
+FF_INLINE BendSample hinge_sample(float x, float z, float angle, float width,
+                                  float inverse_width) {
   const int has_ramp = width > 0.0f;
   const float ramp = has_ramp ? clamp(x, 0.0f, width) : 0.0f;
   const float beyond = fmax(x - width, 0.0f);
-  const float fraction = has_ramp ? ramp / fmax(width, FLT_MIN) : (x > 0.0f ? 1.0f : 0.0f);
+  const float fraction = has_ramp ? ramp * inverse_width : (x > 0.0f ? 1.0f : 0.0f);
   const float half_theta = 0.5f * angle * fraction;
   const float sinc_h = sin_over_h(half_theta);
   const float sin_h = sinc_h * half_theta;
@@ -144,7 +146,7 @@ FF_INLINE BendSample hinge_sample(float x, float z, float angle, float width) {
   s.spine_z = ramp * sinc_h * sin_h + beyond * s.sin_t;
   const int in_ramp = has_ramp & (x > 0.0f) & (x < width);
   s.along = 1.0f;
-  s.across = 1.0f - z * (in_ramp ? angle / fmax(width, FLT_MIN) : 0.0f);
+  s.across = 1.0f - z * (in_ramp ? angle * inverse_width : 0.0f);
   return s;
 }
 

@@ -5,7 +5,8 @@
  *
  * Vertices are reordered so each component is a contiguous range of work-groups.
  * Which stages apply to which work-groups is the rig's, so it is generated for each
- * rig (engine/src/rig_program.cpp) as macros over the stage functions below:
+ * rig (engine/src/rig_program.cpp) as macros over the stage functions below
+ * (enter_frame before every stage but a vertex's first, then <deformer>_in_frame):
  *   FF_RIG_FUSED_STAGES  the whole bottom-up path of the group's component;
  *   FF_RIG_PASS_<q>      the stage pass q applies to the group, if any;
  *   FF_RIG_PASS_KERNELS  FF_DEFINE_RIG_PASS(q) for every pass.
@@ -19,15 +20,21 @@
 #define FF_TANGENTS 0
 #endif
 
-/* A stage's frame, in mesh coordinates: 16 values, value c of stage k at
+/* A stage's frame, in mesh coordinates: 17 values, value c of stage k at
  * stages[c * FF_RIG_STAGE_COUNT + k] (stage-interleaved, so no two values of one
  * frame are adjacent: adjacent ones would be packed into 2-vectors by the compiler,
  * and those stop PoCL from vectorising across work-items):
  *   0-2 e_x, 3 1 / s_x, 4-6 e_y, 7 hinge width (the frame's units),
- *   8-10 e_z, 12-14 origin (the pivot), 15 s_x.
+ *   8-10 e_z, 11 the index of the stage's parameter, 12-14 origin (the pivot), 15 s_x,
+ *   16 1 / hinge width (0 for width 0).
  * A StageFrame points at stage k's first value; FF_AT(f, c) reads value c. */
 typedef __constant const float* StageFrame;
 #define FF_AT(f, c) (f)[(c) * FF_RIG_STAGE_COUNT]
+#define FF_STAGE_PARAM(f) ((uint)FF_AT(f, 11))
+
+/* The path table (group_path_table in engine/src/rig_program.cpp): the stage at
+ * position j of the path of the work-group's component. Uniform over a work-group. */
+#define FF_PATH_STAGE(j) group_paths[(j) * get_num_groups(0) + group]
 
 FF_INLINE Vec3 rotate_into(Vec3 v, StageFrame f) {
   return vec3(v.x * FF_AT(f, 0) + v.y * FF_AT(f, 1) + v.z * FF_AT(f, 2), v.x * FF_AT(f, 4) + v.y * FF_AT(f, 5) + v.z * FF_AT(f, 6),
@@ -51,28 +58,37 @@ FF_INLINE Vec3 point_out_of(Vec3 p, StageFrame f) {
   return vec3(FF_AT(f, 12) + FF_AT(f, 15) * d.x, FF_AT(f, 13) + FF_AT(f, 15) * d.y, FF_AT(f, 14) + FF_AT(f, 15) * d.z);
 }
 
-/* One stage on a vertex (position p, normal n, tangent t, in mesh coordinates, updated
- * in place): into the stage frame, (7) and (8) (or the Jacobian) with the deformer's
- * spine sample, out of the frame. The vertex is three separate Vec3 variables, never a
- * struct of structs: copying such a struct makes the compiler move pairs of floats as
- * 2-vectors, which stops PoCL from vectorising across work-items. */
-#define FF_STAGE_BODY(SAMPLE)                                  \
-  const Vec3 framed = point_into(*p, f);                       \
-  const BendSample s = SAMPLE;                                 \
-  *p = point_out_of(bend_position(framed, s), f);              \
-  *n = rotate_out_of(bend_normal(rotate_into(*n, f), s), f);   \
-  *t = rotate_out_of(bend_tangent(rotate_into(*t, f), s), f);
-
-FF_INLINE void apply_bend_paper(Vec3* p, Vec3* n, Vec3* t, StageFrame f, float m) {
-  FF_STAGE_BODY(bend_sample_paper(framed.x, framed.z, m))
+/* Into a stage's frame (2): the vertex (position p, normal n, tangent t) from mesh
+ * coordinates to the frame's. The rest planes hold every vertex already in the frame
+ * of its first stage (the host transforms them once), so a vertex enters a frame here
+ * only for its later stages. */
+FF_INLINE void enter_frame(Vec3* p, Vec3* n, Vec3* t, StageFrame f) {
+  *p = point_into(*p, f);
+  *n = rotate_into(*n, f);
+  *t = rotate_into(*t, f);
 }
 
-FF_INLINE void apply_bend_exact(Vec3* p, Vec3* n, Vec3* t, StageFrame f, float m) {
-  FF_STAGE_BODY(bend_sample_exact(framed.x, framed.z, m))
+/* One stage on a vertex in the stage's frame: (7) and (8) (or the Jacobian) with the
+ * deformer's spine sample, then out of the frame to mesh coordinates. The vertex is
+ * three separate Vec3 variables, never a struct of structs: copying such a struct
+ * makes the compiler move pairs of floats as 2-vectors, which stops PoCL from
+ * vectorising across work-items. */
+#define FF_STAGE_BODY(SAMPLE)                            \
+  const BendSample s = SAMPLE;                           \
+  *p = point_out_of(bend_position(*p, s), f);            \
+  *n = rotate_out_of(bend_normal(*n, s), f);             \
+  *t = rotate_out_of(bend_tangent(*t, s), f);
+
+FF_INLINE void bend_paper_in_frame(Vec3* p, Vec3* n, Vec3* t, StageFrame f, float m) {
+  FF_STAGE_BODY(bend_sample_paper(p->x, p->z, m))
 }
 
-FF_INLINE void apply_hinge(Vec3* p, Vec3* n, Vec3* t, StageFrame f, float angle) {
-  FF_STAGE_BODY(hinge_sample(framed.x, framed.z, angle, FF_AT(f, 7)))
+FF_INLINE void bend_exact_in_frame(Vec3* p, Vec3* n, Vec3* t, StageFrame f, float m) {
+  FF_STAGE_BODY(bend_sample_exact(p->x, p->z, m))
+}
+
+FF_INLINE void hinge_in_frame(Vec3* p, Vec3* n, Vec3* t, StageFrame f, float angle) {
+  FF_STAGE_BODY(hinge_sample(p->x, p->z, angle, FF_AT(f, 7), FF_AT(f, 16)))
 }
 
 #if FF_TANGENTS
@@ -96,6 +112,7 @@ __kernel void rig_fused(__global const float* restrict rest_positions,
                         __global const float* restrict rest_tangents,
                         __global const float* restrict params, const uint param_count,
                         __constant const float* stages,
+                        __global const uint* restrict group_paths,
                         __global float* restrict out_positions,
                         __global float* restrict out_normals,
                         __global float* restrict out_tangents, const uint stride,
@@ -162,6 +179,7 @@ __kernel void rig_fused(__global const float* restrict rest_positions,
       __global float* restrict b_positions, __global float* restrict b_normals,         \
       __global float* restrict b_tangents, __global const float* restrict params,       \
       const uint param_count, __constant const float* stages,                           \
+      __global const uint* restrict group_paths,                                        \
       __global float* restrict out_positions, __global float* restrict out_normals,     \
       __global float* restrict out_tangents, const uint stride, const uint instances) {  \
     const size_t v = get_global_id(0);                                                  \

@@ -10,21 +10,6 @@ namespace {
 
 constexpr std::size_t kGroupSize = ClDeformer::kLocalSize;
 
-// One instance's planes of an attribute over slots; padding slots get `padding`.
-template <typename Attribute>
-std::vector<float> slot_planes(const std::vector<Attribute>& values,
-                               const detail::SlotLayout& slots, glm::vec3 padding, bool normalise) {
-  std::vector<float> planes(3 * slots.slot_count);
-  for (std::size_t slot = 0; slot < slots.slot_count; ++slot) {
-    const std::int64_t v = slots.vertex_of_slot[slot];
-    glm::vec3 value = v < 0 ? padding : glm::vec3(values[static_cast<std::size_t>(v)]);
-    if (normalise && v >= 0) value = glm::normalize(value);
-    for (int c = 0; c < 3; ++c)
-      planes[static_cast<std::size_t>(c) * slots.slot_count + slot] = value[c];
-  }
-  return planes;
-}
-
 void set_args(cl::Kernel& kernel, cl_uint first, std::initializer_list<const cl::Buffer*> buffers,
               const char* what) {
   cl_uint arg = first;
@@ -48,21 +33,21 @@ ClRigDeformer::ClRigDeformer(Context& context, const Mesh& mesh, const Rig& rig,
   for (std::uint32_t index : mesh.indices) remapped_indices_.push_back(slot_of_vertex_[index]);
 
   const cl::Context& cl_context = context_.context();
-  const std::size_t plane_bytes = 3 * slot_count_ * sizeof(float);
+  const detail::RestPlanes rest = detail::make_rest_planes(rig_, mesh, slots);
+  const std::size_t plane_bytes = rest.positions.size() * sizeof(float);
   rest_positions_ =
-      detail::make_buffer(cl_context, CL_MEM_READ_ONLY, plane_bytes,
-                          slot_planes(mesh.positions, slots, glm::vec3(0.0f), false).data());
+      detail::make_buffer(cl_context, CL_MEM_READ_ONLY, plane_bytes, rest.positions.data());
   rest_normals_ =
-      detail::make_buffer(cl_context, CL_MEM_READ_ONLY, plane_bytes,
-                          slot_planes(mesh.normals, slots, glm::vec3(0, 0, 1), true).data());
-  rest_tangents_ =
-      tangents_
-          ? detail::make_buffer(cl_context, CL_MEM_READ_ONLY, plane_bytes,
-                                slot_planes(mesh.tangents, slots, glm::vec3(1, 0, 0), true).data())
-          : detail::make_buffer(cl_context, CL_MEM_READ_ONLY, sizeof(float));
+      detail::make_buffer(cl_context, CL_MEM_READ_ONLY, plane_bytes, rest.normals.data());
+  rest_tangents_ = tangents_ ? detail::make_buffer(cl_context, CL_MEM_READ_ONLY, plane_bytes,
+                                                   rest.tangents.data())
+                             : detail::make_buffer(cl_context, CL_MEM_READ_ONLY, sizeof(float));
   const std::vector<float> frames = detail::stage_frames(rig_);
   stages_ = detail::make_buffer(cl_context, CL_MEM_READ_ONLY, frames.size() * sizeof(float),
                                 frames.data());
+  const std::vector<std::uint32_t> paths = detail::group_path_table(rig_, slots, kGroupSize);
+  group_paths_ = detail::make_buffer(cl_context, CL_MEM_READ_ONLY,
+                                     paths.size() * sizeof(std::uint32_t), paths.data());
 
   const detail::PassPlan plan = detail::make_pass_plan(rig_, slots, kGroupSize);
   pass_count_ = plan.passes.size();
@@ -145,9 +130,10 @@ cl::Event ClRigDeformer::enqueue(const RigParameters& parameters, NormalMode nor
              "clSetKernelArg rig_fused");
     check_cl(fused.setArg(4, param_count), "clSetKernelArg param_count");
     check_cl(fused.setArg(5, stages_), "clSetKernelArg stages");
-    set_args(fused, 6, {&batch.positions, &batch.normals, &batch.tangents}, "clSetKernelArg out");
-    check_cl(fused.setArg(9, stride), "clSetKernelArg stride");
-    check_cl(fused.setArg(10, instances), "clSetKernelArg instances");
+    check_cl(fused.setArg(6, group_paths_), "clSetKernelArg group_paths");
+    set_args(fused, 7, {&batch.positions, &batch.normals, &batch.tangents}, "clSetKernelArg out");
+    check_cl(fused.setArg(10, stride), "clSetKernelArg stride");
+    check_cl(fused.setArg(11, instances), "clSetKernelArg instances");
     check_cl(queue.enqueueNDRangeKernel(fused, cl::NullRange, global, local, nullptr, &done),
              "clEnqueueNDRangeKernel rig_fused");
     if (kernel_events) kernel_events->push_back(done);
@@ -169,10 +155,11 @@ cl::Event ClRigDeformer::enqueue(const RigParameters& parameters, NormalMode nor
              "clSetKernelArg rig_pass");
     check_cl(pass_kernel.setArg(10, param_count), "clSetKernelArg param_count");
     check_cl(pass_kernel.setArg(11, stages_), "clSetKernelArg stages");
-    set_args(pass_kernel, 12, {&batch.positions, &batch.normals, &batch.tangents},
+    check_cl(pass_kernel.setArg(12, group_paths_), "clSetKernelArg group_paths");
+    set_args(pass_kernel, 13, {&batch.positions, &batch.normals, &batch.tangents},
              "clSetKernelArg out");
-    check_cl(pass_kernel.setArg(15, stride), "clSetKernelArg stride");
-    check_cl(pass_kernel.setArg(16, instances), "clSetKernelArg instances");
+    check_cl(pass_kernel.setArg(16, stride), "clSetKernelArg stride");
+    check_cl(pass_kernel.setArg(17, instances), "clSetKernelArg instances");
     check_cl(queue.enqueueNDRangeKernel(pass_kernel, cl::NullRange, global, local, nullptr, &done),
              "clEnqueueNDRangeKernel rig_pass");
     if (kernel_events) kernel_events->push_back(done);

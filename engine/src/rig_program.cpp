@@ -10,19 +10,30 @@ std::size_t round_up(std::size_t value, std::size_t multiple) {
   return (value + multiple - 1) / multiple * multiple;
 }
 
-// The kernels/rig.cl function that applies one stage.
+// The kernels/rig.cl function that applies one stage in its frame.
 const char* stage_function(const RigStage& stage) {
-  if (stage.deformer == DeformerKind::kHinge) return "apply_hinge";
-  return stage.mode == BendMode::kExact ? "apply_bend_exact" : "apply_bend_paper";
+  if (stage.deformer == DeformerKind::kHinge) return "hinge_in_frame";
+  return stage.mode == BendMode::kExact ? "bend_exact_in_frame" : "bend_paper_in_frame";
 }
 
-// "apply_...(&p, &n, &t, stages + k, values[param]);"
-std::string stage_call(const Rig& rig, std::size_t component, std::size_t stage) {
-  const RigStage& s = rig.components[component].chain[stage];
+// The stage at path position j of the group's path, applied to the vertex:
+// "{ const StageFrame f = stages + FF_PATH_STAGE(j); [enter_frame(&p, &n, &t, f);]
+//    <function>(&p, &n, &t, f, values[FF_STAGE_PARAM(f)]); }"; a vertex's first stage
+// finds it in its frame already (the rest planes).
+std::string stage_call(const char* function, std::size_t position, bool first) {
   std::ostringstream call;
-  call << stage_function(s) << "(&p, &n, &t, stages + " << stage_index(rig, component, stage)
-       << ", values[" << s.param << "]);";
+  call << "{ const StageFrame f = stages + FF_PATH_STAGE(" << position << "); ";
+  if (!first) call << "enter_frame(&p, &n, &t, f); ";
+  call << function << "(&p, &n, &t, f, values[FF_STAGE_PARAM(f)]); }";
   return call.str();
+}
+
+// The functions along component c's path: its code shape.
+std::vector<const char*> path_functions(const Rig& rig, std::size_t c) {
+  std::vector<const char*> functions;
+  for (const auto& [component, stage] : rig.path(c))
+    functions.push_back(stage_function(rig.components[component].chain[stage]));
+  return functions;
 }
 
 // The suffix of kernels/rig.cl's FF_LOAD_* and FF_STORE_* macros for a set.
@@ -59,6 +70,39 @@ SlotLayout make_slot_layout(const Rig& rig, std::size_t vertex_count, std::size_
   return slots;
 }
 
+RestPlanes make_rest_planes(const Rig& rig, const Mesh& mesh, const SlotLayout& slots) {
+  RestPlanes rest;
+  const std::size_t n = slots.slot_count;
+  rest.positions.assign(3 * n, 0.0f);
+  rest.normals.assign(3 * n, 0.0f);
+  if (mesh.has_tangents()) rest.tangents.assign(3 * n, 0.0f);
+  auto put = [n](std::vector<float>& planes, std::size_t slot, const glm::dvec3& value) {
+    for (int c = 0; c < 3; ++c) planes[static_cast<std::size_t>(c) * n + slot] = float(value[c]);
+  };
+  for (std::size_t slot = 0; slot < n; ++slot) {  // padding: harmless values
+    put(rest.normals, slot, glm::dvec3(0.0, 0.0, 1.0));
+    if (!rest.tangents.empty()) put(rest.tangents, slot, glm::dvec3(1.0, 0.0, 0.0));
+  }
+  for (std::size_t c = 0; c < rig.components.size(); ++c) {
+    const auto path = rig.path(c);
+    const BodyFrame first =
+        path.empty() ? BodyFrame::identity()
+                     : rig.components[path.front().first].chain[path.front().second].frame;
+    for (std::uint32_t v : rig.components[c].vertices) {
+      const std::size_t slot = slots.slot_of_vertex[v];
+      // (2): p = R (p_b - origin) / s_x, n = R n_b, in double before rounding.
+      put(rest.positions, slot, first.point_to_local(glm::dvec3(mesh.positions[v])));
+      put(rest.normals, slot,
+          first.vector_to_local(glm::normalize(glm::dvec3(mesh.normals[v]))));
+      if (!rest.tangents.empty()) {
+        put(rest.tangents, slot,
+            first.vector_to_local(glm::normalize(glm::dvec3(mesh.tangents[v]))));
+      }
+    }
+  }
+  return rest;
+}
+
 std::size_t stage_index(const Rig& rig, std::size_t component, std::size_t stage) {
   std::size_t index = 0;
   for (std::size_t c = 0; c < component; ++c) index += rig.components[c].chain.size();
@@ -69,17 +113,37 @@ std::size_t stage_count(const Rig& rig) { return stage_index(rig, rig.components
 
 std::vector<float> stage_frames(const Rig& rig) {
   const std::size_t count = std::max<std::size_t>(stage_count(rig), 1);
-  std::vector<float> table(16 * count, 0.0f);  // a valid (unused) table without stages
+  std::vector<float> table(kStageValues * count, 0.0f);  // valid (unused) without stages
   std::size_t k = 0;
   for (const RigComponent& component : rig.components) {
     for (const RigStage& stage : component.chain) {
       const BodyFrame& f = stage.frame;
-      const double values[16] = {f.axis_x.x, f.axis_x.y, f.axis_x.z, 1.0 / f.length,
-                                 f.axis_y.x, f.axis_y.y, f.axis_y.z, stage.width,
-                                 f.axis_z.x, f.axis_z.y, f.axis_z.z, 0.0,
-                                 f.origin.x, f.origin.y, f.origin.z, f.length};
-      for (std::size_t c = 0; c < 16; ++c) table[c * count + k] = static_cast<float>(values[c]);
+      const double inverse_width = stage.width > 0.0 ? 1.0 / stage.width : 0.0;
+      const double values[kStageValues] = {
+          f.axis_x.x, f.axis_x.y, f.axis_x.z, 1.0 / f.length,       f.axis_y.x, f.axis_y.y,
+          f.axis_y.z, stage.width, f.axis_z.x, f.axis_z.y,          f.axis_z.z, double(stage.param),
+          f.origin.x, f.origin.y,  f.origin.z, f.length,            inverse_width};
+      for (std::size_t c = 0; c < kStageValues; ++c)
+        table[c * count + k] = static_cast<float>(values[c]);
       ++k;
+    }
+  }
+  return table;
+}
+
+std::vector<std::uint32_t> group_path_table(const Rig& rig, const SlotLayout& slots,
+                                            std::size_t group_size) {
+  const std::size_t groups = slots.slot_count / group_size;
+  const std::size_t width = std::max<std::size_t>(longest_path(rig), 1);
+  std::vector<std::uint32_t> table(width * groups, 0u);
+  for (std::size_t c = 0; c < rig.components.size(); ++c) {
+    const auto path = rig.path(c);
+    for (std::size_t g = slots.first_slot[c] / group_size; g < slots.first_slot[c + 1] / group_size;
+         ++g) {
+      for (std::size_t j = 0; j < path.size(); ++j) {
+        table[j * groups + g] =
+            static_cast<std::uint32_t>(stage_index(rig, path[j].first, path[j].second));
+      }
     }
   }
   return table;
@@ -104,8 +168,8 @@ PassPlan make_pass_plan(const Rig& rig, const SlotLayout& slots, std::size_t gro
     if (!steps.empty()) {
       PassStep& previous = steps.back();
       if (previous.end_group == step.first_group && previous.source == step.source &&
-          previous.target == step.target && previous.applies_stage == step.applies_stage &&
-          previous.component == step.component && previous.stage == step.stage) {
+          previous.target == step.target && previous.function == step.function &&
+          previous.path_position == step.path_position) {
         previous.end_group = step.end_group;  // contiguous and alike: one branch
         return;
       }
@@ -125,11 +189,13 @@ PassPlan make_pass_plan(const Rig& rig, const SlotLayout& slots, std::size_t gro
         for (std::size_t d = c; d < rig.subtree_end[c]; ++d) {
           const auto [first, end] = groups_of(d);
           if (first == end) continue;  // no own vertices
-          const bool last = ++applied[d] == paths[d].size();
+          const std::size_t path_position = applied[d]++;
+          const bool last = applied[d] == paths[d].size();
           const PlaneSet target = last ? PlaneSet::kOutput
                                   : location[d] == PlaneSet::kScratchA ? PlaneSet::kScratchB
                                                                        : PlaneSet::kScratchA;
-          add_step(steps, {first, end, location[d], target, true, c, position});
+          add_step(steps, {first, end, location[d], target,
+                           stage_function(rig.components[c].chain[position]), path_position});
           location[d] = target;
         }
       }
@@ -140,7 +206,7 @@ PassPlan make_pass_plan(const Rig& rig, const SlotLayout& slots, std::size_t gro
   for (std::size_t c = 0; c < count && !plan.passes.empty(); ++c) {
     const auto [first, end] = groups_of(c);
     if (paths[c].empty() && first != end) {
-      add_step(plan.passes.front(), {first, end, PlaneSet::kRest, PlaneSet::kOutput, false, 0, 0});
+      add_step(plan.passes.front(), {first, end, PlaneSet::kRest, PlaneSet::kOutput, nullptr, 0});
     }
   }
   for (std::size_t c = 0; c < count; ++c) {
@@ -165,16 +231,24 @@ std::string rig_dispatch_source(const Rig& rig, const SlotLayout& slots, const P
   out << "/* Generated for one rig by engine/src/rig_program.cpp: which stages apply to\n"
          " * which work-groups (kernels/rig.cl). */\n";
   out << "#define FF_RIG_STAGE_COUNT " << std::max<std::size_t>(stage_count(rig), 1) << "u\n";
-  // Fused: the group's component's whole path, bottom-up.
+  // Fused: the group's component's whole path, bottom-up; one branch for each run of
+  // components with the same functions along their paths (stages from the path table).
   out << "#define FF_RIG_FUSED_STAGES";
   const char* keyword = "if";
   for (std::size_t c = 0; c < rig.components.size(); ++c) {
     if (slots.first_slot[c + 1] == slots.first_slot[c]) continue;  // no own vertices
-    out << " \\\n  " << keyword << " (group < " << slots.first_slot[c + 1] / group_size << "u) {";
-    for (const auto& [component, stage] : rig.path(c))
-      out << " " << stage_call(rig, component, stage);
+    const std::vector<const char*> shape = path_functions(rig, c);
+    std::size_t end = c + 1;
+    while (end < rig.components.size() &&
+           (slots.first_slot[end + 1] == slots.first_slot[end] ||
+            path_functions(rig, end) == shape)) {
+      ++end;
+    }
+    out << " \\\n  " << keyword << " (group < " << slots.first_slot[end] / group_size << "u) {";
+    for (std::size_t j = 0; j < shape.size(); ++j) out << " " << stage_call(shape[j], j, j == 0);
     out << " }";
     keyword = "else if";
+    c = end - 1;
   }
   out << "\n";
   // Passes: a branch per step, loading from its source set and storing to its target.
@@ -184,7 +258,10 @@ std::string rig_dispatch_source(const Rig& rig, const SlotLayout& slots, const P
     for (const PassStep& step : plan.passes[q]) {
       out << " \\\n  " << branch << " (group >= " << step.first_group << "u && group < "
           << step.end_group << "u) { FF_LOAD_" << plane_set_name(step.source) << " ";
-      if (step.applies_stage) out << stage_call(rig, step.component, step.stage) << " ";
+      if (step.function) {
+        const bool first = step.source == PlaneSet::kRest;
+        out << stage_call(step.function, step.path_position, first) << " ";
+      }
       out << "FF_STORE_" << plane_set_name(step.target) << " }";
       branch = "else if";
     }

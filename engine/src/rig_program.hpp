@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "finflex/mesh.hpp"
 #include "finflex/rig.hpp"
 
 namespace finflex::detail {
@@ -24,13 +25,29 @@ struct SlotLayout {
 // Components in rig order (depth-first), each padded to a multiple of group_size.
 SlotLayout make_slot_layout(const Rig& rig, std::size_t vertex_count, std::size_t group_size);
 
+// The rest mesh as the rig kernels read it: one instance's planes over slots (x plane,
+// y plane, z plane), each vertex in the frame of its first stage (mesh coordinates for
+// components without stages); padding slots hold the origin, e_z and e_x.
+struct RestPlanes {
+  std::vector<float> positions, normals, tangents;  // tangents empty without them
+};
+RestPlanes make_rest_planes(const Rig& rig, const Mesh& mesh, const SlotLayout& slots);
+
 // The stages in rig order (components depth-first, then chain order): the index a
 // stage has in the kernels' stage table.
 std::size_t stage_index(const Rig& rig, std::size_t component, std::size_t stage);
 std::size_t stage_count(const Rig& rig);
 
-// The stage table of kernels/rig.cl: 16 values per stage, stage-interleaved.
+// The stage table of kernels/rig.cl: kStageValues values per stage, stage-interleaved.
+constexpr std::size_t kStageValues = 17;
 std::vector<float> stage_frames(const Rig& rig);
+
+// The path table of kernels/rig.cl: for work-group g and path position j, the stage
+// index of the j-th stage on the path of g's component, at [j * group_count + g]
+// (0 past the path's end). The kernels read their stages from it, so components
+// whose paths have the same deformers share one branch of code.
+std::vector<std::uint32_t> group_path_table(const Rig& rig, const SlotLayout& slots,
+                                            std::size_t group_size);
 
 // The multi-pass path. Pass q applies the stages at one (depth, chain position),
 // deepest first, each to its component's whole subtree. A vertex is read from where its
@@ -41,15 +58,15 @@ std::vector<float> stage_frames(const Rig& rig);
 enum class PlaneSet { kRest, kScratchA, kScratchB, kOutput };
 
 // One branch of a pass over a range of work-groups: load from `source`, apply the
-// stage (or nothing, a copy), store to `target`.
+// stage at `path_position` of each group's path (its `function` in kernels/rig.cl;
+// none: a copy), store to `target`.
 struct PassStep {
   std::size_t first_group = 0;
   std::size_t end_group = 0;
   PlaneSet source = PlaneSet::kRest;
   PlaneSet target = PlaneSet::kOutput;
-  bool applies_stage = false;
-  std::size_t component = 0;
-  std::size_t stage = 0;
+  const char* function = nullptr;
+  std::size_t path_position = 0;
 };
 
 struct PassPlan {

@@ -22,10 +22,10 @@ std::string temp_path(const std::string& file_name) {
   static std::atomic<int> counter{0};
   const std::string dir = std::string(FINFLEX_TEST_TMP_DIR) + "/" + std::to_string(getpid()) + "_" +
                           std::to_string(counter++);
+  // A fresh, empty folder: an earlier run's process may have had the same id.
+  std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
-  const std::string path = dir + "/" + file_name;
-  std::filesystem::remove(path);
-  return path;
+  return dir + "/" + file_name;
 }
 
 Context& shared_context() {

@@ -152,6 +152,7 @@ class ClRigDeformer {
   std::vector<std::uint32_t> remapped_indices_;
   cl::Buffer rest_positions_, rest_normals_, rest_tangents_;
   cl::Buffer stages_;
+  cl::Buffer group_paths_;
   ProgramSource program_;
   RigPath automatic_path_ = RigPath::kFused;
   // By (0 for rig_fused or 1 + q for rig_pass_q, normal mode, normal format): created
