@@ -2,9 +2,14 @@
  * array whose planes start at `first_plane` is planes[(first_plane + c) * stride + v].
  *
  * Build option FF_HALF_NORMALS (0/1): the outputs' normals and tangents are IEEE
- * halves (round to nearest even) instead of float32. */
+ * halves (round to nearest even) instead of float32. FF_NATIVE_HALF_STORE (0/1, set
+ * by the host per device): convert with vstore_half (GPUs: one instruction) or with
+ * half_bits below (CPUs: PoCL's vstore_half does not vectorise). */
 #ifndef FF_HALF_NORMALS
 #define FF_HALF_NORMALS 0
+#endif
+#ifndef FF_NATIVE_HALF_STORE
+#define FF_NATIVE_HALF_STORE 0
 #endif
 
 FF_INLINE Vec3 load_plane3(__global const float* planes, size_t first_plane, size_t stride,
@@ -43,7 +48,12 @@ FF_INLINE ushort half_bits(float f) {
 /* A normal or tangent into an output array, in the batch's normal format. */
 FF_INLINE void store_direction3(__global float* planes, size_t first_plane, size_t stride,
                                 size_t v, Vec3 value) {
-#if FF_HALF_NORMALS
+#if FF_HALF_NORMALS && FF_NATIVE_HALF_STORE
+  __global half* halves = (__global half*)planes;
+  vstore_half(value.x, first_plane * stride + v, halves); /* round to nearest even */
+  vstore_half(value.y, (first_plane + 1) * stride + v, halves);
+  vstore_half(value.z, (first_plane + 2) * stride + v, halves);
+#elif FF_HALF_NORMALS
   __global ushort* halves = (__global ushort*)planes;
   halves[first_plane * stride + v] = half_bits(value.x);
   halves[(first_plane + 1) * stride + v] = half_bits(value.y);

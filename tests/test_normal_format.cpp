@@ -4,12 +4,26 @@
 // float32 ones by under 1e-3.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "finflex/finflex.hpp"
 #include "support/synthetic_fish.hpp"
 #include "support/test_support.hpp"
 
 namespace finflex {
 namespace {
+
+// Rounding to the nearest half moves a component by at most half a unit in the last
+// place of the half: 2^(e - 11) for |value| in [2^e, 2^(e+1)), e >= -14, and 2^-25
+// below (subnormal halves).
+void expect_nearest_half(glm::vec3 full, glm::vec3 half, std::size_t vertex) {
+  for (int c = 0; c < 3; ++c) {
+    const float value = std::fabs(full[c]);
+    const int exponent = value >= std::ldexp(1.0f, -14) ? std::ilogb(value) : -14;
+    ASSERT_LE(std::fabs(full[c] - half[c]), std::ldexp(1.0f, exponent - 11))
+        << "vertex " << vertex << " component " << c << ": " << full[c] << " -> " << half[c];
+  }
+}
 
 template <typename Batch>
 void expect_half_matches_float(const Batch& full, const Batch& half, std::size_t vertices,
@@ -18,8 +32,10 @@ void expect_half_matches_float(const Batch& full, const Batch& half, std::size_t
     for (std::size_t v = 0; v < vertices; ++v) {
       ASSERT_EQ(full.position(i, v), half.position(i, v)) << "instance " << i << " vertex " << v;
       ASSERT_LT(glm::length(full.normal(i, v) - half.normal(i, v)), 1e-3f) << "vertex " << v;
+      expect_nearest_half(full.normal(i, v), half.normal(i, v), v);
       if (full.layout.tangents) {
         ASSERT_LT(glm::length(full.tangent(i, v) - half.tangent(i, v)), 1e-3f) << "vertex " << v;
+        expect_nearest_half(full.tangent(i, v), half.tangent(i, v), v);
       }
     }
   }
