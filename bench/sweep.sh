@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Throughput sweep with `finflex bench`: instances x meshes x deformations, one JSON
+# Throughput sweep with `finflex bench`: instances x meshes x deformations x output
+# formats (float32 normals; half normals for the paper bend and the fused rig), one JSON
 # object per line on stdout. Combinations the device cannot hold (an output array
 # above its largest allocation) are reported on stderr and skipped.
 #
@@ -19,7 +20,7 @@ trap 'rm -rf "$scratch"' EXIT
 
 meshes=("$data/blub/fish_low_resolution.obj" "$data/barramundi/BarramundiFish.gltf"
         "$data/blub/fish.obj" "$scratch/fish_112k.obj")
-rigs=("$data/rigs/blub.rig.json" "$data/rigs/barramundi.rig.json" "$data/rigs/blub.rig.json" "")
+rigs=("$data/rigs/blub_low_resolution.rig.json" "$data/rigs/barramundi.rig.json" "$data/rigs/blub.rig.json" "")
 device=()
 [ -n "${FINFLEX_DEVICE:-}" ] && device=(--device "$FINFLEX_DEVICE")
 
@@ -33,10 +34,13 @@ for k in "${!meshes[@]}"; do
     for mode in paper exact; do
       run --mesh "$mesh" --instances "$instances" --mode "$mode"
     done
+    run --mesh "$mesh" --instances "$instances" --mode paper --normal-format half
     if [ -n "${rigs[$k]}" ]; then
       for path in fused passes; do
         run --mesh "$mesh" --instances "$instances" --rig "${rigs[$k]}" --path "$path"
       done
+      run --mesh "$mesh" --instances "$instances" --rig "${rigs[$k]}" --path fused \
+        --normal-format half
     fi
   done
 done

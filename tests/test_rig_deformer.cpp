@@ -134,8 +134,9 @@ double coordinate_scale(const Rig& rig) {
 }
 
 void expect_paths_agree_with_each_other_and_the_reference(const Mesh& mesh, const Rig& rig,
-                                                          const std::string& name) {
-  ClRigDeformer deformer(test::shared_context(), mesh, rig);
+                                                          const std::string& name,
+                                                          RigDispatch dispatch) {
+  ClRigDeformer deformer(test::shared_context(), mesh, rig, 0, dispatch);
   const RigReference reference(mesh, rig);
   const std::size_t instances = 5;
   const RigParameters values = random_parameters(rig, instances, 0.8, 11);
@@ -145,7 +146,8 @@ void expect_paths_agree_with_each_other_and_the_reference(const Mesh& mesh, cons
     longest = std::max(longest, rig.path(c).size());
   const double scale = coordinate_scale(rig);
   for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {
-    SCOPED_TRACE(name + " " + to_string(normals));
+    SCOPED_TRACE(name + " " + to_string(normals) +
+                 (dispatch == RigDispatch::kPerComponent ? " per component" : " by path shape"));
     deformer.enqueue(values, normals, batch, RigPath::kFused);
     const DeformedBatch<float> fused = deformer.read(batch);
     deformer.enqueue(values, normals, batch, RigPath::kPasses);
@@ -159,6 +161,13 @@ void expect_paths_agree_with_each_other_and_the_reference(const Mesh& mesh, cons
     EXPECT_LT(to_reference.position, 4e-6 * scale * static_cast<double>(longest));
     EXPECT_LT(to_reference.normal, 2e-5 * static_cast<double>(longest));
   }
+}
+
+// Both ways of generating the dispatch code (each device gets one of them).
+void expect_paths_agree_with_each_other_and_the_reference(const Mesh& mesh, const Rig& rig,
+                                                          const std::string& name) {
+  for (RigDispatch dispatch : {RigDispatch::kPerComponent, RigDispatch::kByPathShape})
+    expect_paths_agree_with_each_other_and_the_reference(mesh, rig, name, dispatch);
 }
 
 TEST(RigDeformer, DeepTreeFusedPassesAndReferenceAgree) {
@@ -374,7 +383,7 @@ TEST(RigDeformer, SeveralInstancesPerWorkItemGiveTheSameResult) {
   for (RigPath path : {RigPath::kFused, RigPath::kPasses}) {
     one.enqueue(values, NormalMode::kJacobian, reference_batch, path);
     const DeformedBatch<float> expected = one.read(reference_batch);
-    for (std::size_t per_item : {2u, 3u}) {
+    for (std::size_t per_item : {2u, 3u, 4u}) {
       ClRigDeformer several(test::shared_context(), mesh, rig, per_item);
       DeviceBatch batch = several.allocate(7);
       several.enqueue(values, NormalMode::kJacobian, batch, path);

@@ -76,14 +76,20 @@ FrameTimes time_frames(std::size_t frames, Prepare prepare, Enqueue enqueue) {
   return times;
 }
 
-// The write-only kernel over the batch's planes, same NDRange as the bend.
+// The write-only kernel over the batch's planes: the faster of the device's instances
+// per work-item (the bend's) and 4 (the rig's on GPUs).
 double write_only_median(Context& context, DeviceBatch& batch, std::size_t frames) {
-  const FrameTimes times = time_frames(
-      frames, [](std::size_t) {},
-      [&](std::vector<cl::Event>& events) {
-        events.assign(1, enqueue_write_only(context, batch));
-      });
-  return median(times.device);
+  double fastest = 0.0;
+  for (std::size_t per_item : {std::size_t{0}, std::size_t{4}}) {
+    const FrameTimes times = time_frames(
+        frames, [](std::size_t) {},
+        [&](std::vector<cl::Event>& events) {
+          events.assign(1, enqueue_write_only(context, batch, per_item));
+        });
+    const double seconds = median(times.device);
+    fastest = fastest == 0.0 ? seconds : std::min(fastest, seconds);
+  }
+  return fastest;
 }
 
 // Parameter p of instance i at frame f: half the range, a travelling phase.

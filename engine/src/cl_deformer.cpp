@@ -56,8 +56,9 @@ cl::NDRange batch_range(const BatchLayout& layout, std::size_t per_item) {
 
 }  // namespace
 
-cl::Event enqueue_write_only(Context& context, DeviceBatch& batch) {
-  const std::size_t per_item = instances_per_work_item(context.description());
+cl::Event enqueue_write_only(Context& context, DeviceBatch& batch, std::size_t instances_per_item) {
+  const std::size_t per_item =
+      instances_per_item ? instances_per_item : instances_per_work_item(context.description());
   const std::string options =
       std::string("-DFF_INSTANCES_PER_ITEM=") + std::to_string(per_item) +
       (batch.layout.normal_format == NormalFormat::kHalf ? " -DFF_HALF_NORMALS=1" : "");

@@ -18,11 +18,20 @@ void set_args(cl::Kernel& kernel, cl_uint first, std::initializer_list<const cl:
 
 }  // namespace
 
+std::size_t rig_instances_per_work_item(const DeviceDescription& device) {
+  return device.type == "GPU" ? 4 : 1;
+}
+
 ClRigDeformer::ClRigDeformer(Context& context, const Mesh& mesh, const Rig& rig,
-                             std::size_t instances_per_item)
+                             std::size_t instances_per_item, RigDispatch dispatch)
     : context_(context), rig_(rig), limits_(rig_param_limits(rig)) {
-  instances_per_item_ =
-      instances_per_item ? instances_per_item : instances_per_work_item(context.description());
+  instances_per_item_ = instances_per_item ? instances_per_item
+                                           : rig_instances_per_work_item(context.description());
+  if (dispatch == RigDispatch::kAuto) {
+    dispatch = context.description().type == "GPU" ? RigDispatch::kPerComponent
+                                                   : RigDispatch::kByPathShape;
+  }
+  const bool share_code = dispatch == RigDispatch::kByPathShape;
   validate_mesh(mesh);
   vertex_count_ = mesh.vertex_count();
   tangents_ = mesh.has_tangents();
@@ -49,14 +58,14 @@ ClRigDeformer::ClRigDeformer(Context& context, const Mesh& mesh, const Rig& rig,
   group_paths_ = detail::make_buffer(cl_context, CL_MEM_READ_ONLY,
                                      paths.size() * sizeof(std::uint32_t), paths.data());
 
-  const detail::PassPlan plan = detail::make_pass_plan(rig_, slots, kGroupSize);
+  const detail::PassPlan plan = detail::make_pass_plan(rig_, slots, kGroupSize, share_code);
   pass_count_ = plan.passes.size();
   scratch_sets_ = plan.scratch_sets;
   scratch_records_per_slot_ = plan.scratch_records_per_slot;
   automatic_path_ =
       detail::longest_path(rig_) <= kMaxFusedStages ? RigPath::kFused : RigPath::kPasses;
   program_ = {{"bend.cl", "planes.cl", "rig.cl"},
-              detail::rig_dispatch_source(rig_, slots, plan, kGroupSize)};
+              detail::rig_dispatch_source(rig_, slots, plan, kGroupSize, share_code)};
 }
 
 BatchLayout ClRigDeformer::layout(std::size_t instances, NormalFormat format) const {

@@ -16,15 +16,37 @@ const char* stage_function(const RigStage& stage) {
   return stage.mode == BendMode::kExact ? "bend_exact_in_frame" : "bend_paper_in_frame";
 }
 
-// The stage at path position j of the group's path, applied to the vertex:
-// "{ const StageFrame f = stages + FF_PATH_STAGE(j); [enter_frame(&p, &n, &t, f);]
-//    <function>(&p, &n, &t, f, values[FF_STAGE_PARAM(f)]); }"; a vertex's first stage
-// finds it in its frame already (the rest planes).
-std::string stage_call(const char* function, std::size_t position, bool first) {
+// Applies the stage at path position j of the group's path to the vertex; a vertex's
+// first stage finds it in its frame already (the rest planes):
+// "{ const StageFrame f = stages + <k>; [enter_frame(&p, &n, &t, f);]
+//    <function>(&p, &n, &t, f, values[<param>]); }", with <k> and <param> compiled in
+// (`literal`: the group range has one stage there) or read from the path and stage
+// tables (FF_PATH_STAGE(j), FF_STAGE_PARAM(f)).
+struct StageCall {
+  const char* function = nullptr;
+  std::size_t position = 0;
+  bool first = false;
+  bool literal = false;
+  std::size_t stage = 0;  // stage index, when literal
+  std::size_t param = 0;  // parameter index, when literal
+};
+
+std::string stage_call(const StageCall& c) {
   std::ostringstream call;
-  call << "{ const StageFrame f = stages + FF_PATH_STAGE(" << position << "); ";
-  if (!first) call << "enter_frame(&p, &n, &t, f); ";
-  call << function << "(&p, &n, &t, f, values[FF_STAGE_PARAM(f)]); }";
+  call << "{ const StageFrame f = stages + ";
+  if (c.literal) {
+    call << c.stage << "; ";
+  } else {
+    call << "FF_PATH_STAGE(" << c.position << "); ";
+  }
+  if (!c.first) call << "enter_frame(&p, &n, &t, f); ";
+  call << c.function << "(&p, &n, &t, f, values[";
+  if (c.literal) {
+    call << c.param;
+  } else {
+    call << "FF_STAGE_PARAM(f)";
+  }
+  call << "]); }";
   return call.str();
 }
 
@@ -149,7 +171,8 @@ std::vector<std::uint32_t> group_path_table(const Rig& rig, const SlotLayout& sl
   return table;
 }
 
-PassPlan make_pass_plan(const Rig& rig, const SlotLayout& slots, std::size_t group_size) {
+PassPlan make_pass_plan(const Rig& rig, const SlotLayout& slots, std::size_t group_size,
+                        bool share_code) {
   const std::size_t count = rig.components.size();
   std::vector<std::vector<std::pair<std::size_t, std::size_t>>> paths(count);
   for (std::size_t c = 0; c < count; ++c) paths[c] = rig.path(c);
@@ -169,7 +192,8 @@ PassPlan make_pass_plan(const Rig& rig, const SlotLayout& slots, std::size_t gro
       PassStep& previous = steps.back();
       if (previous.end_group == step.first_group && previous.source == step.source &&
           previous.target == step.target && previous.function == step.function &&
-          previous.path_position == step.path_position) {
+          previous.path_position == step.path_position &&
+          (share_code || previous.stage == step.stage)) {
         previous.end_group = step.end_group;  // contiguous and alike: one branch
         return;
       }
@@ -194,8 +218,9 @@ PassPlan make_pass_plan(const Rig& rig, const SlotLayout& slots, std::size_t gro
           const PlaneSet target = last ? PlaneSet::kOutput
                                   : location[d] == PlaneSet::kScratchA ? PlaneSet::kScratchB
                                                                        : PlaneSet::kScratchA;
-          add_step(steps, {first, end, location[d], target,
-                           stage_function(rig.components[c].chain[position]), path_position});
+          const RigStage& stage = rig.components[c].chain[position];
+          add_step(steps, {first, end, location[d], target, stage_function(stage), path_position,
+                           stage_index(rig, c, position), stage.param});
           location[d] = target;
         }
       }
@@ -206,7 +231,8 @@ PassPlan make_pass_plan(const Rig& rig, const SlotLayout& slots, std::size_t gro
   for (std::size_t c = 0; c < count && !plan.passes.empty(); ++c) {
     const auto [first, end] = groups_of(c);
     if (paths[c].empty() && first != end) {
-      add_step(plan.passes.front(), {first, end, PlaneSet::kRest, PlaneSet::kOutput, nullptr, 0});
+      add_step(plan.passes.front(),
+               {first, end, PlaneSet::kRest, PlaneSet::kOutput, nullptr, 0, 0, 0});
     }
   }
   for (std::size_t c = 0; c < count; ++c) {
@@ -226,26 +252,37 @@ std::size_t longest_path(const Rig& rig) {
 }
 
 std::string rig_dispatch_source(const Rig& rig, const SlotLayout& slots, const PassPlan& plan,
-                                std::size_t group_size) {
+                                std::size_t group_size, bool share_code) {
   std::ostringstream out;
   out << "/* Generated for one rig by engine/src/rig_program.cpp: which stages apply to\n"
          " * which work-groups (kernels/rig.cl). */\n";
   out << "#define FF_RIG_STAGE_COUNT " << std::max<std::size_t>(stage_count(rig), 1) << "u\n";
-  // Fused: the group's component's whole path, bottom-up; one branch for each run of
-  // components with the same functions along their paths (stages from the path table).
+  // Fused: the group's component's whole path, bottom-up: a branch per component with
+  // its stages compiled in, or (share_code) one for each run of components with the same
+  // functions along their paths, stages from the path table.
   out << "#define FF_RIG_FUSED_STAGES";
   const char* keyword = "if";
   for (std::size_t c = 0; c < rig.components.size(); ++c) {
     if (slots.first_slot[c + 1] == slots.first_slot[c]) continue;  // no own vertices
     const std::vector<const char*> shape = path_functions(rig, c);
     std::size_t end = c + 1;
-    while (end < rig.components.size() &&
+    while (share_code && end < rig.components.size() &&
            (slots.first_slot[end + 1] == slots.first_slot[end] ||
             path_functions(rig, end) == shape)) {
       ++end;
     }
     out << " \\\n  " << keyword << " (group < " << slots.first_slot[end] / group_size << "u) {";
-    for (std::size_t j = 0; j < shape.size(); ++j) out << " " << stage_call(shape[j], j, j == 0);
+    const auto path = rig.path(c);
+    for (std::size_t j = 0; j < path.size(); ++j) {
+      const auto [component, stage] = path[j];
+      const StageCall call{shape[j],
+                           j,
+                           j == 0,
+                           !share_code,
+                           stage_index(rig, component, stage),
+                           rig.components[component].chain[stage].param};
+      out << " " << stage_call(call);
+    }
     out << " }";
     keyword = "else if";
     c = end - 1;
@@ -259,8 +296,9 @@ std::string rig_dispatch_source(const Rig& rig, const SlotLayout& slots, const P
       out << " \\\n  " << branch << " (group >= " << step.first_group << "u && group < "
           << step.end_group << "u) { FF_LOAD_" << plane_set_name(step.source) << " ";
       if (step.function) {
-        const bool first = step.source == PlaneSet::kRest;
-        out << stage_call(step.function, step.path_position, first) << " ";
+        const StageCall call{step.function, step.path_position, step.source == PlaneSet::kRest,
+                             !share_code, step.stage, step.param};
+        out << stage_call(call) << " ";
       }
       out << "FF_STORE_" << plane_set_name(step.target) << " }";
       branch = "else if";

@@ -59,7 +59,8 @@ enum class PlaneSet { kRest, kScratchA, kScratchB, kOutput };
 
 // One branch of a pass over a range of work-groups: load from `source`, apply the
 // stage at `path_position` of each group's path (its `function` in kernels/rig.cl;
-// none: a copy), store to `target`.
+// none: a copy), store to `target`. `stage` and `param`: the stage's indices, the
+// same for the whole range unless steps share code.
 struct PassStep {
   std::size_t first_group = 0;
   std::size_t end_group = 0;
@@ -67,6 +68,8 @@ struct PassStep {
   PlaneSet target = PlaneSet::kOutput;
   const char* function = nullptr;
   std::size_t path_position = 0;
+  std::size_t stage = 0;
+  std::size_t param = 0;
 };
 
 struct PassPlan {
@@ -75,14 +78,18 @@ struct PassPlan {
   // Vertex records read from or written to scratch sets, over all passes, per slot.
   double scratch_records_per_slot = 0.0;
 };
-PassPlan make_pass_plan(const Rig& rig, const SlotLayout& slots, std::size_t group_size);
+// share_code: contiguous steps alike but for their stages become one branch (stages
+// from the path table); otherwise only steps of one stage do.
+PassPlan make_pass_plan(const Rig& rig, const SlotLayout& slots, std::size_t group_size,
+                        bool share_code);
 
 // Longest bottom-up path (stages) of any component.
 std::size_t longest_path(const Rig& rig);
 
 // The generated macros of kernels/rig.cl for the rig: FF_RIG_STAGE_COUNT,
 // FF_RIG_FUSED_STAGES, FF_RIG_PASS_<q> and FF_RIG_PASS_KERNELS.
+// share_code: as for make_pass_plan (RigDispatch::kSharedByPathShape).
 std::string rig_dispatch_source(const Rig& rig, const SlotLayout& slots, const PassPlan& plan,
-                                std::size_t group_size);
+                                std::size_t group_size, bool share_code);
 
 }  // namespace finflex::detail

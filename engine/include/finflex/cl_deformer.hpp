@@ -98,6 +98,8 @@ std::size_t instances_per_work_item(const DeviceDescription& device);
 // The write-only reference kernel over `batch`'s outputs: writes positions and normals
 // (in the batch's format) with no arithmetic, in the bend kernel's NDRange, so that
 // benchmarks can measure the device's write bandwidth next to the deformers.
-cl::Event enqueue_write_only(Context& context, DeviceBatch& batch);
+// `instances_per_item`: 0 takes instances_per_work_item() of the device.
+cl::Event enqueue_write_only(Context& context, DeviceBatch& batch,
+                             std::size_t instances_per_item = 0);
 
 }  // namespace finflex

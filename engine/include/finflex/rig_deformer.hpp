@@ -94,13 +94,27 @@ class RigReference {
   std::vector<std::size_t> component_of_vertex_;
 };
 
+// How the generated rig kernels tell the work-groups' stages apart (every branch is
+// uniform over a work-group).
+enum class RigDispatch {
+  kAuto,          // kPerComponent on GPUs, kByPathShape on CPUs
+  kPerComponent,  // a branch per component, its stages compiled in: fewest instructions
+  kByPathShape,   // a branch per run of components with the same deformers along their
+                  // paths, stages read from a table: fewest branches, which PoCL's
+                  // work-group vectoriser needs
+};
+
+// Instances one work-item of the rig kernels deforms: 4 on GPUs (the rig's stage
+// frames and parameters are read once for them), 1 on CPUs.
+std::size_t rig_instances_per_work_item(const DeviceDescription& device);
+
 class ClRigDeformer {
  public:
   // Reorders the vertices into slots, uploads the rest mesh and the stage frames once.
   // `instances_per_item`: instances each work-item deforms; 0 takes
-  // instances_per_work_item() of the device.
+  // rig_instances_per_work_item() of the device. `dispatch`: see RigDispatch.
   ClRigDeformer(Context& context, const Mesh& mesh, const Rig& rig,
-                std::size_t instances_per_item = 0);
+                std::size_t instances_per_item = 0, RigDispatch dispatch = RigDispatch::kAuto);
 
   const Rig& rig() const { return rig_; }
   BatchLayout layout(std::size_t instances, NormalFormat format = NormalFormat::kFloat32) const;
