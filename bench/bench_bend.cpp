@@ -22,19 +22,23 @@ double time_batch_kernel(benchmark::State& state, cl::Kernel& kernel, const Batc
 
 }  // namespace
 
-void BM_WriteOnly(benchmark::State& state, NormalFormat format, std::size_t per_item) {
+void BM_WriteOnly(benchmark::State& state, NormalFormat format, std::size_t per_item,
+                  WriteValues values) {
   Setup& setup = Setup::get();
   DeviceBatch& batch = setup.batch(static_cast<std::size_t>(state.range(0)), format);
   const double seconds = time_frames(state, [&] {
-    return event_seconds(enqueue_write_only(setup.context, batch, per_item));
+    return event_seconds(enqueue_write_only(setup.context, batch, per_item, values));
   });
-  // The reference of write_fraction: the fastest write-only shape measured.
-  double& reference = setup.write_only_bytes_per_second[{batch.layout.instance_count, format}];
-  reference = std::max(reference,
-                       written_bytes(batch.layout) * static_cast<double>(state.iterations()) / seconds);
+  // The reference of write_fraction: the fastest write-only shape measured writing the
+  // device's default values (never uniform data on GPUs, which they may compress).
+  if (values == WriteValues::kDeviceDefault) {
+    double& reference = setup.write_only_bytes_per_second[{batch.layout.instance_count, format}];
+    reference = std::max(
+        reference, written_bytes(batch.layout) * static_cast<double>(state.iterations()) / seconds);
+  }
   set_counters(state, batch.layout, 0.0);
   state.counters["per_item"] = static_cast<double>(
-      per_item ? per_item : instances_per_work_item(setup.context.description()));
+      per_item ? per_item : instances_per_work_item(setup.context.description(), format));
 }
 
 void BM_CopyRest(benchmark::State& state) {

@@ -23,11 +23,21 @@ void instance_counts(benchmark::internal::Benchmark* b) {
 }
 
 // Registered in this order: the write-only kernel first, so the others can compare.
-// The device's instances per work-item, and 4 (the rig kernels' on GPUs).
-BENCHMARK_CAPTURE(BM_WriteOnly, float32, NormalFormat::kFloat32, 0)->Apply(instance_counts);
-BENCHMARK_CAPTURE(BM_WriteOnly, float32_4_per_item, NormalFormat::kFloat32, 4)
+// The device's instances per work-item, and 4 (the rig kernels' on GPUs); the fastest
+// is the reference. `uniform`: one value everywhere, for comparison only (GPUs may
+// compress it).
+BENCHMARK_CAPTURE(BM_WriteOnly, float32, NormalFormat::kFloat32, 0, WriteValues::kDeviceDefault)
     ->Apply(instance_counts);
-BENCHMARK_CAPTURE(BM_WriteOnly, half, NormalFormat::kHalf, 0)->Apply(instance_counts);
+BENCHMARK_CAPTURE(BM_WriteOnly, float32_4_per_item, NormalFormat::kFloat32, 4,
+                  WriteValues::kDeviceDefault)
+    ->Apply(instance_counts);
+BENCHMARK_CAPTURE(BM_WriteOnly, float32_uniform, NormalFormat::kFloat32, 0, WriteValues::kConstant)
+    ->Apply(instance_counts);
+BENCHMARK_CAPTURE(BM_WriteOnly, half, NormalFormat::kHalf, 0, WriteValues::kDeviceDefault)
+    ->Apply(instance_counts);
+BENCHMARK_CAPTURE(BM_WriteOnly, half_4_per_item, NormalFormat::kHalf, 4,
+                  WriteValues::kDeviceDefault)
+    ->Apply(instance_counts);
 BENCHMARK(BM_CopyRest)->Apply(instance_counts);
 BENCHMARK_CAPTURE(BM_Bend, paper_rotate, BendSettings{BendMode::kPaper, NormalMode::kRotate},
                   NormalFormat::kFloat32)

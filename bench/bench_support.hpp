@@ -66,7 +66,8 @@ double time_frames(benchmark::State& state, Launch launch) {
 
 // Benchmark bodies (bench_bend.cpp, bench_rig.cpp, bench_baselines.cpp); registered in
 // bench_main.cpp.
-void BM_WriteOnly(benchmark::State& state, NormalFormat format, std::size_t per_item);
+void BM_WriteOnly(benchmark::State& state, NormalFormat format, std::size_t per_item,
+                  WriteValues values);
 void BM_CopyRest(benchmark::State& state);
 void BM_Bend(benchmark::State& state, BendSettings settings, NormalFormat format);
 void BM_Rig(benchmark::State& state, RigPath path);

@@ -43,8 +43,9 @@ std::string bend_build_options(const BendSettings& settings, bool tangents, Norm
          " -DFF_INSTANCES_PER_ITEM=" + std::to_string(instances_per_item);
 }
 
-std::size_t instances_per_work_item(const DeviceDescription& device) {
-  return device.type == "GPU" ? 2 : 1;
+std::size_t instances_per_work_item(const DeviceDescription& device, NormalFormat format) {
+  if (device.type != "GPU") return 1;
+  return format == NormalFormat::kHalf ? 4 : 2;
 }
 
 namespace {
@@ -56,18 +57,26 @@ cl::NDRange batch_range(const BatchLayout& layout, std::size_t per_item) {
 
 }  // namespace
 
-cl::Event enqueue_write_only(Context& context, DeviceBatch& batch, std::size_t instances_per_item) {
+cl::Event enqueue_write_only(Context& context, DeviceBatch& batch, std::size_t instances_per_item,
+                             WriteValues values) {
   const std::size_t per_item =
-      instances_per_item ? instances_per_item : instances_per_work_item(context.description());
+      instances_per_item ? instances_per_item
+                         : instances_per_work_item(context.description(), batch.layout.normal_format);
+  if (values == WriteValues::kDeviceDefault) {
+    values = context.description().type == "GPU" ? WriteValues::kVarying : WriteValues::kConstant;
+  }
   const std::string options =
       std::string("-DFF_INSTANCES_PER_ITEM=") + std::to_string(per_item) +
-      (batch.layout.normal_format == NormalFormat::kHalf ? " -DFF_HALF_NORMALS=1" : "");
+      (batch.layout.normal_format == NormalFormat::kHalf ? " -DFF_HALF_NORMALS=1" : "") +
+      (values == WriteValues::kVarying ? " -DFF_VARYING_WRITES=1" : "") +
+      (batch.layout.tangents ? " -DFF_TANGENTS=1" : "");
   cl::Kernel kernel = context.kernel("write_planes", ProgramSource::bend_batch(), options);
   check_cl(kernel.setArg(0, batch.positions), "clSetKernelArg write_planes");
   check_cl(kernel.setArg(1, batch.normals), "clSetKernelArg write_planes");
-  check_cl(kernel.setArg(2, static_cast<cl_uint>(batch.layout.plane_stride)), "clSetKernelArg");
-  check_cl(kernel.setArg(3, static_cast<cl_uint>(batch.layout.instance_count)), "clSetKernelArg");
-  check_cl(kernel.setArg(4, 1.0f), "clSetKernelArg write_planes");
+  check_cl(kernel.setArg(2, batch.tangents), "clSetKernelArg write_planes");
+  check_cl(kernel.setArg(3, static_cast<cl_uint>(batch.layout.plane_stride)), "clSetKernelArg");
+  check_cl(kernel.setArg(4, static_cast<cl_uint>(batch.layout.instance_count)), "clSetKernelArg");
+  check_cl(kernel.setArg(5, 1.0f), "clSetKernelArg write_planes");
   cl::Event done;
   check_cl(context.queue().enqueueNDRangeKernel(
                kernel, cl::NullRange, batch_range(batch.layout, per_item),
@@ -80,8 +89,7 @@ ClDeformer::ClDeformer(Context& context, const LocalMesh& mesh, std::size_t inst
     : context_(context),
       mesh_(mesh),
       plane_stride_(padded_plane_stride(mesh.vertex_count())),
-      instances_per_item_(instances_per_item ? instances_per_item
-                                             : instances_per_work_item(context.description())) {
+      instances_per_item_(instances_per_item) {
   static_assert(64 % kLocalSize == 0, "plane_stride must be a multiple of the work-group size");
   if (plane_stride_ > 0xffffffffu) {
     throw Error(ErrorCode::kInvalidMesh, "positions", "the mesh has more than 2^32 vertices");
@@ -141,10 +149,15 @@ cl::Event ClDeformer::enqueue(const std::vector<float>& m, const BendSettings& s
   }
   cl::Event done;
   check_cl(queue.enqueueNDRangeKernel(kernel, cl::NullRange,
-                                      batch_range(batch.layout, instances_per_item_),
+                                      batch_range(batch.layout, per_item(batch.layout.normal_format)),
                                       cl::NDRange(kLocalSize, 1), nullptr, &done),
            "clEnqueueNDRangeKernel bend_batch");
   return done;
+}
+
+std::size_t ClDeformer::per_item(NormalFormat format) const {
+  return instances_per_item_ ? instances_per_item_
+                             : instances_per_work_item(context_.description(), format);
 }
 
 cl::Kernel& ClDeformer::bend_kernel(const BendSettings& settings, NormalFormat format) {
@@ -152,7 +165,7 @@ cl::Kernel& ClDeformer::bend_kernel(const BendSettings& settings, NormalFormat f
   auto found = kernels_.find(key);
   if (found == kernels_.end()) {
     const std::string options =
-        bend_build_options(settings, mesh_.has_tangents(), format, instances_per_item_);
+        bend_build_options(settings, mesh_.has_tangents(), format, per_item(format));
     found =
         kernels_.emplace(key, context_.kernel("bend_batch", ProgramSource::bend_batch(), options))
             .first;

@@ -80,7 +80,8 @@ class ClDeformer {
   std::size_t plane_stride_ = 0;
   cl::Buffer rest_;
   std::vector<cl_float4> back_transform_;  // origin, s e_x, s e_y, s e_z, e_x, e_y, e_z
-  std::size_t instances_per_item_ = 1;     // instances_per_work_item() of the device
+  std::size_t instances_per_item_ = 0;  // 0: instances_per_work_item() of the device
+  std::size_t per_item(NormalFormat format) const;
   // By (mode, normals, format): created on first use, no per-frame creation or strings.
   std::map<std::tuple<BendMode, NormalMode, NormalFormat>, cl::Kernel> kernels_;
 
@@ -91,15 +92,28 @@ class ClDeformer {
 std::string bend_build_options(const BendSettings& settings, bool tangents, NormalFormat format,
                                std::size_t instances_per_item);
 
-// Instances one work-item deforms (reading its rest vertex once): 2 on GPUs, whose
-// rate of work-items, not of bytes, limits one instance per work-item; 1 on CPUs.
-std::size_t instances_per_work_item(const DeviceDescription& device);
+// Instances one work-item deforms (reading its rest vertex once): on GPUs, whose rate
+// of work-items, not of bytes, limits one instance per work-item, 2 with float32
+// normals and 4 with half normals (fewer bytes per instance); 1 on CPUs.
+std::size_t instances_per_work_item(const DeviceDescription& device,
+                                    NormalFormat format = NormalFormat::kFloat32);
+
+// What the write-only reference kernel writes: one value everywhere (no arithmetic at
+// all), or values that differ per vertex and instance (a few integer operations; GPUs
+// may compress uniform data on its way to memory and write it faster than any real
+// output could go).
+enum class WriteValues {
+  kDeviceDefault,  // kVarying on GPUs, kConstant on CPUs
+  kConstant,
+  kVarying,
+};
 
 // The write-only reference kernel over `batch`'s outputs: writes positions and normals
-// (in the batch's format) with no arithmetic, in the bend kernel's NDRange, so that
-// benchmarks can measure the device's write bandwidth next to the deformers.
+// (in the batch's format), in the bend kernel's NDRange, so that benchmarks can measure
+// the device's write bandwidth next to the deformers.
 // `instances_per_item`: 0 takes instances_per_work_item() of the device.
 cl::Event enqueue_write_only(Context& context, DeviceBatch& batch,
-                             std::size_t instances_per_item = 0);
+                             std::size_t instances_per_item = 0,
+                             WriteValues values = WriteValues::kDeviceDefault);
 
 }  // namespace finflex
