@@ -123,6 +123,34 @@ TEST(ClDeformer, BatchEqualsSingleRuns) {
   }
 }
 
+// Kernel arguments are set only when a frame goes to another batch than the last one:
+// alternating batches of different sizes must each get their own frames.
+TEST(ClDeformer, AlternatingBatchesEachGetTheirOwnFrames) {
+  const Mesh mesh = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
+  const LocalMesh local = make_local_mesh(mesh, find_body_frame(mesh));
+  ClDeformer deformer(test::shared_context(), local);
+  const float limit = static_cast<float>(max_abs_m(local.x_max));
+  const BendSettings settings{BendMode::kPaper, NormalMode::kRotate};
+  DeviceBatch two = deformer.allocate(2);
+  DeviceBatch three = deformer.allocate(3);
+  ASSERT_NE(two.serial, three.serial);
+  DeviceBatch single = deformer.allocate(1);
+  auto expect_instance = [&](const DeformedBatch<float>& batch, std::size_t i, float m) {
+    deformer.enqueue({m}, settings, single);
+    const DeformedBatch<float> one = deformer.read(single);
+    for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
+      ASSERT_EQ(one.position(0, v), batch.position(i, v)) << "m " << m << " vertex " << v;
+  };
+  deformer.enqueue({0.1f * limit, 0.2f * limit}, settings, two);
+  deformer.enqueue({0.3f * limit, 0.4f * limit, 0.5f * limit}, settings, three);
+  deformer.enqueue({-0.6f * limit, -0.7f * limit}, settings, two);  // back to the first
+  const DeformedBatch<float> from_two = deformer.read(two);
+  const DeformedBatch<float> from_three = deformer.read(three);
+  expect_instance(from_two, 0, -0.6f * limit);
+  expect_instance(from_two, 1, -0.7f * limit);
+  expect_instance(from_three, 2, 0.5f * limit);
+}
+
 TEST(ClDeformer, SeveralInstancesPerWorkItemGiveTheSameResult) {
   // GPUs take 2 instances per work-item; every count, odd batches included, must give
   // what one instance per work-item gives (to float32 rounding: the compiler may

@@ -374,6 +374,38 @@ TEST(RigDeformer, HeterogeneousFrameEqualsSeparateRuns) {
   EXPECT_EQ(max_difference(b.read(alone_b), together_b, blub.vertex_count(), 3).position, 0.0);
 }
 
+// Kernel arguments are set only when a frame goes to another batch than the kernel's
+// last one (and again when a batch gains scratch sets): alternating batches and paths
+// must each get their own frames.
+TEST(RigDeformer, AlternatingBatchesAndPathsEachGetTheirOwnFrames) {
+  const Mesh mesh = test::synthetic_fish(64, 24);
+  const Rig rig = resolve_rig(deep_tail_rig(), mesh);
+  ClRigDeformer deformer(test::shared_context(), mesh, rig);
+  DeviceBatch first = deformer.allocate(3);
+  DeviceBatch second = deformer.allocate(2);
+  const RigParameters a = random_parameters(rig, 3, 0.7, 21);
+  const RigParameters b = random_parameters(rig, 2, 0.7, 22);
+  const RigParameters c = random_parameters(rig, 3, 0.7, 23);
+  deformer.enqueue(a, NormalMode::kRotate, first, RigPath::kFused);
+  deformer.enqueue(b, NormalMode::kRotate, second, RigPath::kPasses);
+  deformer.enqueue(c, NormalMode::kRotate, first, RigPath::kPasses);
+  // Parameters for another instance count: rejected, the batch keeps its frame.
+  EXPECT_THROW(deformer.enqueue(a, NormalMode::kRotate, second, RigPath::kFused), Error);
+  const DeformedBatch<float> from_first = deformer.read(first);
+  const DeformedBatch<float> from_second = deformer.read(second);
+
+  ClRigDeformer fresh(test::shared_context(), mesh, rig);
+  DeviceBatch expected_first = fresh.allocate(3);
+  fresh.enqueue(c, NormalMode::kRotate, expected_first, RigPath::kPasses);
+  DeviceBatch expected_second = fresh.allocate(2);
+  fresh.enqueue(b, NormalMode::kRotate, expected_second, RigPath::kPasses);
+  EXPECT_EQ(max_difference(from_first, fresh.read(expected_first), mesh.vertex_count(), 3).position,
+            0.0);
+  EXPECT_EQ(
+      max_difference(from_second, fresh.read(expected_second), mesh.vertex_count(), 2).position,
+      0.0);
+}
+
 TEST(RigDeformer, SeveralInstancesPerWorkItemGiveTheSameResult) {
   const Mesh mesh = load_mesh(test::data_path("barramundi/BarramundiFish.gltf"));
   const Rig rig = resolve_rig(load_rig_file(test::data_path("rigs/barramundi.rig.json")), mesh);

@@ -134,18 +134,22 @@ cl::Event ClDeformer::enqueue(const std::vector<float>& m, const BendSettings& s
 
   cl::CommandQueue& queue = context_.queue();
 
-  cl::Kernel& kernel = bend_kernel(settings, batch.layout.normal_format);
-  cl_uint arg = 0;
-  check_cl(kernel.setArg(arg++, rest_), "clSetKernelArg rest");
-  check_cl(kernel.setArg(arg++, batch.parameters), "clSetKernelArg m");
-  check_cl(kernel.setArg(arg++, batch.positions), "clSetKernelArg out_positions");
-  check_cl(kernel.setArg(arg++, batch.normals), "clSetKernelArg out_normals");
-  check_cl(kernel.setArg(arg++, batch.tangents), "clSetKernelArg out_tangents");
-  check_cl(kernel.setArg(arg++, static_cast<cl_uint>(plane_stride_)), "clSetKernelArg stride");
-  check_cl(kernel.setArg(arg++, static_cast<cl_uint>(batch.layout.instance_count)),
-           "clSetKernelArg instances");
-  for (const cl_float4& value : back_transform_) {
-    check_cl(kernel.setArg(arg++, value), "clSetKernelArg back transform");
+  BoundKernel& bound = bend_kernel(settings, batch.layout.normal_format);
+  cl::Kernel& kernel = bound.kernel;
+  if (!bound.bound_to(batch)) {
+    cl_uint arg = 0;
+    check_cl(kernel.setArg(arg++, rest_), "clSetKernelArg rest");
+    check_cl(kernel.setArg(arg++, batch.parameters), "clSetKernelArg m");
+    check_cl(kernel.setArg(arg++, batch.positions), "clSetKernelArg out_positions");
+    check_cl(kernel.setArg(arg++, batch.normals), "clSetKernelArg out_normals");
+    check_cl(kernel.setArg(arg++, batch.tangents), "clSetKernelArg out_tangents");
+    check_cl(kernel.setArg(arg++, static_cast<cl_uint>(plane_stride_)), "clSetKernelArg stride");
+    check_cl(kernel.setArg(arg++, static_cast<cl_uint>(batch.layout.instance_count)),
+             "clSetKernelArg instances");
+    for (const cl_float4& value : back_transform_) {
+      check_cl(kernel.setArg(arg++, value), "clSetKernelArg back transform");
+    }
+    bound.mark_bound(batch);
   }
   cl::Event done;
   check_cl(queue.enqueueNDRangeKernel(kernel, cl::NullRange,
@@ -160,14 +164,16 @@ std::size_t ClDeformer::per_item(NormalFormat format) const {
                              : instances_per_work_item(context_.description(), format);
 }
 
-cl::Kernel& ClDeformer::bend_kernel(const BendSettings& settings, NormalFormat format) {
+BoundKernel& ClDeformer::bend_kernel(const BendSettings& settings, NormalFormat format) {
   const auto key = std::make_tuple(settings.mode, settings.normals, format);
   auto found = kernels_.find(key);
   if (found == kernels_.end()) {
     const std::string options =
         bend_build_options(settings, mesh_.has_tangents(), format, per_item(format));
     found =
-        kernels_.emplace(key, context_.kernel("bend_batch", ProgramSource::bend_batch(), options))
+        kernels_
+            .emplace(key,
+                     BoundKernel{context_.kernel("bend_batch", ProgramSource::bend_batch(), options)})
             .first;
   }
   return found->second;

@@ -92,7 +92,7 @@ void ClRigDeformer::ensure_scratch(DeviceBatch& batch, std::size_t sets) const {
   }
 }
 
-cl::Kernel& ClRigDeformer::kernel(std::size_t index, NormalMode normals, NormalFormat format) {
+BoundKernel& ClRigDeformer::kernel(std::size_t index, NormalMode normals, NormalFormat format) {
   const auto key = std::make_tuple(index, normals, format);
   auto found = kernels_.find(key);
   if (found == kernels_.end()) {
@@ -102,7 +102,7 @@ cl::Kernel& ClRigDeformer::kernel(std::size_t index, NormalMode normals, NormalF
         " -DFF_TANGENTS=" + (tangents_ ? "1" : "0") +
         " -DFF_HALF_NORMALS=" + (format == NormalFormat::kHalf ? "1" : "0") +
         " -DFF_INSTANCES_PER_ITEM=" + std::to_string(instances_per_item_);
-    found = kernels_.emplace(key, context_.kernel(name, program_, options)).first;
+    found = kernels_.emplace(key, BoundKernel{context_.kernel(name, program_, options)}).first;
   }
   return found->second;
 }
@@ -134,15 +134,20 @@ cl::Event ClRigDeformer::enqueue(const RigParameters& parameters, NormalMode nor
   cl::Event done;
 
   if (path == RigPath::kFused || pass_count_ == 0) {
-    cl::Kernel& fused = kernel(0, normals, batch.layout.normal_format);
-    set_args(fused, 0, {&rest_positions_, &rest_normals_, &rest_tangents_, &batch.parameters},
-             "clSetKernelArg rig_fused");
-    check_cl(fused.setArg(4, param_count), "clSetKernelArg param_count");
-    check_cl(fused.setArg(5, stages_), "clSetKernelArg stages");
-    check_cl(fused.setArg(6, group_paths_), "clSetKernelArg group_paths");
-    set_args(fused, 7, {&batch.positions, &batch.normals, &batch.tangents}, "clSetKernelArg out");
-    check_cl(fused.setArg(10, stride), "clSetKernelArg stride");
-    check_cl(fused.setArg(11, instances), "clSetKernelArg instances");
+    BoundKernel& bound = kernel(0, normals, batch.layout.normal_format);
+    cl::Kernel& fused = bound.kernel;
+    if (!bound.bound_to(batch)) {
+      set_args(fused, 0, {&rest_positions_, &rest_normals_, &rest_tangents_, &batch.parameters},
+               "clSetKernelArg rig_fused");
+      check_cl(fused.setArg(4, param_count), "clSetKernelArg param_count");
+      check_cl(fused.setArg(5, stages_), "clSetKernelArg stages");
+      check_cl(fused.setArg(6, group_paths_), "clSetKernelArg group_paths");
+      set_args(fused, 7, {&batch.positions, &batch.normals, &batch.tangents},
+               "clSetKernelArg out");
+      check_cl(fused.setArg(10, stride), "clSetKernelArg stride");
+      check_cl(fused.setArg(11, instances), "clSetKernelArg instances");
+      bound.mark_bound(batch);
+    }
     check_cl(queue.enqueueNDRangeKernel(fused, cl::NullRange, global, local, nullptr, &done),
              "clEnqueueNDRangeKernel rig_fused");
     if (kernel_events) kernel_events->push_back(done);
@@ -157,18 +162,22 @@ cl::Event ClRigDeformer::enqueue(const RigParameters& parameters, NormalMode nor
   const cl::Buffer* sets[2][3] = {{rest[0], rest[1], rest[2]}, {rest[0], rest[1], rest[2]}};
   for (std::size_t k = 0; k < batch.scratch.size() && k < 6; ++k) sets[k / 3][k % 3] = &batch.scratch[k];
   for (std::size_t q = 0; q < pass_count_; ++q) {
-    cl::Kernel& pass_kernel = kernel(1 + q, normals, batch.layout.normal_format);
-    set_args(pass_kernel, 0,
-             {rest[0], rest[1], rest[2], sets[0][0], sets[0][1], sets[0][2], sets[1][0],
-              sets[1][1], sets[1][2], &batch.parameters},
-             "clSetKernelArg rig_pass");
-    check_cl(pass_kernel.setArg(10, param_count), "clSetKernelArg param_count");
-    check_cl(pass_kernel.setArg(11, stages_), "clSetKernelArg stages");
-    check_cl(pass_kernel.setArg(12, group_paths_), "clSetKernelArg group_paths");
-    set_args(pass_kernel, 13, {&batch.positions, &batch.normals, &batch.tangents},
-             "clSetKernelArg out");
-    check_cl(pass_kernel.setArg(16, stride), "clSetKernelArg stride");
-    check_cl(pass_kernel.setArg(17, instances), "clSetKernelArg instances");
+    BoundKernel& bound = kernel(1 + q, normals, batch.layout.normal_format);
+    cl::Kernel& pass_kernel = bound.kernel;
+    if (!bound.bound_to(batch)) {
+      set_args(pass_kernel, 0,
+               {rest[0], rest[1], rest[2], sets[0][0], sets[0][1], sets[0][2], sets[1][0],
+                sets[1][1], sets[1][2], &batch.parameters},
+               "clSetKernelArg rig_pass");
+      check_cl(pass_kernel.setArg(10, param_count), "clSetKernelArg param_count");
+      check_cl(pass_kernel.setArg(11, stages_), "clSetKernelArg stages");
+      check_cl(pass_kernel.setArg(12, group_paths_), "clSetKernelArg group_paths");
+      set_args(pass_kernel, 13, {&batch.positions, &batch.normals, &batch.tangents},
+               "clSetKernelArg out");
+      check_cl(pass_kernel.setArg(16, stride), "clSetKernelArg stride");
+      check_cl(pass_kernel.setArg(17, instances), "clSetKernelArg instances");
+      bound.mark_bound(batch);
+    }
     check_cl(queue.enqueueNDRangeKernel(pass_kernel, cl::NullRange, global, local, nullptr, &done),
              "clEnqueueNDRangeKernel rig_pass");
     if (kernel_events) kernel_events->push_back(done);

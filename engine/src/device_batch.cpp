@@ -1,6 +1,7 @@
 #include "device_batch.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -35,7 +36,9 @@ DeviceBatch allocate_batch(Context& context, const BatchLayout& layout,
   }
   const cl::Context& cl_context = context.context();
   const std::size_t direction_bytes = layout.attribute_elements() * layout.normal_component_bytes();
+  static std::atomic<std::uint64_t> next_serial{1};
   DeviceBatch batch;
+  batch.serial = next_serial++;
   batch.layout = layout;
   batch.positions = make_buffer(cl_context, CL_MEM_READ_WRITE, bytes);
   batch.normals = make_buffer(cl_context, CL_MEM_READ_WRITE, direction_bytes);

@@ -15,6 +15,7 @@
 // 10,786-vertex fish: 4,000 * 10,816 * 24 B = 1.04 GB.
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <string>
 #include <tuple>
@@ -45,6 +46,29 @@ struct DeviceBatch {
   // Host staging of the last upload of m, kept alive until its write completes.
   std::vector<float> staged_parameters;
   cl::Event parameters_uploaded;
+
+  // Identifies these buffers (set by allocate(), unique in the process; 0: none), so
+  // deformers set kernel arguments only when a frame goes to another batch. Replace a
+  // batch by allocating a new one, never by assigning its buffers.
+  std::uint64_t serial = 0;
+};
+
+// A deformer's kernel and the batch its arguments were last set for: a frame on the
+// same batch as the last one is a parameter upload and a launch, without setting
+// arguments again.
+struct BoundKernel {
+  cl::Kernel kernel;
+  std::uint64_t batch_serial = 0;
+  std::size_t scratch_buffers = 0;
+
+  bool bound_to(const DeviceBatch& batch) const {
+    return batch.serial != 0 && batch_serial == batch.serial &&
+           scratch_buffers == batch.scratch.size();
+  }
+  void mark_bound(const DeviceBatch& batch) {
+    batch_serial = batch.serial;
+    scratch_buffers = batch.scratch.size();
+  }
 };
 
 class ClDeformer {
@@ -83,9 +107,9 @@ class ClDeformer {
   std::size_t instances_per_item_ = 0;  // 0: instances_per_work_item() of the device
   std::size_t per_item(NormalFormat format) const;
   // By (mode, normals, format): created on first use, no per-frame creation or strings.
-  std::map<std::tuple<BendMode, NormalMode, NormalFormat>, cl::Kernel> kernels_;
+  std::map<std::tuple<BendMode, NormalMode, NormalFormat>, BoundKernel> kernels_;
 
-  cl::Kernel& bend_kernel(const BendSettings& settings, NormalFormat format);
+  BoundKernel& bend_kernel(const BendSettings& settings, NormalFormat format);
 };
 
 // Build options specialising the kernels (-D FF_BEND_EXACT=...).

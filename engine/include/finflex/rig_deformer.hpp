@@ -171,9 +171,9 @@ class ClRigDeformer {
   RigPath automatic_path_ = RigPath::kFused;
   // By (0 for rig_fused or 1 + q for rig_pass_q, normal mode, normal format): created
   // on first use, looked up without building strings every frame.
-  std::map<std::tuple<std::size_t, NormalMode, NormalFormat>, cl::Kernel> kernels_;
+  std::map<std::tuple<std::size_t, NormalMode, NormalFormat>, BoundKernel> kernels_;
 
-  cl::Kernel& kernel(std::size_t index, NormalMode normals, NormalFormat format);
+  BoundKernel& kernel(std::size_t index, NormalMode normals, NormalFormat format);
   void ensure_scratch(DeviceBatch& batch, std::size_t sets) const;
 };
 
