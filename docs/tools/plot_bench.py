@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Scaling plots from `bench/sweep.sh` output (one `finflex bench --json` object per line):
-vertices/s against instances, one panel per mesh, one line per deformation, and the
-write-only kernel's rate (its bytes/s over 24 bytes per vertex) measured in the same runs.
+vertices/s against instances, one panel per mesh, one line per deformation and output
+format, and the write-only kernel's rate for float32 outputs measured in the same runs.
 
 A documentation tool (numpy-free; needs matplotlib):
 
@@ -33,10 +33,15 @@ def main():
     for ax, vertices in zip(axes[0], meshes):
         lines = defaultdict(list)
         for r in rows:
-            if r["vertices"] == vertices:
-                lines[r["deformation"]].append((r["instances"], r["vertices_per_second"]))
+            if r["vertices"] != vertices:
+                continue
+            half = r.get("normal_format") == "half"
+            name = r["deformation"] + (", half normals" if half else "")
+            lines[name].append((r["instances"], r["vertices_per_second"]))
+            if not half:  # bytes/s over the bytes each vertex writes
+                bytes_per_vertex = r["output_bytes_per_second"] / r["vertices_per_second"]
                 lines["write-only kernel"].append(
-                    (r["instances"], r["write_bandwidth_bytes_per_second"] / 24.0))
+                    (r["instances"], r["write_bandwidth_bytes_per_second"] / bytes_per_vertex))
         for name, points in sorted(lines.items()):
             best = {}
             for instances, rate in points:  # the write-only kernel: best of its runs
