@@ -75,6 +75,41 @@ TEST(Geometry, NormalsAgreeWithTheDeformedFaces) {
   }
 }
 
+// Rotate-mode normals are rotated, not renormalised: they must stay unit on real
+// fish, for the single bend and through a rig's chained stages, at every parameter.
+TEST(Geometry, RotatedNormalsStayUnit) {
+  const Mesh mesh = load_mesh(test::data_path("blub/fish.obj"));
+  const LocalMesh local = make_local_mesh(mesh, find_body_frame(mesh));
+  const double limit = max_abs_m(local.x_max);
+  std::vector<float> m;
+  for (double f : {-1.0, -0.5, 0.0, 0.3, 0.9, 1.0}) m.push_back(static_cast<float>(f * limit));
+  double worst = 0.0;
+  for (BendMode mode : {BendMode::kPaper, BendMode::kExact}) {
+    const DeformedBatch<float> bent = bend_on_device(local, m, {mode, NormalMode::kRotate});
+    for (std::size_t i = 0; i < m.size(); ++i) {
+      for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
+        worst = std::max(worst, std::fabs(glm::length(glm::dvec3(bent.normal(i, v))) - 1.0));
+    }
+  }
+  const Rig rig = resolve_rig(load_rig_file(test::data_path("rigs/blub.rig.json")), mesh);
+  ClRigDeformer deformer(test::shared_context(), mesh, rig);
+  RigParameters values(rig, 3);
+  const std::vector<double> limits = rig_param_limits(rig);
+  for (std::size_t i = 0; i < 3; ++i) {
+    for (std::size_t p = 0; p < rig.params.size(); ++p)
+      values.values()[i * rig.params.size() + p] =
+          static_cast<float>((i == 0 ? -1.0 : 0.45 * double(i)) * limits[p]);
+  }
+  DeviceBatch batch = deformer.allocate(3);
+  deformer.enqueue(values, NormalMode::kRotate, batch, RigPath::kFused);
+  const DeformedBatch<float> rigged = deformer.read(batch);
+  for (std::size_t i = 0; i < 3; ++i) {
+    for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
+      worst = std::max(worst, std::fabs(glm::length(glm::dvec3(rigged.normal(i, v))) - 1.0));
+  }
+  EXPECT_LT(worst, 2e-6);
+}
+
 TEST(Geometry, FoldOverIsCountedWhereTheRadiusOfCurvatureIsShorterThanZ) {
   // A vertex at height z above the spine folds where z k >= 1, k = 2m / sqrt(1 - 4m^2x^2).
   Mesh mesh = test::spine_ribbon(101, 0.5);
