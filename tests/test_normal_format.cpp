@@ -64,7 +64,8 @@ TEST(NormalFormat, HalfBendKeepsPositionsAndRoundsNormals) {
   for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {
     deformer.enqueue(m, {BendMode::kExact, normals}, full);
     deformer.enqueue(m, {BendMode::kExact, normals}, half);
-    expect_half_matches_float(deformer.read(full), deformer.read(half), mesh.vertex_count(), m.size());
+    expect_half_matches_float(deformer.read(full), deformer.read(half), mesh.vertex_count(),
+                              m.size());
   }
 }
 

@@ -198,8 +198,8 @@ RigSpec rig_with_stageless_components() {
   const double big = 10.0;
   spec.components.push_back(box_component("tail", "body", glm::dvec3(-big),
                                           glm::dvec3(-0.1, big, big), {hinge("tail_angle", 0.3)}));
-  spec.components.push_back(box_component("tip", "tail", glm::dvec3(0.5, -big, -big),
-                                          glm::dvec3(big), {}));
+  spec.components.push_back(
+      box_component("tip", "tail", glm::dvec3(0.5, -big, -big), glm::dvec3(big), {}));
   spec.components.push_back(box_component("head", "body", glm::dvec3(0.3, -big, -big),
                                           glm::dvec3(big), {bend("head_m"), hinge("nod", 0.1)}));
   return spec;

@@ -60,8 +60,9 @@ cl::NDRange batch_range(const BatchLayout& layout, std::size_t per_item) {
 cl::Event enqueue_write_only(Context& context, DeviceBatch& batch, std::size_t instances_per_item,
                              WriteValues values) {
   const std::size_t per_item =
-      instances_per_item ? instances_per_item
-                         : instances_per_work_item(context.description(), batch.layout.normal_format);
+      instances_per_item
+          ? instances_per_item
+          : instances_per_work_item(context.description(), batch.layout.normal_format);
   if (values == WriteValues::kDeviceDefault) {
     values = context.description().type == "GPU" ? WriteValues::kVarying : WriteValues::kConstant;
   }
@@ -152,10 +153,11 @@ cl::Event ClDeformer::enqueue(const std::vector<float>& m, const BendSettings& s
     bound.mark_bound(batch);
   }
   cl::Event done;
-  check_cl(queue.enqueueNDRangeKernel(kernel, cl::NullRange,
-                                      batch_range(batch.layout, per_item(batch.layout.normal_format)),
-                                      cl::NDRange(kLocalSize, 1), nullptr, &done),
-           "clEnqueueNDRangeKernel bend_batch");
+  check_cl(
+      queue.enqueueNDRangeKernel(kernel, cl::NullRange,
+                                 batch_range(batch.layout, per_item(batch.layout.normal_format)),
+                                 cl::NDRange(kLocalSize, 1), nullptr, &done),
+      "clEnqueueNDRangeKernel bend_batch");
   return done;
 }
 
@@ -170,11 +172,10 @@ BoundKernel& ClDeformer::bend_kernel(const BendSettings& settings, NormalFormat 
   if (found == kernels_.end()) {
     const std::string options =
         bend_build_options(settings, mesh_.has_tangents(), format, per_item(format));
-    found =
-        kernels_
-            .emplace(key,
-                     BoundKernel{context_.kernel("bend_batch", ProgramSource::bend_batch(), options)})
-            .first;
+    found = kernels_
+                .emplace(key, BoundKernel{context_.kernel("bend_batch", ProgramSource::bend_batch(),
+                                                          options)})
+                .first;
   }
   return found->second;
 }

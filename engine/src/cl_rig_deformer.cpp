@@ -25,8 +25,8 @@ std::size_t rig_instances_per_work_item(const DeviceDescription& device) {
 ClRigDeformer::ClRigDeformer(Context& context, const Mesh& mesh, const Rig& rig,
                              std::size_t instances_per_item, RigDispatch dispatch)
     : context_(context), rig_(rig), limits_(rig_param_limits(rig)) {
-  instances_per_item_ = instances_per_item ? instances_per_item
-                                           : rig_instances_per_work_item(context.description());
+  instances_per_item_ =
+      instances_per_item ? instances_per_item : rig_instances_per_work_item(context.description());
   if (dispatch == RigDispatch::kAuto) {
     dispatch = context.description().type == "GPU" ? RigDispatch::kPerComponent
                                                    : RigDispatch::kByPathShape;
@@ -92,6 +92,23 @@ void ClRigDeformer::ensure_scratch(DeviceBatch& batch, std::size_t sets) const {
   }
 }
 
+// The arguments every rig kernel ends with, from `first` on (kernels/rig.cl): params,
+// param_count, stages, group_paths, out_positions, out_normals, out_tangents, stride,
+// instances.
+void ClRigDeformer::set_batch_args(cl::Kernel& kernel, cl_uint first,
+                                   const DeviceBatch& batch) const {
+  set_args(kernel, first, {&batch.parameters}, "clSetKernelArg params");
+  check_cl(kernel.setArg(first + 1, static_cast<cl_uint>(rig_.params.size())),
+           "clSetKernelArg param_count");
+  check_cl(kernel.setArg(first + 2, stages_), "clSetKernelArg stages");
+  check_cl(kernel.setArg(first + 3, group_paths_), "clSetKernelArg group_paths");
+  set_args(kernel, first + 4, {&batch.positions, &batch.normals, &batch.tangents},
+           "clSetKernelArg out");
+  check_cl(kernel.setArg(first + 7, static_cast<cl_uint>(slot_count_)), "clSetKernelArg stride");
+  check_cl(kernel.setArg(first + 8, static_cast<cl_uint>(batch.layout.instance_count)),
+           "clSetKernelArg instances");
+}
+
 BoundKernel& ClRigDeformer::kernel(std::size_t index, NormalMode normals, NormalFormat format) {
   const auto key = std::make_tuple(index, normals, format);
   auto found = kernels_.find(key);
@@ -127,25 +144,16 @@ cl::Event ClRigDeformer::enqueue(const RigParameters& parameters, NormalMode nor
   cl::CommandQueue& queue = context_.queue();
   const cl::NDRange global(
       slot_count_, (batch.layout.instance_count + instances_per_item_ - 1) / instances_per_item_);
-  const auto instances = static_cast<cl_uint>(batch.layout.instance_count);
   const cl::NDRange local(kGroupSize, 1);
-  const auto param_count = static_cast<cl_uint>(rig_.params.size());
-  const auto stride = static_cast<cl_uint>(slot_count_);
   cl::Event done;
 
   if (path == RigPath::kFused || pass_count_ == 0) {
     BoundKernel& bound = kernel(0, normals, batch.layout.normal_format);
     cl::Kernel& fused = bound.kernel;
     if (!bound.bound_to(batch)) {
-      set_args(fused, 0, {&rest_positions_, &rest_normals_, &rest_tangents_, &batch.parameters},
+      set_args(fused, 0, {&rest_positions_, &rest_normals_, &rest_tangents_},
                "clSetKernelArg rig_fused");
-      check_cl(fused.setArg(4, param_count), "clSetKernelArg param_count");
-      check_cl(fused.setArg(5, stages_), "clSetKernelArg stages");
-      check_cl(fused.setArg(6, group_paths_), "clSetKernelArg group_paths");
-      set_args(fused, 7, {&batch.positions, &batch.normals, &batch.tangents},
-               "clSetKernelArg out");
-      check_cl(fused.setArg(10, stride), "clSetKernelArg stride");
-      check_cl(fused.setArg(11, instances), "clSetKernelArg instances");
+      set_batch_args(fused, 3, batch);
       bound.mark_bound(batch);
     }
     check_cl(queue.enqueueNDRangeKernel(fused, cl::NullRange, global, local, nullptr, &done),
@@ -160,22 +168,17 @@ cl::Event ClRigDeformer::enqueue(const RigParameters& parameters, NormalMode nor
   ensure_scratch(batch, scratch_sets_);
   const cl::Buffer* rest[3] = {&rest_positions_, &rest_normals_, &rest_tangents_};
   const cl::Buffer* sets[2][3] = {{rest[0], rest[1], rest[2]}, {rest[0], rest[1], rest[2]}};
-  for (std::size_t k = 0; k < batch.scratch.size() && k < 6; ++k) sets[k / 3][k % 3] = &batch.scratch[k];
+  for (std::size_t k = 0; k < batch.scratch.size() && k < 6; ++k)
+    sets[k / 3][k % 3] = &batch.scratch[k];
   for (std::size_t q = 0; q < pass_count_; ++q) {
     BoundKernel& bound = kernel(1 + q, normals, batch.layout.normal_format);
     cl::Kernel& pass_kernel = bound.kernel;
     if (!bound.bound_to(batch)) {
       set_args(pass_kernel, 0,
                {rest[0], rest[1], rest[2], sets[0][0], sets[0][1], sets[0][2], sets[1][0],
-                sets[1][1], sets[1][2], &batch.parameters},
+                sets[1][1], sets[1][2]},
                "clSetKernelArg rig_pass");
-      check_cl(pass_kernel.setArg(10, param_count), "clSetKernelArg param_count");
-      check_cl(pass_kernel.setArg(11, stages_), "clSetKernelArg stages");
-      check_cl(pass_kernel.setArg(12, group_paths_), "clSetKernelArg group_paths");
-      set_args(pass_kernel, 13, {&batch.positions, &batch.normals, &batch.tangents},
-               "clSetKernelArg out");
-      check_cl(pass_kernel.setArg(16, stride), "clSetKernelArg stride");
-      check_cl(pass_kernel.setArg(17, instances), "clSetKernelArg instances");
+      set_batch_args(pass_kernel, 9, batch);
       bound.mark_bound(batch);
     }
     check_cl(queue.enqueueNDRangeKernel(pass_kernel, cl::NullRange, global, local, nullptr, &done),

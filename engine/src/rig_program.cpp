@@ -114,8 +114,7 @@ RestPlanes make_rest_planes(const Rig& rig, const Mesh& mesh, const SlotLayout& 
       const std::size_t slot = slots.slot_of_vertex[v];
       // (2): p = R (p_b - origin) / s_x, n = R n_b, in double before rounding.
       put(rest.positions, slot, first.point_to_local(glm::dvec3(mesh.positions[v])));
-      put(rest.normals, slot,
-          first.vector_to_local(glm::normalize(glm::dvec3(mesh.normals[v]))));
+      put(rest.normals, slot, first.vector_to_local(glm::normalize(glm::dvec3(mesh.normals[v]))));
       if (!rest.tangents.empty()) {
         put(rest.tangents, slot,
             first.vector_to_local(glm::normalize(glm::dvec3(mesh.tangents[v]))));
@@ -141,10 +140,14 @@ std::vector<float> stage_frames(const Rig& rig) {
     for (const RigStage& stage : component.chain) {
       const BodyFrame& f = stage.frame;
       const double inverse_width = stage.width > 0.0 ? 1.0 / stage.width : 0.0;
+      // clang-format off
       const double values[kStageValues] = {
-          f.axis_x.x, f.axis_x.y, f.axis_x.z, 1.0 / f.length,       f.axis_y.x, f.axis_y.y,
-          f.axis_y.z, stage.width, f.axis_z.x, f.axis_z.y,          f.axis_z.z, double(stage.param),
-          f.origin.x, f.origin.y,  f.origin.z, f.length,            inverse_width};
+          f.axis_x.x, f.axis_x.y, f.axis_x.z, 1.0 / f.length,        // 0-3
+          f.axis_y.x, f.axis_y.y, f.axis_y.z, stage.width,           // 4-7
+          f.axis_z.x, f.axis_z.y, f.axis_z.z, double(stage.param),   // 8-11
+          f.origin.x, f.origin.y, f.origin.z, f.length,              // 12-15
+          inverse_width};                                            // 16
+      // clang-format on
       for (std::size_t c = 0; c < kStageValues; ++c)
         table[c * count + k] = static_cast<float>(values[c]);
       ++k;
@@ -215,7 +218,7 @@ PassPlan make_pass_plan(const Rig& rig, const SlotLayout& slots, std::size_t gro
           if (first == end) continue;  // no own vertices
           const std::size_t path_position = applied[d]++;
           const bool last = applied[d] == paths[d].size();
-          const PlaneSet target = last ? PlaneSet::kOutput
+          const PlaneSet target = last                                 ? PlaneSet::kOutput
                                   : location[d] == PlaneSet::kScratchA ? PlaneSet::kScratchB
                                                                        : PlaneSet::kScratchA;
           const RigStage& stage = rig.components[c].chain[position];
@@ -237,8 +240,8 @@ PassPlan make_pass_plan(const Rig& rig, const SlotLayout& slots, std::size_t gro
   }
   for (std::size_t c = 0; c < count; ++c) {
     if (groups_of(c).first == groups_of(c).second) continue;
-    plan.scratch_sets = std::max(plan.scratch_sets, std::min<std::size_t>(
-                                                        paths[c].empty() ? 0 : paths[c].size() - 1, 2));
+    plan.scratch_sets = std::max(
+        plan.scratch_sets, std::min<std::size_t>(paths[c].empty() ? 0 : paths[c].size() - 1, 2));
   }
   plan.scratch_records_per_slot = scratch_records / double(slots.slot_count);
   return plan;
@@ -266,9 +269,9 @@ std::string rig_dispatch_source(const Rig& rig, const SlotLayout& slots, const P
     if (slots.first_slot[c + 1] == slots.first_slot[c]) continue;  // no own vertices
     const std::vector<const char*> shape = path_functions(rig, c);
     std::size_t end = c + 1;
-    while (share_code && end < rig.components.size() &&
-           (slots.first_slot[end + 1] == slots.first_slot[end] ||
-            path_functions(rig, end) == shape)) {
+    while (
+        share_code && end < rig.components.size() &&
+        (slots.first_slot[end + 1] == slots.first_slot[end] || path_functions(rig, end) == shape)) {
       ++end;
     }
     out << " \\\n  " << keyword << " (group < " << slots.first_slot[end] / group_size << "u) {";
@@ -297,7 +300,7 @@ std::string rig_dispatch_source(const Rig& rig, const SlotLayout& slots, const P
           << step.end_group << "u) { FF_LOAD_" << plane_set_name(step.source) << " ";
       if (step.function) {
         const StageCall call{step.function, step.path_position, step.source == PlaneSet::kRest,
-                             !share_code, step.stage, step.param};
+                             !share_code,   step.stage,         step.param};
         out << stage_call(call) << " ";
       }
       out << "FF_STORE_" << plane_set_name(step.target) << " }";

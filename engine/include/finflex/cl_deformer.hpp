@@ -104,7 +104,7 @@ class ClDeformer {
   std::size_t plane_stride_ = 0;
   cl::Buffer rest_;
   std::vector<cl_float4> back_transform_;  // origin, s e_x, s e_y, s e_z, e_x, e_y, e_z
-  std::size_t instances_per_item_ = 0;  // 0: instances_per_work_item() of the device
+  std::size_t instances_per_item_ = 0;     // 0: instances_per_work_item() of the device
   std::size_t per_item(NormalFormat format) const;
   // By (mode, normals, format): created on first use, no per-frame creation or strings.
   std::map<std::tuple<BendMode, NormalMode, NormalFormat>, BoundKernel> kernels_;

@@ -174,6 +174,7 @@ class ClRigDeformer {
   std::map<std::tuple<std::size_t, NormalMode, NormalFormat>, BoundKernel> kernels_;
 
   BoundKernel& kernel(std::size_t index, NormalMode normals, NormalFormat format);
+  void set_batch_args(cl::Kernel& kernel, cl_uint first, const DeviceBatch& batch) const;
   void ensure_scratch(DeviceBatch& batch, std::size_t sets) const;
 };
 
