@@ -183,23 +183,19 @@ FF_INLINE Vec3 rotate_to_secant_normal(Vec3 v, BendSample s) {
   return vec3(s.cos_t * v.x - s.sin_t * v.z, v.y, s.sin_t * v.x + s.cos_t * v.z);
 }
 
-/* Rotate mode: (8) is a rotation ((sin_t, cos_t) is a unit vector) and rest normals
- * are unit, so the result is unit to float rounding and is not renormalised.
- * Jacobian mode: the cofactor scales, so the result is renormalised. */
-FF_INLINE Vec3 bend_normal(Vec3 n, BendSample s) {
+/* A direction through the bend: rotated by (8), after the Jacobian's weights in
+ * Jacobian mode (normals: (along, across, across); tangents: (across, along, along)).
+ * Rotate mode: (8) is a rotation ((sin_t, cos_t) is a unit vector) and rest directions
+ * are unit, so the result is unit to float rounding and is not renormalised; the
+ * weights scale, so Jacobian mode renormalises. */
+FF_INLINE Vec3 bend_direction(Vec3 v, BendSample s, float weight_x, float weight_yz) {
 #if FF_NORMALS_JACOBIAN
-  n = vec3(s.along * n.x, s.across * n.y, s.across * n.z);
-  return unit(rotate_to_secant_normal(n, s));
+  return unit(rotate_to_secant_normal(vec3(weight_x * v.x, weight_yz * v.y, weight_yz * v.z), s));
 #else
-  return rotate_to_secant_normal(n, s);
+  return rotate_to_secant_normal(v, s);
 #endif
 }
 
-FF_INLINE Vec3 bend_tangent(Vec3 t, BendSample s) {
-#if FF_NORMALS_JACOBIAN
-  t = vec3(s.across * t.x, s.along * t.y, s.along * t.z);
-  return unit(rotate_to_secant_normal(t, s));
-#else
-  return rotate_to_secant_normal(t, s);
-#endif
-}
+FF_INLINE Vec3 bend_normal(Vec3 n, BendSample s) { return bend_direction(n, s, s.along, s.across); }
+
+FF_INLINE Vec3 bend_tangent(Vec3 t, BendSample s) { return bend_direction(t, s, s.across, s.along); }

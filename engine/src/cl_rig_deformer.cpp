@@ -141,24 +141,11 @@ cl::Event ClRigDeformer::enqueue(const RigParameters& parameters, NormalMode nor
   detail::upload_parameters(context_, batch, wait);
   if (path == RigPath::kAuto) path = automatic_path();
 
-  cl::CommandQueue& queue = context_.queue();
-  const cl::NDRange global(
-      slot_count_, (batch.layout.instance_count + instances_per_item_ - 1) / instances_per_item_);
-  const cl::NDRange local(kGroupSize, 1);
   cl::Event done;
-
+  const cl::Buffer* rest[3] = {&rest_positions_, &rest_normals_, &rest_tangents_};
   if (path == RigPath::kFused || pass_count_ == 0) {
-    BoundKernel& bound = kernel(0, normals, batch.layout.normal_format);
-    cl::Kernel& fused = bound.kernel;
-    if (!bound.bound_to(batch)) {
-      set_args(fused, 0, {&rest_positions_, &rest_normals_, &rest_tangents_},
-               "clSetKernelArg rig_fused");
-      set_batch_args(fused, 3, batch);
-      bound.mark_bound(batch);
-    }
-    check_cl(queue.enqueueNDRangeKernel(fused, cl::NullRange, global, local, nullptr, &done),
-             "clEnqueueNDRangeKernel rig_fused");
-    if (kernel_events) kernel_events->push_back(done);
+    launch(kernel(0, normals, batch.layout.normal_format), batch, {rest[0], rest[1], rest[2]},
+           kernel_events, &done);
     return done;
   }
 
@@ -166,26 +153,32 @@ cl::Event ClRigDeformer::enqueue(const RigParameters& parameters, NormalMode nor
   // steps read and write only the ones make_pass_plan chose (unused sets are bound to
   // the rest mesh and never touched).
   ensure_scratch(batch, scratch_sets_);
-  const cl::Buffer* rest[3] = {&rest_positions_, &rest_normals_, &rest_tangents_};
   const cl::Buffer* sets[2][3] = {{rest[0], rest[1], rest[2]}, {rest[0], rest[1], rest[2]}};
   for (std::size_t k = 0; k < batch.scratch.size() && k < 6; ++k)
     sets[k / 3][k % 3] = &batch.scratch[k];
   for (std::size_t q = 0; q < pass_count_; ++q) {
-    BoundKernel& bound = kernel(1 + q, normals, batch.layout.normal_format);
-    cl::Kernel& pass_kernel = bound.kernel;
-    if (!bound.bound_to(batch)) {
-      set_args(pass_kernel, 0,
-               {rest[0], rest[1], rest[2], sets[0][0], sets[0][1], sets[0][2], sets[1][0],
-                sets[1][1], sets[1][2]},
-               "clSetKernelArg rig_pass");
-      set_batch_args(pass_kernel, 9, batch);
-      bound.mark_bound(batch);
-    }
-    check_cl(queue.enqueueNDRangeKernel(pass_kernel, cl::NullRange, global, local, nullptr, &done),
-             "clEnqueueNDRangeKernel rig_pass");
-    if (kernel_events) kernel_events->push_back(done);
+    launch(kernel(1 + q, normals, batch.layout.normal_format), batch,
+           {rest[0], rest[1], rest[2], sets[0][0], sets[0][1], sets[0][2], sets[1][0], sets[1][1],
+            sets[1][2]},
+           kernel_events, &done);
   }
   return done;
+}
+
+void ClRigDeformer::launch(BoundKernel& bound, const DeviceBatch& batch,
+                           std::initializer_list<const cl::Buffer*> leading,
+                           std::vector<cl::Event>* kernel_events, cl::Event* done) {
+  if (!bound.bound_to(batch)) {
+    set_args(bound.kernel, 0, leading, "clSetKernelArg rig kernel");
+    set_batch_args(bound.kernel, static_cast<cl_uint>(leading.size()), batch);
+    bound.mark_bound(batch);
+  }
+  const cl::NDRange global(
+      slot_count_, (batch.layout.instance_count + instances_per_item_ - 1) / instances_per_item_);
+  check_cl(context_.queue().enqueueNDRangeKernel(bound.kernel, cl::NullRange, global,
+                                                 cl::NDRange(kGroupSize, 1), nullptr, done),
+           "clEnqueueNDRangeKernel rig kernel");
+  if (kernel_events) kernel_events->push_back(*done);
 }
 
 DeformedBatch<float> ClRigDeformer::read(const DeviceBatch& batch) {

@@ -16,6 +16,7 @@
 #pragma once
 
 #include <cstdint>
+#include <initializer_list>
 #include <map>
 #include <string>
 #include <tuple>
@@ -175,6 +176,11 @@ class ClRigDeformer {
 
   BoundKernel& kernel(std::size_t index, NormalMode normals, NormalFormat format);
   void set_batch_args(cl::Kernel& kernel, cl_uint first, const DeviceBatch& batch) const;
+  // Sets the kernel's arguments if it was last bound to another batch (`leading`: the
+  // buffers before the batch's), launches it over slots x instances.
+  void launch(BoundKernel& bound, const DeviceBatch& batch,
+              std::initializer_list<const cl::Buffer*> leading,
+              std::vector<cl::Event>* kernel_events, cl::Event* done);
   void ensure_scratch(DeviceBatch& batch, std::size_t sets) const;
 };
 
