@@ -7,10 +7,11 @@
  * Which stages apply to which work-groups is the rig's, so it is generated for each
  * rig (engine/src/rig_program.cpp) as macros over the stage functions below
  * (enter_frame before every stage but a vertex's first, then <deformer>_in_frame):
- *   FF_RIG_FUSED_STAGES  the whole bottom-up path of the group's component;
+ *   FF_RIG_FUSED_<r>     the whole bottom-up path of the group's component, for the
+ *                        fused kernel rig_fused_<r>; FF_RIG_FUSED_KERNELS defines them;
  *   FF_RIG_PASS_<q>      the stage pass q applies to the group, if any;
  *   FF_RIG_PASS_KERNELS  FF_DEFINE_RIG_PASS(q) for every pass.
- * Their conditions are on get_group_id(0) only, uniform over a work-group, so every
+ * Their conditions are on the work-group's index only (FF_GROUP), so every
  * branch is straight-line code that PoCL vectorises across work-items.
  *
  * Build options: FF_NORMALS_JACOBIAN (bend.cl), FF_HALF_NORMALS (planes.cl; outputs
@@ -34,7 +35,7 @@ typedef __constant const float* StageFrame;
 
 /* The path table (group_path_table in engine/src/rig_program.cpp): the stage at
  * position j of the path of the work-group's component. Uniform over a work-group. */
-#define FF_PATH_STAGE(j) group_paths[(j) * get_num_groups(0) + group]
+#define FF_PATH_STAGE(j) group_paths[(j) * FF_RIG_GROUP_COUNT + group]
 
 FF_INLINE Vec3 rotate_into(Vec3 v, StageFrame f) {
   return vec3(v.x * FF_AT(f, 0) + v.y * FF_AT(f, 1) + v.z * FF_AT(f, 2), v.x * FF_AT(f, 4) + v.y * FF_AT(f, 5) + v.z * FF_AT(f, 6),
@@ -103,37 +104,43 @@ FF_INLINE void hinge_in_frame(Vec3* p, Vec3* n, Vec3* t, StageFrame f, float ang
 #define FF_INSTANCES_PER_ITEM 1
 #endif
 
-/* Fused path: one NDRange (slots, ceil(instances / FF_INSTANCES_PER_ITEM)); every
- * vertex walks its whole path in registers and is written once, for each of the
- * work-item's instances. rest_*: one instance's planes; params: param_count values per
- * instance. */
-__kernel void rig_fused(__global const float* restrict rest_positions,
-                        __global const float* restrict rest_normals,
-                        __global const float* restrict rest_tangents,
-                        __global const float* restrict params, const uint param_count,
-                        __constant const float* stages,
-                        __global const uint* restrict group_paths,
-                        __global float* restrict out_positions,
-                        __global float* restrict out_normals,
-                        __global float* restrict out_tangents, const uint stride,
-                        const uint instances) {
-  const size_t v = get_global_id(0);
-  const size_t first_instance = get_global_id(1) * FF_INSTANCES_PER_ITEM;
-  const uint group = get_group_id(0);
-  const Vec3 rest_p = load_plane3(rest_positions, 0, stride, v);
-  const Vec3 rest_n = load_plane3(rest_normals, 0, stride, v);
-  const Vec3 rest_t = FF_LOAD_TANGENT(rest_tangents, 0, stride, v);
-  for (uint k = 0; k < FF_INSTANCES_PER_ITEM; ++k) {
-    const size_t instance = first_instance + k;
-    if (instance >= instances) break;
-    __global const float* values = params + instance * param_count;
-    Vec3 p = rest_p, n = rest_n, t = rest_t;
-    FF_RIG_FUSED_STAGES
-    store_plane3(out_positions, instance * 3, stride, v, p);
-    store_direction3(out_normals, instance * 3, stride, v, n);
-    FF_STORE_TANGENT(out_tangents, instance * 3, stride, v, t);
+/* The work-group's index among all the rig's work-groups (a launch may start at an
+ * offset), from builtins uniform over a work-group. */
+#define FF_GROUP ((uint)(get_group_id(0) + get_global_offset(0) / get_local_size(0)))
+
+/* Fused path: kernel rig_fused_r covers the work-groups of launch r
+ * (engine/src/rig_program.cpp, make_fused_plan) over (its slots, ceil(instances /
+ * FF_INSTANCES_PER_ITEM)); every vertex walks its whole path in registers and is
+ * written once, for each of the work-item's instances. rest_*: one instance's planes;
+ * params: param_count values per instance. */
+#define FF_DEFINE_RIG_FUSED(r)                                                          \
+  __kernel void rig_fused_##r(                                                          \
+      __global const float* restrict rest_positions,                                    \
+      __global const float* restrict rest_normals,                                      \
+      __global const float* restrict rest_tangents, __global const float* restrict params, \
+      const uint param_count, __constant const float* stages,                           \
+      __global const uint* restrict group_paths, __global float* restrict out_positions, \
+      __global float* restrict out_normals, __global float* restrict out_tangents,      \
+      const uint stride, const uint instances) {                                        \
+    const size_t v = get_global_id(0);                                                  \
+    const size_t first_instance = get_global_id(1) * FF_INSTANCES_PER_ITEM;            \
+    const uint group = FF_GROUP;                                                        \
+    const Vec3 rest_p = load_plane3(rest_positions, 0, stride, v);                      \
+    const Vec3 rest_n = load_plane3(rest_normals, 0, stride, v);                        \
+    const Vec3 rest_t = FF_LOAD_TANGENT(rest_tangents, 0, stride, v);                   \
+    for (uint k = 0; k < FF_INSTANCES_PER_ITEM; ++k) {                                  \
+      const size_t instance = first_instance + k;                                       \
+      if (instance >= instances) break;                                                 \
+      __global const float* values = params + instance * param_count;                   \
+      Vec3 p = rest_p, n = rest_n, t = rest_t;                                          \
+      FF_RIG_FUSED_##r                                                                  \
+      store_plane3(out_positions, instance * 3, stride, v, p);                          \
+      store_direction3(out_normals, instance * 3, stride, v, n);                        \
+      FF_STORE_TANGENT(out_tangents, instance * 3, stride, v, t);                       \
+    }                                                                                   \
   }
-}
+
+FF_RIG_FUSED_KERNELS
 
 /* Multi-pass path: pass q (kernel rig_pass_q) runs the steps engine/src/rig_program.cpp
  * planned for it (make_pass_plan): for each range of work-groups, load the vertex from
@@ -184,7 +191,7 @@ __kernel void rig_fused(__global const float* restrict rest_positions,
       __global float* restrict out_tangents, const uint stride, const uint instances) {  \
     const size_t v = get_global_id(0);                                                  \
     const size_t first_instance = get_global_id(1) * FF_INSTANCES_PER_ITEM;            \
-    const uint group = get_group_id(0);                                                 \
+    const uint group = FF_GROUP;                                                        \
     for (uint k = 0; k < FF_INSTANCES_PER_ITEM; ++k) {                                  \
       const size_t instance = first_instance + k;                                       \
       if (instance >= instances) break;                                                 \

@@ -59,13 +59,17 @@ ClRigDeformer::ClRigDeformer(Context& context, const Mesh& mesh, const Rig& rig,
                                      paths.size() * sizeof(std::uint32_t), paths.data());
 
   const detail::PassPlan plan = detail::make_pass_plan(rig_, slots, kGroupSize, share_code);
+  const std::vector<detail::FusedLaunch> fused =
+      detail::make_fused_plan(rig_, slots, kGroupSize, share_code);
+  for (const detail::FusedLaunch& launch : fused)
+    fused_launches_.emplace_back(launch.first_group, launch.end_group);
   pass_count_ = plan.passes.size();
   scratch_sets_ = plan.scratch_sets;
   scratch_records_per_slot_ = plan.scratch_records_per_slot;
   automatic_path_ =
       detail::longest_path(rig_) <= kMaxFusedStages ? RigPath::kFused : RigPath::kPasses;
   program_ = {{"bend.cl", "planes.cl", "rig.cl"},
-              detail::rig_dispatch_source(rig_, slots, plan, kGroupSize, share_code)};
+              detail::rig_dispatch_source(rig_, slots, fused, plan, kGroupSize, share_code)};
 }
 
 BatchLayout ClRigDeformer::layout(std::size_t instances, NormalFormat format) const {
@@ -113,7 +117,9 @@ BoundKernel& ClRigDeformer::kernel(std::size_t index, NormalMode normals, Normal
   const auto key = std::make_tuple(index, normals, format);
   auto found = kernels_.find(key);
   if (found == kernels_.end()) {
-    const std::string name = index == 0 ? "rig_fused" : "rig_pass_" + std::to_string(index - 1);
+    const std::size_t fused = fused_launches_.size();
+    const std::string name = index < fused ? "rig_fused_" + std::to_string(index)
+                                           : "rig_pass_" + std::to_string(index - fused);
     const std::string options =
         std::string("-DFF_NORMALS_JACOBIAN=") + (normals == NormalMode::kJacobian ? "1" : "0") +
         " -DFF_TANGENTS=" + (tangents_ ? "1" : "0") +
@@ -144,8 +150,11 @@ cl::Event ClRigDeformer::enqueue(const RigParameters& parameters, NormalMode nor
   cl::Event done;
   const cl::Buffer* rest[3] = {&rest_positions_, &rest_normals_, &rest_tangents_};
   if (path == RigPath::kFused || pass_count_ == 0) {
-    launch(kernel(0, normals, batch.layout.normal_format), batch, {rest[0], rest[1], rest[2]},
-           kernel_events, &done);
+    for (std::size_t r = 0; r < fused_launches_.size(); ++r) {
+      const auto [first_group, end_group] = fused_launches_[r];
+      launch(kernel(r, normals, batch.layout.normal_format), batch, {rest[0], rest[1], rest[2]},
+             first_group, end_group, kernel_events, &done);
+    }
     return done;
   }
 
@@ -157,25 +166,28 @@ cl::Event ClRigDeformer::enqueue(const RigParameters& parameters, NormalMode nor
   for (std::size_t k = 0; k < batch.scratch.size() && k < 6; ++k)
     sets[k / 3][k % 3] = &batch.scratch[k];
   for (std::size_t q = 0; q < pass_count_; ++q) {
-    launch(kernel(1 + q, normals, batch.layout.normal_format), batch,
+    launch(kernel(fused_launches_.size() + q, normals, batch.layout.normal_format), batch,
            {rest[0], rest[1], rest[2], sets[0][0], sets[0][1], sets[0][2], sets[1][0], sets[1][1],
             sets[1][2]},
-           kernel_events, &done);
+           0, slot_count_ / kGroupSize, kernel_events, &done);
   }
   return done;
 }
 
 void ClRigDeformer::launch(BoundKernel& bound, const DeviceBatch& batch,
                            std::initializer_list<const cl::Buffer*> leading,
+                           std::size_t first_group, std::size_t end_group,
                            std::vector<cl::Event>* kernel_events, cl::Event* done) {
   if (!bound.bound_to(batch)) {
     set_args(bound.kernel, 0, leading, "clSetKernelArg rig kernel");
     set_batch_args(bound.kernel, static_cast<cl_uint>(leading.size()), batch);
     bound.mark_bound(batch);
   }
+  const cl::NDRange offset(first_group * kGroupSize, 0);
   const cl::NDRange global(
-      slot_count_, (batch.layout.instance_count + instances_per_item_ - 1) / instances_per_item_);
-  check_cl(context_.queue().enqueueNDRangeKernel(bound.kernel, cl::NullRange, global,
+      (end_group - first_group) * kGroupSize,
+      (batch.layout.instance_count + instances_per_item_ - 1) / instances_per_item_);
+  check_cl(context_.queue().enqueueNDRangeKernel(bound.kernel, offset, global,
                                                  cl::NDRange(kGroupSize, 1), nullptr, done),
            "clEnqueueNDRangeKernel rig kernel");
   if (kernel_events) kernel_events->push_back(*done);

@@ -247,24 +247,10 @@ PassPlan make_pass_plan(const Rig& rig, const SlotLayout& slots, std::size_t gro
   return plan;
 }
 
-std::size_t longest_path(const Rig& rig) {
-  std::size_t longest = 0;
-  for (std::size_t c = 0; c < rig.components.size(); ++c)
-    longest = std::max(longest, rig.path(c).size());
-  return longest;
-}
-
-std::string rig_dispatch_source(const Rig& rig, const SlotLayout& slots, const PassPlan& plan,
-                                std::size_t group_size, bool share_code) {
-  std::ostringstream out;
-  out << "/* Generated for one rig by engine/src/rig_program.cpp: which stages apply to\n"
-         " * which work-groups (kernels/rig.cl). */\n";
-  out << "#define FF_RIG_STAGE_COUNT " << std::max<std::size_t>(stage_count(rig), 1) << "u\n";
-  // Fused: the group's component's whole path, bottom-up: a branch per component with
-  // its stages compiled in, or (share_code) one for each run of components with the same
-  // functions along their paths, stages from the path table.
-  out << "#define FF_RIG_FUSED_STAGES";
-  const char* keyword = "if";
+std::vector<FusedLaunch> make_fused_plan(const Rig& rig, const SlotLayout& slots,
+                                         std::size_t group_size, bool share_code) {
+  std::vector<FusedLaunch> launches;
+  if (!share_code) launches.push_back({0, slots.slot_count / group_size, {}, {}});
   for (std::size_t c = 0; c < rig.components.size(); ++c) {
     if (slots.first_slot[c + 1] == slots.first_slot[c]) continue;  // no own vertices
     const std::vector<const char*> shape = path_functions(rig, c);
@@ -274,22 +260,62 @@ std::string rig_dispatch_source(const Rig& rig, const SlotLayout& slots, const P
         (slots.first_slot[end + 1] == slots.first_slot[end] || path_functions(rig, end) == shape)) {
       ++end;
     }
-    out << " \\\n  " << keyword << " (group < " << slots.first_slot[end] / group_size << "u) {";
-    const auto path = rig.path(c);
-    for (std::size_t j = 0; j < path.size(); ++j) {
-      const auto [component, stage] = path[j];
-      const StageCall call{shape[j],
-                           j,
-                           j == 0,
-                           !share_code,
-                           stage_index(rig, component, stage),
-                           rig.components[component].chain[stage].param};
-      out << " " << stage_call(call);
-    }
-    out << " }";
-    keyword = "else if";
+    const std::size_t first_group = slots.first_slot[c] / group_size;
+    const std::size_t end_group = slots.first_slot[end] / group_size;
+    if (share_code) launches.push_back({first_group, end_group, {}, {}});
+    launches.back().branch_ends.push_back(end_group);
+    launches.back().branch_components.push_back(c);
     c = end - 1;
   }
+  return launches;
+}
+
+std::size_t longest_path(const Rig& rig) {
+  std::size_t longest = 0;
+  for (std::size_t c = 0; c < rig.components.size(); ++c)
+    longest = std::max(longest, rig.path(c).size());
+  return longest;
+}
+
+std::string rig_dispatch_source(const Rig& rig, const SlotLayout& slots,
+                                const std::vector<FusedLaunch>& fused, const PassPlan& plan,
+                                std::size_t group_size, bool share_code) {
+  std::ostringstream out;
+  out << "/* Generated for one rig by engine/src/rig_program.cpp: which stages apply to\n"
+         " * which work-groups (kernels/rig.cl). */\n";
+  out << "#define FF_RIG_STAGE_COUNT " << std::max<std::size_t>(stage_count(rig), 1) << "u\n";
+  out << "#define FF_RIG_GROUP_COUNT " << slots.slot_count / group_size << "u\n";
+  // Fused: the group's component's whole path, bottom-up; a kernel per launch, a branch
+  // per run of components in it (none when the launch has one).
+  for (std::size_t r = 0; r < fused.size(); ++r) {
+    const FusedLaunch& launch = fused[r];
+    out << "#define FF_RIG_FUSED_" << r;
+    const bool branches = launch.branch_ends.size() > 1;
+    for (std::size_t b = 0; b < launch.branch_ends.size(); ++b) {
+      const std::size_t c = launch.branch_components[b];
+      out << " \\\n  ";
+      if (branches) {
+        out << (b == 0 ? "if" : "else if") << " (group < " << launch.branch_ends[b] << "u) ";
+      }
+      out << "{";
+      const std::vector<const char*> shape = path_functions(rig, c);
+      const auto path = rig.path(c);
+      for (std::size_t j = 0; j < path.size(); ++j) {
+        const auto [component, stage] = path[j];
+        const StageCall call{shape[j],
+                             j,
+                             j == 0,
+                             !share_code,
+                             stage_index(rig, component, stage),
+                             rig.components[component].chain[stage].param};
+        out << " " << stage_call(call);
+      }
+      out << " }";
+    }
+    out << "\n";
+  }
+  out << "#define FF_RIG_FUSED_KERNELS";
+  for (std::size_t r = 0; r < fused.size(); ++r) out << " FF_DEFINE_RIG_FUSED(" << r << ")";
   out << "\n";
   // Passes: a branch per step, loading from its source set and storing to its target.
   for (std::size_t q = 0; q < plan.passes.size(); ++q) {

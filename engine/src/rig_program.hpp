@@ -83,13 +83,30 @@ struct PassPlan {
 PassPlan make_pass_plan(const Rig& rig, const SlotLayout& slots, std::size_t group_size,
                         bool share_code);
 
+// The fused path's kernels: each covers a range of work-groups and, within it, a
+// branch per run of components (`branch_ends`: the end group of each branch; its
+// code is the path of `branch_components`). share_code: one kernel for each run of
+// components with the same functions along their paths, without branches (PoCL
+// vectorises straight-line kernels best); otherwise one kernel with a branch per
+// component, stages compiled in (one launch: GPUs).
+struct FusedLaunch {
+  std::size_t first_group = 0;
+  std::size_t end_group = 0;
+  std::vector<std::size_t> branch_ends;
+  std::vector<std::size_t> branch_components;
+};
+std::vector<FusedLaunch> make_fused_plan(const Rig& rig, const SlotLayout& slots,
+                                         std::size_t group_size, bool share_code);
+
 // Longest bottom-up path (stages) of any component.
 std::size_t longest_path(const Rig& rig);
 
 // The generated macros of kernels/rig.cl for the rig: FF_RIG_STAGE_COUNT,
-// FF_RIG_FUSED_STAGES, FF_RIG_PASS_<q> and FF_RIG_PASS_KERNELS.
-// share_code: as for make_pass_plan (RigDispatch::kSharedByPathShape).
-std::string rig_dispatch_source(const Rig& rig, const SlotLayout& slots, const PassPlan& plan,
+// FF_RIG_GROUP_COUNT, FF_RIG_FUSED_<r> and FF_RIG_FUSED_KERNELS (kernel rig_fused_<r>
+// for fused[r]), FF_RIG_PASS_<q> and FF_RIG_PASS_KERNELS.
+// share_code: as for make_pass_plan (RigDispatch::kByPathShape).
+std::string rig_dispatch_source(const Rig& rig, const SlotLayout& slots,
+                                const std::vector<FusedLaunch>& fused, const PassPlan& plan,
                                 std::size_t group_size, bool share_code);
 
 }  // namespace finflex::detail

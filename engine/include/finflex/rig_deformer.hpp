@@ -20,6 +20,7 @@
 #include <map>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include <CL/opencl.hpp>
@@ -159,6 +160,8 @@ class ClRigDeformer {
   std::size_t vertex_count_ = 0;
   std::size_t slot_count_ = 0;
   std::size_t pass_count_ = 0;
+  // The fused path's kernels rig_fused_<r>: the work-groups each covers.
+  std::vector<std::pair<std::size_t, std::size_t>> fused_launches_;
   std::size_t scratch_sets_ = 0;
   double scratch_records_per_slot_ = 0.0;
   bool tangents_ = false;
@@ -170,17 +173,18 @@ class ClRigDeformer {
   cl::Buffer group_paths_;
   ProgramSource program_;
   RigPath automatic_path_ = RigPath::kFused;
-  // By (0 for rig_fused or 1 + q for rig_pass_q, normal mode, normal format): created
-  // on first use, looked up without building strings every frame.
+  // By (r for rig_fused_r, then fused launches + q for rig_pass_q, normal mode, normal
+  // format): created on first use, looked up without building strings every frame.
   std::map<std::tuple<std::size_t, NormalMode, NormalFormat>, BoundKernel> kernels_;
 
   BoundKernel& kernel(std::size_t index, NormalMode normals, NormalFormat format);
   void set_batch_args(cl::Kernel& kernel, cl_uint first, const DeviceBatch& batch) const;
   // Sets the kernel's arguments if it was last bound to another batch (`leading`: the
-  // buffers before the batch's), launches it over slots x instances.
+  // buffers before the batch's), launches it over work-groups [first_group, end_group)
+  // x instances.
   void launch(BoundKernel& bound, const DeviceBatch& batch,
-              std::initializer_list<const cl::Buffer*> leading,
-              std::vector<cl::Event>* kernel_events, cl::Event* done);
+              std::initializer_list<const cl::Buffer*> leading, std::size_t first_group,
+              std::size_t end_group, std::vector<cl::Event>* kernel_events, cl::Event* done);
   void ensure_scratch(DeviceBatch& batch, std::size_t sets) const;
 };
 
