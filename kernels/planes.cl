@@ -2,14 +2,14 @@
  * array whose planes start at `first_plane` is planes[(first_plane + c) * stride + v].
  *
  * Build option FF_HALF_NORMALS (0/1): the outputs' normals and tangents are IEEE
- * halves (round to nearest even) instead of float32. FF_NATIVE_HALF_STORE (0/1, set
- * by the host per device): convert with vstore_half (GPUs: one instruction) or with
- * half_bits below (CPUs: PoCL's vstore_half does not vectorise). */
+ * halves (round to nearest even) instead of float32, converted with vstore_half on
+ * GPUs (FF_GPU, set by the host: one instruction) and with half_bits below on CPUs
+ * (PoCL's vstore_half does not vectorise). */
 #ifndef FF_HALF_NORMALS
 #define FF_HALF_NORMALS 0
 #endif
-#ifndef FF_NATIVE_HALF_STORE
-#define FF_NATIVE_HALF_STORE 0
+#ifndef FF_GPU
+#define FF_GPU 0
 #endif
 
 FF_INLINE Vec3 load_plane3(__global const float* planes, size_t first_plane, size_t stride,
@@ -48,7 +48,7 @@ FF_INLINE ushort half_bits(float f) {
 /* A normal or tangent into an output array, in the batch's normal format. */
 FF_INLINE void store_direction3(__global float* planes, size_t first_plane, size_t stride,
                                 size_t v, Vec3 value) {
-#if FF_HALF_NORMALS && FF_NATIVE_HALF_STORE
+#if FF_HALF_NORMALS && FF_GPU
   __global half* halves = (__global half*)planes;
   vstore_half(value.x, first_plane * stride + v, halves); /* round to nearest even */
   vstore_half(value.y, (first_plane + 1) * stride + v, halves);

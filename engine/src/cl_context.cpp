@@ -172,10 +172,10 @@ const cl::Program& Context::program(const ProgramSource& source, const std::stri
   cl_int status = CL_SUCCESS;
   cl::Program program(context_, sources, &status);
   check_cl(status, "clCreateProgramWithSource");
-  // GPUs convert to half in one instruction (vstore_half); CPUs get the vectorising
-  // software conversion of kernels/planes.cl.
+  // FF_GPU: the kernels pick the instructions that are fast on the device's kind
+  // (kernels/bend.cl's FF_RSQRT, kernels/planes.cl's half conversion).
   const std::string device_options =
-      description().type == "GPU" ? "-DFF_NATIVE_HALF_STORE=1 " : "-DFF_NATIVE_HALF_STORE=0 ";
+      description().type == "GPU" ? "-DFF_GPU=1 " : "-DFF_GPU=0 ";
   const std::string full_options = "-cl-std=CL1.2 " + device_options + options;
   status = program.build(std::vector<cl::Device>{device_}, full_options.c_str());
   if (status != CL_SUCCESS) {
