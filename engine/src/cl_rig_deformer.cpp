@@ -152,8 +152,9 @@ cl::Event ClRigDeformer::enqueue(const RigParameters& parameters, NormalMode nor
   if (path == RigPath::kFused || pass_count_ == 0) {
     for (std::size_t r = 0; r < fused_launches_.size(); ++r) {
       const auto [first_group, end_group] = fused_launches_[r];
+      const bool last = r + 1 == fused_launches_.size();
       launch(kernel(r, normals, batch.layout.normal_format), batch, {rest[0], rest[1], rest[2]},
-             first_group, end_group, kernel_events, &done);
+             first_group, end_group, kernel_events, last ? &done : nullptr);
     }
     return done;
   }
@@ -169,7 +170,7 @@ cl::Event ClRigDeformer::enqueue(const RigParameters& parameters, NormalMode nor
     launch(kernel(fused_launches_.size() + q, normals, batch.layout.normal_format), batch,
            {rest[0], rest[1], rest[2], sets[0][0], sets[0][1], sets[0][2], sets[1][0], sets[1][1],
             sets[1][2]},
-           0, slot_count_ / kGroupSize, kernel_events, &done);
+           0, slot_count_ / kGroupSize, kernel_events, q + 1 == pass_count_ ? &done : nullptr);
   }
   return done;
 }
@@ -183,14 +184,18 @@ void ClRigDeformer::launch(BoundKernel& bound, const DeviceBatch& batch,
     set_batch_args(bound.kernel, static_cast<cl_uint>(leading.size()), batch);
     bound.mark_bound(batch);
   }
+  // An event only where one is asked for: the frame's last kernel, or every kernel for
+  // profiling (creating events costs host time on some drivers).
+  cl::Event own;
+  cl::Event* event = done ? done : kernel_events ? &own : nullptr;
   const cl::NDRange offset(first_group * kGroupSize, 0);
   const cl::NDRange global(
       (end_group - first_group) * kGroupSize,
       (batch.layout.instance_count + instances_per_item_ - 1) / instances_per_item_);
   check_cl(context_.queue().enqueueNDRangeKernel(bound.kernel, offset, global,
-                                                 cl::NDRange(kGroupSize, 1), nullptr, done),
+                                                 cl::NDRange(kGroupSize, 1), nullptr, event),
            "clEnqueueNDRangeKernel rig kernel");
-  if (kernel_events) kernel_events->push_back(*done);
+  if (kernel_events) kernel_events->push_back(*event);
 }
 
 DeformedBatch<float> ClRigDeformer::read(const DeviceBatch& batch) {

@@ -181,7 +181,7 @@ class ClRigDeformer {
   void set_batch_args(cl::Kernel& kernel, cl_uint first, const DeviceBatch& batch) const;
   // Sets the kernel's arguments if it was last bound to another batch (`leading`: the
   // buffers before the batch's), launches it over work-groups [first_group, end_group)
-  // x instances.
+  // x instances; its event goes to `done` when given and to `kernel_events`.
   void launch(BoundKernel& bound, const DeviceBatch& batch,
               std::initializer_list<const cl::Buffer*> leading, std::size_t first_group,
               std::size_t end_group, std::vector<cl::Event>* kernel_events, cl::Event* done);
