@@ -151,6 +151,43 @@ TEST(ClDeformer, AlternatingBatchesEachGetTheirOwnFrames) {
   expect_instance(from_three, 2, 0.5f * limit);
 }
 
+// Frames enqueued back to back without waiting: each upload reads its own staging
+// slot (a ring of DeviceBatch::kStagingSlots), so the last frame's values win and the
+// earlier ones were each deformed with their own.
+TEST(ClDeformer, FramesInFlightKeepTheirOwnParameters) {
+  const Mesh mesh = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
+  const LocalMesh local = make_local_mesh(mesh, find_body_frame(mesh));
+  ClDeformer deformer(test::shared_context(), local);
+  const float limit = static_cast<float>(max_abs_m(local.x_max));
+  const BendSettings settings{BendMode::kExact, NormalMode::kRotate};
+  DeviceBatch batch = deformer.allocate(2);
+  DeviceBatch copy = deformer.allocate(2);
+  std::vector<cl::Event> frames;
+  for (int f = 0; f < 7; ++f) {
+    const std::vector<float> m{0.1f * float(f) * limit, -0.12f * float(f) * limit};
+    frames.push_back(deformer.enqueue(m, settings, batch));
+    // Copy frame f's outputs aside on the queue, to compare with a lone run of it.
+    if (f == 4) {
+      const std::size_t bytes = batch.layout.attribute_elements() * sizeof(float);
+      check_cl(test::shared_context().queue().enqueueCopyBuffer(batch.positions, copy.positions, 0,
+                                                                0, bytes),
+               "clEnqueueCopyBuffer");
+    }
+  }
+  const DeformedBatch<float> last = deformer.read(batch);
+  const DeformedBatch<float> fourth = deformer.read(copy);  // positions only
+  DeviceBatch alone = deformer.allocate(2);
+  for (int f : {4, 6}) {
+    deformer.enqueue({0.1f * float(f) * limit, -0.12f * float(f) * limit}, settings, alone);
+    const DeformedBatch<float> expected = deformer.read(alone);
+    const DeformedBatch<float>& got = f == 4 ? fourth : last;
+    for (std::size_t i = 0; i < 2; ++i) {
+      for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
+        ASSERT_EQ(got.position(i, v), expected.position(i, v)) << "frame " << f << " vertex " << v;
+    }
+  }
+}
+
 TEST(ClDeformer, SeveralInstancesPerWorkItemGiveTheSameResult) {
   // GPUs take 2 instances per work-item; every count, odd batches included, must give
   // what one instance per work-item gives (to float32 rounding: the compiler may

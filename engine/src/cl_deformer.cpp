@@ -129,9 +129,9 @@ cl::Event ClDeformer::enqueue(const std::vector<float>& m, const BendSettings& s
                 "m has " + std::to_string(m.size()) + " values for a batch of " +
                     std::to_string(batch.layout.instance_count) + " instances");
   }
-  detail::wait_for_previous_upload(batch);
-  check_bend_params_into(m, mesh_.x_max, clamp, batch.staged_parameters);
-  detail::upload_parameters(context_, batch, wait);
+  std::vector<float>& staged = detail::next_staging(batch);
+  check_bend_params_into(m, mesh_.x_max, clamp, staged);
+  detail::upload_parameters(context_, batch, staged, wait);
 
   cl::CommandQueue& queue = context_.queue();
 
@@ -158,6 +158,7 @@ cl::Event ClDeformer::enqueue(const std::vector<float>& m, const BendSettings& s
                                  batch_range(batch.layout, per_item(batch.layout.normal_format)),
                                  cl::NDRange(kLocalSize, 1), nullptr, &done),
       "clEnqueueNDRangeKernel bend_batch");
+  detail::staging_used(batch, done);
   return done;
 }
 

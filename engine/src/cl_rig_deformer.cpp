@@ -142,9 +142,9 @@ cl::Event ClRigDeformer::enqueue(const RigParameters& parameters, NormalMode nor
                     " instances, the batch holds " + std::to_string(batch.layout.instance_count) +
                     " of this rig");
   }
-  detail::wait_for_previous_upload(batch);
-  check_rig_params_into(rig_, limits_, parameters, clamp, batch.staged_parameters);
-  detail::upload_parameters(context_, batch, wait);
+  std::vector<float>& staged = detail::next_staging(batch);
+  check_rig_params_into(rig_, limits_, parameters, clamp, staged);
+  detail::upload_parameters(context_, batch, staged, wait);
   if (path == RigPath::kAuto) path = automatic_path();
 
   cl::Event done;
@@ -156,6 +156,7 @@ cl::Event ClRigDeformer::enqueue(const RigParameters& parameters, NormalMode nor
       launch(kernel(r, normals, batch.layout.normal_format), batch, {rest[0], rest[1], rest[2]},
              first_group, end_group, kernel_events, last ? &done : nullptr);
     }
+    detail::staging_used(batch, done);
     return done;
   }
 
@@ -172,6 +173,7 @@ cl::Event ClRigDeformer::enqueue(const RigParameters& parameters, NormalMode nor
             sets[1][2]},
            0, slot_count_ / kGroupSize, kernel_events, q + 1 == pass_count_ ? &done : nullptr);
   }
+  detail::staging_used(batch, done);
   return done;
 }
 

@@ -47,20 +47,28 @@ DeviceBatch allocate_batch(Context& context, const BatchLayout& layout,
   const std::size_t values =
       std::max<std::size_t>(layout.instance_count * parameters_per_instance, 1);
   batch.parameters = make_buffer(cl_context, CL_MEM_READ_ONLY, values * sizeof(float));
-  batch.staged_parameters.reserve(values);
+  for (std::vector<float>& slot : batch.staging) slot.reserve(values);
   return batch;
 }
 
-void wait_for_previous_upload(DeviceBatch& batch) {
-  if (batch.parameters_uploaded()) check_cl(batch.parameters_uploaded.wait(), "clWaitForEvents");
+std::vector<float>& next_staging(DeviceBatch& batch) {
+  cl::Event& used = batch.staging_done[batch.next_staging];
+  if (used()) check_cl(used.wait(), "clWaitForEvents");
+  return batch.staging[batch.next_staging];
 }
 
-void upload_parameters(Context& context, DeviceBatch& batch, const std::vector<cl::Event>* wait) {
-  if (batch.staged_parameters.empty()) return;
-  check_cl(context.queue().enqueueWriteBuffer(
-               batch.parameters, CL_FALSE, 0, batch.staged_parameters.size() * sizeof(float),
-               batch.staged_parameters.data(), wait, &batch.parameters_uploaded),
+void upload_parameters(Context& context, DeviceBatch& batch, const std::vector<float>& staged,
+                       const std::vector<cl::Event>* wait) {
+  if (staged.empty()) return;
+  check_cl(context.queue().enqueueWriteBuffer(batch.parameters, CL_FALSE, 0,
+                                              staged.size() * sizeof(float), staged.data(), wait,
+                                              nullptr),
            "clEnqueueWriteBuffer parameters");
+}
+
+void staging_used(DeviceBatch& batch, const cl::Event& frame_done) {
+  batch.staging_done[batch.next_staging] = frame_done;
+  batch.next_staging = (batch.next_staging + 1) % DeviceBatch::kStagingSlots;
 }
 
 namespace {

@@ -23,12 +23,17 @@ cl::Buffer make_buffer(const cl::Context& context, cl_mem_flags flags, std::size
 DeviceBatch allocate_batch(Context& context, const BatchLayout& layout,
                            std::size_t parameters_per_instance);
 
-// The previous upload of `batch` reads staged_parameters until it completes (long
-// done, in a steady frame loop): waits for it before the caller refills them.
-void wait_for_previous_upload(DeviceBatch& batch);
+// The batch's next staging slot for a frame's parameters, once the frame that last
+// used it is done (long done, in a steady frame loop).
+std::vector<float>& next_staging(DeviceBatch& batch);
 
-// Uploads staged_parameters without blocking, after `wait`.
-void upload_parameters(Context& context, DeviceBatch& batch, const std::vector<cl::Event>* wait);
+// Uploads `staged` (the slot next_staging() gave) without blocking, after `wait`.
+void upload_parameters(Context& context, DeviceBatch& batch, const std::vector<float>& staged,
+                       const std::vector<cl::Event>* wait);
+
+// Records the frame's last kernel event for the slot its parameters used, and moves
+// the ring on.
+void staging_used(DeviceBatch& batch, const cl::Event& frame_done);
 
 // Blocking read of the outputs.
 DeformedBatch<float> read_batch(Context& context, const DeviceBatch& batch);

@@ -15,6 +15,7 @@
 // 10,786-vertex fish: 4,000 * 10,816 * 24 B = 1.04 GB.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <string>
@@ -43,9 +44,14 @@ struct DeviceBatch {
   // last pass writes the outputs above.
   std::vector<cl::Buffer> scratch;
 
-  // Host staging of the last upload of m, kept alive until its write completes.
-  std::vector<float> staged_parameters;
-  cl::Event parameters_uploaded;
+  // Host staging of the parameter uploads, a ring: a non-blocking upload reads its
+  // values until it completes, which the last kernel of its frame (`staging_done`,
+  // after it in the in-order queue) proves. Reusing a slot waits for the frame that
+  // used it, kStagingSlots frames ago: no event of its own per upload.
+  static constexpr std::size_t kStagingSlots = 3;
+  std::array<std::vector<float>, kStagingSlots> staging;
+  std::array<cl::Event, kStagingSlots> staging_done;
+  std::size_t next_staging = 0;
 
   // Identifies these buffers (set by allocate(), unique in the process; 0: none), so
   // deformers set kernel arguments only when a frame goes to another batch. Replace a
