@@ -97,10 +97,19 @@ TEST(ClDeformer, ZeroParameterIsTheIdentity) {
   }
 }
 
+// The low-resolution Blub with its own body frame and a deformer: several tests' set-up.
+struct SmallFish {
+  Mesh mesh = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
+  LocalMesh local = make_local_mesh(mesh, find_body_frame(mesh));
+  ClDeformer deformer{test::shared_context(), local};
+  float limit = static_cast<float>(max_abs_m(local.x_max));
+};
+
 TEST(ClDeformer, BatchEqualsSingleRuns) {
-  const Mesh mesh = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
-  const LocalMesh local = make_local_mesh(mesh, find_body_frame(mesh));
-  ClDeformer deformer(test::shared_context(), local);
+  SmallFish fish;
+  const Mesh& mesh = fish.mesh;
+  const LocalMesh& local = fish.local;
+  ClDeformer& deformer = fish.deformer;
   const std::size_t instances = 1000;
   std::mt19937 random(7);
   std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
@@ -126,10 +135,9 @@ TEST(ClDeformer, BatchEqualsSingleRuns) {
 // Kernel arguments are set only when a frame goes to another batch than the last one:
 // alternating batches of different sizes must each get their own frames.
 TEST(ClDeformer, AlternatingBatchesEachGetTheirOwnFrames) {
-  const Mesh mesh = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
-  const LocalMesh local = make_local_mesh(mesh, find_body_frame(mesh));
-  ClDeformer deformer(test::shared_context(), local);
-  const float limit = static_cast<float>(max_abs_m(local.x_max));
+  SmallFish fish;
+  ClDeformer& deformer = fish.deformer;
+  const float limit = fish.limit;
   const BendSettings settings{BendMode::kPaper, NormalMode::kRotate};
   DeviceBatch two = deformer.allocate(2);
   DeviceBatch three = deformer.allocate(3);
@@ -138,7 +146,7 @@ TEST(ClDeformer, AlternatingBatchesEachGetTheirOwnFrames) {
   auto expect_instance = [&](const DeformedBatch<float>& batch, std::size_t i, float m) {
     deformer.enqueue({m}, settings, single);
     const DeformedBatch<float> one = deformer.read(single);
-    for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
+    for (std::size_t v = 0; v < fish.mesh.vertex_count(); ++v)
       ASSERT_EQ(one.position(0, v), batch.position(i, v)) << "m " << m << " vertex " << v;
   };
   deformer.enqueue({0.1f * limit, 0.2f * limit}, settings, two);
@@ -155,17 +163,14 @@ TEST(ClDeformer, AlternatingBatchesEachGetTheirOwnFrames) {
 // slot (a ring of DeviceBatch::kStagingSlots), so the last frame's values win and the
 // earlier ones were each deformed with their own.
 TEST(ClDeformer, FramesInFlightKeepTheirOwnParameters) {
-  const Mesh mesh = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
-  const LocalMesh local = make_local_mesh(mesh, find_body_frame(mesh));
-  ClDeformer deformer(test::shared_context(), local);
-  const float limit = static_cast<float>(max_abs_m(local.x_max));
+  SmallFish fish;
+  ClDeformer& deformer = fish.deformer;
+  const float limit = fish.limit;
   const BendSettings settings{BendMode::kExact, NormalMode::kRotate};
   DeviceBatch batch = deformer.allocate(2);
   DeviceBatch copy = deformer.allocate(2);
-  std::vector<cl::Event> frames;
   for (int f = 0; f < 7; ++f) {
-    const std::vector<float> m{0.1f * float(f) * limit, -0.12f * float(f) * limit};
-    frames.push_back(deformer.enqueue(m, settings, batch));
+    deformer.enqueue({0.1f * float(f) * limit, -0.12f * float(f) * limit}, settings, batch);
     // Copy frame f's outputs aside on the queue, to compare with a lone run of it.
     if (f == 4) {
       const std::size_t bytes = batch.layout.attribute_elements() * sizeof(float);
@@ -182,7 +187,7 @@ TEST(ClDeformer, FramesInFlightKeepTheirOwnParameters) {
     const DeformedBatch<float> expected = deformer.read(alone);
     const DeformedBatch<float>& got = f == 4 ? fourth : last;
     for (std::size_t i = 0; i < 2; ++i) {
-      for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
+      for (std::size_t v = 0; v < fish.mesh.vertex_count(); ++v)
         ASSERT_EQ(got.position(i, v), expected.position(i, v)) << "frame " << f << " vertex " << v;
     }
   }
