@@ -3,6 +3,7 @@
 #include "device_batch.hpp"
 #include "finflex/error.hpp"
 #include "finflex/rig_deformer.hpp"
+#include "param_bounds.hpp"
 #include "rig_program.hpp"
 
 namespace finflex {
@@ -24,7 +25,10 @@ std::size_t rig_instances_per_work_item(const DeviceDescription& device) {
 
 ClRigDeformer::ClRigDeformer(Context& context, const Mesh& mesh, const Rig& rig,
                              std::size_t instances_per_item, RigDispatch dispatch)
-    : context_(context), rig_(rig), limits_(rig_param_limits(rig)) {
+    : context_(context),
+      rig_(rig),
+      limits_(rig_param_limits(rig)),
+      bounds_tile_(detail::rig_bounds_tile(limits_)) {
   instances_per_item_ =
       instances_per_item ? instances_per_item : rig_instances_per_work_item(context.description());
   if (dispatch == RigDispatch::kAuto) {
@@ -70,6 +74,10 @@ ClRigDeformer::ClRigDeformer(Context& context, const Mesh& mesh, const Rig& rig,
       detail::longest_path(rig_) <= kMaxFusedStages ? RigPath::kFused : RigPath::kPasses;
   program_ = {{"bend.cl", "planes.cl", "rig.cl"},
               detail::rig_dispatch_source(rig_, slots, fused, plan, kGroupSize, share_code)};
+}
+
+void ClRigDeformer::check(const RigParameters& parameters, bool clamp) const {
+  detail::check_rig_params(rig_, limits_, bounds_tile_, parameters, clamp);
 }
 
 BatchLayout ClRigDeformer::layout(std::size_t instances, NormalFormat format) const {
@@ -143,7 +151,7 @@ cl::Event ClRigDeformer::enqueue(const RigParameters& parameters, NormalMode nor
                     " of this rig");
   }
   std::vector<float>& staged = detail::next_staging(batch);
-  check_rig_params_into(rig_, limits_, parameters, clamp, staged);
+  detail::check_rig_params_into(rig_, limits_, bounds_tile_, parameters, clamp, staged);
   detail::upload_parameters(context_, batch, staged, wait);
   if (path == RigPath::kAuto) path = automatic_path();
 

@@ -57,20 +57,42 @@ std::vector<double> rig_param_limits(const Rig& rig) {
 
 void check_rig_params_into(const Rig& rig, const std::vector<double>& limits,
                            const RigParameters& parameters, bool clamp, std::vector<float>& out) {
+  detail::check_rig_params_into(rig, limits, detail::rig_bounds_tile(limits), parameters, clamp,
+                                out);
+}
+
+namespace detail {
+
+std::vector<float> rig_bounds_tile(const std::vector<double>& limits) {
+  std::vector<double> accepted(limits.size());
+  for (std::size_t p = 0; p < limits.size(); ++p) accepted[p] = limits[p] * kLimitSlack;
+  return bounds_tile(accepted);
+}
+
+void check_rig_params_into(const Rig& rig, const std::vector<double>& limits,
+                           const std::vector<float>& tile, const RigParameters& parameters,
+                           bool clamp, std::vector<float>& out) {
   const std::vector<float>& values = parameters.values();
   out.resize(values.size());
-  if (parameters.param_count() == rig.params.size() && !values.empty()) {
-    std::vector<double> accepted(limits.size());
-    for (std::size_t p = 0; p < limits.size(); ++p) accepted[p] = limits[p] * kLimitSlack;
-    const std::vector<float> tile = detail::bounds_tile(accepted);
-    if (detail::copy_if_within_bounds(values.data(), values.size(), tile.data(), tile.size(),
-                                      out.data())) {
-      return;  // the common case, in one vectorised pass
-    }
+  if (parameters.param_count() == rig.params.size() && !values.empty() &&
+      copy_if_within_bounds(values.data(), values.size(), tile.data(), tile.size(), out.data())) {
+    return;  // the common case, in one vectorised pass
   }
   std::copy(values.begin(), values.end(), out.begin());
-  check_rig_params(rig, limits, parameters, clamp, &out);
+  finflex::check_rig_params(rig, limits, parameters, clamp, &out);
 }
+
+void check_rig_params(const Rig& rig, const std::vector<double>& limits,
+                      const std::vector<float>& tile, const RigParameters& parameters, bool clamp) {
+  const std::vector<float>& values = parameters.values();
+  if (parameters.param_count() == rig.params.size() && !values.empty() &&
+      within_bounds(values.data(), values.size(), tile.data(), tile.size())) {
+    return;
+  }
+  finflex::check_rig_params(rig, limits, parameters, clamp, nullptr);
+}
+
+}  // namespace detail
 
 void check_rig_params(const Rig& rig, const std::vector<double>& limits,
                       const RigParameters& parameters, bool clamp, std::vector<float>* clamped) {

@@ -143,9 +143,7 @@ class ClRigDeformer {
                     std::vector<cl::Event>* kernel_events = nullptr);
 
   // Throws as enqueue() would for these parameters, touching nothing.
-  void check(const RigParameters& parameters, bool clamp) const {
-    check_rig_params(rig_, limits_, parameters, clamp, nullptr);
-  }
+  void check(const RigParameters& parameters, bool clamp) const;
 
   // Blocking read; the result's accessors take mesh vertex indices.
   DeformedBatch<float> read(const DeviceBatch& batch);
@@ -157,6 +155,7 @@ class ClRigDeformer {
   Context& context_;
   Rig rig_;
   std::vector<double> limits_;
+  std::vector<float> bounds_tile_;  // detail::rig_bounds_tile(limits_)
   std::size_t vertex_count_ = 0;
   std::size_t slot_count_ = 0;
   std::size_t pass_count_ = 0;
