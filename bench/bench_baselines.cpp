@@ -3,6 +3,7 @@
 //    back to mesh coordinates as a plain C++ loop over float3 arrays (array of
 //    structures), OpenMP over instances, compiled -O3 -march=native;
 //  - the double-precision CPU reference (the tests' oracle).
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <vector>
@@ -24,20 +25,22 @@ struct Baseline {
 
   static Baseline& get() {
     static Baseline baseline = [] {
-      const LocalMesh& local = Setup::get().local;
+      const Setup& setup = Setup::get();
+      const BodyFrame& f = setup.frame;
       Baseline b;
-      for (std::size_t v = 0; v < local.vertex_count(); ++v) {
-        const glm::dvec3 p = local.positions[v], n = local.normals[v];
+      b.x_max = 0.0;
+      for (std::size_t v = 0; v < setup.mesh.vertex_count(); ++v) {
+        const glm::dvec3 p = f.point_to_local(glm::dvec3(setup.mesh.positions[v]));
+        const glm::dvec3 n = glm::normalize(f.vector_to_local(glm::dvec3(setup.mesh.normals[v])));
         b.positions.push_back({float(p.x), float(p.y), float(p.z)});
         b.normals.push_back({float(n.x), float(n.y), float(n.z)});
+        b.x_max = std::max(b.x_max, std::fabs(p.x));
       }
-      const BodyFrame& f = local.frame;
       b.origin = {float(f.origin.x), float(f.origin.y), float(f.origin.z)};
       b.axis_x = {float(f.axis_x.x), float(f.axis_x.y), float(f.axis_x.z)};
       b.axis_y = {float(f.axis_y.x), float(f.axis_y.y), float(f.axis_y.z)};
       b.axis_z = {float(f.axis_z.x), float(f.axis_z.y), float(f.axis_z.z)};
       b.length = float(f.length);
-      b.x_max = local.x_max;
       return b;
     }();
     return baseline;
@@ -92,7 +95,7 @@ std::vector<float> parameters(std::size_t instances, double x_max) {
 
 void report(benchmark::State& state, std::size_t instances, double seconds) {
   BatchLayout layout;
-  layout.vertex_count = Setup::get().local.vertex_count();
+  layout.vertex_count = Setup::get().mesh.vertex_count();
   layout.instance_count = instances;
   layout.plane_stride = layout.vertex_count;
   set_counters(state, layout, seconds);
@@ -120,14 +123,14 @@ void BM_OpenMPBaseline(benchmark::State& state) {
 }
 
 void BM_DoubleReference(benchmark::State& state) {
-  const Setup& setup = Setup::get();
+  DeviceModel& bend = Setup::get().bend(BendMode::kPaper);
   const std::size_t instances = static_cast<std::size_t>(state.range(0));
-  const ReferenceDeformer reference(setup.local);
-  const std::vector<float> m = parameters(instances, setup.local.x_max);
+  RigParameters m(bend.model, instances);
+  m.values() = parameters(instances, bend.model.rig().components[0].chain[0].x_max);
   double total = 0.0;
   for (auto _ : state) {
     const auto start = std::chrono::steady_clock::now();
-    const DeformedBatch<double> out = reference.run(m, {BendMode::kPaper, NormalMode::kRotate});
+    const DeformedBatch<double> out = run_reference(bend.model, m, NormalMode::kRotate);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     benchmark::DoNotOptimize(out.positions.data());

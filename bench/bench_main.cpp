@@ -39,19 +39,19 @@ BENCHMARK_CAPTURE(BM_WriteOnly, half_4_per_item, NormalFormat::kHalf, 4,
                   WriteValues::kDeviceDefault)
     ->Apply(instance_counts);
 BENCHMARK(BM_CopyRest)->Apply(instance_counts);
-BENCHMARK_CAPTURE(BM_Bend, paper_rotate, BendSettings{BendMode::kPaper, NormalMode::kRotate},
+BENCHMARK_CAPTURE(BM_Bend, paper_rotate, BendMode::kPaper, NormalMode::kRotate,
                   NormalFormat::kFloat32)
     ->Apply(instance_counts);
-BENCHMARK_CAPTURE(BM_Bend, exact_rotate, BendSettings{BendMode::kExact, NormalMode::kRotate},
+BENCHMARK_CAPTURE(BM_Bend, exact_rotate, BendMode::kExact, NormalMode::kRotate,
                   NormalFormat::kFloat32)
     ->Apply(instance_counts);
-BENCHMARK_CAPTURE(BM_Bend, paper_jacobian, BendSettings{BendMode::kPaper, NormalMode::kJacobian},
+BENCHMARK_CAPTURE(BM_Bend, paper_jacobian, BendMode::kPaper, NormalMode::kJacobian,
                   NormalFormat::kFloat32)
     ->Apply(instance_counts);
-BENCHMARK_CAPTURE(BM_Bend, exact_jacobian, BendSettings{BendMode::kExact, NormalMode::kJacobian},
+BENCHMARK_CAPTURE(BM_Bend, exact_jacobian, BendMode::kExact, NormalMode::kJacobian,
                   NormalFormat::kFloat32)
     ->Apply(instance_counts);
-BENCHMARK_CAPTURE(BM_Bend, paper_rotate_half, BendSettings{BendMode::kPaper, NormalMode::kRotate},
+BENCHMARK_CAPTURE(BM_Bend, paper_rotate_half, BendMode::kPaper, NormalMode::kRotate,
                   NormalFormat::kHalf)
     ->Apply(instance_counts);
 BENCHMARK(BM_OpenMPBaseline)->Apply(instance_counts);

@@ -7,12 +7,7 @@ std::string env_or(const char* name, const std::string& fallback) {
   return value && *value ? std::string(value) : fallback;
 }
 
-Setup& Setup::get() {
-  static Setup setup;
-  return setup;
-}
-
-DeviceBatch& Setup::batch(std::size_t instances, NormalFormat format) {
+DeviceBatch& DeviceModel::batch(std::size_t instances, NormalFormat format) {
   const auto key = std::make_pair(instances, format);
   auto found = batches.find(key);
   if (found == batches.end()) {
@@ -21,21 +16,38 @@ DeviceBatch& Setup::batch(std::size_t instances, NormalFormat format) {
   return found->second;
 }
 
-cl::Kernel& Setup::kernel(const std::string& name) {
-  auto found = kernels.find(name);
-  if (found == kernels.end()) {
-    found = kernels.emplace(name, context.kernel(name, ProgramSource::bend_batch(), "")).first;
-  }
-  return found->second;
+ClJob DeviceModel::job(const RigParameters& values, DeviceBatch& batch, NormalMode normals,
+                       RigPath path) const {
+  ClJob job;
+  job.model = &model;
+  job.parameters = values.view();
+  job.normals = normals;
+  job.path = path;
+  job.outputs = &batch;
+  return job;
 }
 
-double event_seconds(const cl::Event& event) { return span_seconds(event, event); }
+Setup& Setup::get() {
+  static Setup setup;
+  return setup;
+}
 
-double span_seconds(const cl::Event& first, const cl::Event& last) {
-  check_cl(last.wait(), "clWaitForEvents");
-  const cl_ulong start = first.getProfilingInfo<CL_PROFILING_COMMAND_START>();
-  const cl_ulong end = last.getProfilingInfo<CL_PROFILING_COMMAND_END>();
-  return static_cast<double>(end - start) * 1e-9;
+DeviceModel& Setup::bend(BendMode mode) {
+  std::unique_ptr<DeviceModel>& model = bends_[mode];
+  if (!model) {
+    model = std::make_unique<DeviceModel>(context, RiggedMesh::single_bend(mesh, frame, mode));
+  }
+  return *model;
+}
+
+DeviceModel& Setup::rig() {
+  if (!rig_) {
+    const std::string path =
+        env_or("FINFLEX_RIG", std::string(FINFLEX_DATA_DIR) + "/rigs/blub.rig.json");
+    rig_ = std::make_unique<DeviceModel>(context,
+                                         RiggedMesh(mesh, resolve_rig(load_rig_file(path), mesh)));
+  }
+  return *rig_;
 }
 
 double written_bytes(const BatchLayout& layout) {

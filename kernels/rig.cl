@@ -5,8 +5,9 @@
  *
  * Vertices are reordered so each component is a contiguous range of work-groups.
  * Which stages apply to which work-groups is the rig's, so it is generated for each
- * rig (engine/src/rig_program.cpp) as macros over the stage functions below
- * (enter_frame before every stage but a vertex's first, then <deformer>_in_frame):
+ * rig (engine/src/rig_program.cpp) as macros over the deformers' stage functions
+ * (kernels/deformers/; enter_frame before every stage but a vertex's first, then
+ * <function>(&p, &n, &t, f, values + <offset of the stage's values>)):
  *   FF_RIG_FUSED_<r>     the whole bottom-up path of the group's component, for the
  *                        fused kernel rig_fused_<r>; FF_RIG_FUSED_KERNELS defines them;
  *   FF_RIG_PASS_<q>      the stage pass q applies to the group, if any;
@@ -14,95 +15,13 @@
  * Their conditions are on the work-group's index only (FF_GROUP), so every
  * branch is straight-line code that PoCL vectorises across work-items.
  *
- * Build options: FF_NORMALS_JACOBIAN (bend.cl), FF_HALF_NORMALS (planes.cl; outputs
- * only: scratch sets stay float32), FF_TANGENTS (0/1),
- * FF_INSTANCES_PER_ITEM (deform_batch.cl's, default 1). */
-#ifndef FF_TANGENTS
-#define FF_TANGENTS 0
-#endif
-
-/* A stage's frame, in mesh coordinates: 17 values, value c of stage k at
- * stages[c * FF_RIG_STAGE_COUNT + k] (stage-interleaved, so no two values of one
- * frame are adjacent: adjacent ones would be packed into 2-vectors by the compiler,
- * and those stop PoCL from vectorising across work-items):
- *   0-2 e_x, 3 1 / s_x, 4-6 e_y, 7 hinge width (the frame's units),
- *   8-10 e_z, 11 the index of the stage's parameter, 12-14 origin (the pivot), 15 s_x,
- *   16 1 / hinge width (0 for width 0).
- * A StageFrame points at stage k's first value; FF_AT(f, c) reads value c. */
-typedef __constant const float* StageFrame;
-#define FF_AT(f, c) (f)[(c) * FF_RIG_STAGE_COUNT]
-#define FF_STAGE_PARAM(f) ((uint)FF_AT(f, 11))
-
+ * Build options: FF_NORMALS_JACOBIAN (common/secant.cl), FF_HALF_NORMALS,
+ * FF_TANGENTS and FF_INSTANCES_PER_ITEM (common/planes.cl; half normals in the
+ * outputs only: scratch sets stay float32). Generated before the files:
+ * FF_STAGE_COUNT, FF_RIG_GROUP_COUNT and the macros above. */
 /* The path table (group_path_table in engine/src/rig_program.cpp): the stage at
  * position j of the path of the work-group's component. Uniform over a work-group. */
 #define FF_PATH_STAGE(j) group_paths[(j) * FF_RIG_GROUP_COUNT + group]
-
-FF_INLINE Vec3 rotate_into(Vec3 v, StageFrame f) {
-  return vec3(v.x * FF_AT(f, 0) + v.y * FF_AT(f, 1) + v.z * FF_AT(f, 2), v.x * FF_AT(f, 4) + v.y * FF_AT(f, 5) + v.z * FF_AT(f, 6),
-              v.x * FF_AT(f, 8) + v.y * FF_AT(f, 9) + v.z * FF_AT(f, 10));
-}
-
-FF_INLINE Vec3 rotate_out_of(Vec3 v, StageFrame f) {
-  return vec3(v.x * FF_AT(f, 0) + v.y * FF_AT(f, 4) + v.z * FF_AT(f, 8), v.x * FF_AT(f, 1) + v.y * FF_AT(f, 5) + v.z * FF_AT(f, 9),
-              v.x * FF_AT(f, 2) + v.y * FF_AT(f, 6) + v.z * FF_AT(f, 10));
-}
-
-/* (2) going in: p = R (p_b - origin) / s_x (normals: R n_b). */
-FF_INLINE Vec3 point_into(Vec3 p, StageFrame f) {
-  const Vec3 d = rotate_into(vec3(p.x - FF_AT(f, 12), p.y - FF_AT(f, 13), p.z - FF_AT(f, 14)), f);
-  return vec3(d.x * FF_AT(f, 3), d.y * FF_AT(f, 3), d.z * FF_AT(f, 3));
-}
-
-/* (2) going out: p_b = origin + s_x R^T p (normals: R^T n). */
-FF_INLINE Vec3 point_out_of(Vec3 p, StageFrame f) {
-  const Vec3 d = rotate_out_of(p, f);
-  return vec3(FF_AT(f, 12) + FF_AT(f, 15) * d.x, FF_AT(f, 13) + FF_AT(f, 15) * d.y, FF_AT(f, 14) + FF_AT(f, 15) * d.z);
-}
-
-/* Into a stage's frame (2): the vertex (position p, normal n, tangent t) from mesh
- * coordinates to the frame's. The rest planes hold every vertex already in the frame
- * of its first stage (the host transforms them once), so a vertex enters a frame here
- * only for its later stages. */
-FF_INLINE void enter_frame(Vec3* p, Vec3* n, Vec3* t, StageFrame f) {
-  *p = point_into(*p, f);
-  *n = rotate_into(*n, f);
-  *t = rotate_into(*t, f);
-}
-
-/* One stage on a vertex in the stage's frame: (7) and (8) (or the Jacobian) with the
- * deformer's spine sample, then out of the frame to mesh coordinates. The vertex is
- * three separate Vec3 variables, never a struct of structs: copying such a struct
- * makes the compiler move pairs of floats as 2-vectors, which stops PoCL from
- * vectorising across work-items. */
-#define FF_STAGE_BODY(SAMPLE)                            \
-  const BendSample s = SAMPLE;                           \
-  *p = point_out_of(bend_position(*p, s), f);            \
-  *n = rotate_out_of(bend_normal(*n, s), f);             \
-  *t = rotate_out_of(bend_tangent(*t, s), f);
-
-FF_INLINE void bend_paper_in_frame(Vec3* p, Vec3* n, Vec3* t, StageFrame f, float m) {
-  FF_STAGE_BODY(bend_sample_paper(p->x, p->z, m))
-}
-
-FF_INLINE void bend_exact_in_frame(Vec3* p, Vec3* n, Vec3* t, StageFrame f, float m) {
-  FF_STAGE_BODY(bend_sample_exact(p->x, p->z, m))
-}
-
-FF_INLINE void hinge_in_frame(Vec3* p, Vec3* n, Vec3* t, StageFrame f, float angle) {
-  FF_STAGE_BODY(hinge_sample(p->x, p->z, angle, FF_AT(f, 7), FF_AT(f, 16)))
-}
-
-#if FF_TANGENTS
-#define FF_LOAD_TANGENT(planes, first, stride, v) load_plane3(planes, first, stride, v)
-#define FF_STORE_TANGENT(planes, first, stride, v, value) store_direction3(planes, first, stride, v, value)
-#else
-#define FF_LOAD_TANGENT(planes, first, stride, v) vec3(1.0f, 0.0f, 0.0f)
-#define FF_STORE_TANGENT(planes, first, stride, v, value)
-#endif
-
-#ifndef FF_INSTANCES_PER_ITEM
-#define FF_INSTANCES_PER_ITEM 1
-#endif
 
 /* The work-group's index among all the rig's work-groups (a launch may start at an
  * offset), from builtins uniform over a work-group. */

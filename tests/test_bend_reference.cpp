@@ -5,8 +5,8 @@
 
 #include <gtest/gtest.h>
 
-#include "finflex/error.hpp"
-#include "finflex/reference_deformer.hpp"
+#include "finflex/finflex.hpp"
+#include "support/deform.hpp"
 #include "support/synthetic_fish.hpp"
 
 namespace finflex {
@@ -14,6 +14,20 @@ namespace {
 
 const BendMode kModes[] = {BendMode::kPaper, BendMode::kExact};
 const NormalMode kNormalModes[] = {NormalMode::kRotate, NormalMode::kJacobian};
+
+// The bend of one vertex in its frame, as the reference applies it (apply_stage with
+// the registry's bend).
+LocalVertex bend_local_vertex(const LocalVertex& rest, double m, BendMode mode,
+                              NormalMode normals) {
+  StageSpec stage = make_stage("bend", "m");
+  set_option(stage, "mode", to_string(mode));
+  return apply_stage(*stage.deformer, stage.options, &m, rest, normals);
+}
+
+// The whole-body bend of `mesh`, already in its body frame.
+RiggedMesh identity_bend(const Mesh& mesh, BendMode mode) {
+  return RiggedMesh::single_bend(mesh, BodyFrame::identity(), mode);
+}
 
 // Length of the bent spine, sampled densely between -x_max and x_max.
 double bent_spine_length(double m, double x_max, BendMode mode) {
@@ -23,7 +37,7 @@ double bent_spine_length(double m, double x_max, BendMode mode) {
   for (int i = 0; i < samples; ++i) {
     const double x = -x_max + 2.0 * x_max * i / (samples - 1);
     const LocalVertex bent =
-        bend_local_vertex({{x, 0.0, 0.0}, {0.0, 0.0, 1.0}, {}}, m, {mode, NormalMode::kRotate});
+        bend_local_vertex({{x, 0.0, 0.0}, {0.0, 0.0, 1.0}, {}}, m, mode, NormalMode::kRotate);
     if (i > 0) length += glm::length(bent.position - previous);
     previous = bent.position;
   }
@@ -32,10 +46,11 @@ double bent_spine_length(double m, double x_max, BendMode mode) {
 
 TEST(BendReference, ZeroParameterIsTheIdentity) {
   const Mesh mesh = test::synthetic_fish(24, 16, true);
-  const ReferenceDeformer reference(make_local_mesh(mesh, BodyFrame::identity()));
   for (BendMode mode : kModes) {
+    const RiggedMesh model = identity_bend(mesh, mode);
     for (NormalMode normals : kNormalModes) {
-      const DeformedBatch<double> out = reference.run({0.0f}, {mode, normals});
+      const DeformedBatch<double> out =
+          run_reference(model, test::values_of(model, {0.0f}), normals);
       for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
         EXPECT_LT(glm::length(out.position(0, v) - glm::dvec3(mesh.positions[v])), 1e-12);
         EXPECT_LT(glm::length(out.normal(0, v) - glm::normalize(glm::dvec3(mesh.normals[v]))),
@@ -57,8 +72,8 @@ TEST(BendReference, OppositeParametersMirrorInZ) {
                                    glm::normalize(glm::dvec3(0.3, -0.2, -0.9)),
                                    glm::normalize(glm::dvec3(0.9, 0.1, 0.3))};
         const glm::dvec3 flip(1.0, 1.0, -1.0);
-        const LocalVertex a = bend_local_vertex(rest, 0.7, {mode, normals});
-        const LocalVertex b = bend_local_vertex(mirrored, -0.7, {mode, normals});
+        const LocalVertex a = bend_local_vertex(rest, 0.7, mode, normals);
+        const LocalVertex b = bend_local_vertex(mirrored, -0.7, mode, normals);
         EXPECT_LT(glm::length(a.position * flip - b.position), 1e-14);
         EXPECT_LT(glm::length(a.normal * flip - b.normal), 1e-14);
         EXPECT_LT(glm::length(a.tangent * flip - b.tangent), 1e-14);
@@ -87,18 +102,18 @@ TEST(BendReference, PaperSeriesErrorIsAsMeasured) {
   EXPECT_NEAR(relative_error(0.5), 1.0e-4, 0.5e-4);
   EXPECT_NEAR(relative_error(0.8), 2.5e-3, 0.3e-3);
   EXPECT_NEAR(relative_error(1.0), 9.6e-3, 0.4e-3);
-  const BendSettings paper{BendMode::kPaper, NormalMode::kRotate};
-  const BendSettings exact{BendMode::kExact, NormalMode::kRotate};
   const LocalVertex tip{{1.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, {}};
-  EXPECT_NEAR(bend_local_vertex(tip, 0.5, paper).position.x, 0.8083, 1e-3);
-  EXPECT_NEAR(bend_local_vertex(tip, 0.5, exact).position.x, 0.7854, 1e-3);
+  EXPECT_NEAR(bend_local_vertex(tip, 0.5, BendMode::kPaper, NormalMode::kRotate).position.x, 0.8083,
+              1e-3);
+  EXPECT_NEAR(bend_local_vertex(tip, 0.5, BendMode::kExact, NormalMode::kRotate).position.x, 0.7854,
+              1e-3);
 }
 
 TEST(BendReference, SpineFollowsTheParabola) {
   // (12): the spine point at arc length x lies on z = m x^2, for the exact bend exactly.
   for (double x : {-0.4, 0.1, 0.5}) {
     const LocalVertex bent = bend_local_vertex({{x, 0.0, 0.0}, {0.0, 0.0, 1.0}, {}}, 0.9,
-                                               {BendMode::kExact, NormalMode::kRotate});
+                                               BendMode::kExact, NormalMode::kRotate);
     EXPECT_NEAR(bent.position.z, 0.9 * x * x, 1e-15);
     EXPECT_DOUBLE_EQ(bent.position.y, 0.0);
   }
@@ -109,7 +124,7 @@ TEST(BendReference, RotationTakesEzToTheSecantNormal) {
   // not (-n_x, -n_y, n_z) as the printed matrix (9) would give.
   const double m = 0.8, x = 0.4;
   const LocalVertex bent = bend_local_vertex({{x, 0.0, 0.0}, {0.0, 0.0, 1.0}, {1.0, 0.0, 0.0}}, m,
-                                             {BendMode::kPaper, NormalMode::kRotate});
+                                             BendMode::kPaper, NormalMode::kRotate);
   const double a = 1.0 - 2.0 * m * m * x * x - 2.0 * std::pow(m * x, 4);
   const glm::dvec3 n = glm::normalize(glm::dvec3(-2.0 * m * x, 0.0, a));
   EXPECT_LT(glm::length(bent.normal - n), 1e-14);
@@ -121,8 +136,8 @@ TEST(BendReference, JacobianNormalsScaleTheAlongSpineComponent) {
   // METHOD.md section 6: normals by R diag(1 / (1 - z k), 1, 1), k = 2m / sqrt(1 - 4m^2x^2).
   const double m = 0.6, x = 0.3, z = 0.05;
   const glm::dvec3 rest_normal = glm::normalize(glm::dvec3(0.5, 0.2, 0.8));
-  const LocalVertex bent = bend_local_vertex({{x, 0.0, z}, rest_normal, {}}, m,
-                                             {BendMode::kExact, NormalMode::kJacobian});
+  const LocalVertex bent =
+      bend_local_vertex({{x, 0.0, z}, rest_normal, {}}, m, BendMode::kExact, NormalMode::kJacobian);
   const double c = std::sqrt(1.0 - 4.0 * m * m * x * x), k = 2.0 * m / c;
   const glm::dvec3 scaled(rest_normal.x / (1.0 - z * k), rest_normal.y, rest_normal.z);
   const glm::dvec3 u(-2.0 * m * x, 0.0, c);  // n
@@ -133,14 +148,23 @@ TEST(BendReference, JacobianNormalsScaleTheAlongSpineComponent) {
 }
 
 TEST(BendReference, RejectsBadParameters) {
-  const ReferenceDeformer reference(
-      make_local_mesh(test::synthetic_fish(8, 8), BodyFrame::identity()));
-  const BendSettings settings;
-  EXPECT_THROW(reference.run({}, settings), Error);
-  EXPECT_THROW(reference.run({NAN}, settings), Error);
-  EXPECT_THROW(reference.run({INFINITY}, settings), Error);
+  const RiggedMesh model = identity_bend(test::synthetic_fish(8, 8), BendMode::kPaper);
+  const NormalMode normals = NormalMode::kRotate;
+  // No instances: the job names the field.
+  ReferenceJob empty;
+  DeformedBatch<double> out;
+  empty.model = &model;
+  empty.outputs = &out;
   try {
-    reference.run({0.1f, 1.5f}, settings);  // x_max = 0.5: |m| <= 1
+    run_reference(empty);
+    FAIL() << "expected an error for a job without instances";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.field(), "job.parameters.instance_count");
+  }
+  EXPECT_THROW(run_reference(model, test::values_of(model, {NAN}), normals), Error);
+  EXPECT_THROW(run_reference(model, test::values_of(model, {INFINITY}), normals), Error);
+  try {
+    run_reference(model, test::values_of(model, {0.1f, 1.5f}), normals);  // x_max = 0.5: |m| <= 1
     FAIL() << "expected an out-of-range error";
   } catch (const Error& e) {
     EXPECT_EQ(e.code(), ErrorCode::kOutOfRange);
@@ -149,8 +173,10 @@ TEST(BendReference, RejectsBadParameters) {
     EXPECT_NE(std::string(e.what()).find("[-1, 1]"), std::string::npos);
   }
   // Clamping brings the value to the limit instead.
-  const DeformedBatch<double> clamped = reference.run({1.5f}, settings, true);
-  const DeformedBatch<double> at_limit = reference.run({1.0f}, settings);
+  const DeformedBatch<double> clamped =
+      run_reference(model, test::values_of(model, {1.5f}), normals, true);
+  const DeformedBatch<double> at_limit =
+      run_reference(model, test::values_of(model, {1.0f}), normals);
   EXPECT_LT(glm::length(clamped.position(0, 0) - at_limit.position(0, 0)), 1e-6);
 }
 

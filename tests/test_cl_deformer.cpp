@@ -11,12 +11,8 @@
 
 #include <gtest/gtest.h>
 
-#include "finflex/accuracy.hpp"
-#include "finflex/body_frame.hpp"
-#include "finflex/cl_deformer.hpp"
-#include "finflex/error.hpp"
-#include "finflex/mesh_io.hpp"
-#include "finflex/reference_deformer.hpp"
+#include "finflex/finflex.hpp"
+#include "support/deform.hpp"
 #include "support/synthetic_fish.hpp"
 #include "support/test_support.hpp"
 
@@ -24,32 +20,27 @@ namespace finflex {
 namespace {
 
 // m at fractions of the limit, both signs, the limit itself included.
-std::vector<float> parameter_sweep(double x_max) {
-  const double limit = max_abs_m(x_max);
-  std::vector<float> m;
-  for (double f : {0.0, 0.1, -0.35, 0.6, -0.85, 1.0, -1.0})
-    m.push_back(static_cast<float>(f * limit));
-  return m;
-}
+const std::vector<double> kSweep = {0.0, 0.1, -0.35, 0.6, -0.85, 1.0, -1.0};
 
 void expect_matches_reference(const Mesh& mesh, const BodyFrame& frame, const std::string& name) {
-  const LocalMesh local = make_local_mesh(mesh, frame);
-  const std::vector<float> m = parameter_sweep(local.x_max);
-  ClDeformer deformer(test::shared_context(), local);
-  const ReferenceDeformer reference(local);
-  DeviceBatch batch = deformer.allocate(m.size());
   for (BendMode mode : {BendMode::kPaper, BendMode::kExact}) {
+    const RiggedMesh model = RiggedMesh::single_bend(mesh, frame, mode);
+    ClDeformer deformer(test::shared_context(), model);
+    ASSERT_TRUE(deformer.uses_single_bend_kernel());
+    const RigParameters m = test::bend_fractions(model, kSweep);
+    std::vector<float> used(m.values().size());  // the limits, clamped as the backends do
+    check_parameters(model.rig(), m.view(), /*clamp=*/true, used.data());
+    const RigParameters checked = test::values_of(model, used);
     for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {
-      const BendSettings settings{mode, normals};
-      deformer.enqueue(m, settings, batch, /*clamp=*/true);
       const AccuracyReport report =
-          compare_to_reference(local, checked_bend_params(m, local.x_max, true), settings,
-                               deformer.read(batch), reference.run(m, settings, true));
+          compare_to_reference(model, checked.view(), normals,
+                               test::run_on_device(deformer, m, normals, RigPath::kAuto, true),
+                               run_reference(model, m, normals, true));
       SCOPED_TRACE(name + " " + to_string(mode) + " " + to_string(normals));
       EXPECT_LE(report.max_position_ratio, 1.0) << report.max_position_error;
       EXPECT_LE(report.max_normal_ratio, 1.0) << report.max_normal_error;
       // Ill-defined normals only appear at the ends of the spine near the range limit.
-      EXPECT_LT(report.skipped_normals, local.vertex_count() * m.size() / 100);
+      EXPECT_LT(report.skipped_normals, mesh.vertex_count() * kSweep.size() / 100);
     }
   }
 }
@@ -82,13 +73,12 @@ TEST(ClDeformer, MatchesReferenceOnEveryBundledFish) {
 
 TEST(ClDeformer, ZeroParameterIsTheIdentity) {
   const Mesh mesh = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
-  const LocalMesh local = make_local_mesh(mesh, find_body_frame(mesh));
-  ClDeformer deformer(test::shared_context(), local);
-  DeviceBatch batch = deformer.allocate(1);
   for (BendMode mode : {BendMode::kPaper, BendMode::kExact}) {
+    const RiggedMesh model = RiggedMesh::single_bend(mesh, find_body_frame(mesh), mode);
+    ClDeformer deformer(test::shared_context(), model);
     for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {
-      deformer.enqueue({0.0f}, {mode, normals}, batch);
-      const DeformedBatch<float> out = deformer.read(batch);
+      const DeformedBatch<float> out =
+          test::run_on_device(deformer, test::values_of(model, {0.0f}), normals);
       for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
         EXPECT_LT(glm::length(out.position(0, v) - mesh.positions[v]), 2e-6f);
         EXPECT_LT(glm::length(out.normal(0, v) - glm::normalize(mesh.normals[v])), 2e-6f);
@@ -100,32 +90,28 @@ TEST(ClDeformer, ZeroParameterIsTheIdentity) {
 // The low-resolution Blub with its own body frame and a deformer: several tests' set-up.
 struct SmallFish {
   Mesh mesh = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
-  LocalMesh local = make_local_mesh(mesh, find_body_frame(mesh));
-  ClDeformer deformer{test::shared_context(), local};
-  float limit = static_cast<float>(max_abs_m(local.x_max));
+  RiggedMesh model = RiggedMesh::single_bend(mesh, find_body_frame(mesh), BendMode::kExact);
+  ClDeformer deformer{test::shared_context(), model};
+  float limit = static_cast<float>(test::bend_limit(model));
+
+  RigParameters m(const std::vector<float>& values) const { return test::values_of(model, values); }
 };
 
 TEST(ClDeformer, BatchEqualsSingleRuns) {
   SmallFish fish;
-  const Mesh& mesh = fish.mesh;
-  const LocalMesh& local = fish.local;
-  ClDeformer& deformer = fish.deformer;
   const std::size_t instances = 1000;
   std::mt19937 random(7);
   std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
   std::vector<float> m(instances);
-  for (float& value : m) value = uniform(random) * static_cast<float>(max_abs_m(local.x_max));
-  const BendSettings settings{BendMode::kExact, NormalMode::kJacobian};
+  for (float& value : m) value = uniform(random) * fish.limit;
+  const NormalMode normals = NormalMode::kJacobian;
+  const DeformedBatch<float> all = test::run_on_device(fish.deformer, fish.m(m), normals);
 
-  DeviceBatch batch = deformer.allocate(instances);
-  deformer.enqueue(m, settings, batch);
-  const DeformedBatch<float> all = deformer.read(batch);
-
-  DeviceBatch single = deformer.allocate(1);
+  DeviceBatch single = fish.deformer.allocate(1);
   for (std::size_t i = 0; i < instances; ++i) {
-    deformer.enqueue({m[i]}, settings, single);
-    const DeformedBatch<float> one = deformer.read(single);
-    for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+    const DeformedBatch<float> one =
+        test::run_on_device(fish.deformer, single, fish.m({m[i]}), normals);
+    for (std::size_t v = 0; v < fish.mesh.vertex_count(); ++v) {
       ASSERT_EQ(one.position(0, v), all.position(i, v)) << "instance " << i << " vertex " << v;
       ASSERT_EQ(one.normal(0, v), all.normal(i, v)) << "instance " << i << " vertex " << v;
     }
@@ -138,20 +124,27 @@ TEST(ClDeformer, AlternatingBatchesEachGetTheirOwnFrames) {
   SmallFish fish;
   ClDeformer& deformer = fish.deformer;
   const float limit = fish.limit;
-  const BendSettings settings{BendMode::kPaper, NormalMode::kRotate};
+  const NormalMode normals = NormalMode::kRotate;
   DeviceBatch two = deformer.allocate(2);
   DeviceBatch three = deformer.allocate(3);
   ASSERT_NE(two.serial, three.serial);
   DeviceBatch single = deformer.allocate(1);
   auto expect_instance = [&](const DeformedBatch<float>& batch, std::size_t i, float m) {
-    deformer.enqueue({m}, settings, single);
-    const DeformedBatch<float> one = deformer.read(single);
+    const DeformedBatch<float> one = test::run_on_device(deformer, single, fish.m({m}), normals);
     for (std::size_t v = 0; v < fish.mesh.vertex_count(); ++v)
       ASSERT_EQ(one.position(0, v), batch.position(i, v)) << "m " << m << " vertex " << v;
   };
-  deformer.enqueue({0.1f * limit, 0.2f * limit}, settings, two);
-  deformer.enqueue({0.3f * limit, 0.4f * limit, 0.5f * limit}, settings, three);
-  deformer.enqueue({-0.6f * limit, -0.7f * limit}, settings, two);  // back to the first
+  auto enqueue = [&](DeviceBatch& batch, const RigParameters& m) {
+    ClJob job;
+    job.model = &fish.model;
+    job.parameters = m.view();
+    job.normals = normals;
+    job.outputs = &batch;
+    deformer.enqueue(job);
+  };
+  enqueue(two, fish.m({0.1f * limit, 0.2f * limit}));
+  enqueue(three, fish.m({0.3f * limit, 0.4f * limit, 0.5f * limit}));
+  enqueue(two, fish.m({-0.6f * limit, -0.7f * limit}));  // back to the first
   const DeformedBatch<float> from_two = deformer.read(two);
   const DeformedBatch<float> from_three = deformer.read(three);
   expect_instance(from_two, 0, -0.6f * limit);
@@ -160,17 +153,26 @@ TEST(ClDeformer, AlternatingBatchesEachGetTheirOwnFrames) {
 }
 
 // Frames enqueued back to back without waiting: each upload reads its own staging
-// slot (a ring of DeviceBatch::kStagingSlots), so the last frame's values win and the
-// earlier ones were each deformed with their own.
+// slot (a ring of three), so the last frame's values win and the earlier ones were
+// each deformed with their own.
 TEST(ClDeformer, FramesInFlightKeepTheirOwnParameters) {
   SmallFish fish;
   ClDeformer& deformer = fish.deformer;
   const float limit = fish.limit;
-  const BendSettings settings{BendMode::kExact, NormalMode::kRotate};
+  const NormalMode normals = NormalMode::kRotate;
   DeviceBatch batch = deformer.allocate(2);
   DeviceBatch copy = deformer.allocate(2);
+  auto frame_values = [&](int f) {
+    return fish.m({0.1f * float(f) * limit, -0.12f * float(f) * limit});
+  };
   for (int f = 0; f < 7; ++f) {
-    deformer.enqueue({0.1f * float(f) * limit, -0.12f * float(f) * limit}, settings, batch);
+    const RigParameters m = frame_values(f);  // gone before the frame runs
+    ClJob job;
+    job.model = &fish.model;
+    job.parameters = m.view();
+    job.normals = normals;
+    job.outputs = &batch;
+    deformer.enqueue(job);
     // Copy frame f's outputs aside on the queue, to compare with a lone run of it.
     if (f == 4) {
       const std::size_t bytes = batch.layout.attribute_elements() * sizeof(float);
@@ -183,8 +185,8 @@ TEST(ClDeformer, FramesInFlightKeepTheirOwnParameters) {
   const DeformedBatch<float> fourth = deformer.read(copy);  // positions only
   DeviceBatch alone = deformer.allocate(2);
   for (int f : {4, 6}) {
-    deformer.enqueue({0.1f * float(f) * limit, -0.12f * float(f) * limit}, settings, alone);
-    const DeformedBatch<float> expected = deformer.read(alone);
+    const DeformedBatch<float> expected =
+        test::run_on_device(deformer, alone, frame_values(f), normals);
     const DeformedBatch<float>& got = f == 4 ? fourth : last;
     for (std::size_t i = 0; i < 2; ++i) {
       for (std::size_t v = 0; v < fish.mesh.vertex_count(); ++v)
@@ -198,21 +200,23 @@ TEST(ClDeformer, SeveralInstancesPerWorkItemGiveTheSameResult) {
   // what one instance per work-item gives (to float32 rounding: the compiler may
   // contract multiply-adds differently in the two kernel shapes).
   const Mesh mesh = load_mesh(test::data_path("barramundi/BarramundiFish.gltf"));
-  const LocalMesh local = make_local_mesh(mesh, find_body_frame(mesh));
-  std::vector<float> m;
-  for (int i = 0; i < 7; ++i) m.push_back(static_cast<float>(0.1 * i * max_abs_m(local.x_max)));
-  const BendSettings settings{BendMode::kExact, NormalMode::kJacobian};
-  ClDeformer one(test::shared_context(), local, 1);
-  DeviceBatch reference_batch = one.allocate(m.size());
-  one.enqueue(m, settings, reference_batch);
-  const DeformedBatch<float> expected = one.read(reference_batch);
-  const double bound = 4e-6 * (glm::length(local.frame.origin) + local.frame.length);
+  const RiggedMesh model = RiggedMesh::single_bend(mesh, find_body_frame(mesh), BendMode::kExact);
+  std::vector<double> fractions;
+  for (int i = 0; i < 7; ++i) fractions.push_back(0.1 * i);
+  const RigParameters m = test::bend_fractions(model, fractions);
+  const NormalMode normals = NormalMode::kJacobian;
+  ClOptions one_per_item;
+  one_per_item.instances_per_item = 1;
+  ClDeformer one(test::shared_context(), model, one_per_item);
+  const DeformedBatch<float> expected = test::run_on_device(one, m, normals);
+  const BodyFrame& frame = model.rig().components[0].frame;
+  const double bound = 4e-6 * (glm::length(frame.origin) + frame.length);
   for (std::size_t per_item : {2u, 3u, 8u}) {
-    ClDeformer several(test::shared_context(), local, per_item);
-    DeviceBatch batch = several.allocate(m.size());
-    several.enqueue(m, settings, batch);
-    const DeformedBatch<float> got = several.read(batch);
-    for (std::size_t i = 0; i < m.size(); ++i) {
+    ClOptions options;
+    options.instances_per_item = per_item;
+    ClDeformer several(test::shared_context(), model, options);
+    const DeformedBatch<float> got = test::run_on_device(several, m, normals);
+    for (std::size_t i = 0; i < fractions.size(); ++i) {
       for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
         ASSERT_LT(glm::length(got.position(i, v) - expected.position(i, v)), bound)
             << per_item << " per item, instance " << i << " vertex " << v;
@@ -226,25 +230,26 @@ TEST(ClDeformer, SeveralInstancesPerWorkItemGiveTheSameResult) {
 TEST(ClDeformer, FourThousandInstancesOfTheFullFish) {
   // 4,000 x 10,786 vertices: 2 x 519 MB of float32 outputs in one launch.
   const Mesh mesh = load_mesh(test::data_path("blub/fish.obj"));
-  const LocalMesh local = make_local_mesh(mesh, find_body_frame(mesh));
-  ClDeformer deformer(test::shared_context(), local);
+  const RiggedMesh model = RiggedMesh::single_bend(mesh, find_body_frame(mesh), BendMode::kPaper);
+  ClDeformer deformer(test::shared_context(), model);
   const std::size_t instances = 4000;
   std::vector<float> m(instances);
   for (std::size_t i = 0; i < instances; ++i) {
-    m[i] = static_cast<float>(max_abs_m(local.x_max) * std::sin(0.01 * static_cast<double>(i)));
+    m[i] = static_cast<float>(test::bend_limit(model) * std::sin(0.01 * static_cast<double>(i)));
   }
-  DeviceBatch batch = deformer.allocate(instances);
-  const BendSettings settings{BendMode::kPaper, NormalMode::kRotate};
-  deformer.enqueue(m, settings, batch);
-  const DeformedBatch<float> all = deformer.read(batch);
+  const NormalMode normals = NormalMode::kRotate;
+  const DeformedBatch<float> all =
+      test::run_on_device(deformer, test::values_of(model, m), normals);
   // Spot-check instances across the whole batch against the reference.
   const std::vector<std::size_t> checked = {0, 1, 777, 2048, 3999};
   std::vector<float> checked_m;
   for (std::size_t i : checked) checked_m.push_back(m[i]);
-  const DeformedBatch<double> reference = ReferenceDeformer(local).run(checked_m, settings);
-  const double bound = 4e-6 * (glm::length(local.frame.origin) + local.frame.length);
+  const DeformedBatch<double> reference =
+      run_reference(model, test::values_of(model, checked_m), normals);
+  const BodyFrame& frame = model.rig().components[0].frame;
+  const double bound = 4e-6 * (glm::length(frame.origin) + frame.length);
   for (std::size_t k = 0; k < checked.size(); ++k) {
-    for (std::size_t v = 0; v < local.vertex_count(); v += 7) {
+    for (std::size_t v = 0; v < mesh.vertex_count(); v += 7) {
       ASSERT_LT(glm::length(glm::dvec3(all.position(checked[k], v)) - reference.position(k, v)),
                 bound)
           << "instance " << checked[k] << " vertex " << v;
@@ -253,15 +258,18 @@ TEST(ClDeformer, FourThousandInstancesOfTheFullFish) {
 }
 
 TEST(ClDeformer, RejectsBadInputsBeforeLaunching) {
-  const LocalMesh local = make_local_mesh(test::synthetic_fish(8, 8), BodyFrame::identity());
-  ClDeformer deformer(test::shared_context(), local);
+  const RiggedMesh model =
+      RiggedMesh::single_bend(test::synthetic_fish(8, 8), BodyFrame::identity(), BendMode::kPaper);
+  ClDeformer deformer(test::shared_context(), model);
   EXPECT_THROW(deformer.allocate(0), Error);
   DeviceBatch batch = deformer.allocate(2);
-  const BendSettings settings;
-  EXPECT_THROW(deformer.enqueue({0.1f}, settings, batch), Error);  // wrong count
-  EXPECT_THROW(deformer.enqueue({0.1f, NAN}, settings, batch), Error);
+  const NormalMode normals = NormalMode::kRotate;
+  EXPECT_THROW(test::run_on_device(deformer, batch, test::values_of(model, {0.1f}), normals),
+               Error);  // wrong count
+  EXPECT_THROW(test::run_on_device(deformer, batch, test::values_of(model, {0.1f, NAN}), normals),
+               Error);
   try {
-    deformer.enqueue({0.1f, -1.01f}, settings, batch);
+    test::run_on_device(deformer, batch, test::values_of(model, {0.1f, -1.01f}), normals);
     FAIL() << "expected an out-of-range error";
   } catch (const Error& e) {
     EXPECT_EQ(e.code(), ErrorCode::kOutOfRange);
@@ -273,6 +281,45 @@ TEST(ClDeformer, RejectsBadInputsBeforeLaunching) {
   } catch (const Error& e) {
     EXPECT_EQ(e.field(), "instances");
   }
+}
+
+// Outputs that do not fit the model (another mesh's, with or without tangents, or
+// buffers smaller than their layout says) are refused before anything is written.
+TEST(ClDeformer, OutputsOfAnotherModelAreRefused) {
+  const RiggedMesh small =
+      RiggedMesh::single_bend(test::synthetic_fish(8, 8), BodyFrame::identity(), BendMode::kPaper);
+  const RiggedMesh large = RiggedMesh::single_bend(test::synthetic_fish(32, 24, true),
+                                                   BodyFrame::identity(), BendMode::kPaper);
+  ClDeformer small_deformer(test::shared_context(), small);
+  ClDeformer large_deformer(test::shared_context(), large);
+  DeviceBatch small_batch = small_deformer.allocate(2);
+  const RigParameters m = test::values_of(large, {0.1f, 0.2f});
+  auto field_of = [&](const ClJob& job) -> std::string {
+    try {
+      large_deformer.enqueue(job);
+    } catch (const Error& e) {
+      return e.field();
+    }
+    return "accepted";
+  };
+  ClJob job;
+  job.model = &large;
+  job.parameters = m.view();
+  job.outputs = &small_batch;  // fewer slots, no tangents
+  EXPECT_EQ(field_of(job), "job.outputs");
+  // The layout of the right model, but buffers of the small one.
+  DeviceBatch forged = large_deformer.allocate(2);
+  forged.positions = small_batch.positions;
+  forged.serial = small_batch.serial + 1000000;
+  job.outputs = &forged;
+  EXPECT_EQ(field_of(job), "job.outputs");
+  // Another model in the job.
+  DeviceBatch right = large_deformer.allocate(2);
+  job.outputs = &right;
+  job.model = &small;
+  EXPECT_EQ(field_of(job), "job.model");
+  job.model = &large;
+  EXPECT_EQ(field_of(job), "accepted");
 }
 
 }  // namespace

@@ -80,9 +80,12 @@ TEST(Cli, MatchesTheReferenceInTheIdentityFrame) {
                                   mode + " --normals " + normals + " --frame identity");
       ASSERT_EQ(r.exit_code, 0) << r.err;
       const Mesh bent = load_mesh(out);
-      const ReferenceDeformer reference(make_local_mesh(loaded, BodyFrame::identity()));
-      const BendSettings settings{parse_bend_mode(mode), parse_normal_mode(normals)};
-      const Mesh expected = instance_mesh(loaded, reference.run({-0.75f}, settings), 0);
+      const RiggedMesh model =
+          RiggedMesh::single_bend(loaded, BodyFrame::identity(), parse_bend_mode(mode));
+      RigParameters m(model, 1);
+      m.set(0, "m", -0.75f);
+      const Mesh expected =
+          instance_mesh(loaded, run_reference(model, m, parse_normal_mode(normals)), 0);
       for (std::size_t v = 0; v < rest.vertex_count(); ++v) {
         EXPECT_LT(glm::length(bent.positions[v] - expected.positions[v]), 1e-5f) << mode << normals;
         EXPECT_LT(glm::length(bent.normals[v] - expected.normals[v]), 1e-4f) << mode << normals;
@@ -104,8 +107,12 @@ TEST(Cli, WritesGltfWithTangents) {
 TEST(Cli, CheckPassesOnTheDefaultDevice) {
   const RunResult r = run_cli("check --in " + fish("blub/fish_low_resolution.obj"));
   ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
-  EXPECT_NE(r.out.find("exact  jacobian"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("bend exact     jacobian"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("OUT OF TOLERANCE"), std::string::npos) << r.out;
+  const RunResult rig = run_cli("check --in " + fish("blub/fish_low_resolution.obj") + " --rig " +
+                                fish("rigs/blub_low_resolution.rig.json"));
+  ASSERT_EQ(rig.exit_code, 0) << rig.err << rig.out;
+  EXPECT_NE(rig.out.find("rig            jacobian"), std::string::npos) << rig.out;
   const RunResult missing = run_cli("check --in '/nonexistent.obj'");
   EXPECT_EQ(missing.exit_code, 2);
   EXPECT_EQ(line_count(missing.err), 1);

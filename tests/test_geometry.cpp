@@ -7,18 +7,20 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "finflex/finflex.hpp"
+#include "support/deform.hpp"
 #include "support/synthetic_fish.hpp"
 #include "support/test_support.hpp"
 
 namespace finflex {
 namespace {
 
-DeformedBatch<float> bend_on_device(const LocalMesh& local, const std::vector<float>& m,
-                                    const BendSettings& settings) {
-  ClDeformer deformer(test::shared_context(), local);
-  DeviceBatch batch = deformer.allocate(m.size());
-  deformer.enqueue(m, settings, batch);
-  return deformer.read(batch);
+// The whole-body bend of `mesh` in `frame` with one instance per entry of m.
+DeformedBatch<float> bend_on_device(const Mesh& mesh, const BodyFrame& frame,
+                                    const std::vector<float>& m, BendMode mode,
+                                    NormalMode normals) {
+  const RiggedMesh model = RiggedMesh::single_bend(mesh, frame, mode);
+  ClDeformer deformer(test::shared_context(), model);
+  return test::run_on_device(deformer, test::values_of(model, m), normals);
 }
 
 double spine_length(const DeformedBatch<float>& batch, std::size_t instance, int samples) {
@@ -32,10 +34,10 @@ double spine_length(const DeformedBatch<float>& batch, std::size_t instance, int
 
 TEST(Geometry, ExactBendKeepsTheSpineArcLength) {
   const int samples = 4001;
-  const LocalMesh local = make_local_mesh(test::spine_ribbon(samples, 0.5), BodyFrame::identity());
   const std::vector<float> m = {0.25f, -0.5f, 0.8f, -0.95f};  // 2 m x_max = |m|
   const DeformedBatch<float> bent =
-      bend_on_device(local, m, {BendMode::kExact, NormalMode::kRotate});
+      bend_on_device(test::spine_ribbon(samples, 0.5), BodyFrame::identity(), m, BendMode::kExact,
+                     NormalMode::kRotate);
   for (std::size_t i = 0; i < m.size(); ++i) {
     EXPECT_LT(std::fabs(spine_length(bent, i, samples) - 1.0), 1e-5) << "m = " << m[i];
   }
@@ -44,9 +46,9 @@ TEST(Geometry, ExactBendKeepsTheSpineArcLength) {
 TEST(Geometry, PaperBendShowsTheSeriesError) {
   // METHOD.md section 5: about 1 % (0.96 %) at 2 m x_max = 1, 0.25 % at 0.8.
   const int samples = 4001;
-  const LocalMesh local = make_local_mesh(test::spine_ribbon(samples, 0.5), BodyFrame::identity());
   const DeformedBatch<float> bent =
-      bend_on_device(local, {1.0f, 0.8f}, {BendMode::kPaper, NormalMode::kRotate});
+      bend_on_device(test::spine_ribbon(samples, 0.5), BodyFrame::identity(), {1.0f, 0.8f},
+                     BendMode::kPaper, NormalMode::kRotate);
   EXPECT_NEAR(spine_length(bent, 0, samples) - 1.0, 9.6e-3, 0.4e-3);
   EXPECT_NEAR(spine_length(bent, 1, samples) - 1.0, 2.5e-3, 0.3e-3);
 }
@@ -57,13 +59,14 @@ TEST(Geometry, NormalsAgreeWithTheDeformedFaces) {
     // (scanned normals do not match the faces exactly to begin with).
     Mesh rest = load_mesh(test::data_path(fish));
     compute_vertex_normals(rest);
-    const LocalMesh local = make_local_mesh(rest, find_body_frame(rest));
-    const std::vector<float> m = {static_cast<float>(0.8 * max_abs_m(local.x_max))};
+    const BodyFrame frame = find_body_frame(rest);
+    const double limit = test::bend_limit(RiggedMesh::single_bend(rest, frame, BendMode::kExact));
+    const std::vector<float> m = {static_cast<float>(0.8 * limit)};
     for (BendMode mode : {BendMode::kPaper, BendMode::kExact}) {
       const double rotate = mean_angle_to_face_normals(
-          instance_mesh(rest, bend_on_device(local, m, {mode, NormalMode::kRotate}), 0));
+          instance_mesh(rest, bend_on_device(rest, frame, m, mode, NormalMode::kRotate), 0));
       const double jacobian = mean_angle_to_face_normals(
-          instance_mesh(rest, bend_on_device(local, m, {mode, NormalMode::kJacobian}), 0));
+          instance_mesh(rest, bend_on_device(rest, frame, m, mode, NormalMode::kJacobian), 0));
       SCOPED_TRACE(std::string(fish) + " " + to_string(mode));
       // Measured (docs/accuracy.md): jacobian 0.04-0.24 degrees, rotate 0.8-2.5 degrees;
       // jacobian is 3x (barramundi, coarse fins) to 55x (blub) closer to the faces.
@@ -79,30 +82,30 @@ TEST(Geometry, NormalsAgreeWithTheDeformedFaces) {
 // fish, for the single bend and through a rig's chained stages, at every parameter.
 TEST(Geometry, RotatedNormalsStayUnit) {
   const Mesh mesh = load_mesh(test::data_path("blub/fish.obj"));
-  const LocalMesh local = make_local_mesh(mesh, find_body_frame(mesh));
-  const double limit = max_abs_m(local.x_max);
+  const BodyFrame frame = find_body_frame(mesh);
+  const double limit = test::bend_limit(RiggedMesh::single_bend(mesh, frame, BendMode::kExact));
   std::vector<float> m;
   for (double f : {-1.0, -0.5, 0.0, 0.3, 0.9, 1.0}) m.push_back(static_cast<float>(f * limit));
   double worst = 0.0;
   for (BendMode mode : {BendMode::kPaper, BendMode::kExact}) {
-    const DeformedBatch<float> bent = bend_on_device(local, m, {mode, NormalMode::kRotate});
+    const DeformedBatch<float> bent = bend_on_device(mesh, frame, m, mode, NormalMode::kRotate);
     for (std::size_t i = 0; i < m.size(); ++i) {
       for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
         worst = std::max(worst, std::fabs(glm::length(glm::dvec3(bent.normal(i, v))) - 1.0));
     }
   }
-  const Rig rig = resolve_rig(load_rig_file(test::data_path("rigs/blub.rig.json")), mesh);
-  ClRigDeformer deformer(test::shared_context(), mesh, rig);
-  RigParameters values(rig, 3);
-  const std::vector<double> limits = rig_param_limits(rig);
+  const RiggedMesh model(mesh,
+                         resolve_rig(load_rig_file(test::data_path("rigs/blub.rig.json")), mesh));
+  ClDeformer deformer(test::shared_context(), model);
+  RigParameters values(model, 3);
+  const std::vector<RigParameter>& parameters = model.rig().parameters;
   for (std::size_t i = 0; i < 3; ++i) {
-    for (std::size_t p = 0; p < rig.params.size(); ++p)
-      values.values()[i * rig.params.size() + p] =
-          static_cast<float>((i == 0 ? -1.0 : 0.45 * double(i)) * limits[p]);
+    for (std::size_t p = 0; p < parameters.size(); ++p)
+      values.values()[i * values.values_per_instance() + parameters[p].offset] =
+          static_cast<float>((i == 0 ? -1.0 : 0.45 * double(i)) * parameters[p].limit);
   }
-  DeviceBatch batch = deformer.allocate(3);
-  deformer.enqueue(values, NormalMode::kRotate, batch, RigPath::kFused);
-  const DeformedBatch<float> rigged = deformer.read(batch);
+  const DeformedBatch<float> rigged =
+      test::run_on_device(deformer, values, NormalMode::kRotate, RigPath::kFused);
   for (std::size_t i = 0; i < 3; ++i) {
     for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
       worst = std::max(worst, std::fabs(glm::length(glm::dvec3(rigged.normal(i, v))) - 1.0));
@@ -114,12 +117,14 @@ TEST(Geometry, FoldOverIsCountedWhereTheRadiusOfCurvatureIsShorterThanZ) {
   // A vertex at height z above the spine folds where z k >= 1, k = 2m / sqrt(1 - 4m^2x^2).
   Mesh mesh = test::spine_ribbon(101, 0.5);
   for (glm::vec3& p : mesh.positions) p.z = 0.25f;  // the ribbon lifted off the secant plane
-  const LocalMesh local = make_local_mesh(mesh, BodyFrame::identity());
-  EXPECT_EQ(count_folded_vertices(local, 0.0, BendMode::kExact), 0u);
-  EXPECT_EQ(count_folded_vertices(local, -1.0, BendMode::kExact), 0u);  // bends away from z > 0
+  const RiggedMesh exact = RiggedMesh::single_bend(mesh, BodyFrame::identity(), BendMode::kExact);
+  const RiggedMesh paper = RiggedMesh::single_bend(mesh, BodyFrame::identity(), BendMode::kPaper);
+  const RigParameters m = test::values_of(exact, {0.0f, -1.0f, 1.0f});
+  EXPECT_EQ(count_folded_vertices(exact, m.view(), 0), 0u);
+  EXPECT_EQ(count_folded_vertices(exact, m.view(), 1), 0u);  // bends away from z > 0
   // m = 1: z k = 0.5 / sqrt(1 - 4x^2) >= 1 for |x| >= sqrt(3)/4 = 0.433: x = +-0.44 .. +-0.5.
-  EXPECT_EQ(count_folded_vertices(local, 1.0, BendMode::kExact), 2u * 2u * 7u);
-  EXPECT_EQ(count_folded_vertices(local, 1.0, BendMode::kPaper), 0u);  // the series' k < 4m
+  EXPECT_EQ(count_folded_vertices(exact, m.view(), 2), 2u * 2u * 7u);
+  EXPECT_EQ(count_folded_vertices(paper, m.view(), 2), 0u);  // the series' k < 4m
 }
 
 TEST(Geometry, RigidlyMovedFishBendsIntoTheMovedShape) {
@@ -135,12 +140,12 @@ TEST(Geometry, RigidlyMovedFishBendsIntoTheMovedShape) {
     for (glm::vec4& t : moved.tangents)
       t = glm::vec4(glm::vec3(motion * glm::dvec4(glm::dvec3(t), 0.0)), t.w);
 
-    const LocalMesh local = make_local_mesh(mesh, frame);
-    const std::vector<float> m = {static_cast<float>(0.7 * max_abs_m(local.x_max))};
-    const BendSettings settings{BendMode::kExact, NormalMode::kJacobian};
-    const DeformedBatch<float> original = bend_on_device(local, m, settings);
+    const double limit = test::bend_limit(RiggedMesh::single_bend(mesh, frame, BendMode::kExact));
+    const std::vector<float> m = {static_cast<float>(0.7 * limit)};
+    const DeformedBatch<float> original =
+        bend_on_device(mesh, frame, m, BendMode::kExact, NormalMode::kJacobian);
     const DeformedBatch<float> bent_moved =
-        bend_on_device(make_local_mesh(moved, find_body_frame(moved)), m, settings);
+        bend_on_device(moved, find_body_frame(moved), m, BendMode::kExact, NormalMode::kJacobian);
     double position_error = 0.0, normal_error = 0.0;
     for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
       const glm::dvec3 expected =

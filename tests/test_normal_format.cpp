@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "finflex/finflex.hpp"
+#include "support/deform.hpp"
 #include "support/synthetic_fish.hpp"
 #include "support/test_support.hpp"
 
@@ -55,17 +56,16 @@ TEST(NormalFormat, LayoutBytesAndNames) {
 
 TEST(NormalFormat, HalfBendKeepsPositionsAndRoundsNormals) {
   const Mesh mesh = load_mesh(test::data_path("barramundi/BarramundiFish.gltf"));  // has tangents
-  const LocalMesh local = make_local_mesh(mesh, find_body_frame(mesh));
-  ClDeformer deformer(test::shared_context(), local);
-  const std::vector<float> m = {0.0f, 0.3f, -0.6f};
-  DeviceBatch full = deformer.allocate(m.size());
-  DeviceBatch half = deformer.allocate(m.size(), NormalFormat::kHalf);
+  const RiggedMesh model = RiggedMesh::single_bend(mesh, find_body_frame(mesh), BendMode::kExact);
+  ClDeformer deformer(test::shared_context(), model);
+  const RigParameters m = test::values_of(model, {0.0f, 0.3f, -0.6f});
+  DeviceBatch full = deformer.allocate(3);
+  DeviceBatch half = deformer.allocate(3, NormalFormat::kHalf);
   EXPECT_EQ(half.layout.normal_format, NormalFormat::kHalf);
   for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {
-    deformer.enqueue(m, {BendMode::kExact, normals}, full);
-    deformer.enqueue(m, {BendMode::kExact, normals}, half);
-    expect_half_matches_float(deformer.read(full), deformer.read(half), mesh.vertex_count(),
-                              m.size());
+    expect_half_matches_float(test::run_on_device(deformer, full, m, normals),
+                              test::run_on_device(deformer, half, m, normals), mesh.vertex_count(),
+                              3);
   }
 }
 
@@ -77,27 +77,26 @@ TEST(NormalFormat, HalfRigOnBothPathsKeepsFloatIntermediates) {
   ComponentSpec body;
   body.name = "body";
   for (const char* param : {"a", "b", "c", "d", "e"}) {
-    StageSpec stage;
-    stage.deformer = param[0] % 2 ? DeformerKind::kBend : DeformerKind::kHinge;
-    stage.width = 0.2;
-    stage.param = param;
+    StageSpec stage = make_stage(param[0] % 2 ? "bend" : "hinge", param);
+    if (param[0] % 2 == 0) set_option(stage, "width", 0.2);
     body.chain.push_back(stage);
   }
   spec.components.push_back(body);
   const Mesh mesh = test::synthetic_fish(48, 24, true);
-  const Rig rig = resolve_rig(spec, mesh);
-  ClRigDeformer deformer(test::shared_context(), mesh, rig);
+  const RiggedMesh model(mesh, resolve_rig(spec, mesh));
+  ClDeformer deformer(test::shared_context(), model);
   ASSERT_EQ(deformer.pass_count(), 5u);
-  RigParameters values(rig, 2);
+  RigParameters values(model, 2);
   values.set(0, "a", 0.4f);
   values.set(1, "b", -0.7f);
   values.set(1, "e", 0.5f);
   DeviceBatch full = deformer.allocate(2);
   DeviceBatch half = deformer.allocate(2, NormalFormat::kHalf);
   for (RigPath path : {RigPath::kFused, RigPath::kPasses}) {
-    deformer.enqueue(values, NormalMode::kJacobian, full, path);
-    deformer.enqueue(values, NormalMode::kJacobian, half, path);
-    expect_half_matches_float(deformer.read(full), deformer.read(half), mesh.vertex_count(), 2);
+    expect_half_matches_float(
+        test::run_on_device(deformer, full, values, NormalMode::kJacobian, path),
+        test::run_on_device(deformer, half, values, NormalMode::kJacobian, path),
+        mesh.vertex_count(), 2);
   }
 }
 

@@ -37,6 +37,12 @@ using VertexSet = std::vector<std::uint32_t>;
 // ---------------------------------------------------------------------------------
 // Helpers
 
+std::vector<std::string> parameter_names(const Rig& rig) {
+  std::vector<std::string> names;
+  for (const RigParameter& parameter : rig.parameters) names.push_back(parameter.name);
+  return names;
+}
+
 // Success iff `call` throws finflex::Error with `code`, exactly `field`, and a message
 // that repeats the field (for "path": names the path instead) and contains
 // `message_part`.
@@ -188,7 +194,7 @@ void expect_consistent(const Rig& rig, const Mesh& mesh) {
       EXPECT_EQ(stage.frame.axis_x, c.frame.axis_x) << c.name;
       EXPECT_EQ(stage.frame.length, c.frame.length) << c.name;
       EXPECT_DOUBLE_EQ(stage.x_max, x_max) << c.name;
-      EXPECT_LT(stage.param, rig.params.size()) << c.name;
+      EXPECT_LT(stage.param, rig.parameters.size()) << c.name;
     }
   }
   EXPECT_EQ(std::count(owner.begin(), owner.end(), -1), 0) << "vertices in no component";
@@ -253,10 +259,10 @@ TEST(ParseRig, ReadsEveryField) {
   EXPECT_EQ(body.select.kind, Kind::kAll);
   EXPECT_FALSE(body.frame.has_value());
   ASSERT_EQ(body.chain.size(), 2u);
-  EXPECT_EQ(body.chain[0].deformer, DeformerKind::kBend);
-  EXPECT_EQ(body.chain[0].mode, BendMode::kPaper);
+  EXPECT_EQ(body.chain[0].deformer, find_deformer_type("bend"));
+  EXPECT_EQ(body.chain[0].options[0], 0.0);  // mode paper
   EXPECT_EQ(body.chain[0].param, "body_m");
-  EXPECT_EQ(body.chain[1].mode, BendMode::kExact);
+  EXPECT_EQ(body.chain[1].options[0], 1.0);  // mode exact
   EXPECT_EQ(body.chain[1].param, "turn");
 
   const ComponentSpec& tail = spec.components[1];
@@ -270,8 +276,8 @@ TEST(ParseRig, ReadsEveryField) {
   EXPECT_EQ(tail.frame->x, glm::dvec3(-1, 0, 0));
   EXPECT_EQ(tail.frame->length, 0.25);
   ASSERT_EQ(tail.chain.size(), 1u);
-  EXPECT_EQ(tail.chain[0].deformer, DeformerKind::kHinge);
-  EXPECT_EQ(tail.chain[0].width, 0.05);
+  EXPECT_EQ(tail.chain[0].deformer, find_deformer_type("hinge"));
+  EXPECT_EQ(tail.chain[0].options[0], 0.05);  // width
   EXPECT_EQ(tail.chain[0].param, "tail_angle");
 
   const ComponentSpec& fin = spec.components[2];
@@ -286,7 +292,7 @@ TEST(ParseRig, ReadsEveryField) {
   EXPECT_EQ(dorsal.select.kind, Kind::kGroup);
   EXPECT_EQ(dorsal.select.group, "dorsal fin");
   EXPECT_EQ(dorsal.frame->mode, Mode::kIdentity);
-  EXPECT_EQ(dorsal.chain[0].width, 0.0);  // hinge default
+  EXPECT_EQ(dorsal.chain[0].options[0], 0.0);  // hinge width default
 
   const ComponentSpec& head = spec.components[4];
   EXPECT_EQ(head.select.kind, Kind::kHalfSpace);
@@ -294,7 +300,7 @@ TEST(ParseRig, ReadsEveryField) {
   EXPECT_EQ(head.select.normal, glm::dvec3(1, 0.5, 0));
   EXPECT_EQ(head.frame->mode, Mode::kExplicit);
   EXPECT_FALSE(head.frame->length.has_value());
-  EXPECT_EQ(head.chain[0].mode, BendMode::kExact);  // bend default
+  EXPECT_EQ(head.chain[0].options[0], 1.0);  // bend mode default: exact
 }
 
 TEST(ParseRig, DefaultsAndTheOtherFrameModes) {
@@ -442,7 +448,7 @@ const ParseCase kParseCases[] = {
     {with_tail("\"all\"", "[1]"), kTail + ".chain[0]", "expected an object"},
     {with_tail_stage(R"({"param": "a"})"), kTail + ".chain[0].deformer", "missing"},
     {with_tail_stage(R"({"deformer": "twist", "param": "a"})"), kTail + ".chain[0].deformer",
-     "= \"twist\": expected \"bend\" or \"hinge\""},
+     "= \"twist\": expected " + deformer_type_names()},
     {with_tail_stage(R"({"deformer": "bend", "mode": "approximate", "param": "a"})"),
      kTail + ".chain[0].mode", "\"paper\" or \"exact\""},
     {with_tail_stage(R"({"deformer": "hinge", "mode": "exact", "param": "a"})"),
@@ -537,7 +543,7 @@ TEST(ResolveRig, HierarchyOnTheSyntheticFish) {
   EXPECT_EQ(rig.subtree_end, (std::vector<std::size_t>{4, 3, 3, 4}));
 
   // Parameters in order of first use in the file (head before fin), indices shared.
-  EXPECT_EQ(rig.params,
+  EXPECT_EQ(parameter_names(rig),
             (std::vector<std::string>{"body_m", "tail_angle", "head_angle", "fin_angle"}));
   EXPECT_EQ(rig.param_index("fin_angle"), 3u);
   EXPECT_TRUE(Fails([&] { rig.param_index("tail"); }, ErrorCode::kInvalidArgument, "tail",
@@ -546,9 +552,9 @@ TEST(ResolveRig, HierarchyOnTheSyntheticFish) {
   EXPECT_EQ(rig.components[3].chain[0].param, 0u);  // head reuses body_m
   EXPECT_EQ(rig.components[3].chain[1].param, 2u);
   EXPECT_EQ(rig.components[2].chain[0].param, 3u);
-  EXPECT_EQ(rig.components[1].chain[0].deformer, DeformerKind::kHinge);
-  EXPECT_EQ(rig.components[1].chain[0].width, 0.05);
-  EXPECT_EQ(rig.components[0].chain[0].mode, BendMode::kExact);
+  EXPECT_EQ(rig.components[1].chain[0].deformer, find_deformer_type("hinge"));
+  EXPECT_EQ(rig.components[1].chain[0].options[0], 0.05);  // width
+  EXPECT_EQ(rig.components[0].chain[0].options[0], 1.0);   // mode exact
 
   // Vertex sets: the tail's subtree is x <= -0.3, the fin its outer part, the head
   // x > 0.3; own = subtree minus children.
@@ -575,7 +581,7 @@ TEST(ResolveRig, HierarchyOnTheSyntheticFish) {
   EXPECT_NEAR(rig.components[3].chain[1].x_max, 1.0, 1e-9);
 
   // Paths, bottom-up.
-  using Path = std::vector<std::pair<std::size_t, std::size_t>>;
+  using Path = std::vector<StageRef>;
   EXPECT_EQ(rig.path(2), (Path{{2, 0}, {1, 0}, {0, 0}}));
   EXPECT_EQ(rig.path(3), (Path{{3, 0}, {3, 1}, {0, 0}}));
   EXPECT_EQ(rig.path(0), (Path{{0, 0}}));
@@ -612,8 +618,8 @@ TEST(ResolveRig, DepthFourTreePathsAndDepths) {
     EXPECT_EQ(rig.subtree_end[k], 4u);
     EXPECT_EQ(rig.components[k].parent, static_cast<int>(k) - 1);
   }
-  EXPECT_EQ(rig.params, (std::vector<std::string>{"p_b", "p_b2", "p_a", "m"}));
-  using Path = std::vector<std::pair<std::size_t, std::size_t>>;
+  EXPECT_EQ(parameter_names(rig), (std::vector<std::string>{"p_b", "p_b2", "p_a", "m"}));
+  using Path = std::vector<StageRef>;
   EXPECT_EQ(rig.path(3), (Path{{2, 0}, {2, 1}, {1, 0}, {0, 0}}));
   EXPECT_EQ(rig.path(2), (Path{{2, 0}, {2, 1}, {1, 0}, {0, 0}}));
   EXPECT_EQ(rig.path(1), (Path{{1, 0}, {0, 0}}));
@@ -967,9 +973,9 @@ TEST(ResolveRigErrors, ProgrammaticSpecsAreCheckedToo) {
   EXPECT_TRUE(Fails([&] { resolve_rig(spec, fish()); }, ErrorCode::kInvalidArgument,
                     kTail + ".frame.origin", "not finite"));
   spec = valid;
-  spec.components[1].chain[0].width = -0.5;
+  spec.components[1].chain[0].options[0] = -0.5;  // the hinge's width
   EXPECT_TRUE(Fails([&] { resolve_rig(spec, fish()); }, ErrorCode::kInvalidArgument,
-                    kTail + ".chain[0].width", "= -0.5 must be finite and >= 0"));
+                    kTail + ".chain[0].width", "= -0.5 is not a valid hinge width"));
   spec = valid;
   spec.components[1].chain[0].param.clear();
   EXPECT_TRUE(Fails([&] { resolve_rig(spec, fish()); }, ErrorCode::kInvalidArgument,
@@ -1025,11 +1031,12 @@ TEST(SingleBendRig, OneBodyWithOneBendReadingM) {
   EXPECT_EQ(body.vertices.size(), fish().vertex_count());
   EXPECT_EQ(body.frame.length, 2.0);
   ASSERT_EQ(body.chain.size(), 1u);
-  EXPECT_EQ(body.chain[0].deformer, DeformerKind::kBend);
-  EXPECT_EQ(body.chain[0].mode, BendMode::kPaper);
+  EXPECT_EQ(body.chain[0].deformer, find_deformer_type("bend"));
+  EXPECT_EQ(body.chain[0].options[0], 0.0);  // mode paper
   EXPECT_EQ(body.chain[0].param, 0u);
   EXPECT_NEAR(body.chain[0].x_max, 0.25, 1e-7);
-  EXPECT_EQ(rig.params, std::vector<std::string>{"m"});
+  EXPECT_EQ(parameter_names(rig), std::vector<std::string>{"m"});
+  EXPECT_DOUBLE_EQ(rig.parameters[0].limit, max_abs_m(0.25));
   EXPECT_EQ(rig.subtree_end, std::vector<std::size_t>{1});
   EXPECT_EQ(rig.depth(0), 0u);
   EXPECT_EQ(rig.param_index("m"), 0u);

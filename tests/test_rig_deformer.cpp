@@ -16,6 +16,7 @@
 #include <gtest/gtest.h>
 
 #include "finflex/finflex.hpp"
+#include "support/deform.hpp"
 #include "support/synthetic_fish.hpp"
 #include "support/test_support.hpp"
 
@@ -23,18 +24,14 @@ namespace finflex {
 namespace {
 
 StageSpec bend(const std::string& param, BendMode mode = BendMode::kExact) {
-  StageSpec s;
-  s.deformer = DeformerKind::kBend;
-  s.mode = mode;
-  s.param = param;
+  StageSpec s = make_stage("bend", param);
+  set_option(s, "mode", to_string(mode));
   return s;
 }
 
 StageSpec hinge(const std::string& param, double width) {
-  StageSpec s;
-  s.deformer = DeformerKind::kHinge;
-  s.width = width;
-  s.param = param;
+  StageSpec s = make_stage("hinge", param);
+  set_option(s, "width", width);
   return s;
 }
 
@@ -92,16 +89,27 @@ RigSpec long_chain_rig() {
 // Random parameters within `fraction` of each one's limit.
 RigParameters random_parameters(const Rig& rig, std::size_t instances, double fraction,
                                 unsigned seed) {
-  const std::vector<double> limits = rig_param_limits(rig);
   RigParameters values(rig, instances);
   std::mt19937 random(seed);
   std::uniform_real_distribution<double> uniform(-fraction, fraction);
   for (std::size_t i = 0; i < instances; ++i) {
-    for (std::size_t p = 0; p < rig.params.size(); ++p) {
-      values.values()[i * rig.params.size() + p] = static_cast<float>(uniform(random) * limits[p]);
+    for (const RigParameter& parameter : rig.parameters) {
+      for (std::size_t k = 0; k < parameter.count; ++k) {
+        values.values()[i * values.values_per_instance() + parameter.offset + k] =
+            static_cast<float>(uniform(random) * parameter.limit);
+      }
     }
   }
   return values;
+}
+
+// The generic rig kernels (not the single-bend one), dispatched as `dispatch` says.
+ClOptions rig_kernels(RigDispatch dispatch = RigDispatch::kAuto, std::size_t per_item = 0) {
+  ClOptions options;
+  options.dispatch = dispatch;
+  options.instances_per_item = per_item;
+  options.single_bend_kernel = false;
+  return options;
 }
 
 struct Difference {
@@ -136,23 +144,21 @@ double coordinate_scale(const Rig& rig) {
 void expect_paths_agree_with_each_other_and_the_reference(const Mesh& mesh, const Rig& rig,
                                                           const std::string& name,
                                                           RigDispatch dispatch) {
-  ClRigDeformer deformer(test::shared_context(), mesh, rig, 0, dispatch);
-  const RigReference reference(mesh, rig);
+  const RiggedMesh model(mesh, rig);
+  ClDeformer deformer(test::shared_context(), model, rig_kernels(dispatch));
   const std::size_t instances = 5;
   const RigParameters values = random_parameters(rig, instances, 0.8, 11);
   DeviceBatch batch = deformer.allocate(instances);
-  std::size_t longest = 1;
-  for (std::size_t c = 0; c < rig.components.size(); ++c)
-    longest = std::max(longest, rig.path(c).size());
+  const std::size_t longest = std::max<std::size_t>(model.longest_path(), 1);
   const double scale = coordinate_scale(rig);
   for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {
     SCOPED_TRACE(name + " " + to_string(normals) +
                  (dispatch == RigDispatch::kPerComponent ? " per component" : " by path shape"));
-    deformer.enqueue(values, normals, batch, RigPath::kFused);
-    const DeformedBatch<float> fused = deformer.read(batch);
-    deformer.enqueue(values, normals, batch, RigPath::kPasses);
-    const DeformedBatch<float> passes = deformer.read(batch);
-    const DeformedBatch<double> exact = reference.run(values, normals);
+    const DeformedBatch<float> fused =
+        test::run_on_device(deformer, batch, values, normals, RigPath::kFused);
+    const DeformedBatch<float> passes =
+        test::run_on_device(deformer, batch, values, normals, RigPath::kPasses);
+    const DeformedBatch<double> exact = run_reference(model, values, normals);
 
     const Difference between = max_difference(fused, passes, mesh.vertex_count(), instances);
     EXPECT_LT(between.position, 1e-6 * scale);
@@ -175,7 +181,7 @@ TEST(RigDeformer, DeepTreeFusedPassesAndReferenceAgree) {
   const Rig rig = resolve_rig(deep_tail_rig(), mesh);
   ASSERT_EQ(rig.components.size(), 5u);
   EXPECT_EQ(rig.depth(4), 4u);
-  ClRigDeformer deformer(test::shared_context(), mesh, rig);
+  ClDeformer deformer(test::shared_context(), RiggedMesh(mesh, rig), rig_kernels());
   EXPECT_EQ(deformer.pass_count(), 5u);  // one stage per level
   expect_paths_agree_with_each_other_and_the_reference(mesh, rig, "deep tree");
 }
@@ -183,7 +189,7 @@ TEST(RigDeformer, DeepTreeFusedPassesAndReferenceAgree) {
 TEST(RigDeformer, LongChainFusedPassesAndReferenceAgree) {
   const Mesh mesh = test::synthetic_fish(96, 32, true);
   const Rig rig = resolve_rig(long_chain_rig(), mesh);
-  ClRigDeformer deformer(test::shared_context(), mesh, rig);
+  ClDeformer deformer(test::shared_context(), RiggedMesh(mesh, rig), rig_kernels());
   EXPECT_EQ(deformer.pass_count(), 5u);  // one per chain position
   expect_paths_agree_with_each_other_and_the_reference(mesh, rig, "long chain");
 }
@@ -212,7 +218,7 @@ TEST(RigDeformer, StagelessComponentsAreCopiedOnThePassesPath) {
   ASSERT_TRUE(rig.path(0).empty());
   for (const RigComponent& component : rig.components)
     ASSERT_FALSE(component.vertices.empty()) << component.name;
-  ClRigDeformer deformer(test::shared_context(), mesh, rig);
+  ClDeformer deformer(test::shared_context(), RiggedMesh(mesh, rig), rig_kernels());
   EXPECT_EQ(deformer.pass_count(), 2u);  // depth 1: chain positions 0 and 1
   expect_paths_agree_with_each_other_and_the_reference(mesh, rig, "stageless components");
 }
@@ -220,13 +226,15 @@ TEST(RigDeformer, StagelessComponentsAreCopiedOnThePassesPath) {
 TEST(RigDeformer, PassesMoveEachVertexOnlyThroughItsOwnStages) {
   const Mesh mesh = test::synthetic_fish(96, 32, true);
   // Five stages on every vertex: four intermediate results, each written and read once.
-  ClRigDeformer long_chain(test::shared_context(), mesh, resolve_rig(long_chain_rig(), mesh));
+  ClDeformer long_chain(test::shared_context(),
+                        RiggedMesh(mesh, resolve_rig(long_chain_rig(), mesh)), rig_kernels());
   EXPECT_DOUBLE_EQ(long_chain.scratch_records_per_slot(), 8.0);
   // One stage on every vertex: no intermediate results.
   RigSpec single;
   single.frame.mode = FrameSpec::Mode::kIdentity;
   single.components.push_back(root({bend("m")}));
-  ClRigDeformer one_stage(test::shared_context(), mesh, resolve_rig(single, mesh));
+  ClDeformer one_stage(test::shared_context(), RiggedMesh(mesh, resolve_rig(single, mesh)),
+                       rig_kernels());
   EXPECT_DOUBLE_EQ(one_stage.scratch_records_per_slot(), 0.0);
 }
 
@@ -246,21 +254,17 @@ TEST(RigDeformer, ShippedRigsFusedPassesAndReferenceAgree) {
 TEST(RigDeformer, SingleBendRigMatchesTheBendKernel) {
   const Mesh mesh = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
   const BodyFrame frame = find_body_frame(mesh);
-  const LocalMesh local = make_local_mesh(mesh, frame);
-  const float m = static_cast<float>(0.7 * max_abs_m(local.x_max));
   for (BendMode mode : {BendMode::kPaper, BendMode::kExact}) {
-    const Rig rig = single_bend_rig(mesh, frame, mode);
-    ClRigDeformer rig_deformer(test::shared_context(), mesh, rig);
-    DeviceBatch rig_batch = rig_deformer.allocate(1);
-    RigParameters values(rig, 1);
-    values.set(0, "m", m);
-    rig_deformer.enqueue(values, NormalMode::kJacobian, rig_batch);
-    ClDeformer bend_deformer(test::shared_context(), local);
-    DeviceBatch bend_batch = bend_deformer.allocate(1);
-    bend_deformer.enqueue({m}, {mode, NormalMode::kJacobian}, bend_batch);
-    const Difference d = max_difference(rig_deformer.read(rig_batch),
-                                        bend_deformer.read(bend_batch), mesh.vertex_count(), 1);
-    EXPECT_LT(d.position, 2e-6 * coordinate_scale(rig));
+    const RiggedMesh model = RiggedMesh::single_bend(mesh, frame, mode);
+    const RigParameters m = test::bend_fractions(model, {0.7});
+    ClDeformer rig_deformer(test::shared_context(), model, rig_kernels());
+    ASSERT_FALSE(rig_deformer.uses_single_bend_kernel());
+    ClDeformer bend_deformer(test::shared_context(), model);
+    ASSERT_TRUE(bend_deformer.uses_single_bend_kernel());
+    const Difference d = max_difference(
+        test::run_on_device(rig_deformer, m, NormalMode::kJacobian),
+        test::run_on_device(bend_deformer, m, NormalMode::kJacobian), mesh.vertex_count(), 1);
+    EXPECT_LT(d.position, 2e-6 * coordinate_scale(model.rig()));
     EXPECT_LT(d.normal, 2e-5);
   }
 }
@@ -268,13 +272,13 @@ TEST(RigDeformer, SingleBendRigMatchesTheBendKernel) {
 TEST(RigDeformer, ComponentMovesOnlyItsOwnVerticesUntilItsParentDoes) {
   const Mesh mesh = test::synthetic_fish(96, 32);
   const Rig rig = resolve_rig(deep_tail_rig(), mesh);
-  ClRigDeformer deformer(test::shared_context(), mesh, rig);
+  ClDeformer deformer(test::shared_context(), RiggedMesh(mesh, rig), rig_kernels());
   DeviceBatch batch = deformer.allocate(1);
   RigParameters values(rig, 1);
   values.set(0, "tail3_angle", 0.6f);  // level 3 only; every other stage at rest
   for (RigPath path : {RigPath::kFused, RigPath::kPasses}) {
-    deformer.enqueue(values, NormalMode::kRotate, batch, path);
-    const DeformedBatch<float> out = deformer.read(batch);
+    const DeformedBatch<float> out =
+        test::run_on_device(deformer, batch, values, NormalMode::kRotate, path);
     // Components in depth-first order: 0 body, 1 tail1, 2 tail2, 3 tail3, 4 tail4.
     std::vector<bool> in_tail3(mesh.vertex_count(), false);
     for (std::size_t c = 3; c < 5; ++c) {
@@ -300,19 +304,17 @@ TEST(RigDeformer, ChildFollowsItsParent) {
   spec.components.push_back(root({bend("body_m")}));
   spec.components.push_back(box_component(
       "tail", "body", glm::dvec3(-10.0), glm::dvec3(-0.2, 10.0, 10.0), {hinge("tail_angle", 0.2)}));
-  const Rig rig = resolve_rig(spec, mesh);
-  const RigReference reference(mesh, rig);
-  RigParameters both(rig, 1), tail_only(rig, 1);
+  const RiggedMesh model(mesh, resolve_rig(spec, mesh));
+  RigParameters both(model, 1), tail_only(model, 1);
   both.set(0, "body_m", 0.6f);
   both.set(0, "tail_angle", 0.5f);
   tail_only.set(0, "tail_angle", 0.5f);
-  const Mesh hinged = instance_mesh(mesh, reference.run(tail_only, NormalMode::kRotate), 0);
-  const Rig body_only = single_bend_rig(hinged, BodyFrame::identity(), BendMode::kExact);
-  RigParameters m(body_only, 1);
-  m.set(0, "m", 0.6f);
+  const Mesh hinged = instance_mesh(mesh, run_reference(model, tail_only, NormalMode::kRotate), 0);
+  const RiggedMesh body_only =
+      RiggedMesh::single_bend(hinged, BodyFrame::identity(), BendMode::kExact);
   const DeformedBatch<double> composed =
-      RigReference(hinged, body_only).run(m, NormalMode::kRotate);
-  const DeformedBatch<double> direct = reference.run(both, NormalMode::kRotate);
+      run_reference(body_only, test::values_of(body_only, {0.6f}), NormalMode::kRotate);
+  const DeformedBatch<double> direct = run_reference(model, both, NormalMode::kRotate);
   const Difference d = max_difference(direct, composed, mesh.vertex_count(), 1);
   EXPECT_LT(d.position, 1e-6);  // float rounding of the intermediate mesh only
   EXPECT_LT(d.normal, 1e-6);
@@ -321,10 +323,10 @@ TEST(RigDeformer, ChildFollowsItsParent) {
 TEST(RigDeformer, SlotsKeepComponentsContiguousAndIndicesRemapped) {
   const Mesh mesh = test::synthetic_fish(96, 32);
   const Rig rig = resolve_rig(deep_tail_rig(), mesh);
-  ClRigDeformer deformer(test::shared_context(), mesh, rig);
+  ClDeformer deformer(test::shared_context(), RiggedMesh(mesh, rig), rig_kernels());
   const std::vector<std::uint32_t>& slots = deformer.slot_of_vertex();
   const std::size_t slot_count = deformer.layout(1).plane_stride;
-  EXPECT_EQ(slot_count % ClDeformer::kLocalSize, 0u);
+  EXPECT_EQ(slot_count % ClDeformer::kGroupSize, 0u);
   std::vector<bool> used(slot_count, false);
   for (std::uint32_t slot : slots) {
     ASSERT_LT(slot, slot_count);
@@ -338,7 +340,7 @@ TEST(RigDeformer, SlotsKeepComponentsContiguousAndIndicesRemapped) {
       high = std::max(high, slots[v]);
     }
     EXPECT_EQ(high - low + 1, component.vertices.size()) << component.name;
-    EXPECT_EQ(low % ClDeformer::kLocalSize, 0u) << component.name;
+    EXPECT_EQ(low % ClDeformer::kGroupSize, 0u) << component.name;
   }
   ASSERT_EQ(deformer.remapped_indices().size(), mesh.indices.size());
   for (std::size_t k = 0; k < mesh.indices.size(); ++k) {
@@ -354,8 +356,8 @@ TEST(RigDeformer, HeterogeneousFrameEqualsSeparateRuns) {
   const Rig synthetic_rig = resolve_rig(deep_tail_rig(), synthetic);
   const Rig blub_rig =
       resolve_rig(load_rig_file(test::data_path("rigs/blub_low_resolution.rig.json")), blub);
-  ClRigDeformer a(test::shared_context(), synthetic, synthetic_rig);
-  ClRigDeformer b(test::shared_context(), blub, blub_rig);
+  ClDeformer a(test::shared_context(), RiggedMesh(synthetic, synthetic_rig));
+  ClDeformer b(test::shared_context(), RiggedMesh(blub, blub_rig));
   RigFrame frame;
   const std::size_t first = frame.add(a, 7);
   const std::size_t second = frame.add(b, 3);
@@ -366,12 +368,12 @@ TEST(RigDeformer, HeterogeneousFrameEqualsSeparateRuns) {
   const DeformedBatch<float> together_a = a.read(frame.batch(first));
   const DeformedBatch<float> together_b = b.read(frame.batch(second));
 
-  DeviceBatch alone = a.allocate(7);
-  a.enqueue(frame.parameters(first), NormalMode::kJacobian, alone);
-  EXPECT_EQ(max_difference(a.read(alone), together_a, synthetic.vertex_count(), 7).position, 0.0);
-  DeviceBatch alone_b = b.allocate(3);
-  b.enqueue(frame.parameters(second), NormalMode::kJacobian, alone_b);
-  EXPECT_EQ(max_difference(b.read(alone_b), together_b, blub.vertex_count(), 3).position, 0.0);
+  const DeformedBatch<float> alone =
+      test::run_on_device(a, frame.parameters(first), NormalMode::kJacobian);
+  EXPECT_EQ(max_difference(alone, together_a, synthetic.vertex_count(), 7).position, 0.0);
+  const DeformedBatch<float> alone_b =
+      test::run_on_device(b, frame.parameters(second), NormalMode::kJacobian);
+  EXPECT_EQ(max_difference(alone_b, together_b, blub.vertex_count(), 3).position, 0.0);
 }
 
 // Kernel arguments are set only when a frame goes to another batch than the kernel's
@@ -380,46 +382,52 @@ TEST(RigDeformer, HeterogeneousFrameEqualsSeparateRuns) {
 TEST(RigDeformer, AlternatingBatchesAndPathsEachGetTheirOwnFrames) {
   const Mesh mesh = test::synthetic_fish(64, 24);
   const Rig rig = resolve_rig(deep_tail_rig(), mesh);
-  ClRigDeformer deformer(test::shared_context(), mesh, rig);
+  const RiggedMesh model(mesh, rig);
+  ClDeformer deformer(test::shared_context(), model, rig_kernels());
   DeviceBatch first = deformer.allocate(3);
   DeviceBatch second = deformer.allocate(2);
   const RigParameters a = random_parameters(rig, 3, 0.7, 21);
   const RigParameters b = random_parameters(rig, 2, 0.7, 22);
   const RigParameters c = random_parameters(rig, 3, 0.7, 23);
-  deformer.enqueue(a, NormalMode::kRotate, first, RigPath::kFused);
-  deformer.enqueue(b, NormalMode::kRotate, second, RigPath::kPasses);
-  deformer.enqueue(c, NormalMode::kRotate, first, RigPath::kPasses);
+  auto enqueue = [&](const RigParameters& values, DeviceBatch& batch, RigPath path) {
+    ClJob job;
+    job.model = &model;
+    job.parameters = values.view();
+    job.path = path;
+    job.outputs = &batch;
+    deformer.enqueue(job);
+  };
+  enqueue(a, first, RigPath::kFused);
+  enqueue(b, second, RigPath::kPasses);
+  enqueue(c, first, RigPath::kPasses);
   // Parameters for another instance count: rejected, the batch keeps its frame.
-  EXPECT_THROW(deformer.enqueue(a, NormalMode::kRotate, second, RigPath::kFused), Error);
+  EXPECT_THROW(enqueue(a, second, RigPath::kFused), Error);
   const DeformedBatch<float> from_first = deformer.read(first);
   const DeformedBatch<float> from_second = deformer.read(second);
 
-  ClRigDeformer fresh(test::shared_context(), mesh, rig);
-  DeviceBatch expected_first = fresh.allocate(3);
-  fresh.enqueue(c, NormalMode::kRotate, expected_first, RigPath::kPasses);
-  DeviceBatch expected_second = fresh.allocate(2);
-  fresh.enqueue(b, NormalMode::kRotate, expected_second, RigPath::kPasses);
-  EXPECT_EQ(max_difference(from_first, fresh.read(expected_first), mesh.vertex_count(), 3).position,
-            0.0);
-  EXPECT_EQ(
-      max_difference(from_second, fresh.read(expected_second), mesh.vertex_count(), 2).position,
-      0.0);
+  ClDeformer fresh(test::shared_context(), model, rig_kernels());
+  const DeformedBatch<float> expected_first =
+      test::run_on_device(fresh, c, NormalMode::kRotate, RigPath::kPasses);
+  const DeformedBatch<float> expected_second =
+      test::run_on_device(fresh, b, NormalMode::kRotate, RigPath::kPasses);
+  EXPECT_EQ(max_difference(from_first, expected_first, mesh.vertex_count(), 3).position, 0.0);
+  EXPECT_EQ(max_difference(from_second, expected_second, mesh.vertex_count(), 2).position, 0.0);
 }
 
 TEST(RigDeformer, SeveralInstancesPerWorkItemGiveTheSameResult) {
   const Mesh mesh = load_mesh(test::data_path("barramundi/BarramundiFish.gltf"));
   const Rig rig = resolve_rig(load_rig_file(test::data_path("rigs/barramundi.rig.json")), mesh);
+  const RiggedMesh model(mesh, rig);
   const RigParameters values = random_parameters(rig, 7, 0.7, 5);  // an odd count
-  ClRigDeformer one(test::shared_context(), mesh, rig, 1);
-  DeviceBatch reference_batch = one.allocate(7);
+  ClDeformer one(test::shared_context(), model, rig_kernels(RigDispatch::kAuto, 1));
   for (RigPath path : {RigPath::kFused, RigPath::kPasses}) {
-    one.enqueue(values, NormalMode::kJacobian, reference_batch, path);
-    const DeformedBatch<float> expected = one.read(reference_batch);
+    const DeformedBatch<float> expected =
+        test::run_on_device(one, values, NormalMode::kJacobian, path);
     for (std::size_t per_item : {2u, 3u, 4u}) {
-      ClRigDeformer several(test::shared_context(), mesh, rig, per_item);
-      DeviceBatch batch = several.allocate(7);
-      several.enqueue(values, NormalMode::kJacobian, batch, path);
-      const Difference d = max_difference(several.read(batch), expected, mesh.vertex_count(), 7);
+      ClDeformer several(test::shared_context(), model, rig_kernels(RigDispatch::kAuto, per_item));
+      const DeformedBatch<float> got =
+          test::run_on_device(several, values, NormalMode::kJacobian, path);
+      const Difference d = max_difference(got, expected, mesh.vertex_count(), 7);
       EXPECT_LT(d.position, 1e-6 * coordinate_scale(rig)) << per_item << " " << to_string(path);
       EXPECT_LT(d.normal, 1e-5) << per_item << " " << to_string(path);
     }
@@ -429,23 +437,23 @@ TEST(RigDeformer, SeveralInstancesPerWorkItemGiveTheSameResult) {
 TEST(RigDeformer, BadParametersAreRejectedByName) {
   const Mesh mesh = test::synthetic_fish(48, 16);
   const Rig rig = resolve_rig(deep_tail_rig(), mesh);
-  ClRigDeformer deformer(test::shared_context(), mesh, rig);
+  ClDeformer deformer(test::shared_context(), RiggedMesh(mesh, rig), rig_kernels());
   DeviceBatch batch = deformer.allocate(2);
   RigParameters values(rig, 2);
   EXPECT_THROW(values.set(0, "no_such_param", 1.0f), Error);
   EXPECT_THROW(values.set(2, "body_m", 1.0f), Error);
   values.set(1, "tail1_angle", 4.0f);  // beyond pi
   try {
-    deformer.enqueue(values, NormalMode::kRotate, batch);
+    test::run_on_device(deformer, batch, values, NormalMode::kRotate);
     FAIL() << "expected an out-of-range error";
   } catch (const Error& e) {
     EXPECT_EQ(e.code(), ErrorCode::kOutOfRange);
     EXPECT_EQ(e.field(), "tail1_angle[1]");
   }
   values.set(1, "tail1_angle", NAN);
-  EXPECT_THROW(deformer.enqueue(values, NormalMode::kRotate, batch), Error);
+  EXPECT_THROW(test::run_on_device(deformer, batch, values, NormalMode::kRotate), Error);
   RigParameters wrong_count(rig, 3);
-  EXPECT_THROW(deformer.enqueue(wrong_count, NormalMode::kRotate, batch), Error);
+  EXPECT_THROW(test::run_on_device(deformer, batch, wrong_count, NormalMode::kRotate), Error);
   EXPECT_THROW(parse_rig_path("sideways"), Error);
 }
 

@@ -3,65 +3,62 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "finflex/error.hpp"
+#include "stage_walk.hpp"
 
 namespace finflex {
 namespace {
 
-constexpr double kPositionBound = 4e-6;  // times (|origin| + s_x)
+constexpr double kPositionBound = 4e-6;  // times (|origin| + s_x) of the root's frame
 constexpr double kNormalBound = 2e-5;
-constexpr double kNearLimit = 1e-3;  // 1 - (2mx)^2 below this: near the exact limit
 constexpr double kNearLimitBound = 2e-3;
-constexpr double kFoldMargin = 0.05;  // |1 - z k| below this: on a fold
 
-// Spine curvature k at x (METHOD.md section 6): exact 2m / sqrt(1 - u^2); the series'
-// (a u' - u a') / |df/dx|^3 with u = 2mx, a = 1 - u^2/2 - u^4/8.
-double spine_curvature(double x, double m, BendMode mode) {
-  const double u = std::clamp(2.0 * m * x, -1.0, 1.0);
-  if (mode == BendMode::kExact) return 2.0 * m / std::max(std::sqrt((1.0 - u) * (1.0 + u)), 1e-6);
-  const double a = 1.0 - u * u * (0.5 + 0.125 * u * u);
-  const double g = std::sqrt(a * a + u * u);
-  return 2.0 * m * (1.0 + u * u * (0.5 + 0.375 * u * u)) / (g * g * g);
+// Instance i's parameter row as doubles.
+std::vector<double> row_of(const RiggedMesh& model, const ParameterView& parameters,
+                           std::size_t i) {
+  const std::size_t count = model.values_per_instance();
+  const std::size_t stride = parameters.stride ? parameters.stride : count;
+  std::vector<double> row(count);
+  for (std::size_t k = 0; k < count; ++k) row[k] = parameters.data[i * stride + k];
+  return row;
 }
 
 }  // namespace
 
-AccuracyReport compare_to_reference(const LocalMesh& local, const std::vector<float>& m,
-                                    const BendSettings& settings,
-                                    const DeformedBatch<float>& device,
+AccuracyReport compare_to_reference(const RiggedMesh& model, const ParameterView& parameters,
+                                    NormalMode normals, const DeformedBatch<float>& device,
                                     const DeformedBatch<double>& reference) {
   const BatchLayout& a = device.layout;
   const BatchLayout& b = reference.layout;
-  if (a.vertex_count != local.vertex_count() || b.vertex_count != local.vertex_count() ||
-      a.instance_count != m.size() || b.instance_count != m.size() || a.tangents != b.tangents) {
+  const std::size_t instances = parameters.instance_count;
+  if (a.vertex_count != model.vertex_count() || b.vertex_count != model.vertex_count() ||
+      a.instance_count != instances || b.instance_count != instances || a.tangents != b.tangents) {
     throw Error(ErrorCode::kInvalidArgument, "device",
                 "the device batch (" + std::to_string(a.instance_count) + " x " +
                     std::to_string(a.vertex_count) + ") and the reference batch (" +
                     std::to_string(b.instance_count) + " x " + std::to_string(b.vertex_count) +
-                    ") do not match the mesh and the " + std::to_string(m.size()) + " parameters");
+                    ") do not match the model and the " + std::to_string(instances) + " instances");
   }
-  const BodyFrame& frame = local.frame;
-  const double position_bound = kPositionBound * (glm::length(frame.origin) + frame.length);
+  const BodyFrame& root = model.rig().components.front().frame;
+  const double position_bound = kPositionBound * (glm::length(root.origin) + root.length);
   AccuracyReport report;
-  for (std::size_t i = 0; i < m.size(); ++i) {
-    for (std::size_t v = 0; v < local.vertex_count(); ++v) {
-      const glm::dvec3& p = local.positions[v];
-      const double u = 2.0 * m[i] * p.x;
-      const bool near_limit = settings.mode == BendMode::kExact && 1.0 - u * u < kNearLimit;
+  for (std::size_t i = 0; i < instances; ++i) {
+    const std::vector<double> row = row_of(model, parameters, i);
+    for (std::size_t v = 0; v < model.vertex_count(); ++v) {
+      detail::PathConditioning c;
+      detail::deform_vertex(model, v, row.data(), normals, &c);
+      const double stages = static_cast<double>(std::max<std::size_t>(c.stages, 1));
 
       const double position_error =
           glm::length(glm::dvec3(device.position(i, v)) - reference.position(i, v));
       const double bound =
-          position_bound + (near_limit ? kNearLimitBound * std::fabs(p.z) * frame.length : 0.0);
+          stages * position_bound + (c.near_limit ? kNearLimitBound * c.near_limit_z : 0.0);
       report.max_position_error = std::max(report.max_position_error, position_error);
       report.max_position_ratio = std::max(report.max_position_ratio, position_error / bound);
 
-      const bool ill_defined =
-          settings.normals == NormalMode::kJacobian &&
-          (near_limit ||
-           std::fabs(1.0 - p.z * spine_curvature(p.x, m[i], settings.mode)) < kFoldMargin);
-      if (ill_defined) {
+      if (normals == NormalMode::kJacobian && (c.near_limit || c.near_fold)) {
         ++report.skipped_normals;
         continue;
       }
@@ -72,8 +69,9 @@ AccuracyReport compare_to_reference(const LocalMesh& local, const std::vector<fl
       }
       ++report.compared;
       report.max_normal_error = std::max(report.max_normal_error, normal_error);
-      report.max_normal_ratio = std::max(
-          report.max_normal_ratio, normal_error / (near_limit ? kNearLimitBound : kNormalBound));
+      report.max_normal_ratio =
+          std::max(report.max_normal_ratio,
+                   normal_error / (c.near_limit ? kNearLimitBound : stages * kNormalBound));
     }
   }
   return report;
@@ -91,10 +89,19 @@ double mean_angle_to_face_normals(const Mesh& mesh) {
   return mesh.vertex_count() == 0 ? 0.0 : sum / static_cast<double>(mesh.vertex_count());
 }
 
-std::size_t count_folded_vertices(const LocalMesh& local, double m, BendMode mode) {
+std::size_t count_folded_vertices(const RiggedMesh& model, const ParameterView& parameters,
+                                  std::size_t instance) {
+  if (instance >= parameters.instance_count) {
+    throw Error(ErrorCode::kInvalidArgument, "instance",
+                "instance = " + std::to_string(instance) + " is out of range (" +
+                    std::to_string(parameters.instance_count) + " instances)");
+  }
+  const std::vector<double> row = row_of(model, parameters, instance);
   std::size_t folded = 0;
-  for (const glm::dvec3& p : local.positions) {
-    folded += p.z * spine_curvature(p.x, m, mode) >= 1.0;
+  for (std::size_t v = 0; v < model.vertex_count(); ++v) {
+    detail::PathConditioning c;
+    detail::deform_vertex(model, v, row.data(), NormalMode::kRotate, &c);
+    folded += c.folded;
   }
   return folded;
 }

@@ -1,12 +1,20 @@
+// The OpenCL backend (finflex/cl_deformer.hpp): the model uploaded once; per frame,
+// the job checked, its parameters uploaded without blocking, the kernels enqueued.
 #include "finflex/cl_deformer.hpp"
 
+#include <algorithm>
+#include <cstring>
 #include <string>
 
-#include "device_batch.hpp"
+#include "cl_deformer_impl.hpp"
+#include "device_profile.hpp"
 #include "finflex/error.hpp"
+#include "rig_program.hpp"
 
 namespace finflex {
 namespace {
+
+using detail::kWorkGroupSize;
 
 cl_float4 to_cl_float4(const glm::dvec3& v) {
   cl_float4 out;
@@ -17,172 +25,339 @@ cl_float4 to_cl_float4(const glm::dvec3& v) {
   return out;
 }
 
-// Rest planes px py pz nx ny nz [tx ty tz], padding vertices at the origin with normal e_z.
-std::vector<float> rest_planes(const LocalMesh& mesh, std::size_t stride) {
-  const std::size_t planes = mesh.has_tangents() ? 9 : 6;
-  std::vector<float> data(planes * stride, 0.0f);
-  for (std::size_t v = mesh.vertex_count(); v < stride; ++v) data[5 * stride + v] = 1.0f;
-  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
-    for (int c = 0; c < 3; ++c) {
-      data[c * stride + v] = static_cast<float>(mesh.positions[v][c]);
-      data[(3 + c) * stride + v] = static_cast<float>(mesh.normals[v][c]);
-      if (mesh.has_tangents()) data[(6 + c) * stride + v] = static_cast<float>(mesh.tangents[v][c]);
-    }
-  }
-  return data;
+[[noreturn]] void fail_outputs(const std::string& message) {
+  throw Error(ErrorCode::kInvalidArgument, "job.outputs", "job.outputs: " + message);
+}
+
+std::size_t buffer_bytes(const cl::Buffer& buffer) {
+  std::size_t bytes = 0;
+  check_cl(buffer.getInfo(CL_MEM_SIZE, &bytes), "clGetMemObjectInfo");
+  return bytes;
 }
 
 }  // namespace
 
-std::string bend_build_options(const BendSettings& settings, bool tangents, NormalFormat format,
-                               std::size_t instances_per_item) {
-  return std::string("-DFF_BEND_EXACT=") + (settings.mode == BendMode::kExact ? "1" : "0") +
-         " -DFF_NORMALS_JACOBIAN=" + (settings.normals == NormalMode::kJacobian ? "1" : "0") +
-         " -DFF_TANGENTS=" + (tangents ? "1" : "0") +
-         " -DFF_HALF_NORMALS=" + (format == NormalFormat::kHalf ? "1" : "0") +
-         " -DFF_INSTANCES_PER_ITEM=" + std::to_string(instances_per_item);
-}
+// ----------------------------------------------------------------------------------
+// Set-up: the model on the device
 
-std::size_t instances_per_work_item(const DeviceDescription& device, NormalFormat format) {
-  if (device.type != "GPU") return 1;
-  return format == NormalFormat::kHalf ? 4 : 2;
-}
+ClDeformer::Impl::Impl(Context& context_in, const RiggedMesh& model_in, const ClOptions& options_in)
+    : context(context_in), model(model_in), options(options_in), checker_(model_in.rig()) {
+  const DeviceDescription& device = context.description();
+  options.dispatch = detail::device_dispatch(device, options.dispatch);
+  single_bend = options.single_bend_kernel && model.is_single_bend();
+  const bool share_code = options.dispatch == RigDispatch::kByPathShape;
+  const Rig& rig = model.rig();
+  tangents_ = model.mesh().has_tangents();
 
-namespace {
+  const detail::SlotLayout slots =
+      detail::make_slot_layout(rig, model.vertex_count(), kWorkGroupSize);
+  slot_count_ = slots.slot_count;
+  slot_of_vertex = slots.slot_of_vertex;
+  remapped_indices.reserve(model.mesh().indices.size());
+  for (std::uint32_t index : model.mesh().indices)
+    remapped_indices.push_back(slot_of_vertex[index]);
 
-// NDRange of the batch kernels: (plane_stride, ceil(instances / per_item)).
-cl::NDRange batch_range(const BatchLayout& layout, std::size_t per_item) {
-  return cl::NDRange(layout.plane_stride, (layout.instance_count + per_item - 1) / per_item);
-}
+  const cl::Context& cl_context = context.context();
+  const detail::RestPlanes rest = detail::make_rest_planes(model, slots);
+  const std::size_t plane_bytes = rest.positions.size() * sizeof(float);
+  rest_positions_ =
+      detail::make_buffer(cl_context, CL_MEM_READ_ONLY, plane_bytes, rest.positions.data());
+  rest_normals_ =
+      detail::make_buffer(cl_context, CL_MEM_READ_ONLY, plane_bytes, rest.normals.data());
+  rest_tangents_ = tangents_ ? detail::make_buffer(cl_context, CL_MEM_READ_ONLY, plane_bytes,
+                                                   rest.tangents.data())
+                             : detail::make_buffer(cl_context, CL_MEM_READ_ONLY, sizeof(float));
 
-}  // namespace
-
-cl::Event enqueue_write_only(Context& context, DeviceBatch& batch, std::size_t instances_per_item,
-                             WriteValues values) {
-  const std::size_t per_item =
-      instances_per_item
-          ? instances_per_item
-          : instances_per_work_item(context.description(), batch.layout.normal_format);
-  if (values == WriteValues::kDeviceDefault) {
-    values = context.description().type == "GPU" ? WriteValues::kVarying : WriteValues::kConstant;
+  if (single_bend) {
+    // The rest planes are in the bend's frame already; the kernel goes back by (2).
+    const RigStage& stage = rig.components[0].chain[0];
+    const BodyFrame& f = stage.frame;
+    back_transform_ = {to_cl_float4(f.origin),
+                       to_cl_float4(f.axis_x * f.length),
+                       to_cl_float4(f.axis_y * f.length),
+                       to_cl_float4(f.axis_z * f.length),
+                       to_cl_float4(f.axis_x),
+                       to_cl_float4(f.axis_y),
+                       to_cl_float4(f.axis_z)};
+    std::vector<std::string> files = common_kernel_files();
+    files.push_back(stage.deformer->cl_file);
+    files.push_back("single_bend.cl");
+    const bool exact =
+        stage.deformer->cl_function(stage.options) == std::string("bend_exact_in_frame");
+    program_ = {files, std::string("#define FF_BEND_EXACT ") + (exact ? "1" : "0") + "\n", ""};
+    fused_launches_.emplace_back(0, slot_count_ / kWorkGroupSize);
+    pass_count = 1;
+    automatic_path = RigPath::kFused;
+    return;
   }
-  const std::string options =
-      std::string("-DFF_INSTANCES_PER_ITEM=") + std::to_string(per_item) +
-      (batch.layout.normal_format == NormalFormat::kHalf ? " -DFF_HALF_NORMALS=1" : "") +
-      (values == WriteValues::kVarying ? " -DFF_VARYING_WRITES=1" : "") +
-      (batch.layout.tangents ? " -DFF_TANGENTS=1" : "");
-  cl::Kernel kernel = context.kernel("write_planes", ProgramSource::bend_batch(), options);
-  check_cl(kernel.setArg(0, batch.positions), "clSetKernelArg write_planes");
-  check_cl(kernel.setArg(1, batch.normals), "clSetKernelArg write_planes");
-  check_cl(kernel.setArg(2, batch.tangents), "clSetKernelArg write_planes");
-  check_cl(kernel.setArg(3, static_cast<cl_uint>(batch.layout.plane_stride)), "clSetKernelArg");
-  check_cl(kernel.setArg(4, static_cast<cl_uint>(batch.layout.instance_count)), "clSetKernelArg");
-  check_cl(kernel.setArg(5, 1.0f), "clSetKernelArg write_planes");
-  cl::Event done;
-  check_cl(context.queue().enqueueNDRangeKernel(
-               kernel, cl::NullRange, batch_range(batch.layout, per_item),
-               cl::NDRange(ClDeformer::kLocalSize, 1), nullptr, &done),
-           "clEnqueueNDRangeKernel write_planes");
-  return done;
+
+  const std::vector<float> table = detail::stage_table(rig);
+  stages_ =
+      detail::make_buffer(cl_context, CL_MEM_READ_ONLY, table.size() * sizeof(float), table.data());
+  const std::vector<std::uint32_t> paths = detail::group_path_table(model, slots, kWorkGroupSize);
+  group_paths_ = detail::make_buffer(cl_context, CL_MEM_READ_ONLY,
+                                     paths.size() * sizeof(std::uint32_t), paths.data());
+  const detail::PassPlan plan = detail::make_pass_plan(model, slots, kWorkGroupSize, share_code);
+  const std::vector<detail::FusedLaunch> fused =
+      detail::make_fused_plan(model, slots, kWorkGroupSize, share_code);
+  for (const detail::FusedLaunch& launch : fused)
+    fused_launches_.emplace_back(launch.first_group, launch.end_group);
+  pass_count = plan.passes.size();
+  scratch_sets_ = plan.scratch_sets;
+  scratch_records_per_slot = plan.scratch_records_per_slot;
+  automatic_path =
+      model.longest_path() <= ClDeformer::kMaxFusedStages ? RigPath::kFused : RigPath::kPasses;
+  program_ = {detail::rig_program_files(rig),
+              detail::rig_dispatch_source(model, slots, fused, plan, kWorkGroupSize, share_code),
+              ""};
 }
 
-ClDeformer::ClDeformer(Context& context, const LocalMesh& mesh, std::size_t instances_per_item)
-    : context_(context),
-      mesh_(mesh),
-      plane_stride_(padded_plane_stride(mesh.vertex_count())),
-      instances_per_item_(instances_per_item) {
-  static_assert(64 % kLocalSize == 0, "plane_stride must be a multiple of the work-group size");
-  if (plane_stride_ > 0xffffffffu) {
-    throw Error(ErrorCode::kInvalidMesh, "positions", "the mesh has more than 2^32 vertices");
-  }
-  std::vector<float> planes = rest_planes(mesh_, plane_stride_);
-  rest_ = detail::make_buffer(context_.context(), CL_MEM_READ_ONLY, planes.size() * sizeof(float),
-                              planes.data());
-  const BodyFrame& f = mesh_.frame;
-  back_transform_ = {to_cl_float4(f.origin),
-                     to_cl_float4(f.axis_x * f.length),
-                     to_cl_float4(f.axis_y * f.length),
-                     to_cl_float4(f.axis_z * f.length),
-                     to_cl_float4(f.axis_x),
-                     to_cl_float4(f.axis_y),
-                     to_cl_float4(f.axis_z)};
-}
-
-BatchLayout ClDeformer::layout(std::size_t instances, NormalFormat format) const {
+BatchLayout ClDeformer::Impl::layout(std::size_t instances, NormalFormat format) const {
   BatchLayout layout;
   layout.normal_format = format;
-  layout.vertex_count = mesh_.vertex_count();
+  layout.vertex_count = model.vertex_count();
   layout.instance_count = instances;
-  layout.plane_stride = plane_stride_;
-  layout.tangents = mesh_.has_tangents();
+  layout.plane_stride = slot_count_;
+  layout.tangents = tangents_;
   return layout;
 }
 
-DeviceBatch ClDeformer::allocate(std::size_t instances, NormalFormat format) const {
-  return detail::allocate_batch(context_, layout(instances, format), 1);
+std::size_t ClDeformer::Impl::per_item(NormalFormat format) const {
+  return options.instances_per_item
+             ? options.instances_per_item
+             : detail::device_instances_per_item(context.description(), single_bend, format);
 }
 
-cl::Event ClDeformer::enqueue(const std::vector<float>& m, const BendSettings& settings,
-                              DeviceBatch& batch, bool clamp, const std::vector<cl::Event>* wait) {
-  if (m.size() != batch.layout.instance_count) {
-    throw Error(ErrorCode::kInvalidArgument, "m",
-                "m has " + std::to_string(m.size()) + " values for a batch of " +
-                    std::to_string(batch.layout.instance_count) + " instances");
+// ----------------------------------------------------------------------------------
+// Checks
+
+void ClDeformer::Impl::check_outputs(const ClJob& job) const {
+  const DeviceBatch& batch = *job.outputs;
+  const BatchLayout& got = batch.layout;
+  const BatchLayout want = layout(job.parameters.instance_count, got.normal_format);
+  if (batch.serial == 0) fail_outputs("the batch was not allocated (use ClDeformer::allocate)");
+  if (got.vertex_count != want.vertex_count || got.plane_stride != want.plane_stride ||
+      got.tangents != want.tangents) {
+    fail_outputs("the batch is laid out for " + std::to_string(got.vertex_count) + " vertices on " +
+                 std::to_string(got.plane_stride) + " slots" +
+                 (got.tangents ? " with" : " without") + " tangents; this model needs " +
+                 std::to_string(want.vertex_count) + " on " + std::to_string(want.plane_stride) +
+                 (want.tangents ? " with" : " without") +
+                 " tangents (allocate it from this deformer)");
   }
-  std::vector<float>& staged = detail::next_staging(batch);
-  check_bend_params_into(m, mesh_.x_max, clamp, staged);
-  detail::upload_parameters(context_, batch, staged, wait);
+  if (got.instance_count != want.instance_count) {
+    fail_outputs("the batch holds " + std::to_string(got.instance_count) +
+                 " instances, the job's parameters are for " + std::to_string(want.instance_count));
+  }
+}
 
-  cl::CommandQueue& queue = context_.queue();
-
-  BoundKernel& bound = bend_kernel(settings, batch.layout.normal_format);
-  cl::Kernel& kernel = bound.kernel;
-  if (!bound.bound_to(batch)) {
-    cl_uint arg = 0;
-    check_cl(kernel.setArg(arg++, rest_), "clSetKernelArg rest");
-    check_cl(kernel.setArg(arg++, batch.parameters), "clSetKernelArg m");
-    check_cl(kernel.setArg(arg++, batch.positions), "clSetKernelArg out_positions");
-    check_cl(kernel.setArg(arg++, batch.normals), "clSetKernelArg out_normals");
-    check_cl(kernel.setArg(arg++, batch.tangents), "clSetKernelArg out_tangents");
-    check_cl(kernel.setArg(arg++, static_cast<cl_uint>(plane_stride_)), "clSetKernelArg stride");
-    check_cl(kernel.setArg(arg++, static_cast<cl_uint>(batch.layout.instance_count)),
-             "clSetKernelArg instances");
-    for (const cl_float4& value : back_transform_) {
-      check_cl(kernel.setArg(arg++, value), "clSetKernelArg back transform");
+// The buffers themselves, once per batch: a batch put together by hand must hold what
+// its layout says.
+void ClDeformer::Impl::check_buffer_sizes(const DeviceBatch& batch) {
+  if (batch.serial == validated_serial_) return;
+  const BatchLayout& layout = batch.layout;
+  const std::pair<const char*, std::pair<const cl::Buffer*, std::size_t>> wanted[] = {
+      {"positions", {&batch.positions, detail::position_bytes(layout)}},
+      {"normals", {&batch.normals, detail::direction_bytes(layout)}},
+      {"tangents", {&batch.tangents, layout.tangents ? detail::direction_bytes(layout) : 0}}};
+  for (const auto& [name, buffer] : wanted) {
+    const std::size_t bytes = (*buffer.first)() ? buffer_bytes(*buffer.first) : 0;
+    if (bytes < buffer.second || bytes == 0) {
+      fail_outputs(std::string(name) + " holds " + std::to_string(bytes) + " bytes, the layout " +
+                   std::to_string(buffer.second));
     }
-    bound.mark_bound(batch);
   }
-  cl::Event done;
-  check_cl(
-      queue.enqueueNDRangeKernel(kernel, cl::NullRange,
-                                 batch_range(batch.layout, per_item(batch.layout.normal_format)),
-                                 cl::NDRange(kLocalSize, 1), nullptr, &done),
-      "clEnqueueNDRangeKernel bend_batch");
-  detail::staging_used(batch, done);
-  return done;
+  validated_serial_ = batch.serial;
 }
 
-std::size_t ClDeformer::per_item(NormalFormat format) const {
-  return instances_per_item_ ? instances_per_item_
-                             : instances_per_work_item(context_.description(), format);
+void ClDeformer::Impl::check_shape(const ClJob& job) const {
+  job.validate();
+  if (job.model->id() != model.id()) {
+    throw Error(ErrorCode::kInvalidArgument, "job.model",
+                "job.model: this deformer was built for another model");
+  }
+  check_outputs(job);
 }
 
-BoundKernel& ClDeformer::bend_kernel(const BendSettings& settings, NormalFormat format) {
-  const auto key = std::make_tuple(settings.mode, settings.normals, format);
-  auto found = kernels_.find(key);
+void ClDeformer::Impl::check(const ClJob& job) const {
+  check_shape(job);
+  checker_.check(job.parameters, job.clamp);
+}
+
+// ----------------------------------------------------------------------------------
+// Kernels
+
+ClDeformer::Impl::BoundKernel& ClDeformer::Impl::kernel(std::size_t index, const ClJob& job) {
+  const NormalFormat format = job.outputs->layout.normal_format;
+  const detail::KernelVariant variant{index, job.normals, format, tangents_, per_item(format)};
+  auto found = kernels_.find(variant);
   if (found == kernels_.end()) {
-    const std::string options =
-        bend_build_options(settings, mesh_.has_tangents(), format, per_item(format));
-    found = kernels_
-                .emplace(key, BoundKernel{context_.kernel("bend_batch", ProgramSource::bend_batch(),
-                                                          options)})
-                .first;
+    const std::size_t fused = fused_launches_.size();
+    const std::string name = single_bend     ? "single_bend"
+                             : index < fused ? "rig_fused_" + std::to_string(index)
+                                             : "rig_pass_" + std::to_string(index - fused);
+    found =
+        kernels_.emplace(variant, BoundKernel{context.kernel(name, program_, variant.options())})
+            .first;
   }
   return found->second;
 }
 
+void ClDeformer::Impl::ensure_scratch(std::size_t instances) {
+  if (scratch_sets_ == 0 || instances <= scratch_instances_) return;
+  const BatchLayout scratch_layout = layout(instances, NormalFormat::kFloat32);
+  const std::size_t bytes = detail::position_bytes(scratch_layout);
+  scratch_.clear();
+  for (std::size_t k = 0; k < 3 * scratch_sets_; ++k) {
+    const bool tangent = k % 3 == 2;
+    scratch_.push_back(detail::make_buffer(context.context(), CL_MEM_READ_WRITE,
+                                           tangent && !tangents_ ? sizeof(float) : bytes));
+  }
+  scratch_instances_ = instances;
+  ++generation_;
+}
+
+// kernels/single_bend.cl's and kernels/rig.cl's arguments, in their order.
+void ClDeformer::Impl::set_arguments(cl::Kernel& kernel, std::size_t index,
+                                     const ClJob& job) const {
+  const DeviceBatch& batch = *job.outputs;
+  cl_uint arg = 0;
+  auto set = [&](const auto& value) { check_cl(kernel.setArg(arg++, value), "clSetKernelArg"); };
+  set(rest_positions_);
+  set(rest_normals_);
+  set(rest_tangents_);
+  const bool pass = !single_bend && index >= fused_launches_.size();
+  if (pass) {
+    // Both scratch sets (rest-mesh stand-ins where a set is not needed: never touched).
+    for (std::size_t k = 0; k < 6; ++k) {
+      const cl::Buffer* rest[3] = {&rest_positions_, &rest_normals_, &rest_tangents_};
+      set(k < scratch_.size() ? scratch_[k] : *rest[k % 3]);
+    }
+  }
+  set(upload_.buffer());
+  if (!single_bend) {
+    set(static_cast<cl_uint>(model.values_per_instance()));
+    set(stages_);
+    set(group_paths_);
+  }
+  set(batch.positions);
+  set(batch.normals);
+  set(batch.tangents);
+  set(static_cast<cl_uint>(slot_count_));
+  set(static_cast<cl_uint>(job.parameters.instance_count));
+  if (single_bend) {
+    for (const cl_float4& value : back_transform_) set(value);
+  }
+}
+
+void ClDeformer::Impl::launch(BoundKernel& bound, const ClJob& job, std::size_t first_group,
+                              std::size_t end_group, std::vector<cl::Event>* kernel_events,
+                              cl::Event* done) {
+  // An event only where one is asked for: the frame's last kernel, or every kernel for
+  // profiling (creating events costs host time on some drivers).
+  cl::Event own;
+  cl::Event* event = done ? done : kernel_events ? &own : nullptr;
+  const std::size_t per = per_item(job.outputs->layout.normal_format);
+  const cl::NDRange offset(first_group * kWorkGroupSize, 0);
+  const cl::NDRange global((end_group - first_group) * kWorkGroupSize,
+                           (job.parameters.instance_count + per - 1) / per);
+  check_cl(context.queue().enqueueNDRangeKernel(bound.kernel, offset, global,
+                                                cl::NDRange(kWorkGroupSize, 1), nullptr, event),
+           "clEnqueueNDRangeKernel");
+  if (kernel_events) kernel_events->push_back(*event);
+}
+
+// ----------------------------------------------------------------------------------
+// A frame
+
+cl::Event ClDeformer::Impl::enqueue(const ClJob& job, std::vector<cl::Event>* kernel_events,
+                                    bool checked) {
+  if (kernel_events) kernel_events->clear();
+  if (!checked) check_shape(job);
+  check_buffer_sizes(*job.outputs);
+  const std::size_t per_instance = model.values_per_instance();
+  const std::size_t instances = job.parameters.instance_count;
+  std::vector<float>& staged = upload_.acquire(instances * per_instance);
+  const std::size_t stride = job.parameters.stride ? job.parameters.stride : per_instance;
+  if (checked && !job.clamp && stride == per_instance && !staged.empty()) {
+    std::memcpy(staged.data(), job.parameters.data, staged.size() * sizeof(float));
+  } else {
+    checker_.check(job.parameters, job.clamp, staged.data());
+  }
+  if (upload_.upload(context, job.wait)) ++generation_;
+
+  RigPath path = job.path == RigPath::kAuto ? automatic_path : job.path;
+  if (pass_count == 0) path = RigPath::kFused;  // no stage at all: the fused copy
+  if (path == RigPath::kPasses && !single_bend) ensure_scratch(instances);
+
+  auto run = [&](std::size_t index, std::size_t first_group, std::size_t end_group, bool last,
+                 cl::Event* done) {
+    BoundKernel& bound = kernel(index, job);
+    if (bound.batch_serial != job.outputs->serial || bound.generation != generation_) {
+      set_arguments(bound.kernel, index, job);
+      bound.batch_serial = job.outputs->serial;
+      bound.generation = generation_;
+    }
+    launch(bound, job, first_group, end_group, kernel_events, last ? done : nullptr);
+  };
+  cl::Event done;
+  if (path == RigPath::kFused || single_bend) {
+    for (std::size_t r = 0; r < fused_launches_.size(); ++r) {
+      run(r, fused_launches_[r].first, fused_launches_[r].second, r + 1 == fused_launches_.size(),
+          &done);
+    }
+  } else {
+    for (std::size_t q = 0; q < pass_count; ++q) {
+      run(fused_launches_.size() + q, 0, slot_count_ / kWorkGroupSize, q + 1 == pass_count, &done);
+    }
+  }
+  upload_.used(done);
+  return done;
+}
+
+// ----------------------------------------------------------------------------------
+// The public class
+
+ClDeformer::ClDeformer(Context& context, const RiggedMesh& model, const ClOptions& options)
+    : impl_(std::make_unique<Impl>(context, model, options)) {}
+
+ClDeformer::~ClDeformer() = default;
+
+const RiggedMesh& ClDeformer::model() const { return impl_->model; }
+Context& ClDeformer::context() const { return impl_->context; }
+
+BatchLayout ClDeformer::layout(std::size_t instances, NormalFormat format) const {
+  return impl_->layout(instances, format);
+}
+
+DeviceBatch ClDeformer::allocate(std::size_t instances, NormalFormat format) const {
+  return detail::allocate_batch(impl_->context, layout(instances, format));
+}
+
+cl::Event ClDeformer::enqueue(const ClJob& job, std::vector<cl::Event>* kernel_events) {
+  return impl_->enqueue(job, kernel_events, false);
+}
+
+void ClDeformer::check(const ClJob& job) const { impl_->check(job); }
+
 DeformedBatch<float> ClDeformer::read(const DeviceBatch& batch) {
-  return detail::read_batch(context_, batch);
+  DeformedBatch<float> out = detail::read_batch(impl_->context, batch);
+  out.slot_of_vertex = impl_->slot_of_vertex;
+  return out;
+}
+
+const std::vector<std::uint32_t>& ClDeformer::slot_of_vertex() const {
+  return impl_->slot_of_vertex;
+}
+const std::vector<std::uint32_t>& ClDeformer::remapped_indices() const {
+  return impl_->remapped_indices;
+}
+bool ClDeformer::uses_single_bend_kernel() const { return impl_->single_bend; }
+std::size_t ClDeformer::pass_count() const { return impl_->pass_count; }
+double ClDeformer::scratch_records_per_slot() const { return impl_->scratch_records_per_slot; }
+RigPath ClDeformer::automatic_path() const { return impl_->automatic_path; }
+std::size_t ClDeformer::instances_per_item(NormalFormat format) const {
+  return impl_->per_item(format);
 }
 
 }  // namespace finflex

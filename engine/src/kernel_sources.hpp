@@ -7,7 +7,7 @@
 namespace finflex::detail {
 
 struct KernelSource {
-  std::string file_name;  // e.g. "bend.cl"
+  std::string file_name;  // its path under kernels/, e.g. "deformers/bend.cl"
   std::string text;
 };
 

@@ -4,6 +4,7 @@
 // key may appear twice in an object, so that a typo in a rig file is an error naming
 // where it is instead of a silently ignored setting. Checks that need the mesh or the
 // whole component tree (names, parents, vertices, frame geometry) are resolve_rig's.
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -20,7 +21,7 @@
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
-#include "finflex/bend.hpp"
+#include "finflex/deformer_type.hpp"
 #include "finflex/error.hpp"
 #include "finflex/rig.hpp"
 
@@ -238,42 +239,93 @@ SelectorSpec parse_selector(const json& value, const std::string& field) {
 // ---------------------------------------------------------------------------------
 // Stages and components
 
-// {"deformer": "bend", ["mode": "paper" | "exact",] "param": p} |
-// {"deformer": "hinge", ["width": w >= 0,] "param": p}.
-StageSpec parse_stage(const json& value, const std::string& field) {
-  expect_object(value, field, "an object {\"deformer\": \"bend\" | \"hinge\", \"param\": ...}");
-  check_keys(value, field, {"deformer", "mode", "width", "param"});
-  StageSpec stage;
-  const std::string deformer_field = member(field, "deformer");
-  const json& deformer = required(value, field, "deformer", "bend or hinge");
-  if (deformer == "bend") {
-    stage.deformer = DeformerKind::kBend;
-  } else if (deformer == "hinge") {
-    stage.deformer = DeformerKind::kHinge;
+// {"deformer": <name>, "param": p, <the deformer's options>}: the deformers and their
+// options are the registry's (finflex/deformer_type.hpp).
+
+// What a number option takes, for messages: "a finite number >= 0 (the ramp's width)".
+std::string expected_number(const DeformerOption& option) {
+  std::ostringstream text;
+  text.precision(9);
+  text << (option.integer ? "a whole number" : "a finite number");
+  if (std::isinf(option.maximum)) {
+    text << " >= " << option.minimum;
   } else {
-    fail_value(deformer_field, deformer, "\"bend\" or \"hinge\"");
+    text << " in [" << option.minimum << ", " << option.maximum << "]";
   }
-  const bool bend = stage.deformer == DeformerKind::kBend;
-  stage.param = parse_name(required(value, field, "param", "the parameter this stage reads"),
-                           member(field, "param"), "the parameter this stage reads");
-  if (const auto it = value.find("mode"); it != value.end()) {
-    const std::string mode_field = member(field, "mode");
-    if (!bend) fail(mode_field, "applies to the bend only (this stage is a hinge)");
-    if (*it == "paper") {
-      stage.mode = BendMode::kPaper;
-    } else if (*it == "exact") {
-      stage.mode = BendMode::kExact;
-    } else {
-      fail_value(mode_field, *it, "\"paper\" or \"exact\"");
+  text << " (" << option.meaning << ")";
+  return text.str();
+}
+
+std::string expected_choice(const DeformerOption& option) {
+  std::string list;
+  for (std::size_t k = 0; k < option.choices.size(); ++k) {
+    if (k > 0) list += k + 1 == option.choices.size() ? " or " : ", ";
+    list += "\"" + std::string(option.choices[k]) + "\"";
+  }
+  return list;
+}
+
+double parse_option(const json& value, const std::string& field, const DeformerOption& option) {
+  if (!option.choices.empty()) {
+    for (std::size_t k = 0; k < option.choices.size(); ++k) {
+      if (value.is_string() && value.get_ref<const std::string&>() == option.choices[k]) {
+        return static_cast<double>(k);
+      }
+    }
+    fail_value(field, value, expected_choice(option));
+  }
+  const double number = parse_number(value, field, expected_number(option));
+  if (number < option.minimum || number > option.maximum ||
+      (option.integer && number != std::floor(number))) {
+    fail_value(field, value, expected_number(option));
+  }
+  return number;
+}
+
+// The registered deformers that have an option `key`, e.g. "the bend".
+std::string owners_of(const std::string& key) {
+  std::string owners;
+  for (const DeformerType* type : deformer_types()) {
+    for (const DeformerOption& option : type->options) {
+      if (key == option.key)
+        owners += (owners.empty() ? "the " : " and the ") + std::string(type->name);
     }
   }
-  if (const auto it = value.find("width"); it != value.end()) {
-    const std::string width_field = member(field, "width");
-    if (bend) fail(width_field, "applies to the hinge only (this stage is a bend)");
-    const char* const expected = "a finite number >= 0 (the hinge's width in x)";
-    stage.width = parse_number(*it, width_field, expected);
-    if (stage.width < 0.0) fail_value(width_field, *it, expected);
+  return owners;
+}
+
+StageSpec parse_stage(const json& value, const std::string& field) {
+  expect_object(value, field,
+                "an object {\"deformer\": " + deformer_type_names() + ", \"param\": ...}");
+  const std::string deformer_field = member(field, "deformer");
+  const json& deformer = required(value, field, "deformer", deformer_type_names());
+  const DeformerType* type =
+      deformer.is_string() ? find_deformer_type(deformer.get<std::string>()) : nullptr;
+  if (type == nullptr) fail_value(deformer_field, deformer, deformer_type_names());
+  StageSpec stage;
+  stage.deformer = type;
+  stage.options = default_options(*type);
+  for (const auto& item : value.items()) {
+    const std::string& key = item.key();
+    if (key == "deformer" || key == "param") continue;
+    const auto option = std::find_if(type->options.begin(), type->options.end(),
+                                     [&](const DeformerOption& o) { return key == o.key; });
+    if (option == type->options.end()) {
+      const std::string owners = owners_of(key);
+      if (!owners.empty()) {
+        fail(member(field, key),
+             "applies to " + owners + " only (this stage is a " + type->name + ")");
+      }
+      std::string keys = "deformer, param";
+      for (const DeformerOption& o : type->options) keys += ", " + std::string(o.key);
+      fail(member(field, key),
+           "unknown key '" + key + "' (a " + type->name + " stage takes: " + keys + ")");
+    }
+    stage.options[static_cast<std::size_t>(option - type->options.begin())] =
+        parse_option(item.value(), member(field, key), *option);
   }
+  stage.param = parse_name(required(value, field, "param", "the parameter this stage reads"),
+                           member(field, "param"), "the parameter this stage reads");
   return stage;
 }
 

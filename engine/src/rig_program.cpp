@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <sstream>
 
+#include "finflex/context.hpp"
+#include "finflex/error.hpp"
+
 namespace finflex::detail {
 namespace {
 
@@ -10,25 +13,29 @@ std::size_t round_up(std::size_t value, std::size_t multiple) {
   return (value + multiple - 1) / multiple * multiple;
 }
 
-// The kernels/rig.cl function that applies one stage in its frame.
+// The deformer's OpenCL function that applies one stage in its frame.
 const char* stage_function(const RigStage& stage) {
-  if (stage.deformer == DeformerKind::kHinge) return "hinge_in_frame";
-  return stage.mode == BendMode::kExact ? "bend_exact_in_frame" : "bend_paper_in_frame";
+  return stage.deformer->cl_function(stage.options);
+}
+
+// Offset of the stage's values in a parameter row.
+std::size_t values_offset(const Rig& rig, const RigStage& stage) {
+  return rig.parameters[stage.param].offset;
 }
 
 // Applies the stage at path position j of the group's path to the vertex; a vertex's
 // first stage finds it in its frame already (the rest planes):
 // "{ const StageFrame f = stages + <k>; [enter_frame(&p, &n, &t, f);]
-//    <function>(&p, &n, &t, f, values[<param>]); }", with <k> and <param> compiled in
-// (`literal`: the group range has one stage there) or read from the path and stage
-// tables (FF_PATH_STAGE(j), FF_STAGE_PARAM(f)).
+//    <function>(&p, &n, &t, f, values + <offset>); }", with <k> and <offset> compiled
+// in (`literal`: the group range has one stage there) or read from the path and stage
+// tables (FF_PATH_STAGE(j), FF_STAGE_VALUES(f)).
 struct StageCall {
   const char* function = nullptr;
   std::size_t position = 0;
   bool first = false;
   bool literal = false;
-  std::size_t stage = 0;  // stage index, when literal
-  std::size_t param = 0;  // parameter index, when literal
+  std::size_t stage = 0;   // stage index, when literal
+  std::size_t values = 0;  // values offset, when literal
 };
 
 std::string stage_call(const StageCall& c) {
@@ -40,21 +47,21 @@ std::string stage_call(const StageCall& c) {
     call << "FF_PATH_STAGE(" << c.position << "); ";
   }
   if (!c.first) call << "enter_frame(&p, &n, &t, f); ";
-  call << c.function << "(&p, &n, &t, f, values[";
+  call << c.function << "(&p, &n, &t, f, values + ";
   if (c.literal) {
-    call << c.param;
+    call << c.values;
   } else {
-    call << "FF_STAGE_PARAM(f)";
+    call << "FF_STAGE_VALUES(f)";
   }
-  call << "]); }";
+  call << "); }";
   return call.str();
 }
 
 // The functions along component c's path: its code shape.
-std::vector<const char*> path_functions(const Rig& rig, std::size_t c) {
+std::vector<const char*> path_functions(const RiggedMesh& model, std::size_t c) {
   std::vector<const char*> functions;
-  for (const auto& [component, stage] : rig.path(c))
-    functions.push_back(stage_function(rig.components[component].chain[stage]));
+  for (const StageRef& ref : model.paths()[c])
+    functions.push_back(stage_function(model.rig().stage(ref)));
   return functions;
 }
 
@@ -86,13 +93,20 @@ SlotLayout make_slot_layout(const Rig& rig, std::size_t vertex_count, std::size_
     slots.first_slot.push_back(round_up(slot, group_size));
   }
   slots.slot_count = std::max(slots.first_slot.back(), group_size);
+  if (slots.slot_count > 0xffffffffu) {
+    throw Error(ErrorCode::kInvalidMesh, "positions",
+                "the mesh needs " + std::to_string(slots.slot_count) +
+                    " vertex slots, more than the kernels' 2^32");
+  }
   slots.vertex_of_slot.assign(slots.slot_count, -1);
   for (std::size_t v = 0; v < vertex_count; ++v)
     slots.vertex_of_slot[slots.slot_of_vertex[v]] = static_cast<std::int64_t>(v);
   return slots;
 }
 
-RestPlanes make_rest_planes(const Rig& rig, const Mesh& mesh, const SlotLayout& slots) {
+RestPlanes make_rest_planes(const RiggedMesh& model, const SlotLayout& slots) {
+  const Rig& rig = model.rig();
+  const Mesh& mesh = model.mesh();
   RestPlanes rest;
   const std::size_t n = slots.slot_count;
   rest.positions.assign(3 * n, 0.0f);
@@ -106,10 +120,8 @@ RestPlanes make_rest_planes(const Rig& rig, const Mesh& mesh, const SlotLayout& 
     if (!rest.tangents.empty()) put(rest.tangents, slot, glm::dvec3(1.0, 0.0, 0.0));
   }
   for (std::size_t c = 0; c < rig.components.size(); ++c) {
-    const auto path = rig.path(c);
-    const BodyFrame first =
-        path.empty() ? BodyFrame::identity()
-                     : rig.components[path.front().first].chain[path.front().second].frame;
+    const std::vector<StageRef>& path = model.paths()[c];
+    const BodyFrame first = path.empty() ? BodyFrame::identity() : rig.stage(path.front()).frame;
     for (std::uint32_t v : rig.components[c].vertices) {
       const std::size_t slot = slots.slot_of_vertex[v];
       // (2): p = R (p_b - origin) / s_x, n = R n_b, in double before rounding.
@@ -132,53 +144,69 @@ std::size_t stage_index(const Rig& rig, std::size_t component, std::size_t stage
 
 std::size_t stage_count(const Rig& rig) { return stage_index(rig, rig.components.size(), 0); }
 
-std::vector<float> stage_frames(const Rig& rig) {
+std::vector<float> stage_table(const Rig& rig) {
   const std::size_t count = std::max<std::size_t>(stage_count(rig), 1);
   std::vector<float> table(kStageValues * count, 0.0f);  // valid (unused) without stages
   std::size_t k = 0;
   for (const RigComponent& component : rig.components) {
     for (const RigStage& stage : component.chain) {
       const BodyFrame& f = stage.frame;
-      const double inverse_width = stage.width > 0.0 ? 1.0 / stage.width : 0.0;
+      const StageConstants c = stage.deformer->stage_constants(stage.options);
+      const double offset = double(values_offset(rig, stage));
+      // kernels/common/stage_frame.cl's layout.
       // clang-format off
       const double values[kStageValues] = {
-          f.axis_x.x, f.axis_x.y, f.axis_x.z, 1.0 / f.length,        // 0-3
-          f.axis_y.x, f.axis_y.y, f.axis_y.z, stage.width,           // 4-7
-          f.axis_z.x, f.axis_z.y, f.axis_z.z, double(stage.param),   // 8-11
-          f.origin.x, f.origin.y, f.origin.z, f.length,              // 12-15
-          inverse_width};                                            // 16
+          f.axis_x.x, f.axis_x.y, f.axis_x.z, 1.0 / f.length,   // 0-3
+          f.axis_y.x, f.axis_y.y, f.axis_y.z, c[0],             // 4-7
+          f.axis_z.x, f.axis_z.y, f.axis_z.z, offset,           // 8-11
+          f.origin.x, f.origin.y, f.origin.z, f.length,         // 12-15
+          c[1], c[2], c[3]};                                    // 16-18
       // clang-format on
-      for (std::size_t c = 0; c < kStageValues; ++c)
-        table[c * count + k] = static_cast<float>(values[c]);
+      for (std::size_t v = 0; v < kStageValues; ++v)
+        table[v * count + k] = static_cast<float>(values[v]);
       ++k;
     }
   }
   return table;
 }
 
-std::vector<std::uint32_t> group_path_table(const Rig& rig, const SlotLayout& slots,
+std::vector<std::string> rig_program_files(const Rig& rig) {
+  std::vector<std::string> files = common_kernel_files();
+  for (const DeformerType* type : deformer_types()) {
+    bool used = false;
+    for (const RigComponent& component : rig.components) {
+      for (const RigStage& stage : component.chain) used = used || stage.deformer == type;
+    }
+    if (used) files.push_back(type->cl_file);
+  }
+  files.push_back("rig.cl");
+  return files;
+}
+
+std::vector<std::uint32_t> group_path_table(const RiggedMesh& model, const SlotLayout& slots,
                                             std::size_t group_size) {
+  const Rig& rig = model.rig();
   const std::size_t groups = slots.slot_count / group_size;
-  const std::size_t width = std::max<std::size_t>(longest_path(rig), 1);
+  const std::size_t width = std::max<std::size_t>(model.longest_path(), 1);
   std::vector<std::uint32_t> table(width * groups, 0u);
   for (std::size_t c = 0; c < rig.components.size(); ++c) {
-    const auto path = rig.path(c);
+    const std::vector<StageRef>& path = model.paths()[c];
     for (std::size_t g = slots.first_slot[c] / group_size; g < slots.first_slot[c + 1] / group_size;
          ++g) {
       for (std::size_t j = 0; j < path.size(); ++j) {
         table[j * groups + g] =
-            static_cast<std::uint32_t>(stage_index(rig, path[j].first, path[j].second));
+            static_cast<std::uint32_t>(stage_index(rig, path[j].component, path[j].stage));
       }
     }
   }
   return table;
 }
 
-PassPlan make_pass_plan(const Rig& rig, const SlotLayout& slots, std::size_t group_size,
+PassPlan make_pass_plan(const RiggedMesh& model, const SlotLayout& slots, std::size_t group_size,
                         bool share_code) {
+  const Rig& rig = model.rig();
   const std::size_t count = rig.components.size();
-  std::vector<std::vector<std::pair<std::size_t, std::size_t>>> paths(count);
-  for (std::size_t c = 0; c < count; ++c) paths[c] = rig.path(c);
+  const std::vector<std::vector<StageRef>>& paths = model.paths();
   std::vector<PlaneSet> location(count, PlaneSet::kRest);  // where component c's vertices are
   std::vector<std::size_t> applied(count, 0);              // stages applied to them so far
   auto groups_of = [&](std::size_t c) {
@@ -223,7 +251,7 @@ PassPlan make_pass_plan(const Rig& rig, const SlotLayout& slots, std::size_t gro
                                                                        : PlaneSet::kScratchA;
           const RigStage& stage = rig.components[c].chain[position];
           add_step(steps, {first, end, location[d], target, stage_function(stage), path_position,
-                           stage_index(rig, c, position), stage.param});
+                           stage_index(rig, c, position), values_offset(rig, stage)});
           location[d] = target;
         }
       }
@@ -247,17 +275,18 @@ PassPlan make_pass_plan(const Rig& rig, const SlotLayout& slots, std::size_t gro
   return plan;
 }
 
-std::vector<FusedLaunch> make_fused_plan(const Rig& rig, const SlotLayout& slots,
+std::vector<FusedLaunch> make_fused_plan(const RiggedMesh& model, const SlotLayout& slots,
                                          std::size_t group_size, bool share_code) {
+  const Rig& rig = model.rig();
   std::vector<FusedLaunch> launches;
   if (!share_code) launches.push_back({0, slots.slot_count / group_size, {}, {}});
   for (std::size_t c = 0; c < rig.components.size(); ++c) {
     if (slots.first_slot[c + 1] == slots.first_slot[c]) continue;  // no own vertices
-    const std::vector<const char*> shape = path_functions(rig, c);
+    const std::vector<const char*> shape = path_functions(model, c);
     std::size_t end = c + 1;
-    while (
-        share_code && end < rig.components.size() &&
-        (slots.first_slot[end + 1] == slots.first_slot[end] || path_functions(rig, end) == shape)) {
+    while (share_code && end < rig.components.size() &&
+           (slots.first_slot[end + 1] == slots.first_slot[end] ||
+            path_functions(model, end) == shape)) {
       ++end;
     }
     const std::size_t first_group = slots.first_slot[c] / group_size;
@@ -270,20 +299,14 @@ std::vector<FusedLaunch> make_fused_plan(const Rig& rig, const SlotLayout& slots
   return launches;
 }
 
-std::size_t longest_path(const Rig& rig) {
-  std::size_t longest = 0;
-  for (std::size_t c = 0; c < rig.components.size(); ++c)
-    longest = std::max(longest, rig.path(c).size());
-  return longest;
-}
-
-std::string rig_dispatch_source(const Rig& rig, const SlotLayout& slots,
+std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots,
                                 const std::vector<FusedLaunch>& fused, const PassPlan& plan,
                                 std::size_t group_size, bool share_code) {
+  const Rig& rig = model.rig();
   std::ostringstream out;
   out << "/* Generated for one rig by engine/src/rig_program.cpp: which stages apply to\n"
          " * which work-groups (kernels/rig.cl). */\n";
-  out << "#define FF_RIG_STAGE_COUNT " << std::max<std::size_t>(stage_count(rig), 1) << "u\n";
+  out << "#define FF_STAGE_COUNT " << std::max<std::size_t>(stage_count(rig), 1) << "u\n";
   out << "#define FF_RIG_GROUP_COUNT " << slots.slot_count / group_size << "u\n";
   // Fused: the group's component's whole path, bottom-up; a kernel per launch, a branch
   // per run of components in it (none when the launch has one).
@@ -298,16 +321,15 @@ std::string rig_dispatch_source(const Rig& rig, const SlotLayout& slots,
         out << (b == 0 ? "if" : "else if") << " (group < " << launch.branch_ends[b] << "u) ";
       }
       out << "{";
-      const std::vector<const char*> shape = path_functions(rig, c);
-      const auto path = rig.path(c);
+      const std::vector<const char*> shape = path_functions(model, c);
+      const std::vector<StageRef>& path = model.paths()[c];
       for (std::size_t j = 0; j < path.size(); ++j) {
-        const auto [component, stage] = path[j];
         const StageCall call{shape[j],
                              j,
                              j == 0,
                              !share_code,
-                             stage_index(rig, component, stage),
-                             rig.components[component].chain[stage].param};
+                             stage_index(rig, path[j].component, path[j].stage),
+                             values_offset(rig, rig.stage(path[j]))};
         out << " " << stage_call(call);
       }
       out << " }";
@@ -326,7 +348,7 @@ std::string rig_dispatch_source(const Rig& rig, const SlotLayout& slots,
           << step.end_group << "u) { FF_LOAD_" << plane_set_name(step.source) << " ";
       if (step.function) {
         const StageCall call{step.function, step.path_position, step.source == PlaneSet::kRest,
-                             !share_code,   step.stage,         step.param};
+                             !share_code,   step.stage,         step.values};
         out << stage_call(call) << " ";
       }
       out << "FF_STORE_" << plane_set_name(step.target) << " }";

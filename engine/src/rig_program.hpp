@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "finflex/mesh.hpp"
+#include "finflex/model.hpp"
 #include "finflex/rig.hpp"
 
 namespace finflex::detail {
@@ -22,7 +22,8 @@ struct SlotLayout {
   std::size_t slot_count = 0;
 };
 
-// Components in rig order (depth-first), each padded to a multiple of group_size.
+// Components in rig order (depth-first), each padded to a multiple of group_size. A
+// one-component rig keeps the mesh's order (slot = vertex).
 SlotLayout make_slot_layout(const Rig& rig, std::size_t vertex_count, std::size_t group_size);
 
 // The rest mesh as the rig kernels read it: one instance's planes over slots (x plane,
@@ -31,22 +32,27 @@ SlotLayout make_slot_layout(const Rig& rig, std::size_t vertex_count, std::size_
 struct RestPlanes {
   std::vector<float> positions, normals, tangents;  // tangents empty without them
 };
-RestPlanes make_rest_planes(const Rig& rig, const Mesh& mesh, const SlotLayout& slots);
+RestPlanes make_rest_planes(const RiggedMesh& model, const SlotLayout& slots);
 
 // The stages in rig order (components depth-first, then chain order): the index a
 // stage has in the kernels' stage table.
 std::size_t stage_index(const Rig& rig, std::size_t component, std::size_t stage);
 std::size_t stage_count(const Rig& rig);
 
-// The stage table of kernels/rig.cl: kStageValues values per stage, stage-interleaved.
-constexpr std::size_t kStageValues = 17;
-std::vector<float> stage_frames(const Rig& rig);
+// The stage table of kernels/common/stage_frame.cl: kStageValues values per stage,
+// stage-interleaved (value c of stage k at [c * stage_count + k]).
+constexpr std::size_t kStageValues = 19;
+std::vector<float> stage_table(const Rig& rig);
+
+// The program's kernel files: the common ones, the deformers the rig uses (each once,
+// in registry order), then kernels/rig.cl.
+std::vector<std::string> rig_program_files(const Rig& rig);
 
 // The path table of kernels/rig.cl: for work-group g and path position j, the stage
 // index of the j-th stage on the path of g's component, at [j * group_count + g]
 // (0 past the path's end). The kernels read their stages from it, so components
 // whose paths have the same deformers share one branch of code.
-std::vector<std::uint32_t> group_path_table(const Rig& rig, const SlotLayout& slots,
+std::vector<std::uint32_t> group_path_table(const RiggedMesh& model, const SlotLayout& slots,
                                             std::size_t group_size);
 
 // The multi-pass path. Pass q applies the stages at one (depth, chain position),
@@ -58,9 +64,9 @@ std::vector<std::uint32_t> group_path_table(const Rig& rig, const SlotLayout& sl
 enum class PlaneSet { kRest, kScratchA, kScratchB, kOutput };
 
 // One branch of a pass over a range of work-groups: load from `source`, apply the
-// stage at `path_position` of each group's path (its `function` in kernels/rig.cl;
-// none: a copy), store to `target`. `stage` and `param`: the stage's indices, the
-// same for the whole range unless steps share code.
+// stage at `path_position` of each group's path (its deformer's `function`; none: a
+// copy), store to `target`. `stage` and `values`: the stage's index and the offset of
+// its values in a parameter row, the same for the whole range unless steps share code.
 struct PassStep {
   std::size_t first_group = 0;
   std::size_t end_group = 0;
@@ -69,7 +75,7 @@ struct PassStep {
   const char* function = nullptr;
   std::size_t path_position = 0;
   std::size_t stage = 0;
-  std::size_t param = 0;
+  std::size_t values = 0;
 };
 
 struct PassPlan {
@@ -80,7 +86,7 @@ struct PassPlan {
 };
 // share_code: contiguous steps alike but for their stages become one branch (stages
 // from the path table); otherwise only steps of one stage do.
-PassPlan make_pass_plan(const Rig& rig, const SlotLayout& slots, std::size_t group_size,
+PassPlan make_pass_plan(const RiggedMesh& model, const SlotLayout& slots, std::size_t group_size,
                         bool share_code);
 
 // The fused path's kernels: each covers a range of work-groups and, within it, a
@@ -95,17 +101,14 @@ struct FusedLaunch {
   std::vector<std::size_t> branch_ends;
   std::vector<std::size_t> branch_components;
 };
-std::vector<FusedLaunch> make_fused_plan(const Rig& rig, const SlotLayout& slots,
+std::vector<FusedLaunch> make_fused_plan(const RiggedMesh& model, const SlotLayout& slots,
                                          std::size_t group_size, bool share_code);
 
-// Longest bottom-up path (stages) of any component.
-std::size_t longest_path(const Rig& rig);
-
-// The generated macros of kernels/rig.cl for the rig: FF_RIG_STAGE_COUNT,
+// The generated macros of kernels/rig.cl for the rig: FF_STAGE_COUNT,
 // FF_RIG_GROUP_COUNT, FF_RIG_FUSED_<r> and FF_RIG_FUSED_KERNELS (kernel rig_fused_<r>
 // for fused[r]), FF_RIG_PASS_<q> and FF_RIG_PASS_KERNELS.
 // share_code: as for make_pass_plan (RigDispatch::kByPathShape).
-std::string rig_dispatch_source(const Rig& rig, const SlotLayout& slots,
+std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots,
                                 const std::vector<FusedLaunch>& fused, const PassPlan& plan,
                                 std::size_t group_size, bool share_code);
 

@@ -583,21 +583,62 @@ std::vector<std::size_t> depth_first(const Tree& tree) {
   return order;
 }
 
-// Parameter names in order of first use (components and chains in spec order).
-std::vector<std::string> collect_params(const RigSpec& spec) {
-  std::vector<std::string> params;
+// The per-instance parameters in order of first use (components and chains in spec
+// order), each with the count of values its stages read; limits come later.
+std::vector<RigParameter> collect_parameters(const RigSpec& spec) {
+  std::vector<RigParameter> parameters;
   for (std::size_t i = 0; i < spec.components.size(); ++i) {
     const std::vector<StageSpec>& chain = spec.components[i].chain;
     for (std::size_t k = 0; k < chain.size(); ++k) {
-      const std::string& param = chain[k].param;
-      if (param.empty()) {
-        fail(component_field(spec, i) + ".chain[" + std::to_string(k) + "].param",
-             "is empty: every stage names the parameter it reads");
+      const std::string field = component_field(spec, i) + ".chain[" + std::to_string(k) + "]";
+      const StageSpec& stage = chain[k];
+      if (stage.deformer == nullptr) {
+        fail(field + ".deformer", "is not set (expected one of " + deformer_type_names() + ")");
       }
-      if (std::find(params.begin(), params.end(), param) == params.end()) params.push_back(param);
+      if (stage.param.empty()) {
+        fail(field + ".param", "is empty: every stage names the parameter it reads");
+      }
+      const std::size_t count = stage.deformer->value_count(stage.options);
+      auto found = std::find_if(parameters.begin(), parameters.end(),
+                                [&](const RigParameter& p) { return p.name == stage.param; });
+      if (found == parameters.end()) {
+        RigParameter parameter;
+        parameter.name = stage.param;
+        parameter.count = count;
+        parameters.push_back(parameter);
+      } else if (found->count != count) {
+        fail(field + ".param", "'" + stage.param + "' is read by stages taking " +
+                                   std::to_string(found->count) + " and " + std::to_string(count) +
+                                   " values: a parameter has one size");
+      }
     }
   }
-  return params;
+  std::size_t offset = 0;
+  for (RigParameter& parameter : parameters) {
+    parameter.offset = offset;
+    offset += parameter.count;
+  }
+  return parameters;
+}
+
+// Checks a programmatic stage's options against its deformer's (parse_rig_json
+// checks those it reads).
+void check_options(const RigSpec& spec, std::size_t c, std::size_t k) {
+  const StageSpec& stage = spec.components[c].chain[k];
+  for (std::size_t o = 0; o < stage.deformer->options.size(); ++o) {
+    const DeformerOption& option = stage.deformer->options[o];
+    const double value = stage.options[o];
+    const bool valid =
+        option.choices.empty()
+            ? (std::isfinite(value) && value >= option.minimum && value <= option.maximum &&
+               (!option.integer || value == std::floor(value)))
+            : (value >= 0.0 && value < double(option.choices.size()) && value == std::floor(value));
+    if (!valid) {
+      fail(component_field(spec, c) + ".chain[" + std::to_string(k) + "]." + option.key,
+           "= " + format_double(value) + " is not a valid " + stage.deformer->name + " " +
+               option.key + " (" + option.meaning + ")");
+    }
+  }
 }
 
 double largest_abs_x(const Mesh& mesh, const VertexSet& vertices, const BodyFrame& frame) {
@@ -615,23 +656,34 @@ std::vector<RigStage> resolve_chain(const Mesh& mesh, const RigSpec& spec, std::
   const double x_max = largest_abs_x(mesh, resolved.subtree[c], frame);
   const std::vector<StageSpec>& chain = spec.components[c].chain;
   for (std::size_t k = 0; k < chain.size(); ++k) {
-    const StageSpec& stage = chain[k];
-    if (stage.deformer == DeformerKind::kHinge &&
-        (!std::isfinite(stage.width) || stage.width < 0.0)) {
-      fail(component_field(spec, c) + ".chain[" + std::to_string(k) + "].width",
-           "= " + format_double(stage.width) + " must be finite and >= 0 (the hinge's width)");
-    }
+    check_options(spec, c, k);
     RigStage out;
-    out.deformer = stage.deformer;
-    out.mode = stage.mode;
-    out.width = stage.deformer == DeformerKind::kHinge ? stage.width : 0.0;
-    out.param = static_cast<std::size_t>(
-        std::find(rig.params.begin(), rig.params.end(), stage.param) - rig.params.begin());
+    out.deformer = chain[k].deformer;
+    out.options = chain[k].options;
+    out.param = rig.param_index(chain[k].param);
     out.frame = frame;
     out.x_max = x_max;
     stages.push_back(out);
   }
   return stages;
+}
+
+// Each parameter's limit: the tightest of the stages that read it.
+void set_limits(Rig& rig) {
+  std::vector<bool> seen(rig.parameters.size(), false);
+  for (const RigComponent& component : rig.components) {
+    for (const RigStage& stage : component.chain) {
+      const double limit = stage.deformer->value_limit(stage.options, stage.x_max);
+      RigParameter& parameter = rig.parameters[stage.param];
+      if (!seen[stage.param] || limit < parameter.limit) {
+        parameter.limit = limit;
+        parameter.limit_source = "set by the " + std::string(stage.deformer->name) + " of '" +
+                                 component.name + "': " + stage.deformer->value_meaning +
+                                 ", x_max = " + format_double(stage.x_max);
+      }
+      seen[stage.param] = true;
+    }
+  }
 }
 
 void check_component(const Rig& rig, std::size_t component) {
@@ -646,22 +698,27 @@ void check_component(const Rig& rig, std::size_t component) {
 
 // ---------------------------------------------------------------------------------
 
+std::size_t Rig::values_per_instance() const {
+  return parameters.empty() ? 0 : parameters.back().offset + parameters.back().count;
+}
+
 std::size_t Rig::param_index(const std::string& name) const {
-  const auto it = std::find(params.begin(), params.end(), name);
-  if (it != params.end()) return static_cast<std::size_t>(it - params.begin());
+  for (std::size_t p = 0; p < parameters.size(); ++p) {
+    if (parameters[p].name == name) return p;
+  }
   std::string list;
-  for (const std::string& p : params) list += (list.empty() ? "" : ", ") + p;
+  for (const RigParameter& p : parameters) list += (list.empty() ? "" : ", ") + p.name;
   throw Error(ErrorCode::kInvalidArgument, name,
               "'" + name + "' is not a parameter of the rig (its parameters: " + list + ")");
 }
 
-std::vector<std::pair<std::size_t, std::size_t>> Rig::path(std::size_t component) const {
+std::vector<StageRef> Rig::path(std::size_t component) const {
   check_component(*this, component);
-  std::vector<std::pair<std::size_t, std::size_t>> stages;
+  std::vector<StageRef> stages;
   for (int c = static_cast<int>(component); c >= 0;
        c = components[static_cast<std::size_t>(c)].parent) {
     const std::size_t index = static_cast<std::size_t>(c);
-    for (std::size_t k = 0; k < components[index].chain.size(); ++k) stages.emplace_back(index, k);
+    for (std::size_t k = 0; k < components[index].chain.size(); ++k) stages.push_back({index, k});
   }
   return stages;
 }
@@ -680,7 +737,7 @@ Rig resolve_rig(const RigSpec& spec, const Mesh& mesh) {
   validate_mesh(mesh);
   const Tree tree = build_tree(spec);
   Rig rig;
-  rig.params = collect_params(spec);
+  rig.parameters = collect_parameters(spec);
 
   const std::size_t n = spec.components.size();
   Resolved resolved;
@@ -713,6 +770,7 @@ Rig resolve_rig(const RigSpec& spec, const Mesh& mesh) {
     while (end < n && rig.depth(end) > rig.depth(k)) end = rig.subtree_end[end];
     rig.subtree_end[k] = end;
   }
+  set_limits(rig);
   return rig;
 }
 
@@ -723,8 +781,6 @@ Rig single_bend_rig(const Mesh& mesh, const BodyFrame& frame, BendMode mode) {
   } catch (const Error& e) {
     throw Error(e.code(), "frame." + e.field(), std::string("frame.") + e.what());
   }
-  Rig rig;
-  rig.params = {"m"};
   RigComponent body;
   body.name = "body";
   body.vertices.resize(mesh.vertex_count());
@@ -732,15 +788,20 @@ Rig single_bend_rig(const Mesh& mesh, const BodyFrame& frame, BendMode mode) {
     body.vertices[v] = static_cast<std::uint32_t>(v);
   }
   body.frame = frame;
+  StageSpec spec = make_stage("bend", "m");
+  set_option(spec, "mode", to_string(mode));
   RigStage stage;
-  stage.deformer = DeformerKind::kBend;
-  stage.mode = mode;
+  stage.deformer = spec.deformer;
+  stage.options = spec.options;
   stage.param = 0;
   stage.frame = frame;
   stage.x_max = largest_abs_x(mesh, body.vertices, frame);
   body.chain.push_back(stage);
+  Rig rig;
+  rig.parameters = {RigParameter{"m", 0, 1, 0.0, ""}};
   rig.components.push_back(std::move(body));
   rig.subtree_end = {1};
+  set_limits(rig);
   return rig;
 }
 

@@ -1,5 +1,5 @@
 // Bends a small synthetic mesh with the installed library on the default device and
-// checks it against the reference. Exit 0 on agreement.
+// checks it against the reference: the same job on both backends. Exit 0 on agreement.
 #include <cstdio>
 
 #include <finflex/finflex.hpp>
@@ -9,18 +9,31 @@ int main() {
   mesh.positions = {{-0.5f, 0.0f, 0.0f}, {0.5f, 0.0f, 0.0f}, {0.0f, 0.1f, 0.05f}};
   mesh.indices = {0, 1, 2};
   finflex::compute_vertex_normals(mesh);
-  const finflex::LocalMesh local = finflex::make_local_mesh(mesh, finflex::BodyFrame::identity());
+  const finflex::RiggedMesh model = finflex::RiggedMesh::single_bend(
+      mesh, finflex::BodyFrame::identity(), finflex::BendMode::kExact);
+  finflex::RigParameters m(model, 2);
+  m.set(0, "m", 0.5f);
+  m.set(1, "m", -0.9f);
 
   finflex::Context context;
-  finflex::ClDeformer deformer(context, local);
+  finflex::ClDeformer deformer(context, model);
   finflex::DeviceBatch batch = deformer.allocate(2);
-  const std::vector<float> m = {0.5f, -0.9f};
-  const finflex::BendSettings settings{finflex::BendMode::kExact, finflex::NormalMode::kJacobian};
-  deformer.enqueue(m, settings, batch);
+  finflex::ClJob job;
+  job.model = &model;
+  job.parameters = m.view();
+  job.normals = finflex::NormalMode::kJacobian;
+  job.outputs = &batch;
+  deformer.enqueue(job);
   const finflex::DeformedBatch<float> device = deformer.read(batch);
-  const finflex::DeformedBatch<double> reference =
-      finflex::ReferenceDeformer(local).run(m, settings);
-  for (std::size_t i = 0; i < m.size(); ++i) {
+
+  finflex::DeformedBatch<double> reference;
+  finflex::ReferenceJob reference_job;
+  reference_job.model = &model;
+  reference_job.parameters = m.view();
+  reference_job.normals = finflex::NormalMode::kJacobian;
+  reference_job.outputs = &reference;
+  finflex::run_reference(reference_job);
+  for (std::size_t i = 0; i < 2; ++i) {
     for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
       const double error =
           glm::length(glm::dvec3(device.position(i, v)) - reference.position(i, v));

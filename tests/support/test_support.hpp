@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "finflex/cl_context.hpp"
+#include "finflex/context.hpp"
 
 namespace finflex::test {
 

@@ -2,11 +2,16 @@
 //
 // Every attribute (positions, normals, tangents) is one array of
 // instance_count * 3 planes; plane (i, c) holds component c (x, y or z) of instance i
-// for every vertex, `plane_stride` floats long (vertex_count rounded up so that every
-// plane starts aligned; the padding is written but means nothing):
+// for every vertex slot, `plane_stride` elements long (the slots rounded up so that
+// every plane starts aligned; the padding is written but means nothing):
 //
-//   positions: | i0.x[0..V) pad | i0.y[0..V) pad | i0.z[0..V) pad | i1.x ... |
-//   element (instance i, component c, vertex v) = data[(i * 3 + c) * plane_stride + v]
+//   positions: | i0.x[0..S) pad | i0.y[0..S) pad | i0.z[0..S) pad | i1.x ... |
+//   element (instance i, component c, slot s) = data[(i * 3 + c) * plane_stride + s]
+//
+// A slot is a vertex of the mesh: the OpenCL backend reorders a rig's vertices so that
+// every component is a contiguous range of slots (ClDeformer::slot_of_vertex() maps a
+// mesh vertex to its slot; a one-component rig keeps the mesh's order). The CPU
+// reference keeps the mesh's order.
 //
 // Separate x/y/z planes let every work-item write whole cache lines together with its
 // neighbours, which is what keeps the kernels at the memory write bandwidth.
@@ -20,6 +25,8 @@
 
 #include <glm/glm.hpp>
 
+#include "finflex/export.hpp"
+
 namespace finflex {
 
 // How normals and tangents are stored on the device. Positions are always float32.
@@ -27,9 +34,9 @@ namespace finflex {
 //   kHalf:    IEEE half, 2 bytes a component (vstore_half): 18 bytes per vertex (24);
 //             relative error 2^-11 (5e-4), ample for shading unit vectors.
 enum class NormalFormat { kFloat32, kHalf };
-const char* to_string(NormalFormat format);
-NormalFormat parse_normal_format(const std::string& text,
-                                 const std::string& field = "normal_format");
+FINFLEX_API const char* to_string(NormalFormat format);
+FINFLEX_API NormalFormat parse_normal_format(const std::string& text,
+                                             const std::string& field = "normal_format");
 
 struct BatchLayout {
   std::size_t vertex_count = 0;  // the mesh's vertices (slots may be more, with padding)
@@ -54,7 +61,7 @@ struct BatchLayout {
 };
 
 // Rounds vertex_count up to the plane alignment FinFlex uses (64 elements).
-std::size_t padded_plane_stride(std::size_t vertex_count);
+FINFLEX_API std::size_t padded_plane_stride(std::size_t vertex_count);
 
 // A batch on the host, in float (from a device) or double (from the reference).
 // Accessors take the mesh's own vertex index: where the engine reordered vertices

@@ -14,11 +14,12 @@
 
 #include <glm/glm.hpp>
 
+#include "finflex/export.hpp"
 #include "finflex/mesh.hpp"
 
 namespace finflex {
 
-struct BodyFrame {
+struct FINFLEX_API BodyFrame {
   glm::dvec3 origin{0.0};
   glm::dvec3 axis_x{1.0, 0.0, 0.0};
   glm::dvec3 axis_y{0.0, 1.0, 0.0};
@@ -79,6 +80,6 @@ struct FrameOptions {
 // "options.head_direction" / "options.dorsal_direction" when zero, not finite, or
 // within |cos| < 1e-3 of perpendicular to the axis it orients, "options.pivot" when
 // not finite.
-BodyFrame find_body_frame(const Mesh& mesh, const FrameOptions& options = {});
+FINFLEX_API BodyFrame find_body_frame(const Mesh& mesh, const FrameOptions& options = {});
 
 }  // namespace finflex

@@ -1,149 +1,163 @@
-// The OpenCL backend: one rest mesh on the device, N instances per launch, each with
-// its own bend parameter m; one NDRange over (vertices x instances).
+// The OpenCL backend: a model (finflex/model.hpp) uploaded once to a device, and jobs
+// (finflex/job.hpp) enqueued on the context's in-order queue, each instance with its
+// own parameters, one NDRange over (vertex slots x instances) per launch.
 //
-//   Context context;                                  // PoCL on the CPU, or a GPU
-//   ClDeformer deformer(context, make_local_mesh(mesh, find_body_frame(mesh)));
-//   DeviceBatch batch = deformer.allocate(4000);      // once
+//   Context context;                                   // PoCL on the CPU, or a GPU
+//   ClDeformer deformer(context, fish);                // uploads the rest mesh once
+//   DeviceBatch batch = deformer.allocate(4000);       // once
+//   RigParameters values(fish, 4000);
+//   ClJob job;
+//   job.model = &fish;
+//   job.parameters = values.view();
+//   job.outputs = &batch;
 //   for each frame:
-//     cl::Event done = deformer.enqueue(m_for_this_frame, settings, batch);
+//     ... fill values ...
+//     cl::Event done = deformer.enqueue(job);
 //     ... hand batch.positions / batch.normals (cl::Buffer) to the renderer, or read()
 //
-// Memory: the rest mesh takes 24 bytes per vertex (36 with tangents) once; every
-// instance takes 24 bytes per vertex of output (positions + normals, float32), 36 with
-// tangents, 18 and 24 with half normals and tangents (NormalFormat::kHalf), on
-// plane_stride (vertex count rounded up to 64) vertices. 4,000 instances of the
-// 10,786-vertex fish: 4,000 * 10,816 * 24 B = 1.04 GB.
+// Asynchronous: enqueue() returns after enqueueing a non-blocking parameter upload
+// and the kernels; it waits on the host only when the parameter staging buffer it
+// reuses (one of three, in turn) still belongs to a frame in flight. Nothing calls
+// clFinish.
+//
+// How a model runs: vertices are reordered into slots so that every component is a
+// contiguous range of whole work-groups (slot_of_vertex(); remapped_indices() are
+// the mesh's triangles over slots: draw the outputs with them). The whole-body bend
+// (RiggedMesh::is_single_bend) has its own kernel; other rigs run fused (one kernel,
+// each vertex's whole path in registers) or in passes (job.path).
+//
+// Thread-safety: a deformer records which batch its kernels were last set up for and
+// owns its parameter staging: use each deformer from one thread at a time. Deformers
+// on one Context may be used from different threads.
 #pragma once
 
-#include <array>
+#include <cstddef>
 #include <cstdint>
-#include <map>
-#include <string>
-#include <tuple>
+#include <memory>
 #include <vector>
 
 #include <CL/opencl.hpp>
 
 #include "finflex/batch.hpp"
-#include "finflex/bend.hpp"
-#include "finflex/cl_context.hpp"
-#include "finflex/local_mesh.hpp"
+#include "finflex/context.hpp"
+#include "finflex/device_batch.hpp"
+#include "finflex/export.hpp"
+#include "finflex/job.hpp"
+#include "finflex/model.hpp"
+#include "finflex/parameters.hpp"
 
 namespace finflex {
 
-// Device-side outputs of one batch, allocated once and reused every frame.
-struct DeviceBatch {
-  BatchLayout layout;
-  cl::Buffer positions;  // layout.attribute_elements() floats, finflex/batch.hpp planes
-  cl::Buffer normals;
-  cl::Buffer tangents;    // a placeholder of one float when the mesh has no tangents
-  cl::Buffer parameters;  // per instance: m, or a rig's parameter values
+using ClJob = BasicDeformJob<DeviceBatch, cl::Event>;
 
-  // Float32 intermediates of the multi-pass rig path, allocated on first use: up to
-  // two sets (positions, normals, tangents) that the passes ping-pong between; the
-  // last pass writes the outputs above.
-  std::vector<cl::Buffer> scratch;
-
-  // Host staging of the parameter uploads, a ring: a non-blocking upload reads its
-  // values until it completes, which the last kernel of its frame (`staging_done`,
-  // after it in the in-order queue) proves. Reusing a slot waits for the frame that
-  // used it, kStagingSlots frames ago: no event of its own per upload.
-  static constexpr std::size_t kStagingSlots = 3;
-  std::array<std::vector<float>, kStagingSlots> staging;
-  std::array<cl::Event, kStagingSlots> staging_done;
-  std::size_t next_staging = 0;
-
-  // Identifies these buffers (set by allocate(), unique in the process; 0: none), so
-  // deformers set kernel arguments only when a frame goes to another batch. Replace a
-  // batch by allocating a new one, never by assigning its buffers.
-  std::uint64_t serial = 0;
+// How the generated rig kernels tell the work-groups' stages apart (every branch is
+// uniform over a work-group).
+enum class RigDispatch {
+  kAuto,          // kPerComponent on GPUs, kByPathShape on CPUs
+  kPerComponent,  // a branch per component, its stages compiled in: fewest instructions
+  kByPathShape,   // a kernel per run of components with the same deformers along their
+                  // paths, stages read from a table: straight-line kernels, which
+                  // PoCL's work-group vectoriser needs
 };
 
-// A deformer's kernel and the batch its arguments were last set for: a frame on the
-// same batch as the last one is a parameter upload and a launch, without setting
-// arguments again.
-struct BoundKernel {
-  cl::Kernel kernel;
-  std::uint64_t batch_serial = 0;
-  std::size_t scratch_buffers = 0;
-
-  bool bound_to(const DeviceBatch& batch) const {
-    return batch.serial != 0 && batch_serial == batch.serial &&
-           scratch_buffers == batch.scratch.size();
-  }
-  void mark_bound(const DeviceBatch& batch) {
-    batch_serial = batch.serial;
-    scratch_buffers = batch.scratch.size();
-  }
+struct ClOptions {
+  // Instances one work-item deforms (reading its rest vertex once); 0: the device's
+  // choice (GPUs: 2 for the single bend with float32 normals, 4 with half normals
+  // and for rigs; CPUs: 1).
+  std::size_t instances_per_item = 0;
+  RigDispatch dispatch = RigDispatch::kAuto;
+  // The whole-body bend runs on its own kernel (faster); false runs it as a rig like
+  // any other (for comparing the two).
+  bool single_bend_kernel = true;
 };
 
-class ClDeformer {
+class FINFLEX_API ClDeformer {
  public:
-  // Uploads the rest mesh (float32 planes) once. `instances_per_item`: instances each
-  // work-item deforms; 0 takes instances_per_work_item() of the device.
-  ClDeformer(Context& context, const LocalMesh& mesh, std::size_t instances_per_item = 0);
+  // Uploads the model: rest mesh planes over slots (each vertex in its first stage's
+  // frame), the stage table and the rig's dispatch code. kInvalidMesh when the mesh
+  // has more than 2^32 slots.
+  ClDeformer(Context& context, const RiggedMesh& model, const ClOptions& options = {});
+  ~ClDeformer();
+  ClDeformer(const ClDeformer&) = delete;
+  ClDeformer& operator=(const ClDeformer&) = delete;
 
-  const LocalMesh& mesh() const { return mesh_; }
+  const RiggedMesh& model() const;
+  Context& context() const;
+
   BatchLayout layout(std::size_t instances, NormalFormat format = NormalFormat::kFloat32) const;
-
   // Allocates the outputs of `instances` instances, normals and tangents in `format`.
-  // Throws kInvalidArgument for 0, and kOutOfRange naming `instances` when one
-  // attribute array would exceed the device's largest allocation.
+  // kInvalidArgument for 0, kOutOfRange naming "instances" when one attribute array
+  // would exceed the device's largest allocation.
   DeviceBatch allocate(std::size_t instances, NormalFormat format = NormalFormat::kFloat32) const;
 
-  // Checks m (checked_bend_params; its size must equal the batch's instance count),
-  // uploads it without blocking, and enqueues the bend after `wait`. Returns the
-  // kernel's event (profiling enabled); nothing waits on the host except for the
-  // previous frame's parameter upload of the same batch.
-  cl::Event enqueue(const std::vector<float>& m, const BendSettings& settings, DeviceBatch& batch,
-                    bool clamp = false, const std::vector<cl::Event>* wait = nullptr);
+  // Validates the job (ClJob::validate, then: the job's model is this deformer's,
+  // and its outputs were allocated for this model with room for its instances:
+  // "job.outputs" names what does not fit), checks its parameters (check_parameters)
+  // into the next staging buffer, uploads them without blocking after job.wait, and
+  // enqueues the kernels. Returns the last kernel's event. `kernel_events`, when given,
+  // receives the event of every kernel launched (profiling).
+  cl::Event enqueue(const ClJob& job, std::vector<cl::Event>* kernel_events = nullptr);
+  // Throws what enqueue() would throw for `job`, and enqueues nothing.
+  void check(const ClJob& job) const;
 
-  // Blocking read of a batch (waits for the queue's work on it).
+  // Blocking read of a batch; the result's accessors take mesh vertex indices.
   DeformedBatch<float> read(const DeviceBatch& batch);
 
-  // The work-group size used along the vertices (plane_stride is a multiple of it).
-  static constexpr std::size_t kLocalSize = 64;
+  const std::vector<std::uint32_t>& slot_of_vertex() const;
+  const std::vector<std::uint32_t>& remapped_indices() const;
+  // True when enqueue() runs the single-bend kernel (RiggedMesh::is_single_bend and
+  // ClOptions::single_bend_kernel).
+  bool uses_single_bend_kernel() const;
+  // Passes of the multi-pass path: one per (depth, chain position) that has a stage.
+  std::size_t pass_count() const;
+  // Float32 vertex records the multi-pass path moves through its scratch sets (reads
+  // plus writes, all passes), per slot: 0 when no vertex has more than one stage.
+  double scratch_records_per_slot() const;
+  // The path RigPath::kAuto resolves to for this model.
+  RigPath automatic_path() const;
+  // Instances one work-item deforms for outputs in `format` (ClOptions).
+  std::size_t instances_per_item(NormalFormat format) const;
+
+  // The work-group size along the slots (every plane stride is a multiple of it).
+  static constexpr std::size_t kGroupSize = 64;
+  // Most stages on one vertex's path that the fused kernel is generated for.
+  static constexpr std::size_t kMaxFusedStages = 64;
 
  private:
-  Context& context_;
-  LocalMesh mesh_;
-  std::size_t plane_stride_ = 0;
-  cl::Buffer rest_;
-  std::vector<cl_float4> back_transform_;  // origin, s e_x, s e_y, s e_z, e_x, e_y, e_z
-  std::size_t instances_per_item_ = 0;     // 0: instances_per_work_item() of the device
-  std::size_t per_item(NormalFormat format) const;
-  // By (mode, normals, format): created on first use, no per-frame creation or strings.
-  std::map<std::tuple<BendMode, NormalMode, NormalFormat>, BoundKernel> kernels_;
-
-  BoundKernel& bend_kernel(const BendSettings& settings, NormalFormat format);
+  friend class RigFrame;
+  class Impl;
+  std::unique_ptr<Impl> impl_;
 };
 
-// Build options specialising the kernels (-D FF_BEND_EXACT=...).
-std::string bend_build_options(const BendSettings& settings, bool tangents, NormalFormat format,
-                               std::size_t instances_per_item);
+// Several models (e.g. two species) deformed in one frame: each entry is a deformer
+// with its own instances, batch and parameters; enqueue() launches them all on the
+// context's queue without waiting.
+class FINFLEX_API RigFrame {
+ public:
+  RigFrame();
+  ~RigFrame();
+  RigFrame(const RigFrame&) = delete;
+  RigFrame& operator=(const RigFrame&) = delete;
 
-// Instances one work-item deforms (reading its rest vertex once): on GPUs, whose rate
-// of work-items, not of bytes, limits one instance per work-item, 2 with float32
-// normals and 4 with half normals (fewer bytes per instance); 1 on CPUs.
-std::size_t instances_per_work_item(const DeviceDescription& device,
-                                    NormalFormat format = NormalFormat::kFloat32);
+  // Adds `instances` instances of `deformer`'s model (the deformer must outlive the
+  // frame), outputs in `format`; returns the entry's index. Parameters start at the
+  // rest pose (zeros).
+  std::size_t add(ClDeformer& deformer, std::size_t instances,
+                  NormalFormat format = NormalFormat::kFloat32);
 
-// What the write-only reference kernel writes: one value everywhere (no arithmetic at
-// all), or values that differ per vertex and instance (a few integer operations; GPUs
-// may compress uniform data on its way to memory and write it faster than any real
-// output could go).
-enum class WriteValues {
-  kDeviceDefault,  // kVarying on GPUs, kConstant on CPUs
-  kConstant,
-  kVarying,
+  std::size_t size() const;
+  RigParameters& parameters(std::size_t entry);
+  DeviceBatch& batch(std::size_t entry);
+
+  // One event per entry, in order. Every entry's job is validated and its parameters
+  // checked before any is launched: on error nothing is enqueued.
+  std::vector<cl::Event> enqueue(NormalMode normals, RigPath path = RigPath::kAuto,
+                                 bool clamp = false);
+
+ private:
+  struct Entry;
+  std::vector<Entry> entries_;
+  Entry& at(std::size_t entry);
 };
-
-// The write-only reference kernel over `batch`'s outputs: writes positions and normals
-// (in the batch's format), in the bend kernel's NDRange, so that benchmarks can measure
-// the device's write bandwidth next to the deformers.
-// `instances_per_item`: 0 takes instances_per_work_item() of the device.
-cl::Event enqueue_write_only(Context& context, DeviceBatch& batch,
-                             std::size_t instances_per_item = 0,
-                             WriteValues values = WriteValues::kDeviceDefault);
 
 }  // namespace finflex

@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "finflex/export.hpp"
+
 namespace finflex {
 
 enum class ErrorCode {
@@ -18,9 +20,9 @@ enum class ErrorCode {
 };
 
 // Returns a short stable name for `code`, e.g. "out_of_range".
-const char* error_code_name(ErrorCode code);
+FINFLEX_API const char* error_code_name(ErrorCode code);
 
-class Error : public std::runtime_error {
+class FINFLEX_API Error : public std::runtime_error {
  public:
   // `field` names the input at fault ("m", "instances", "positions[12].x", "--in").
   Error(ErrorCode code, std::string field, const std::string& message);

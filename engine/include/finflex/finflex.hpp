@@ -1,19 +1,34 @@
 // FinFlex: secant-surface deformation of static meshes in OpenCL, for thousands of
 // instances per frame. One include for the whole public API.
+//
+// Layers, each header including only those above it:
+//   error, export                     the error type; the shared-library export macro
+//   mesh, mesh_io, subdivide          triangle meshes and their files
+//   body_frame                        the local frame of a transform (METHOD.md 3)
+//   deformer_type                     the deformer registry (bend, hinge, ...)
+//   rig                               rig files and rigs resolved against a mesh
+//   model                             a mesh with its rig: what a job deforms
+//   parameters                        per-instance parameter values and their checks
+//   job                               the job both backends run
+//   batch                             deformed batches on the host; the planes layout
+//   reference, accuracy, instance_mesh    the CPU reference and its diagnostics
+//   context, device_batch, cl_deformer    the OpenCL backend (needs CL/opencl.hpp)
 #pragma once
 
 #include "finflex/accuracy.hpp"
 #include "finflex/batch.hpp"
-#include "finflex/bend.hpp"
 #include "finflex/body_frame.hpp"
-#include "finflex/cl_context.hpp"
 #include "finflex/cl_deformer.hpp"
+#include "finflex/context.hpp"
+#include "finflex/deformer_type.hpp"
+#include "finflex/device_batch.hpp"
 #include "finflex/error.hpp"
 #include "finflex/instance_mesh.hpp"
-#include "finflex/local_mesh.hpp"
+#include "finflex/job.hpp"
 #include "finflex/mesh.hpp"
 #include "finflex/mesh_io.hpp"
-#include "finflex/reference_deformer.hpp"
+#include "finflex/model.hpp"
+#include "finflex/parameters.hpp"
+#include "finflex/reference.hpp"
 #include "finflex/rig.hpp"
-#include "finflex/rig_deformer.hpp"
 #include "finflex/subdivide.hpp"

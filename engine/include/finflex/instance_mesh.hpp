@@ -5,6 +5,7 @@
 #include <cstddef>
 
 #include "finflex/batch.hpp"
+#include "finflex/export.hpp"
 #include "finflex/mesh.hpp"
 
 namespace finflex {
@@ -13,7 +14,9 @@ namespace finflex {
 // by those of `instance` in `batch`; faces, vertex order, texcoords and tangent
 // handedness are the rest mesh's. Throws kInvalidArgument naming `instance` when it
 // is out of range or the batch does not belong to a mesh of this vertex count.
-Mesh instance_mesh(const Mesh& rest, const DeformedBatch<float>& batch, std::size_t instance);
-Mesh instance_mesh(const Mesh& rest, const DeformedBatch<double>& batch, std::size_t instance);
+FINFLEX_API Mesh instance_mesh(const Mesh& rest, const DeformedBatch<float>& batch,
+                               std::size_t instance);
+FINFLEX_API Mesh instance_mesh(const Mesh& rest, const DeformedBatch<double>& batch,
+                               std::size_t instance);
 
 }  // namespace finflex

@@ -9,6 +9,8 @@
 
 #include <glm/glm.hpp>
 
+#include "finflex/export.hpp"
+
 namespace finflex {
 
 // A named run of consecutive triangles: an OBJ group ("g name"), or a glTF mesh
@@ -42,17 +44,17 @@ struct Mesh {
 // The checks run in that order; the field is e.g. "normals", "indices[7]",
 // "positions[12].y", and the message repeats it with the value.
 // A mesh without triangles (indices empty) is valid.
-void validate_mesh(const Mesh& mesh);
+FINFLEX_API void validate_mesh(const Mesh& mesh);
 
 // Area-weighted vertex normals from the triangles (overwrites mesh.normals).
 // A vertex used by no triangle, or only by zero-area ones, gets the normal (0, 0, 1).
 // Throws kInvalidMesh if the index count is not a multiple of 3 or an index is out
 // of range; the other attributes are not checked.
-void compute_vertex_normals(Mesh& mesh);
+FINFLEX_API void compute_vertex_normals(Mesh& mesh);
 
 // Per-triangle unit normals (right-hand rule on the index order), for tests and tools.
 // A zero-area triangle gets (0, 0, 0). Throws kInvalidMesh like compute_vertex_normals.
-std::vector<glm::dvec3> face_normals(const std::vector<glm::vec3>& positions,
-                                     const std::vector<std::uint32_t>& indices);
+FINFLEX_API std::vector<glm::dvec3> face_normals(const std::vector<glm::vec3>& positions,
+                                                 const std::vector<std::uint32_t>& indices);
 
 }  // namespace finflex

@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "finflex/export.hpp"
 #include "finflex/mesh.hpp"
 
 namespace finflex {
@@ -25,7 +26,7 @@ namespace finflex {
 // read), kFormat (unsupported extension, empty file, content that is not a mesh of
 // the format), kInvalidMesh (e.g. an index out of range, a NaN coordinate; the field
 // names it). Thread-safe; OpenMesh formats are read one at a time.
-Mesh load_mesh(const std::string& path);
+FINFLEX_API Mesh load_mesh(const std::string& path);
 
 // Writes `mesh` (validated first, before any file is touched) with its normals
 // (computed if it has none), and tangents and texcoords where the format carries
@@ -37,6 +38,6 @@ Mesh load_mesh(const std::string& path);
 // changed. Errors: kFormat (unsupported extension), kInvalidMesh (validation; glTF
 // also needs at least one triangle), kIo (missing folder, `path` is a directory,
 // write failure).
-void save_mesh(const std::string& path, const Mesh& mesh);
+FINFLEX_API void save_mesh(const std::string& path, const Mesh& mesh);
 
 }  // namespace finflex

@@ -16,8 +16,9 @@
 
 #include <glm/glm.hpp>
 
-#include "finflex/bend.hpp"
 #include "finflex/body_frame.hpp"
+#include "finflex/deformer_type.hpp"
+#include "finflex/export.hpp"
 #include "finflex/mesh.hpp"
 
 namespace finflex {
@@ -69,17 +70,21 @@ struct SelectorSpec {
   glm::dvec3 point{0.0}, normal{0.0};  // kHalfSpace: dot(p - point, normal) > 0
 };
 
-enum class DeformerKind {
-  kBend,   // the paper's fish bend (METHOD.md section 5), `mode` paper or exact; param m
-  kHinge,  // fold about the local y axis by an angle (radians) for x > 0; param angle
+// One stage of a chain: a registered deformer (finflex/deformer_type.hpp) with its
+// options, reading the per-instance parameter `param`.
+struct StageSpec {
+  const DeformerType* deformer = nullptr;
+  StageOptions options{};  // in the order of deformer->options
+  std::string param;       // the per-instance parameter this stage reads
 };
 
-struct StageSpec {
-  DeformerKind deformer = DeformerKind::kBend;
-  BendMode mode = BendMode::kExact;  // kBend only
-  double width = 0.0;                // kHinge only: the fold is spread over x in [0, width]
-  std::string param;                 // the per-instance parameter this stage reads
-};
+// A stage of the registered deformer `deformer` reading `param`, its options at their
+// defaults. kInvalidArgument (field "deformer") naming the registered ones when unknown.
+FINFLEX_API StageSpec make_stage(const std::string& deformer, const std::string& param);
+// Sets an option of the stage's deformer by key: a number (checked against the
+// option's range), or one of a choice's names. kInvalidArgument naming the key.
+FINFLEX_API void set_option(StageSpec& stage, const std::string& key, double value);
+FINFLEX_API void set_option(StageSpec& stage, const std::string& key, const std::string& choice);
 
 struct ComponentSpec {
   std::string name;
@@ -107,8 +112,10 @@ struct RigSpec {
 //   <selector>: "all" | {"indices": [i, ...]} | {"group": "name"} |
 //               {"box": {"min": [..], "max": [..]}} |
 //               {"half_space": {"point": [..], "normal": [..]}}
-//   stages:     "bend" with "mode" "paper" | "exact" (default exact); "hinge" with
-//               "width" >= 0 (default 0); "param" (a non-empty name) is required.
+//   stages:     {"deformer": <a registered name>, "param": <a non-empty name>,
+//                <the deformer's options>}: "bend" with "mode" "paper" | "exact"
+//               (default exact); "hinge" with "width" >= 0 (default 0); every
+//               deformer's options are in the registry (finflex/deformer_type.hpp).
 // "name", "select" and "chain" are required ("chain" may be []); "parent" is omitted
 // on the root only; "frame" is not allowed on the root. Every key must be known and
 // appear once per object: a typo is an error, never ignored.
@@ -116,24 +123,24 @@ struct RigSpec {
 // column; kInvalidArgument naming the place, e.g. "components[1] 'tail'.select.box.min"
 // ("components[1].name" before the name is known; "frame.x" at the top level), the
 // value found and what was expected, for a missing, unknown, duplicated or mistyped
-// key, an unknown deformer, mode or selector, a length <= 0, a width < 0, a box with
-// max < min, a frame on the root. No mesh is needed: names, parents, vertices and
+// key, an unknown deformer or selector, an option of another deformer, an option
+// value outside its range or choices, a length <= 0, a box with max < min, a frame
+// on the root. No mesh is needed: names, parents, vertices and
 // frame geometry (zero or parallel axes) are resolve_rig's to check.
-RigSpec parse_rig_json(const std::string& text);
+FINFLEX_API RigSpec parse_rig_json(const std::string& text);
 // Reads and parses a rig file: kIo (field "path") when it cannot be read, then as
 // parse_rig_json, with the path in front of the message.
-RigSpec load_rig_file(const std::string& path);
+FINFLEX_API RigSpec load_rig_file(const std::string& path);
 
 // ------------------------------------------------------- resolved against a mesh ---
 
 struct RigStage {
-  DeformerKind deformer = DeformerKind::kBend;
-  BendMode mode = BendMode::kExact;
-  double width = 0.0;     // hinge width, in the stage frame's normalised lengths
-  std::size_t param = 0;  // index into Rig::params
+  const DeformerType* deformer = nullptr;
+  StageOptions options{};
+  std::size_t param = 0;  // index into Rig::parameters
   BodyFrame frame;        // in mesh coordinates
   double x_max = 0.0;     // largest |x| of the rest vertices this stage moves (its
-                          // component and descendants), in its frame: bend range (13)
+                          // component and descendants), in its frame: its range (13)
 };
 
 struct RigComponent {
@@ -144,19 +151,45 @@ struct RigComponent {
   std::vector<RigStage> chain;
 };
 
-struct Rig {
+// A per-instance parameter: `count` consecutive values of each instance's row, from
+// `offset` on (one for a bend's m or a hinge's angle).
+struct RigParameter {
+  std::string name;
+  std::size_t offset = 0;
+  std::size_t count = 1;
+  // The largest |value| accepted: the tightest of the stages that read it
+  // (DeformerType::value_limit at their x_max), and which stage sets it, for messages
+  // ("set by the bend of 'body': |m| <= 0.5 / x_max (13), x_max = 0.489").
+  double limit = 0.0;
+  std::string limit_source;
+};
+
+// A stage by its place in the rig: component index and position in its chain.
+struct StageRef {
+  std::size_t component = 0;
+  std::size_t stage = 0;
+
+  bool operator==(const StageRef& other) const {
+    return component == other.component && stage == other.stage;
+  }
+};
+
+struct FINFLEX_API Rig {
   // Depth-first order: a parent comes before its children, and a component's
   // subtree is contiguous (components[i .. subtree_end[i]) ).
   std::vector<RigComponent> components;
   std::vector<std::size_t> subtree_end;
-  std::vector<std::string> params;  // parameter names, in order of first use
+  std::vector<RigParameter> parameters;  // in order of first use
 
+  // Values per instance: the sum of the parameters' counts.
+  std::size_t values_per_instance() const;
   // Index of a parameter by name; throws kInvalidArgument (field: the name) when unknown.
   std::size_t param_index(const std::string& name) const;
+  const RigStage& stage(StageRef ref) const { return components[ref.component].chain[ref.stage]; }
   // The stages a vertex of component c goes through, bottom-up: c's chain, then its
-  // parent's, ... then the root's. Pairs of (component index, stage index).
+  // parent's, ... then the root's.
   // kInvalidArgument (field "component") when c is out of range; so does depth().
-  std::vector<std::pair<std::size_t, std::size_t>> path(std::size_t component) const;
+  std::vector<StageRef> path(std::size_t component) const;
   // Depth of component c (the root is 0).
   std::size_t depth(std::size_t component) const;
 };
@@ -174,16 +207,30 @@ struct Rig {
 // out of range, a zero normal, a degenerate frame (".frame.x", ".frame.y",
 // ".frame.length": zero or parallel x/y, length <= 0 or no extent; the root's frame
 // as "frame.x" etc. with the root named in the message; an automatic child frame
-// whose attachment and centroid coincide: ".frame"), an empty param or a hinge width
-// < 0 (".chain[k].param" / ".width"). Also: the mesh fails validate_mesh()
+// whose attachment and centroid coincide: ".frame"), an empty param, a stage without a
+// deformer or with an option outside its range (".chain[k].param", ".deformer",
+// ".<option>"), a parameter read by stages that take different numbers of values
+// (".chain[k].param"). Also: the mesh fails validate_mesh()
 // (kInvalidMesh); a group beyond the triangles (kInvalidMesh, "groups[g]"); the
 // automatic root frame fails (find_body_frame's code and field, "frame" in the
 // message).
-Rig resolve_rig(const RigSpec& spec, const Mesh& mesh);
+FINFLEX_API Rig resolve_rig(const RigSpec& spec, const Mesh& mesh);
+
+// The two forms of the paper's bend (METHOD.md section 5), the bend's "mode" option.
+enum class BendMode {
+  kPaper,  // the paper's 4th-order Maclaurin series (15)-(17): no arcsin
+  kExact,  // the closed-form integral of (13): x' = x sqrt(1 - 4m^2x^2)/2 + asin(2mx)/(4m)
+};
+FINFLEX_API const char* to_string(BendMode mode);
+// Parses "paper" / "exact"; errors name `field` and the value.
+FINFLEX_API BendMode parse_bend_mode(const std::string& text, const std::string& field = "mode");
+// The largest valid |m| of a bend whose vertices reach |x| <= x_max (13): 0.5 / x_max.
+FINFLEX_API double max_abs_m(double x_max);
 
 // A rig with one component, "body", selecting all vertices with `frame`, and one bend
-// stage of `mode` reading the parameter "m": the plain `finflex deform --m`.
+// stage of `mode` reading the parameter "m": the paper's whole-body bend
+// (`finflex deform --m`). The OpenCL backend runs it with its single-bend kernel.
 // Errors: validate_mesh's; BodyFrame::validate's with "frame." in front of the field.
-Rig single_bend_rig(const Mesh& mesh, const BodyFrame& frame, BendMode mode);
+FINFLEX_API Rig single_bend_rig(const Mesh& mesh, const BodyFrame& frame, BendMode mode);
 
 }  // namespace finflex

@@ -2,6 +2,7 @@
 // 100k-vertex fish from data/blub/fish_control_mesh.obj for benchmarks.
 #pragma once
 
+#include "finflex/export.hpp"
 #include "finflex/mesh.hpp"
 
 namespace finflex {
@@ -11,6 +12,6 @@ namespace finflex {
 // normals recomputed from its faces; texcoords, tangents and groups are not carried.
 // Throws kInvalidMesh when the mesh is invalid or has no triangles, kInvalidArgument
 // naming "levels" when it is outside [0, 8].
-Mesh subdivide_loop(const Mesh& mesh, int levels);
+FINFLEX_API Mesh subdivide_loop(const Mesh& mesh, int levels);
 
 }  // namespace finflex

@@ -1,0 +1,129 @@
+// finflex check: the chosen OpenCL device against the double reference on one mesh:
+// the whole-body bend in both modes, or a rig (--rig), with both normal modes and
+// every parameter across its whole valid range. Prints one row per setting; exit 0
+// when every row is within the tolerances of finflex/accuracy.hpp, 2 otherwise. The
+// mesh's normals are recomputed from its faces first, so the face-angle column shows
+// only what the deformation does to them.
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cli_errors.hpp"
+#include "commands.hpp"
+#include "finflex/finflex.hpp"
+
+namespace finflex::cli {
+namespace {
+
+struct CheckOptions {
+  std::string in;
+  std::string rig;
+  std::string device;
+};
+
+// Instance k: every parameter at a fraction of its limit (0, 0.1, -0.35, 0.6, -0.85
+// and the limits themselves), alternate parameters with opposite signs; clamped, so
+// the values at the limits are the ones the backends use.
+RigParameters parameter_sweep(const Rig& rig) {
+  const double fractions[] = {0.0, 0.1, -0.35, 0.6, -0.85, 1.0, -1.0};
+  RigParameters values(rig, std::size(fractions));
+  for (std::size_t i = 0; i < std::size(fractions); ++i) {
+    for (std::size_t p = 0; p < rig.parameters.size(); ++p) {
+      const RigParameter& parameter = rig.parameters[p];
+      for (std::size_t k = 0; k < parameter.count; ++k) {
+        values.values()[i * values.values_per_instance() + parameter.offset + k] =
+            static_cast<float>(fractions[i] * parameter.limit * (p % 2 ? -1.0 : 1.0));
+      }
+    }
+  }
+  std::vector<float> checked(values.values().size());
+  check_parameters(rig, values.view(), /*clamp=*/true, checked.data());
+  values.values() = checked;
+  return values;
+}
+
+// One row: the model with every normal mode; false when out of tolerance.
+bool check_model(Context& context, const RiggedMesh& model, const std::string& label) {
+  const RigParameters values = parameter_sweep(model.rig());
+  const ParameterView view = values.view();
+  ClDeformer deformer(context, model);
+  DeviceBatch batch = deformer.allocate(view.instance_count);
+  bool all_within = true;
+  for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {
+    ClJob job;
+    job.model = &model;
+    job.parameters = view;
+    job.normals = normals;
+    job.outputs = &batch;
+    deformer.enqueue(job);
+    const DeformedBatch<float> device = deformer.read(batch);
+    DeformedBatch<double> reference;
+    ReferenceJob reference_job;
+    reference_job.model = &model;
+    reference_job.parameters = view;
+    reference_job.normals = normals;
+    reference_job.outputs = &reference;
+    run_reference(reference_job);
+    const AccuracyReport report = compare_to_reference(model, view, normals, device, reference);
+    // Face agreement of the instance at 0.6 of the limits (index 3 of the sweep).
+    const double face_angle = mean_angle_to_face_normals(instance_mesh(model.mesh(), device, 3));
+    const double length = model.rig().components.front().frame.length;
+    all_within = all_within && report.within_tolerance();
+    std::printf("%-14s %-9s %14.3g %14.3g %10zu %10.4f deg %s\n", label.c_str(), to_string(normals),
+                report.max_position_error / length, report.max_normal_error, report.skipped_normals,
+                face_angle * 57.29577951308232,
+                report.within_tolerance() ? "ok" : "OUT OF TOLERANCE");
+  }
+  return all_within;
+}
+
+int run_check(const CheckOptions& options) {
+  try {
+    Mesh rest = for_option("--in", [&] { return load_mesh(options.in); });
+    compute_vertex_normals(rest);
+    Context context(options.device);
+    std::printf("device: %s\nmesh: %s (%zu vertices)\n", context.description().device_name.c_str(),
+                options.in.c_str(), rest.vertex_count());
+    std::printf("%-14s %-9s %14s %14s %10s %12s %s\n", "deformation", "normals", "position/s_x",
+                "normal", "skipped", "face angle", "verdict");
+    bool all_within = true;
+    if (options.rig.empty()) {
+      const BodyFrame frame = find_body_frame(rest);
+      for (BendMode mode : {BendMode::kPaper, BendMode::kExact}) {
+        const RiggedMesh model = RiggedMesh::single_bend(rest, frame, mode);
+        const double limit = model.rig().parameters[0].limit;
+        if (mode == BendMode::kPaper) {
+          std::printf("s_x %.6g, x_max %.4f, m in [%.4f, %.4f]\n", frame.length,
+                      model.rig().components[0].chain[0].x_max, -limit, limit);
+        }
+        all_within =
+            check_model(context, model, std::string("bend ") + to_string(mode)) && all_within;
+      }
+    } else {
+      const RiggedMesh model(
+          rest, resolve_rig(for_option("--rig", [&] { return load_rig_file(options.rig); }), rest));
+      all_within = check_model(context, model, "rig") && all_within;
+    }
+    if (!all_within) return fail("check", "the device is out of tolerance against the reference");
+    return kExitSuccess;
+  } catch (const std::exception& error) {
+    return fail("check", error.what());
+  }
+}
+
+}  // namespace
+
+Command add_check_command(CLI::App& app) {
+  auto options = std::make_shared<CheckOptions>();
+  CLI::App* check =
+      app.add_subcommand("check", "Compare an OpenCL device with the double reference on a mesh");
+  check->add_option("--in", options->in, "Mesh to check with")->required();
+  check->add_option("--rig", options->rig,
+                    "Rig file: check the rig instead of the whole-body bend");
+  check->add_option("--device", options->device,
+                    "OpenCL device: 'P:D' indices or a name substring (see finflex info)");
+  return [options] { return run_check(*options); };
+}
+
+}  // namespace finflex::cli

@@ -1,0 +1,55 @@
+/* Reference kernels for the benchmarks (not part of the library's programs): the same
+ * NDRange shape and output planes as the deformation kernels (finflex/batch.hpp,
+ * kernels/single_bend.cl, kernels/rig.cl), with no arithmetic. write_planes gives the
+ * device's write bandwidth; copy_rest reads rest planes and writes them out per
+ * instance. Written with scalar stores only, like the deformation kernels, so PoCL
+ * vectorises them alike; write_planes honours FF_HALF_NORMALS, FF_TANGENTS and
+ * FF_INSTANCES_PER_ITEM (kernels/common/planes.cl) as they do
+ * (NDRange (plane_stride, ceil(instances / FF_INSTANCES_PER_ITEM))).
+ * Built after the library's common kernel files.
+ *
+ * FF_VARYING_WRITES (0/1): write_planes writes `value` everywhere (0), or values that
+ * differ from vertex to vertex and instance to instance (1, a few integer operations):
+ * GPUs may compress uniform data on its way to memory and so write it faster than
+ * any real output could go. */
+#ifndef FF_VARYING_WRITES
+#define FF_VARYING_WRITES 0
+#endif
+
+__kernel void write_planes(__global float* restrict out_positions,
+                           __global float* restrict out_normals,
+                           __global float* restrict out_tangents, const uint stride,
+                           const uint instances, const float value) {
+  const size_t v = get_global_id(0);
+  const size_t first_instance = get_global_id(1) * FF_INSTANCES_PER_ITEM;
+  for (uint k = 0; k < FF_INSTANCES_PER_ITEM; ++k) {
+    const size_t instance = first_instance + k;
+    if (instance >= instances) break;
+#if FF_VARYING_WRITES
+    /* A float in [value, 2 value) (value a power of two) with hashed mantissa bits. */
+    const uint bits = ((uint)v * 2654435761u) ^ ((uint)instance * 40503u);
+    const float varied = as_float(as_uint(value) | (bits >> 9));
+    const Vec3 filler = vec3(varied, varied, varied);
+#else
+    const Vec3 filler = vec3(value, value, value);
+#endif
+    store_plane3(out_positions, instance * 3, stride, v, filler);
+    store_direction3(out_normals, instance * 3, stride, v, filler); /* float32 or half */
+#if FF_TANGENTS
+    store_direction3(out_tangents, instance * 3, stride, v, filler);
+#endif
+  }
+}
+
+__kernel void copy_rest(__global const float* restrict rest,
+                        __global float* restrict out_positions,
+                        __global float* restrict out_normals, const uint stride) {
+  const size_t v = get_global_id(0);
+  const size_t base = get_global_id(1) * 3 * (size_t)stride + v;
+  out_positions[base] = rest[v];
+  out_positions[base + stride] = rest[stride + v];
+  out_positions[base + 2 * (size_t)stride] = rest[2 * (size_t)stride + v];
+  out_normals[base] = rest[3 * (size_t)stride + v];
+  out_normals[base + stride] = rest[4 * (size_t)stride + v];
+  out_normals[base + 2 * (size_t)stride] = rest[5 * (size_t)stride + v];
+}

@@ -1,0 +1,67 @@
+#include "reference_kernels.hpp"
+
+#include <algorithm>
+#include <map>
+#include <string>
+
+#include "bench_kernel_sources.hpp"
+#include "finflex/cl_deformer.hpp"
+
+namespace finflex::bench {
+namespace {
+
+ProgramSource bandwidth_program() {
+  const std::vector<KernelSource>& sources = bench_kernel_sources();
+  const auto found = std::find_if(sources.begin(), sources.end(), [](const KernelSource& k) {
+    return k.file_name == "bandwidth.cl";
+  });
+  return {common_kernel_files(), "", found->text};
+}
+
+cl::Event launch(Context& context, cl::Kernel& kernel, const BatchLayout& layout,
+                 std::size_t per_item) {
+  cl::Event done;
+  check_cl(context.queue().enqueueNDRangeKernel(
+               kernel, cl::NullRange,
+               cl::NDRange(layout.plane_stride, (layout.instance_count + per_item - 1) / per_item),
+               cl::NDRange(ClDeformer::kGroupSize, 1), nullptr, &done),
+           "clEnqueueNDRangeKernel");
+  return done;
+}
+
+}  // namespace
+
+cl::Event enqueue_write_only(Context& context, DeviceBatch& batch, std::size_t instances_per_item,
+                             WriteValues values) {
+  if (values == WriteValues::kDeviceDefault) {
+    values = context.description().is_gpu() ? WriteValues::kVarying : WriteValues::kConstant;
+  }
+  const std::string options =
+      std::string("-DFF_INSTANCES_PER_ITEM=") + std::to_string(instances_per_item) +
+      (batch.layout.normal_format == NormalFormat::kHalf ? " -DFF_HALF_NORMALS=1" : "") +
+      (values == WriteValues::kVarying ? " -DFF_VARYING_WRITES=1" : "") +
+      (batch.layout.tangents ? " -DFF_TANGENTS=1" : "");
+  cl::Kernel kernel = context.kernel("write_planes", bandwidth_program(), options);
+  cl_uint arg = 0;
+  auto set = [&](const auto& value) { check_cl(kernel.setArg(arg++, value), "clSetKernelArg"); };
+  set(batch.positions);
+  set(batch.normals);
+  set(batch.tangents);
+  set(static_cast<cl_uint>(batch.layout.plane_stride));
+  set(static_cast<cl_uint>(batch.layout.instance_count));
+  set(1.0f);
+  return launch(context, kernel, batch.layout, instances_per_item);
+}
+
+cl::Event enqueue_copy_rest(Context& context, const cl::Buffer& source, DeviceBatch& batch) {
+  cl::Kernel kernel = context.kernel("copy_rest", bandwidth_program(), "");
+  cl_uint arg = 0;
+  auto set = [&](const auto& value) { check_cl(kernel.setArg(arg++, value), "clSetKernelArg"); };
+  set(source);
+  set(batch.positions);
+  set(batch.normals);
+  set(static_cast<cl_uint>(batch.layout.plane_stride));
+  return launch(context, kernel, batch.layout, 1);
+}
+
+}  // namespace finflex::bench

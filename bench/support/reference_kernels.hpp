@@ -1,0 +1,34 @@
+// The benchmarks' reference kernels (bench/kernels/bandwidth.cl): a write-only kernel
+// over a batch's outputs, in the NDRange shape of the deformation kernels, so that a
+// benchmark measures the device's write bandwidth next to them in the same run; and a
+// copy of rest-sized planes into every instance.
+#pragma once
+
+#include <cstddef>
+
+#include "finflex/context.hpp"
+#include "finflex/device_batch.hpp"
+
+namespace finflex::bench {
+
+// What the write-only kernel writes: one value everywhere (no arithmetic at all), or
+// values that differ per vertex and instance (a few integer operations; GPUs may
+// compress uniform data on its way to memory and write it faster than any real output
+// could go).
+enum class WriteValues {
+  kDeviceDefault,  // kVarying on GPUs, kConstant on CPUs
+  kConstant,
+  kVarying,
+};
+
+// Writes positions, normals (in the batch's format) and tangents when the batch has
+// them, `instances_per_item` instances per work-item (the deformer's:
+// ClDeformer::instances_per_item). Returns the kernel's event.
+cl::Event enqueue_write_only(Context& context, DeviceBatch& batch, std::size_t instances_per_item,
+                             WriteValues values = WriteValues::kDeviceDefault);
+
+// Copies 6 planes of `source` (positions and normals of plane_stride slots) into every
+// instance of the batch's float32 outputs. Returns the kernel's event.
+cl::Event enqueue_copy_rest(Context& context, const cl::Buffer& source, DeviceBatch& batch);
+
+}  // namespace finflex::bench

@@ -1,0 +1,48 @@
+// Timing of OpenCL work for the benchmarks and `finflex bench`: device time from
+// profiling events, medians, and the frame loop (a warm-up frame, then timed ones).
+#pragma once
+
+#include <chrono>
+#include <cstddef>
+#include <vector>
+
+#include <CL/opencl.hpp>
+
+namespace finflex::bench {
+
+// Waits for `last` and returns the device seconds from the start of `first` to the
+// end of `last` (a sequence of kernels on one in-order queue).
+double span_seconds(const cl::Event& first, const cl::Event& last);
+// One command's device seconds.
+inline double event_seconds(const cl::Event& event) { return span_seconds(event, event); }
+
+double median(std::vector<double> values);
+
+struct FrameTimes {
+  std::vector<double> device;  // kernel time per frame
+  std::vector<double> host;    // wall time of the enqueue call (checks, upload, launches)
+};
+
+// Runs one warm-up frame (PoCL compiles per work-group shape), then `frames` timed
+// ones. `prepare(frame)` sets the frame's parameters (not timed: that is the
+// application's animation); `enqueue(kernels)` enqueues the frame and fills `kernels`
+// with its kernels' events (timed on the host, then on the device).
+template <typename Prepare, typename Enqueue>
+FrameTimes time_frames(std::size_t frames, Prepare prepare, Enqueue enqueue) {
+  FrameTimes times;
+  std::vector<cl::Event> kernels;
+  prepare(0);
+  enqueue(kernels);
+  span_seconds(kernels.front(), kernels.back());
+  for (std::size_t f = 1; f <= frames; ++f) {
+    prepare(f);
+    const auto start = std::chrono::steady_clock::now();
+    enqueue(kernels);
+    const auto end = std::chrono::steady_clock::now();
+    times.host.push_back(std::chrono::duration<double>(end - start).count());
+    times.device.push_back(span_seconds(kernels.front(), kernels.back()));
+  }
+  return times;
+}
+
+}  // namespace finflex::bench

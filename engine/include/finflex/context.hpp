@@ -1,0 +1,84 @@
+// OpenCL plumbing: picks a platform and device, owns the context and an in-order
+// profiling queue, and caches compiled programs by build options.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <CL/opencl.hpp>
+
+#include "finflex/export.hpp"
+
+namespace finflex {
+
+struct DeviceDescription {
+  std::size_t platform_index = 0;
+  std::size_t device_index = 0;
+  std::string platform_name;
+  std::string device_name;
+  std::string type;  // "GPU", "CPU", "accelerator" or "other"
+  std::string version;
+  std::size_t global_memory_bytes = 0;
+  std::size_t max_allocation_bytes = 0;
+  bool is_default = false;
+
+  bool is_gpu() const { return type == "GPU"; }
+};
+
+// Every OpenCL device of every platform. The default is the first GPU found, else the
+// first CPU device (PoCL), else the first device. Empty when no platform exists.
+FINFLEX_API std::vector<DeviceDescription> list_devices();
+
+// The source of one OpenCL program: `generated` text (e.g. a rig's dispatch macros),
+// then the library's embedded kernel files (paths under kernels/, e.g.
+// "common/vec3.cl"), then `appended` text (kernels of the caller's own that use the
+// library's functions).
+struct ProgramSource {
+  std::vector<std::string> files;
+  std::string generated;
+  std::string appended;
+};
+
+// The library's shared kernel files, in build order: vectors, the secant surface's
+// (7) and (8), the output planes, stage frames.
+FINFLEX_API const std::vector<std::string>& common_kernel_files();
+
+class FINFLEX_API Context {
+ public:
+  // `device` selects the device: empty for the default, "P:D" for platform P device D
+  // (indices as list_devices() gives them), or a case-insensitive substring of the
+  // device or platform name ("pocl", "H100"). The first match wins. Throws kDevice
+  // naming the value when nothing matches or no OpenCL platform exists.
+  explicit Context(const std::string& device = "");
+  Context(const Context&) = delete;
+  Context& operator=(const Context&) = delete;
+
+  const DeviceDescription& description() const { return description_; }
+  const cl::Device& device() const { return device_; }
+  const cl::Context& context() const { return context_; }
+  cl::CommandQueue& queue() { return queue_; }
+
+  // The program of `source`, built once per (source, options) and cached. Every build
+  // gets -cl-std=CL1.2 and FF_GPU (1 on GPUs: kernels pick the instructions that are
+  // fast on the device's kind). Build failures throw kOpenCL with the log; an unknown
+  // kernel file throws kOpenCL naming it.
+  const cl::Program& program(const ProgramSource& source, const std::string& options);
+  cl::Kernel kernel(const std::string& name, const ProgramSource& source,
+                    const std::string& options);
+
+ private:
+  DeviceDescription description_;
+  cl::Device device_;
+  cl::Context context_;
+  cl::CommandQueue queue_;
+  std::mutex cache_mutex_;
+  std::map<std::string, cl::Program> programs_;
+};
+
+// Throws finflex::Error (kOpenCL) "what: CL_... (code)" when status != CL_SUCCESS.
+FINFLEX_API void check_cl(cl_int status, const char* what);
+
+}  // namespace finflex

@@ -1,0 +1,97 @@
+// The deformer registry: one description per deformer kind (the paper's bend, the
+// hinge, ...), read by the rig file parser, the resolver, the parameter checks, the
+// OpenCL program generator, the CPU reference and the command-line tool.
+//
+// Every deformer is a secant-surface transform (METHOD.md section 4): in its stage's
+// local frame it maps the secant plane z = 0 onto a surface f(x, y) = (X(x), y, Z(x))
+// whose spine keeps its arc length, and moves the vertex by (7) p' = f(x, y) + z n,
+// its normal by (8) or by the Jacobian. A deformer only says what the surface is at x:
+// the rest (frames, normals, tangents, the hierarchy) is shared.
+//
+// Adding a deformer: its OpenCL function in kernels/deformers/<name>.cl, its
+// description (this struct) in engine/src/deformers/<name>.cpp, and one line in
+// engine/src/deformers/registry.cpp. docs/architecture.md walks through it.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "finflex/export.hpp"
+
+namespace finflex {
+
+// The secant surface at one x of the spine, in the stage's frame (the spine is the
+// curve f(x, 0)); y passes through unchanged (df/dy = e_y).
+struct SecantSample {
+  glm::dvec3 f{0.0};  // f(x, 0)
+  glm::dvec3 df_dx{1.0, 0.0, 0.0};
+  glm::dvec3 n{0.0, 0.0, 1.0};  // unit normal of the surface (17)
+  glm::dvec3 dn_dx{0.0};        // for the Jacobian (METHOD.md section 6)
+  double curvature = 0.0;       // k = theta'(x) of the spine: folds where z k >= 1
+  // True where float32 arithmetic cannot follow the surface closely (the exact bend's
+  // slope at its range limit): accuracy checks widen their bounds there.
+  bool near_limit = false;
+};
+
+// Options a stage of a deformer takes in a rig file ("mode", "width"), each a number
+// or a choice among names. Values are stored as doubles (a choice as its index).
+struct DeformerOption {
+  const char* key = "";              // e.g. "width"
+  std::vector<const char*> choices;  // a choice among these names; empty: a number
+  double minimum = 0.0;              // numbers: the inclusive range
+  double maximum = 0.0;
+  bool integer = false;        // numbers: whole numbers only
+  double default_value = 0.0;  // used when the rig file omits the key
+  const char* meaning = "";    // for messages and docs: "the hinge's width in x"
+};
+
+constexpr std::size_t kMaxStageOptions = 4;
+// A stage's option values, in the order of DeformerType::options.
+using StageOptions = std::array<double, kMaxStageOptions>;
+
+// Values a deformer precomputes per stage for its OpenCL function (kernels read them
+// from the stage table, e.g. a hinge's 1 / width, so no division runs per vertex).
+constexpr std::size_t kStageConstants = 4;
+using StageConstants = std::array<double, kStageConstants>;
+
+struct DeformerType {
+  const char* name = "";           // in rig files: {"deformer": "<name>"}
+  const char* summary = "";        // one line, e.g. "the paper's fish bend z = m x^2 (12)"
+  const char* value_meaning = "";  // what its per-instance values are, e.g. "m (12)"
+  std::vector<DeformerOption> options;
+
+  // Per-instance values one stage reads (1 for a bend's m; more for a table).
+  std::size_t (*value_count)(const StageOptions& options) = nullptr;
+  // The largest |value| accepted for a stage whose vertices reach |x| <= x_max in its
+  // frame (the bend: 0.5 / x_max, (13)).
+  double (*value_limit)(const StageOptions& options, double x_max) = nullptr;
+  // The surface at x for the stage's values (value_count of them), in double
+  // precision: the CPU reference's definition of the deformer.
+  SecantSample (*secant)(double x, const double* values, const StageOptions& options) = nullptr;
+
+  // OpenCL: the file under kernels/ that defines the deformer, and the function that
+  // applies a stage in its frame, `void <function>(Vec3* p, Vec3* n, Vec3* t,
+  // StageFrame f, __global const float* values)` (kernels/common/stage_frame.cl).
+  const char* cl_file = "";
+  const char* (*cl_function)(const StageOptions& options) = nullptr;
+  // The stage table's constants for the OpenCL function (zeros when it needs none).
+  StageConstants (*stage_constants)(const StageOptions& options) = nullptr;
+};
+
+// Every registered deformer, in registry order.
+FINFLEX_API const std::vector<const DeformerType*>& deformer_types();
+// The deformer of that name, or nullptr.
+FINFLEX_API const DeformerType* find_deformer_type(const std::string& name);
+// "\"bend\", \"hinge\" or \"spine\"": the registered names, for messages.
+FINFLEX_API std::string deformer_type_names();
+
+// The options of `type` at their defaults.
+FINFLEX_API StageOptions default_options(const DeformerType& type);
+// "mode exact, width 0.05": a stage's options as a rig file would write them.
+FINFLEX_API std::string describe_options(const DeformerType& type, const StageOptions& options);
+
+}  // namespace finflex

@@ -1,0 +1,22 @@
+// The deformer registry: every deformer kind FinFlex knows, one line each. A new
+// deformer adds its line here (and its files: engine/src/deformers/<name>.cpp,
+// kernels/deformers/<name>.cl).
+#include "finflex/deformer_type.hpp"
+
+namespace finflex {
+namespace deformers {
+
+const DeformerType& bend();   // deformers/bend.cpp: the paper's fish bend (12)-(17)
+const DeformerType& hinge();  // deformers/hinge.cpp: a fin folding about its base
+
+}  // namespace deformers
+
+const std::vector<const DeformerType*>& deformer_types() {
+  static const std::vector<const DeformerType*> types = {
+      &deformers::bend(),
+      &deformers::hinge(),
+  };
+  return types;
+}
+
+}  // namespace finflex

@@ -1,0 +1,36 @@
+// The build options that specialise a deformation kernel, as one key: kernels are
+// looked up by it every frame (no strings built) and built with options() once.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <tuple>
+
+#include "finflex/batch.hpp"
+#include "finflex/job.hpp"
+
+namespace finflex::detail {
+
+struct KernelVariant {
+  std::size_t kernel = 0;  // which kernel of the program (the deformer's numbering)
+  NormalMode normals = NormalMode::kRotate;
+  NormalFormat format = NormalFormat::kFloat32;
+  bool tangents = false;
+  std::size_t instances_per_item = 1;
+
+  bool operator<(const KernelVariant& other) const {
+    return std::tie(kernel, normals, format, tangents, instances_per_item) <
+           std::tie(other.kernel, other.normals, other.format, other.tangents,
+                    other.instances_per_item);
+  }
+
+  // -D options of kernels/common/secant.cl and kernels/common/planes.cl.
+  std::string options() const {
+    return std::string("-DFF_NORMALS_JACOBIAN=") + (normals == NormalMode::kJacobian ? "1" : "0") +
+           " -DFF_TANGENTS=" + (tangents ? "1" : "0") +
+           " -DFF_HALF_NORMALS=" + (format == NormalFormat::kHalf ? "1" : "0") +
+           " -DFF_INSTANCES_PER_ITEM=" + std::to_string(instances_per_item);
+  }
+};
+
+}  // namespace finflex::detail

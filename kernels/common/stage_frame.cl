@@ -1,0 +1,67 @@
+/* A stage's local frame (METHOD.md section 3) as the kernels read it, and the way
+ * into and out of it by (2). Shared by every program; FF_STAGE_COUNT (the stage
+ * table's length) comes from the host, as generated text before the files. */
+#ifndef FF_STAGE_COUNT
+#define FF_STAGE_COUNT 1u
+#endif
+
+/* A stage's frame, in mesh coordinates: 19 values, value c of stage k at
+ * stages[c * FF_STAGE_COUNT + k] (stage-interleaved, so no two values of one frame
+ * are adjacent: adjacent ones would be packed into 2-vectors by the compiler, and
+ * those stop PoCL from vectorising across work-items):
+ *   0-2 e_x, 3 1 / s_x, 4-6 e_y, 7 deformer constant 0,
+ *   8-10 e_z, 11 the offset of the stage's values in an instance's parameter row,
+ *   12-14 origin (the pivot), 15 s_x, 16-18 deformer constants 1-3
+ * (the constants: DeformerType::stage_constants, e.g. a hinge's width and 1 / width).
+ * A StageFrame points at stage k's first value; FF_AT(f, c) reads value c. The table
+ * is written by stage_table() in engine/src/rig_program.cpp. */
+typedef __constant const float* StageFrame;
+#define FF_AT(f, c) (f)[(c) * FF_STAGE_COUNT]
+#define FF_STAGE_VALUES(f) ((uint)FF_AT(f, 11))
+#define FF_STAGE_CONSTANT(f, k) FF_AT(f, (k) == 0 ? 7 : 15 + (k))
+
+FF_INLINE Vec3 rotate_into(Vec3 v, StageFrame f) {
+  return vec3(v.x * FF_AT(f, 0) + v.y * FF_AT(f, 1) + v.z * FF_AT(f, 2), v.x * FF_AT(f, 4) + v.y * FF_AT(f, 5) + v.z * FF_AT(f, 6),
+              v.x * FF_AT(f, 8) + v.y * FF_AT(f, 9) + v.z * FF_AT(f, 10));
+}
+
+FF_INLINE Vec3 rotate_out_of(Vec3 v, StageFrame f) {
+  return vec3(v.x * FF_AT(f, 0) + v.y * FF_AT(f, 4) + v.z * FF_AT(f, 8), v.x * FF_AT(f, 1) + v.y * FF_AT(f, 5) + v.z * FF_AT(f, 9),
+              v.x * FF_AT(f, 2) + v.y * FF_AT(f, 6) + v.z * FF_AT(f, 10));
+}
+
+/* (2) going in: p = R (p_b - origin) / s_x (normals: R n_b). */
+FF_INLINE Vec3 point_into(Vec3 p, StageFrame f) {
+  const Vec3 d = rotate_into(vec3(p.x - FF_AT(f, 12), p.y - FF_AT(f, 13), p.z - FF_AT(f, 14)), f);
+  return vec3(d.x * FF_AT(f, 3), d.y * FF_AT(f, 3), d.z * FF_AT(f, 3));
+}
+
+/* (2) going out: p_b = origin + s_x R^T p (normals: R^T n). */
+FF_INLINE Vec3 point_out_of(Vec3 p, StageFrame f) {
+  const Vec3 d = rotate_out_of(p, f);
+  return vec3(FF_AT(f, 12) + FF_AT(f, 15) * d.x, FF_AT(f, 13) + FF_AT(f, 15) * d.y, FF_AT(f, 14) + FF_AT(f, 15) * d.z);
+}
+
+/* Into a stage's frame (2): the vertex (position p, normal n, tangent t) from mesh
+ * coordinates to the frame's. The rest planes hold every vertex already in the frame
+ * of its first stage (the host transforms them once), so a vertex enters a frame here
+ * only for its later stages. */
+FF_INLINE void enter_frame(Vec3* p, Vec3* n, Vec3* t, StageFrame f) {
+  *p = point_into(*p, f);
+  *n = rotate_into(*n, f);
+  *t = rotate_into(*t, f);
+}
+
+/* The body of a deformer's stage function
+ *   void <name>_in_frame(Vec3* p, Vec3* n, Vec3* t, StageFrame f,
+ *                        __global const float* values)
+ * (values: the stage's values of the instance's parameter row): (7) and (8) (or the
+ * Jacobian) with the deformer's SecantSample at the vertex, then out of the frame to
+ * mesh coordinates. The vertex is three separate Vec3 variables, never a struct of
+ * structs: copying such a struct makes the compiler move pairs of floats as
+ * 2-vectors, which stops PoCL from vectorising across work-items. */
+#define FF_STAGE_BODY(SAMPLE)                            \
+  const SecantSample s = SAMPLE;                         \
+  *p = point_out_of(secant_position(*p, s), f);          \
+  *n = rotate_out_of(secant_normal(*n, s), f);           \
+  *t = rotate_out_of(secant_tangent(*t, s), f);

@@ -1,0 +1,57 @@
+/* The hinge (METHOD.md section 6, the general inextensible spine with a linear
+ * ramp of its angle): a fin folding about its base. Registry entry:
+ * engine/src/deformers/hinge.cpp. */
+
+/* sin(h) / h and cos(h) for |h| <= pi/2 by their Taylor series to h^12 (truncation
+ * below 1e-8): no calls and no branches, so it vectorises. */
+FF_INLINE float sin_over_h(float h) {
+  const float q = h * h;
+  return 1.0f + q * (-1.0f / 6.0f + q * (1.0f / 120.0f + q * (-1.0f / 5040.0f +
+         q * (1.0f / 362880.0f + q * (-1.0f / 39916800.0f + q * (1.0f / 6227020800.0f))))));
+}
+
+FF_INLINE float cos_of_h(float h) {
+  const float q = h * h;
+  return 1.0f + q * (-0.5f + q * (1.0f / 24.0f + q * (-1.0f / 720.0f +
+         q * (1.0f / 40320.0f + q * (-1.0f / 3628800.0f + q * (1.0f / 479001600.0f))))));
+}
+
+/* Hinge (METHOD.md section 6, the general inextensible spine): the spine's angle
+ * theta(x) ramps linearly from 0 at x = 0 to `angle` at x = width (a step at 0 when
+ * width = 0), |angle| <= pi. x < 0 is untouched; the ramp bends into a circular arc
+ * (no crease); beyond it the part is rigidly rotated about e_y:
+ *   X = min(x, 0) + r sin(theta)/theta + b cos(theta),
+ *   Z =             r (1 - cos(theta))/theta + b sin(theta),
+ * r = clamp(x, 0, width), b = max(x - width, 0), theta = angle r / width (angle past
+ * the ramp). With h = theta / 2: sin(theta)/theta = (sin h / h) cos h and
+ * (1 - cos theta)/theta = (sin h / h) sin h. Curvature k = angle / width inside the
+ * ramp, 0 elsewhere: (along, across) = (1, 1 - z k). inverse_width = 1 / width
+ * (any value when width = 0), from the host: no division per vertex. */
+FF_INLINE SecantSample hinge_sample(float x, float z, float angle, float width,
+                                  float inverse_width) {
+  const int has_ramp = width > 0.0f;
+  const float ramp = has_ramp ? clamp(x, 0.0f, width) : 0.0f;
+  const float beyond = fmax(x - width, 0.0f);
+  const float fraction = has_ramp ? ramp * inverse_width : (x > 0.0f ? 1.0f : 0.0f);
+  const float half_theta = 0.5f * angle * fraction;
+  const float sinc_h = sin_over_h(half_theta);
+  const float sin_h = sinc_h * half_theta;
+  const float cos_h = cos_of_h(half_theta);
+  SecantSample s;
+  s.sin_t = 2.0f * sin_h * cos_h;
+  s.cos_t = 1.0f - 2.0f * sin_h * sin_h;
+  s.spine_x = fmin(x, 0.0f) + ramp * sinc_h * cos_h + beyond * s.cos_t;
+  s.spine_z = ramp * sinc_h * sin_h + beyond * s.sin_t;
+  const int in_ramp = has_ramp & (x > 0.0f) & (x < width);
+  s.along = 1.0f;
+  s.across = 1.0f - z * (in_ramp ? angle * inverse_width : 0.0f);
+  return s;
+}
+
+/* Stage function (kernels/common/stage_frame.cl): values[0] is the angle; the stage
+ * table's constants 0 and 1 are the width and 1 / width. */
+FF_INLINE void hinge_in_frame(Vec3* p, Vec3* n, Vec3* t, StageFrame f,
+                              __global const float* values) {
+  FF_STAGE_BODY(hinge_sample(p->x, p->z, values[0], FF_STAGE_CONSTANT(f, 0),
+                             FF_STAGE_CONSTANT(f, 1)))
+}

@@ -1,0 +1,60 @@
+/* The whole-body bend (a rig of one component with one bend stage, METHOD.md
+ * section 5) in its own kernel: one work-item per (vertex, FF_INSTANCES_PER_ITEM
+ * instances), NDRange (plane_stride, ceil(instances / FF_INSTANCES_PER_ITEM)). Several
+ * instances per work-item read the rest vertex once and halve the work-items a GPU
+ * must schedule, which is what limits it below its write bandwidth with one; CPUs
+ * take 1. The engine picks it for such rigs (ClDeformer::uses_single_bend_kernel):
+ * it writes what the rig kernels write, with the back transform as kernel arguments
+ * instead of the stage table.
+ *
+ * rest_*: the rest mesh in the body frame, planes of `stride` floats (padding
+ *         vertices hold harmless values: the origin, e_z, e_x).
+ * m:      one bend parameter per instance, checked on the host.
+ * out_*:  planes as finflex/batch.hpp describes: (instance * 3 + component) * stride + v.
+ * back_*: the way back to mesh coordinates, M^-1 of (2):
+ *         p_b = origin + s (x e_x + y e_y + z e_z), n_b = x e_x + y e_y + z e_z;
+ *         scaled_axis_* = s e_*, axis_* = e_* (all in mesh coordinates).
+ *
+ * Build options: FF_BEND_EXACT (deformers/bend.cl), FF_NORMALS_JACOBIAN, and those of
+ * common/planes.cl. No branch depends on the vertex: the planes are padded to the
+ * work-group size, and the instance bound is the same for a whole work-group. */
+
+/* x a_x + y a_y + z a_z (+ origin): the way back to mesh coordinates, M^-1 of (2). */
+FF_INLINE Vec3 to_mesh(Vec3 v, float4 axis_x, float4 axis_y, float4 axis_z, float4 origin) {
+  return vec3(origin.x + v.x * axis_x.x + v.y * axis_y.x + v.z * axis_z.x,
+              origin.y + v.x * axis_x.y + v.y * axis_y.y + v.z * axis_z.y,
+              origin.z + v.x * axis_x.z + v.y * axis_y.z + v.z * axis_z.z);
+}
+
+__kernel void single_bend(__global const float* restrict rest_positions,
+                          __global const float* restrict rest_normals,
+                          __global const float* restrict rest_tangents,
+                          __global const float* restrict m,
+                          __global float* restrict out_positions,
+                          __global float* restrict out_normals,
+                          __global float* restrict out_tangents,
+                          const uint stride, const uint instances,
+                          const float4 origin,
+                          const float4 scaled_axis_x, const float4 scaled_axis_y,
+                          const float4 scaled_axis_z,
+                          const float4 axis_x, const float4 axis_y, const float4 axis_z) {
+  const size_t v = get_global_id(0);
+  const size_t first_instance = get_global_id(1) * FF_INSTANCES_PER_ITEM;
+  const float4 no_offset = (float4)(0.0f);
+  const Vec3 p = load_plane3(rest_positions, 0, stride, v);
+  const Vec3 n = load_plane3(rest_normals, 0, stride, v);
+  const Vec3 t = FF_LOAD_TANGENT(rest_tangents, 0, stride, v);
+  for (uint k = 0; k < FF_INSTANCES_PER_ITEM; ++k) {
+    const size_t instance = first_instance + k;
+    if (instance >= instances) break;
+    const SecantSample s = bend_sample(p.x, p.z, m[instance]);
+    const size_t out_plane = instance * 3;
+    store_plane3(out_positions, out_plane, stride, v,
+                 to_mesh(secant_position(p, s), scaled_axis_x, scaled_axis_y, scaled_axis_z,
+                         origin));
+    store_direction3(out_normals, out_plane, stride, v,
+                     to_mesh(secant_normal(n, s), axis_x, axis_y, axis_z, no_offset));
+    FF_STORE_TANGENT(out_tangents, out_plane, stride, v,
+                     to_mesh(secant_tangent(t, s), axis_x, axis_y, axis_z, no_offset));
+  }
+}
