@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Packs what a run on a GPU machine without this project's build dependencies needs:
+# the tool, the benchmarks, the tests that exercise device code, and the shared
+# libraries they load that such a machine may lack (OpenMesh, tinygltf, stb, Google
+# Benchmark), into DIR/bin and DIR/lib. The OpenCL loader stays the machine's.
+#
+#   scripts/device/bundle.sh BUILD_DIR DIR [EXTRA_BINARY ...]
+set -euo pipefail
+build=$1
+out=$2
+shift 2
+rm -rf "$out"
+mkdir -p "$out/bin" "$out/lib"
+binaries=("$build/apps/finflex" "$build/bench/bench_deform")
+for test in test_cl_deformer test_rig_deformer test_normal_format test_geometry; do
+  binaries+=("$build/tests/$test")
+done
+binaries+=("$@")
+for binary in "${binaries[@]}"; do
+  [ -f "$binary" ] && cp "$binary" "$out/bin/"
+done
+for binary in "$out"/bin/*; do
+  ldd "$binary" | awk '/=> \//{print $3}' |
+    grep -E 'libOpenMesh|libtinygltf|libstb|libbenchmark|libgomp' | xargs -r -I{} cp -L {} "$out/lib/"
+done
+du -sh "$out"
