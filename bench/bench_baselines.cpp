@@ -126,7 +126,7 @@ void BM_DoubleReference(benchmark::State& state) {
   DeviceModel& bend = Setup::get().bend(BendMode::kPaper);
   const std::size_t instances = static_cast<std::size_t>(state.range(0));
   RigParameters m(bend.model, instances);
-  m.values() = parameters(instances, bend.model.rig().components[0].chain[0].x_max);
+  m.values() = parameters(instances, bend.model.rig().components[0].chain[0].geometry.x_max);
   double total = 0.0;
   for (auto _ : state) {
     const auto start = std::chrono::steady_clock::now();

@@ -15,6 +15,9 @@
  * Their conditions are on the work-group's index only (FF_GROUP), so every
  * branch is straight-line code that PoCL vectorises across work-items.
  *
+ * The kernels' arguments end with the instances' values (params, param_count values
+ * each) and their derived values (derived_values, derived_count each).
+ *
  * Build options: FF_NORMALS_JACOBIAN (common/secant.cl), FF_HALF_NORMALS,
  * FF_TANGENTS and FF_INSTANCES_PER_ITEM (common/planes.cl; half normals in the
  * outputs only: scratch sets stay float32). Generated before the files:
@@ -38,9 +41,10 @@
       __global const float* restrict rest_normals,                                      \
       __global const float* restrict rest_tangents, __global const float* restrict params, \
       const uint param_count, __constant const float* stages,                           \
-      __global const uint* restrict group_paths, __global float* restrict out_positions, \
-      __global float* restrict out_normals, __global float* restrict out_tangents,      \
-      const uint stride, const uint instances) {                                        \
+      __global const uint* restrict group_paths,                                        \
+      __global const float* restrict derived_values, const uint derived_count,          \
+      __global float* restrict out_positions, __global float* restrict out_normals,     \
+      __global float* restrict out_tangents, const uint stride, const uint instances) {  \
     const size_t v = get_global_id(0);                                                  \
     const size_t first_instance = get_global_id(1) * FF_INSTANCES_PER_ITEM;            \
     const uint group = FF_GROUP;                                                        \
@@ -51,6 +55,7 @@
       const size_t instance = first_instance + k;                                       \
       if (instance >= instances) break;                                                 \
       __global const float* values = params + instance * param_count;                   \
+      __global const float* derived = derived_values + instance * derived_count;        \
       Vec3 p = rest_p, n = rest_n, t = rest_t;                                          \
       FF_RIG_FUSED_##r                                                                  \
       store_plane3(out_positions, instance * 3, stride, v, p);                          \
@@ -106,6 +111,7 @@ FF_RIG_FUSED_KERNELS
       __global float* restrict b_tangents, __global const float* restrict params,       \
       const uint param_count, __constant const float* stages,                           \
       __global const uint* restrict group_paths,                                        \
+      __global const float* restrict derived_values, const uint derived_count,          \
       __global float* restrict out_positions, __global float* restrict out_normals,     \
       __global float* restrict out_tangents, const uint stride, const uint instances) {  \
     const size_t v = get_global_id(0);                                                  \
@@ -115,9 +121,25 @@ FF_RIG_FUSED_KERNELS
       const size_t instance = first_instance + k;                                       \
       if (instance >= instances) break;                                                 \
       __global const float* values = params + instance * param_count;                   \
+      __global const float* derived = derived_values + instance * derived_count;        \
       Vec3 p, n, t;                                                                     \
       FF_RIG_PASS_##q                                                                   \
     }                                                                                   \
   }
 
 FF_RIG_PASS_KERNELS
+
+/* Derived values (DeformerType::derived_count, e.g. a spine's running integrals):
+ * kernel rig_prepare writes them from every instance's values before the deformation
+ * kernels run, one work-item per instance, the stages that have them listed in the
+ * generated FF_RIG_PREPARE (calls "<prepare function>(values + <offset>, derived +
+ * <offset>, stages + <k>);"). Launched only when the rig has such stages. */
+__kernel void rig_prepare(__global const float* restrict params, const uint param_count,
+                          __constant const float* stages, __global float* restrict derived_values,
+                          const uint derived_count, const uint instances) {
+  const size_t instance = get_global_id(0);
+  if (instance >= instances) return;
+  __global const float* values = params + instance * param_count;
+  __global float* derived = derived_values + instance * derived_count;
+  FF_RIG_PREPARE
+}

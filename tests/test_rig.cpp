@@ -193,7 +193,7 @@ void expect_consistent(const Rig& rig, const Mesh& mesh) {
       EXPECT_EQ(stage.frame.origin, c.frame.origin) << c.name;
       EXPECT_EQ(stage.frame.axis_x, c.frame.axis_x) << c.name;
       EXPECT_EQ(stage.frame.length, c.frame.length) << c.name;
-      EXPECT_DOUBLE_EQ(stage.x_max, x_max) << c.name;
+      EXPECT_DOUBLE_EQ(stage.geometry.x_max, x_max) << c.name;
       EXPECT_LT(stage.param, rig.parameters.size()) << c.name;
     }
   }
@@ -576,9 +576,9 @@ TEST(ResolveRig, HierarchyOnTheSyntheticFish) {
 
   // x_max: the body in the identity frame reaches 0.5; the tail's auto frame spans
   // its subtree from the seam (0) to the tip (1), the fin included.
-  EXPECT_NEAR(rig.components[0].chain[0].x_max, 0.5, 1e-7);
-  EXPECT_NEAR(rig.components[1].chain[0].x_max, 1.0, 1e-9);
-  EXPECT_NEAR(rig.components[3].chain[1].x_max, 1.0, 1e-9);
+  EXPECT_NEAR(rig.components[0].chain[0].geometry.x_max, 0.5, 1e-7);
+  EXPECT_NEAR(rig.components[1].chain[0].geometry.x_max, 1.0, 1e-9);
+  EXPECT_NEAR(rig.components[3].chain[1].geometry.x_max, 1.0, 1e-9);
 
   // Paths, bottom-up.
   using Path = std::vector<StageRef>;
@@ -1034,7 +1034,7 @@ TEST(SingleBendRig, OneBodyWithOneBendReadingM) {
   EXPECT_EQ(body.chain[0].deformer, find_deformer_type("bend"));
   EXPECT_EQ(body.chain[0].options[0], 0.0);  // mode paper
   EXPECT_EQ(body.chain[0].param, 0u);
-  EXPECT_NEAR(body.chain[0].x_max, 0.25, 1e-7);
+  EXPECT_NEAR(body.chain[0].geometry.x_max, 0.25, 1e-7);
   EXPECT_EQ(parameter_names(rig), std::vector<std::string>{"m"});
   EXPECT_DOUBLE_EQ(rig.parameters[0].limit, max_abs_m(0.25));
   EXPECT_EQ(rig.subtree_end, std::vector<std::size_t>{1});

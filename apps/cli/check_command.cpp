@@ -95,7 +95,7 @@ int run_check(const CheckOptions& options) {
         const double limit = model.rig().parameters[0].limit;
         if (mode == BendMode::kPaper) {
           std::printf("s_x %.6g, x_max %.4f, m in [%.4f, %.4f]\n", frame.length,
-                      model.rig().components[0].chain[0].x_max, -limit, limit);
+                      model.rig().components[0].chain[0].geometry.x_max, -limit, limit);
         }
         all_within =
             check_model(context, model, std::string("bend ") + to_string(mode)) && all_within;

@@ -118,7 +118,7 @@ std::string bend_whole_body(const DeformOptions& options, const Mesh& rest, Norm
   char summary[160];
   std::snprintf(summary, sizeof summary, "m = %g (%s bend, %s normals, x_max %.4f)",
                 static_cast<double>(used), to_string(mode), to_string(normals),
-                model.rig().components[0].chain[0].x_max);
+                model.rig().components[0].chain[0].geometry.x_max);
   return summary;
 }
 

@@ -110,6 +110,9 @@ ClDeformer::Impl::Impl(Context& context_in, const RiggedMesh& model_in, const Cl
   program_ = {detail::rig_program_files(rig),
               detail::rig_dispatch_source(model, slots, fused, plan, kWorkGroupSize, share_code),
               ""};
+  derived_per_instance_ = detail::derived_per_instance(rig);
+  // A placeholder until the first frame sizes it: every rig kernel takes the buffer.
+  derived_ = detail::make_buffer(cl_context, CL_MEM_READ_WRITE, sizeof(float));
 }
 
 BatchLayout ClDeformer::Impl::layout(std::size_t instances, NormalFormat format) const {
@@ -217,6 +220,37 @@ void ClDeformer::Impl::ensure_scratch(std::size_t instances) {
   ++generation_;
 }
 
+void ClDeformer::Impl::ensure_derived(std::size_t instances) {
+  if (derived_per_instance_ == 0 || instances <= derived_instances_) return;
+  derived_ = detail::make_buffer(context.context(), CL_MEM_READ_WRITE,
+                                 instances * derived_per_instance_ * sizeof(float));
+  derived_instances_ = instances;
+  ++generation_;
+}
+
+// rig_prepare over the job's instances: the derived values from the uploaded ones.
+void ClDeformer::Impl::prepare_derived(const ClJob& job) {
+  const std::size_t instances = job.parameters.instance_count;
+  if (!prepare_()) {
+    // From the program the frame's kernels come from: no build of its own.
+    const NormalFormat format = job.outputs->layout.normal_format;
+    const detail::KernelVariant variant{0, job.normals, format, tangents_, per_item(format)};
+    prepare_ = context.kernel("rig_prepare", program_, variant.options());
+  }
+  cl_uint arg = 0;
+  auto set = [&](const auto& value) { check_cl(prepare_.setArg(arg++, value), "clSetKernelArg"); };
+  set(upload_.buffer());
+  set(static_cast<cl_uint>(model.values_per_instance()));
+  set(stages_);
+  set(derived_);
+  set(static_cast<cl_uint>(derived_per_instance_));
+  set(static_cast<cl_uint>(instances));
+  const std::size_t global = (instances + kWorkGroupSize - 1) / kWorkGroupSize * kWorkGroupSize;
+  check_cl(context.queue().enqueueNDRangeKernel(prepare_, cl::NullRange, cl::NDRange(global),
+                                                cl::NDRange(kWorkGroupSize)),
+           "clEnqueueNDRangeKernel rig_prepare");
+}
+
 // kernels/single_bend.cl's and kernels/rig.cl's arguments, in their order.
 void ClDeformer::Impl::set_arguments(cl::Kernel& kernel, std::size_t index,
                                      const ClJob& job) const {
@@ -239,6 +273,8 @@ void ClDeformer::Impl::set_arguments(cl::Kernel& kernel, std::size_t index,
     set(static_cast<cl_uint>(model.values_per_instance()));
     set(stages_);
     set(group_paths_);
+    set(derived_);
+    set(static_cast<cl_uint>(derived_per_instance_));
   }
   set(batch.positions);
   set(batch.normals);
@@ -289,6 +325,10 @@ cl::Event ClDeformer::Impl::enqueue(const ClJob& job, std::vector<cl::Event>* ke
   RigPath path = job.path == RigPath::kAuto ? automatic_path : job.path;
   if (pass_count == 0) path = RigPath::kFused;  // no stage at all: the fused copy
   if (path == RigPath::kPasses && !single_bend) ensure_scratch(instances);
+  if (derived_per_instance_ > 0) {
+    ensure_derived(instances);
+    prepare_derived(job);
+  }
 
   auto run = [&](std::size_t index, std::size_t first_group, std::size_t end_group, bool last,
                  cl::Event* done) {

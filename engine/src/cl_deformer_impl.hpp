@@ -62,6 +62,11 @@ class ClDeformer::Impl {
   detail::ParameterUpload upload_;
   std::vector<cl::Buffer> scratch_;  // 3 per set: positions, normals, tangents
   std::size_t scratch_instances_ = 0;
+  // Derived values (DeformerType::derived_count): per instance, written by rig_prepare.
+  std::size_t derived_per_instance_ = 0;
+  cl::Buffer derived_;
+  std::size_t derived_instances_ = 0;
+  cl::Kernel prepare_;  // rig_prepare, when the rig has derived values
   // Bumped whenever the parameter buffer or the scratch sets are replaced: kernels set
   // up for an older generation get their arguments again.
   std::uint64_t generation_ = 1;
@@ -74,6 +79,8 @@ class ClDeformer::Impl {
   void check_buffer_sizes(const DeviceBatch& batch);
   BoundKernel& kernel(std::size_t index, const ClJob& job);
   void ensure_scratch(std::size_t instances);
+  void ensure_derived(std::size_t instances);
+  void prepare_derived(const ClJob& job);
   void launch(BoundKernel& bound, const ClJob& job, std::size_t first_group, std::size_t end_group,
               std::vector<cl::Event>* kernel_events, cl::Event* done);
   void set_arguments(cl::Kernel& kernel, std::size_t index, const ClJob& job) const;

@@ -60,6 +60,13 @@ ParameterChecker::ParameterChecker(const Rig& rig)
   }
   for (std::size_t lane = 0; lane < kLanes && !row.empty(); ++lane)
     tile_.insert(tile_.end(), row.begin(), row.end());
+  for (const RigComponent& component : rig.components) {
+    for (const RigStage& stage : component.chain) {
+      if (!stage.deformer->check_values) continue;
+      stage_checks_.push_back(
+          {stage, "the " + std::string(stage.deformer->name) + " of '" + component.name + "'"});
+    }
+  }
 }
 
 void ParameterChecker::check(const ParameterView& view, bool clamp, float* out) const {
@@ -75,6 +82,33 @@ void ParameterChecker::check(const ParameterView& view, bool clamp, float* out) 
     }
   }
   if (!within) check_slowly(view, clamp, out);
+  if (!stage_checks_.empty()) check_stages(view, clamp, out);
+}
+
+// Each instance's values of the stages that check them beyond their range, on the
+// checked copy (`out`, which clamping adjusts) or on a scratch copy.
+void ParameterChecker::check_stages(const ParameterView& view, bool clamp, float* out) const {
+  const std::size_t stride = view.stride ? view.stride : values_per_instance_;
+  std::vector<float> scratch;
+  for (const StageCheck& check : stage_checks_) {
+    const RigParameter& parameter = parameters_[check.stage.param];
+    for (std::size_t i = 0; i < view.instance_count; ++i) {
+      float* values = nullptr;
+      if (out) {
+        values = out + i * values_per_instance_ + parameter.offset;
+      } else {
+        const float* source = view.data + i * stride + parameter.offset;
+        scratch.assign(source, source + parameter.count);
+        values = scratch.data();
+      }
+      const std::string problem = check.stage.deformer->check_values(
+          values, check.stage.options, check.stage.geometry, clamp);
+      if (problem.empty()) continue;
+      const std::string field = parameter.name + "[" + std::to_string(i) + "]";
+      throw Error(ErrorCode::kOutOfRange, field,
+                  field + ": " + problem + " (" + check.where + ")");
+    }
+  }
 }
 
 void ParameterChecker::check(const ParameterView& view, bool clamp) const {

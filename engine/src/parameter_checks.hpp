@@ -23,11 +23,19 @@ class ParameterChecker {
   void check(const ParameterView& view, bool clamp) const;
 
  private:
+  // A stage whose deformer checks its values beyond their range (check_values).
+  struct StageCheck {
+    RigStage stage;
+    std::string where;  // "the spine of 'body'"
+  };
+
   std::vector<RigParameter> parameters_;
   std::size_t values_per_instance_ = 0;
   std::vector<float> tile_;  // each value's accepted |value|, rows repeated to 16 lanes
+  std::vector<StageCheck> stage_checks_;
 
   void check_slowly(const ParameterView& view, bool clamp, float* out) const;
+  void check_stages(const ParameterView& view, bool clamp, float* out) const;
 };
 
 }  // namespace finflex::detail

@@ -26,16 +26,18 @@ std::size_t values_offset(const Rig& rig, const RigStage& stage) {
 // Applies the stage at path position j of the group's path to the vertex; a vertex's
 // first stage finds it in its frame already (the rest planes):
 // "{ const StageFrame f = stages + <k>; [enter_frame(&p, &n, &t, f);]
-//    <function>(&p, &n, &t, f, values + <offset>); }", with <k> and <offset> compiled
-// in (`literal`: the group range has one stage there) or read from the path and stage
-// tables (FF_PATH_STAGE(j), FF_STAGE_VALUES(f)).
+//    <function>(&p, &n, &t, f, values + <offset>, derived + <offset>); }", with <k>
+// and the offsets compiled in (`literal`: the group range has one stage there) or read
+// from the path and stage tables (FF_PATH_STAGE(j), FF_STAGE_VALUES(f),
+// FF_STAGE_DERIVED(f)).
 struct StageCall {
   const char* function = nullptr;
   std::size_t position = 0;
   bool first = false;
   bool literal = false;
-  std::size_t stage = 0;   // stage index, when literal
-  std::size_t values = 0;  // values offset, when literal
+  std::size_t stage = 0;    // stage index, when literal
+  std::size_t values = 0;   // values offset, when literal
+  std::size_t derived = 0;  // derived values offset, when literal
 };
 
 std::string stage_call(const StageCall& c) {
@@ -49,9 +51,9 @@ std::string stage_call(const StageCall& c) {
   if (!c.first) call << "enter_frame(&p, &n, &t, f); ";
   call << c.function << "(&p, &n, &t, f, values + ";
   if (c.literal) {
-    call << c.values;
+    call << c.values << ", derived + " << c.derived;
   } else {
-    call << "FF_STAGE_VALUES(f)";
+    call << "FF_STAGE_VALUES(f), derived + FF_STAGE_DERIVED(f)";
   }
   call << "); }";
   return call.str();
@@ -63,6 +65,18 @@ std::vector<const char*> path_functions(const RiggedMesh& model, std::size_t c) 
   for (const StageRef& ref : model.paths()[c])
     functions.push_back(stage_function(model.rig().stage(ref)));
   return functions;
+}
+
+// Derived values before stage k (stages in rig order).
+std::size_t derived_offset_of(const Rig& rig, std::size_t k) {
+  std::size_t offset = 0, index = 0;
+  for (const RigComponent& component : rig.components) {
+    for (const RigStage& stage : component.chain) {
+      if (index++ == k) return offset;
+      if (stage.deformer->derived_count) offset += stage.deformer->derived_count(stage.options);
+    }
+  }
+  return offset;
 }
 
 // The suffix of kernels/rig.cl's FF_LOAD_* and FF_STORE_* macros for a set.
@@ -144,6 +158,14 @@ std::size_t stage_index(const Rig& rig, std::size_t component, std::size_t stage
 
 std::size_t stage_count(const Rig& rig) { return stage_index(rig, rig.components.size(), 0); }
 
+std::size_t derived_per_instance(const Rig& rig) {
+  return derived_offset_of(rig, stage_count(rig));
+}
+
+std::size_t derived_offset(const Rig& rig, std::size_t component, std::size_t stage) {
+  return derived_offset_of(rig, stage_index(rig, component, stage));
+}
+
 std::vector<float> stage_table(const Rig& rig) {
   const std::size_t count = std::max<std::size_t>(stage_count(rig), 1);
   std::vector<float> table(kStageValues * count, 0.0f);  // valid (unused) without stages
@@ -151,8 +173,9 @@ std::vector<float> stage_table(const Rig& rig) {
   for (const RigComponent& component : rig.components) {
     for (const RigStage& stage : component.chain) {
       const BodyFrame& f = stage.frame;
-      const StageConstants c = stage.deformer->stage_constants(stage.options);
+      const StageConstants c = stage.deformer->stage_constants(stage.options, stage.geometry);
       const double offset = double(values_offset(rig, stage));
+      const double derived = double(derived_offset_of(rig, k));
       // kernels/common/stage_frame.cl's layout.
       // clang-format off
       const double values[kStageValues] = {
@@ -160,7 +183,7 @@ std::vector<float> stage_table(const Rig& rig) {
           f.axis_y.x, f.axis_y.y, f.axis_y.z, c[0],             // 4-7
           f.axis_z.x, f.axis_z.y, f.axis_z.z, offset,           // 8-11
           f.origin.x, f.origin.y, f.origin.z, f.length,         // 12-15
-          c[1], c[2], c[3]};                                    // 16-18
+          c[1], c[2], c[3], derived};                           // 16-19
       // clang-format on
       for (std::size_t v = 0; v < kStageValues; ++v)
         table[v * count + k] = static_cast<float>(values[v]);
@@ -251,7 +274,8 @@ PassPlan make_pass_plan(const RiggedMesh& model, const SlotLayout& slots, std::s
                                                                        : PlaneSet::kScratchA;
           const RigStage& stage = rig.components[c].chain[position];
           add_step(steps, {first, end, location[d], target, stage_function(stage), path_position,
-                           stage_index(rig, c, position), values_offset(rig, stage)});
+                           stage_index(rig, c, position), values_offset(rig, stage),
+                           derived_offset(rig, c, position)});
           location[d] = target;
         }
       }
@@ -329,7 +353,8 @@ std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots
                              j == 0,
                              !share_code,
                              stage_index(rig, path[j].component, path[j].stage),
-                             values_offset(rig, rig.stage(path[j]))};
+                             values_offset(rig, rig.stage(path[j])),
+                             derived_offset(rig, path[j].component, path[j].stage)};
         out << " " << stage_call(call);
       }
       out << " }";
@@ -348,7 +373,8 @@ std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots
           << step.end_group << "u) { FF_LOAD_" << plane_set_name(step.source) << " ";
       if (step.function) {
         const StageCall call{step.function, step.path_position, step.source == PlaneSet::kRest,
-                             !share_code,   step.stage,         step.values};
+                             !share_code,   step.stage,         step.values,
+                             step.derived};
         out << stage_call(call) << " ";
       }
       out << "FF_STORE_" << plane_set_name(step.target) << " }";
@@ -358,6 +384,18 @@ std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots
   }
   out << "#define FF_RIG_PASS_KERNELS";
   for (std::size_t q = 0; q < plan.passes.size(); ++q) out << " FF_DEFINE_RIG_PASS(" << q << ")";
+  out << "\n";
+  // Derived values: each stage's prepare function, on every instance.
+  out << "#define FF_RIG_PREPARE";
+  for (std::size_t c = 0; c < rig.components.size(); ++c) {
+    for (std::size_t k = 0; k < rig.components[c].chain.size(); ++k) {
+      const RigStage& stage = rig.components[c].chain[k];
+      if (!stage.deformer->cl_prepare_function) continue;
+      out << " \\\n  " << stage.deformer->cl_prepare_function << "(values + "
+          << values_offset(rig, stage) << ", derived + " << derived_offset(rig, c, k)
+          << ", stages + " << stage_index(rig, c, k) << ");";
+    }
+  }
   out << "\n";
   return out.str();
 }

@@ -41,8 +41,13 @@ std::size_t stage_count(const Rig& rig);
 
 // The stage table of kernels/common/stage_frame.cl: kStageValues values per stage,
 // stage-interleaved (value c of stage k at [c * stage_count + k]).
-constexpr std::size_t kStageValues = 19;
+constexpr std::size_t kStageValues = 20;
 std::vector<float> stage_table(const Rig& rig);
+
+// Derived values (DeformerType::derived_count) per instance, over all stages, and the
+// offset of stage (component, stage)'s in that row (stages in rig order).
+std::size_t derived_per_instance(const Rig& rig);
+std::size_t derived_offset(const Rig& rig, std::size_t component, std::size_t stage);
 
 // The program's kernel files: the common ones, the deformers the rig uses (each once,
 // in registry order), then kernels/rig.cl.
@@ -76,6 +81,7 @@ struct PassStep {
   std::size_t path_position = 0;
   std::size_t stage = 0;
   std::size_t values = 0;
+  std::size_t derived = 0;
 };
 
 struct PassPlan {
@@ -106,7 +112,7 @@ std::vector<FusedLaunch> make_fused_plan(const RiggedMesh& model, const SlotLayo
 
 // The generated macros of kernels/rig.cl for the rig: FF_STAGE_COUNT,
 // FF_RIG_GROUP_COUNT, FF_RIG_FUSED_<r> and FF_RIG_FUSED_KERNELS (kernel rig_fused_<r>
-// for fused[r]), FF_RIG_PASS_<q> and FF_RIG_PASS_KERNELS.
+// for fused[r]), FF_RIG_PASS_<q> and FF_RIG_PASS_KERNELS, FF_RIG_PREPARE.
 // share_code: as for make_pass_plan (RigDispatch::kByPathShape).
 std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots,
                                 const std::vector<FusedLaunch>& fused, const PassPlan& plan,

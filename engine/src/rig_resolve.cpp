@@ -641,19 +641,35 @@ void check_options(const RigSpec& spec, std::size_t c, std::size_t k) {
   }
 }
 
-double largest_abs_x(const Mesh& mesh, const VertexSet& vertices, const BodyFrame& frame) {
-  double x_max = 0.0;
-  for (const std::uint32_t v : vertices) {
-    x_max = std::max(x_max, std::abs(frame.point_to_local(position(mesh, v)).x));
+// The rest vertices in `frame`.
+std::vector<glm::dvec3> local_positions(const Mesh& mesh, const VertexSet& vertices,
+                                        const BodyFrame& frame) {
+  std::vector<glm::dvec3> local;
+  local.reserve(vertices.size());
+  for (const std::uint32_t v : vertices) local.push_back(frame.point_to_local(position(mesh, v)));
+  return local;
+}
+
+// The extent along x of `local` (and the deformer's measurements of it).
+StageGeometry measure_stage(const std::vector<glm::dvec3>& local, const StageSpec& stage) {
+  StageGeometry geometry;
+  if (!local.empty()) {
+    geometry.x_lowest = geometry.x_highest = local.front().x;
   }
-  return x_max;
+  for (const glm::dvec3& p : local) {
+    geometry.x_lowest = std::min(geometry.x_lowest, p.x);
+    geometry.x_highest = std::max(geometry.x_highest, p.x);
+    geometry.x_max = std::max(geometry.x_max, std::abs(p.x));
+  }
+  if (stage.deformer->measure) geometry.measurements = stage.deformer->measure(stage.options, local);
+  return geometry;
 }
 
 std::vector<RigStage> resolve_chain(const Mesh& mesh, const RigSpec& spec, std::size_t c,
                                     const Resolved& resolved, const Rig& rig) {
   std::vector<RigStage> stages;
   const BodyFrame& frame = resolved.frame[c];
-  const double x_max = largest_abs_x(mesh, resolved.subtree[c], frame);
+  const std::vector<glm::dvec3> local = local_positions(mesh, resolved.subtree[c], frame);
   const std::vector<StageSpec>& chain = spec.components[c].chain;
   for (std::size_t k = 0; k < chain.size(); ++k) {
     check_options(spec, c, k);
@@ -662,7 +678,7 @@ std::vector<RigStage> resolve_chain(const Mesh& mesh, const RigSpec& spec, std::
     out.options = chain[k].options;
     out.param = rig.param_index(chain[k].param);
     out.frame = frame;
-    out.x_max = x_max;
+    out.geometry = measure_stage(local, chain[k]);
     stages.push_back(out);
   }
   return stages;
@@ -673,13 +689,13 @@ void set_limits(Rig& rig) {
   std::vector<bool> seen(rig.parameters.size(), false);
   for (const RigComponent& component : rig.components) {
     for (const RigStage& stage : component.chain) {
-      const double limit = stage.deformer->value_limit(stage.options, stage.x_max);
+      const double limit = stage.deformer->value_limit(stage.options, stage.geometry);
       RigParameter& parameter = rig.parameters[stage.param];
       if (!seen[stage.param] || limit < parameter.limit) {
         parameter.limit = limit;
         parameter.limit_source = "set by the " + std::string(stage.deformer->name) + " of '" +
                                  component.name + "': " + stage.deformer->value_meaning +
-                                 ", x_max = " + format_double(stage.x_max);
+                                 ", x_max = " + format_double(stage.geometry.x_max);
       }
       seen[stage.param] = true;
     }
@@ -795,7 +811,7 @@ Rig single_bend_rig(const Mesh& mesh, const BodyFrame& frame, BendMode mode) {
   stage.options = spec.options;
   stage.param = 0;
   stage.frame = frame;
-  stage.x_max = largest_abs_x(mesh, body.vertices, frame);
+  stage.geometry = measure_stage(local_positions(mesh, body.vertices, frame), spec);
   body.chain.push_back(stage);
   Rig rig;
   rig.parameters = {RigParameter{"m", 0, 1, 0.0, ""}};

@@ -46,8 +46,10 @@ Vertex apply_secant(const Vertex& rest, const SecantSample& s, NormalMode normal
 namespace finflex {
 
 LocalVertex apply_stage(const DeformerType& deformer, const StageOptions& options,
-                        const double* values, const LocalVertex& rest, NormalMode normals) {
-  return detail::apply_secant(rest, deformer.secant(rest.position.x, values, options), normals);
+                        const double* values, const LocalVertex& rest, NormalMode normals,
+                        const StageGeometry& geometry) {
+  return detail::apply_secant(rest, deformer.secant(rest.position.x, values, options, geometry),
+                              normals);
 }
 
 }  // namespace finflex

@@ -24,7 +24,7 @@ Vertex deform_vertex(const RiggedMesh& model, std::size_t v, const double* row, 
     const Vertex local{f.point_to_local(x.position), f.vector_to_local(x.normal),
                        f.vector_to_local(x.tangent)};
     const SecantSample sample = stage.deformer->secant(
-        local.position.x, row + rig.parameters[stage.param].offset, stage.options);
+        local.position.x, row + rig.parameters[stage.param].offset, stage.options, stage.geometry);
     const Vertex moved = apply_secant(local, sample, normals);
     x = {f.point_to_mesh(moved.position), f.vector_to_mesh(moved.normal),
          f.vector_to_mesh(moved.tangent)};

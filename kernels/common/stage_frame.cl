@@ -5,19 +5,22 @@
 #define FF_STAGE_COUNT 1u
 #endif
 
-/* A stage's frame, in mesh coordinates: 19 values, value c of stage k at
+/* A stage's frame, in mesh coordinates: 20 values, value c of stage k at
  * stages[c * FF_STAGE_COUNT + k] (stage-interleaved, so no two values of one frame
  * are adjacent: adjacent ones would be packed into 2-vectors by the compiler, and
  * those stop PoCL from vectorising across work-items):
  *   0-2 e_x, 3 1 / s_x, 4-6 e_y, 7 deformer constant 0,
  *   8-10 e_z, 11 the offset of the stage's values in an instance's parameter row,
- *   12-14 origin (the pivot), 15 s_x, 16-18 deformer constants 1-3
- * (the constants: DeformerType::stage_constants, e.g. a hinge's width and 1 / width).
+ *   12-14 origin (the pivot), 15 s_x, 16-18 deformer constants 1-3,
+ *   19 the offset of the stage's derived values in an instance's derived row
+ * (the constants: DeformerType::stage_constants, e.g. a hinge's width and 1 / width;
+ * derived values: DeformerType::derived_count, written by the rig_prepare kernel).
  * A StageFrame points at stage k's first value; FF_AT(f, c) reads value c. The table
  * is written by stage_table() in engine/src/rig_program.cpp. */
 typedef __constant const float* StageFrame;
 #define FF_AT(f, c) (f)[(c) * FF_STAGE_COUNT]
 #define FF_STAGE_VALUES(f) ((uint)FF_AT(f, 11))
+#define FF_STAGE_DERIVED(f) ((uint)FF_AT(f, 19))
 #define FF_STAGE_CONSTANT(f, k) FF_AT(f, (k) == 0 ? 7 : 15 + (k))
 
 FF_INLINE Vec3 rotate_into(Vec3 v, StageFrame f) {
@@ -54,8 +57,9 @@ FF_INLINE void enter_frame(Vec3* p, Vec3* n, Vec3* t, StageFrame f) {
 
 /* The body of a deformer's stage function
  *   void <name>_in_frame(Vec3* p, Vec3* n, Vec3* t, StageFrame f,
- *                        __global const float* values)
- * (values: the stage's values of the instance's parameter row): (7) and (8) (or the
+ *                        __global const float* values, __global const float* derived)
+ * (values: the stage's values of the instance's parameter row; derived: its derived
+ * values, for deformers that have them): (7) and (8) (or the
  * Jacobian) with the deformer's SecantSample at the vertex, then out of the frame to
  * mesh coordinates. The vertex is three separate Vec3 variables, never a struct of
  * structs: copying such a struct makes the compiler move pairs of floats as

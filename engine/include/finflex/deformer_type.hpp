@@ -53,6 +53,16 @@ constexpr std::size_t kMaxStageOptions = 4;
 // A stage's option values, in the order of DeformerType::options.
 using StageOptions = std::array<double, kMaxStageOptions>;
 
+// Where a stage's rest vertices (its component's and its descendants') lie in its
+// frame, measured once when the rig is resolved against a mesh.
+struct StageGeometry {
+  double x_lowest = 0.0;   // the smallest x
+  double x_highest = 0.0;  // the largest x
+  double x_max = 0.0;      // the largest |x|: the bend's range (13)
+  // What DeformerType::measure found (e.g. a spine's per-segment extents in z).
+  std::vector<double> measurements;
+};
+
 // Values a deformer precomputes per stage for its OpenCL function (kernels read them
 // from the stage table, e.g. a hinge's 1 / width, so no division runs per vertex).
 constexpr std::size_t kStageConstants = 4;
@@ -66,20 +76,42 @@ struct DeformerType {
 
   // Per-instance values one stage reads (1 for a bend's m; more for a table).
   std::size_t (*value_count)(const StageOptions& options) = nullptr;
-  // The largest |value| accepted for a stage whose vertices reach |x| <= x_max in its
-  // frame (the bend: 0.5 / x_max, (13)).
-  double (*value_limit)(const StageOptions& options, double x_max) = nullptr;
+  // The largest |value| accepted for the stage (the bend: 0.5 / x_max, (13)).
+  double (*value_limit)(const StageOptions& options, const StageGeometry& geometry) = nullptr;
   // The surface at x for the stage's values (value_count of them), in double
   // precision: the CPU reference's definition of the deformer.
-  SecantSample (*secant)(double x, const double* values, const StageOptions& options) = nullptr;
+  SecantSample (*secant)(double x, const double* values, const StageOptions& options,
+                         const StageGeometry& geometry) = nullptr;
 
   // OpenCL: the file under kernels/ that defines the deformer, and the function that
   // applies a stage in its frame, `void <function>(Vec3* p, Vec3* n, Vec3* t,
-  // StageFrame f, __global const float* values)` (kernels/common/stage_frame.cl).
+  // StageFrame f, __global const float* values, __global const float* derived)`
+  // (kernels/common/stage_frame.cl).
   const char* cl_file = "";
   const char* (*cl_function)(const StageOptions& options) = nullptr;
   // The stage table's constants for the OpenCL function (zeros when it needs none).
-  StageConstants (*stage_constants)(const StageOptions& options) = nullptr;
+  StageConstants (*stage_constants)(const StageOptions& options,
+                                    const StageGeometry& geometry) = nullptr;
+
+  // ---- Optional ----
+  // Values the OpenCL function needs that follow from an instance's values but would
+  // cost every vertex to compute (a spine's running integrals): `derived_count` of
+  // them per stage and instance, written each frame before the deformation kernels
+  // by `void <cl_prepare_function>(__global const float* values, __global float*
+  // derived, StageFrame f)`, one work-item per instance.
+  std::size_t (*derived_count)(const StageOptions& options) = nullptr;
+  const char* cl_prepare_function = nullptr;
+  // Measures the stage's rest vertices (in its frame) once, for value checks beyond
+  // the range (StageGeometry::measurements).
+  std::vector<double> (*measure)(const StageOptions& options,
+                                 const std::vector<glm::dvec3>& local_positions) = nullptr;
+  // Checks one instance's values beyond their range (a spine that would fold the
+  // surface through itself, METHOD.md section 6). Returns an empty string when they are
+  // fine; otherwise, with `clamp`, adjusts `values` so they are and returns empty; else
+  // returns what is wrong ("segment 12: curvature 11.2 folds vertices 0.11 off the
+  // spine (z k = 1.23 >= 1)").
+  std::string (*check_values)(float* values, const StageOptions& options,
+                              const StageGeometry& geometry, bool clamp) = nullptr;
 };
 
 // Every registered deformer, in registry order.

@@ -44,12 +44,13 @@ struct LocalVertex {
   glm::dvec3 tangent{0.0};
 };
 
-// One stage of `deformer` (with `options` and the stage's `values`) on a vertex in the
-// stage's frame, as the reference applies it: the deformer's secant surface at x, the
+// One stage of `deformer` (with `options`, the stage's `values` and the geometry of its
+// vertices, which some deformers need: a spine's table spans their x extent) on a
+// vertex in the stage's frame, as the reference applies it: the deformer's secant surface at x, the
 // position by (7), the normal by (8) (the Rodrigues rotation taking e_z to the surface
 // normal) or by the Jacobian's cofactor, the tangent by R or by J.
 FINFLEX_API LocalVertex apply_stage(const DeformerType& deformer, const StageOptions& options,
                                     const double* values, const LocalVertex& rest,
-                                    NormalMode normals);
+                                    NormalMode normals, const StageGeometry& geometry = {});
 
 }  // namespace finflex

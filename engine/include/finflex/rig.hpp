@@ -139,8 +139,9 @@ struct RigStage {
   StageOptions options{};
   std::size_t param = 0;  // index into Rig::parameters
   BodyFrame frame;        // in mesh coordinates
-  double x_max = 0.0;     // largest |x| of the rest vertices this stage moves (its
-                          // component and descendants), in its frame: its range (13)
+  // The rest vertices this stage moves (its component's and its descendants') in its
+  // frame: their extent along x, and the deformer's measurements.
+  StageGeometry geometry;
 };
 
 struct RigComponent {
@@ -158,7 +159,7 @@ struct RigParameter {
   std::size_t offset = 0;
   std::size_t count = 1;
   // The largest |value| accepted: the tightest of the stages that read it
-  // (DeformerType::value_limit at their x_max), and which stage sets it, for messages
+  // (DeformerType::value_limit for their geometry), and which stage sets it, for messages
   // ("set by the bend of 'body': |m| <= 0.5 / x_max (13), x_max = 0.489").
   double limit = 0.0;
   std::string limit_source;

@@ -74,8 +74,8 @@ const DeformerType kBend = {
       1.0,
       "paper: the 4th-order series (15)-(17); exact: the closed form of (13)"}},
     [](const StageOptions&) -> std::size_t { return 1; },
-    [](const StageOptions&, double x_max) { return max_abs_m(x_max); },
-    [](double x, const double* values, const StageOptions& options) {
+    [](const StageOptions&, const StageGeometry& geometry) { return max_abs_m(geometry.x_max); },
+    [](double x, const double* values, const StageOptions& options, const StageGeometry&) {
       return mode_of(options) == BendMode::kExact ? exact_secant(x, values[0])
                                                   : paper_secant(x, values[0]);
     },
@@ -83,7 +83,7 @@ const DeformerType kBend = {
     [](const StageOptions& options) {
       return mode_of(options) == BendMode::kExact ? "bend_exact_in_frame" : "bend_paper_in_frame";
     },
-    [](const StageOptions&) { return StageConstants{}; },
+    [](const StageOptions&, const StageGeometry&) { return StageConstants{}; },
 };
 
 }  // namespace

@@ -51,13 +51,13 @@ const DeformerType kHinge = {
       0.0,
       "the ramp's width in x (the frame's lengths), >= 0"}},
     [](const StageOptions&) -> std::size_t { return 1; },
-    [](const StageOptions&, double) { return kPi; },
-    [](double x, const double* values, const StageOptions& options) {
+    [](const StageOptions&, const StageGeometry&) { return kPi; },
+    [](double x, const double* values, const StageOptions& options, const StageGeometry&) {
       return hinge_secant(x, values[0], options[kWidth]);
     },
     "deformers/hinge.cl",
     [](const StageOptions&) { return "hinge_in_frame"; },
-    [](const StageOptions& options) {
+    [](const StageOptions& options, const StageGeometry&) {
       // The kernel's hinge_sample reads width and 1 / width (0 for width 0).
       const double width = options[kWidth];
       return StageConstants{width, width > 0.0 ? 1.0 / width : 0.0, 0.0, 0.0};
