@@ -8,6 +8,7 @@ namespace deformers {
 
 const DeformerType& bend();   // deformers/bend.cpp: the paper's fish bend (12)-(17)
 const DeformerType& hinge();  // deformers/hinge.cpp: a fin folding about its base
+const DeformerType& spine();  // deformers/spine.cpp: a table of angles, any inextensible bend
 
 }  // namespace deformers
 
@@ -15,6 +16,7 @@ const std::vector<const DeformerType*>& deformer_types() {
   static const std::vector<const DeformerType*> types = {
       &deformers::bend(),
       &deformers::hinge(),
+      &deformers::spine(),
   };
   return types;
 }

@@ -1,0 +1,99 @@
+/* The general inextensible spine (METHOD.md section 6): per instance a table of
+ * tangent angles theta_k at `samples` points x_k evenly spaced over the stage's extent
+ * in x, theta linear in between and constant beyond the ends. The spine is
+ *   X(x) = integral_0^x cos theta,  Z(x) = integral_0^x sin theta,
+ * so it keeps its arc length exactly at any angle, x = 0 (the pivot) staying fixed;
+ * n = (-sin theta, 0, cos theta), curvature k = theta'(x). The paper's bend is the case
+ * theta = asin(2 m x). Registry entry: engine/src/deformers/spine.cpp.
+ *
+ * Over one segment, with theta linear (slope a) from theta_j, the integrals are closed
+ * forms: integral_0^d cos(theta_j + a t) dt = d cos(theta_j + a d / 2) sinc(a d / 2),
+ * and the same with sin (sinc(u) = sin(u) / u). The running integrals at the samples,
+ * X_k and Z_k (from x = 0), are the stage's derived values, written by spine_prepare
+ * once per instance and frame: a vertex then integrates only its own segment.
+ *
+ * Stage table constants (DeformerType::stage_constants): 0 x_0 (the first sample),
+ * 1 1 / h, 2 h (the spacing), 3 samples - 1. Derived values: X_0..X_{n-1}, Z_0..Z_{n-1}. */
+
+/* sin(u) / u, without the 0/0 at u = 0. */
+FF_INLINE float spine_sinc(float u) {
+  const float u2 = u * u;
+  return u2 < 1e-6f ? 1.0f - u2 * (1.0f / 6.0f) : sin(u) / u;
+}
+
+/* The spine at x of a vertex at height z: theta (the angles), derived (X_k then Z_k). */
+FF_INLINE SecantSample spine_sample(float x, float z, __global const float* theta,
+                                    __global const float* derived, StageFrame f) {
+  const float x_first = FF_STAGE_CONSTANT(f, 0);
+  const float inverse_h = FF_STAGE_CONSTANT(f, 1);
+  const float h = FF_STAGE_CONSTANT(f, 2);
+  const float last = FF_STAGE_CONSTANT(f, 3);
+  const float position = (x - x_first) * inverse_h;
+  const float segment = clamp(floor(position), 0.0f, last - 1.0f);
+  const int j = (int)segment;
+  const int count = (int)last + 1;
+  const float d = (position - segment) * h;  /* from x_j; outside the table: < 0 or > h */
+  const float inside = clamp(d, 0.0f, h);     /* the part of d where theta is linear */
+  const float beyond = d - inside;            /* beyond the ends theta is constant */
+  const float theta_j = theta[j];
+  const float slope = (theta[j + 1] - theta_j) * inverse_h;
+  const float half = 0.5f * slope * inside;
+  const float chord = inside * spine_sinc(half);
+  const float mid = theta_j + half;
+  const float end = theta_j + 2.0f * half;
+  const float sin_end = sin(end);
+  const float cos_end = cos(end);
+  SecantSample s;
+  s.spine_x = derived[j] + chord * cos(mid) + beyond * cos_end;
+  s.spine_z = derived[count + j] + chord * sin(mid) + beyond * sin_end;
+  s.sin_t = sin_end;
+  s.cos_t = cos_end;
+  /* |df/dx| = 1; k = slope within the table, 0 beyond it (METHOD.md section 6). */
+  s.along = 1.0f;
+  s.across = 1.0f - z * (beyond == 0.0f ? slope : 0.0f);
+  return s;
+}
+
+/* Stage function (kernels/common/stage_frame.cl): values are the angles. */
+FF_INLINE void spine_in_frame(Vec3* p, Vec3* n, Vec3* t, StageFrame f,
+                              __global const float* values, __global const float* derived) {
+  FF_STAGE_BODY(spine_sample(p->x, p->z, values, derived, f))
+}
+
+/* The running integrals X_k, Z_k of one instance's angles, from x = 0 (rig_prepare). */
+FF_INLINE void spine_prepare(__global const float* theta, __global float* derived, StageFrame f) {
+  const float x_first = FF_STAGE_CONSTANT(f, 0);
+  const float inverse_h = FF_STAGE_CONSTANT(f, 1);
+  const float h = FF_STAGE_CONSTANT(f, 2);
+  const int count = (int)FF_STAGE_CONSTANT(f, 3) + 1;
+  /* From the first sample... */
+  float x_sum = 0.0f, z_sum = 0.0f;
+  derived[0] = 0.0f;
+  derived[count] = 0.0f;
+  for (int j = 0; j + 1 < count; ++j) {
+    const float half = 0.5f * (theta[j + 1] - theta[j]);
+    const float chord = h * spine_sinc(half);
+    const float mid = theta[j] + half;
+    x_sum += chord * cos(mid);
+    z_sum += chord * sin(mid);
+    derived[j + 1] = x_sum;
+    derived[count + j + 1] = z_sum;
+  }
+  /* ...then from x = 0: subtract the integral up to 0 (0 may lie outside the table). */
+  const float position = -x_first * inverse_h;
+  const float segment = clamp(floor(position), 0.0f, (float)(count - 2));
+  const int j = (int)segment;
+  const float d = (position - segment) * h;
+  const float inside = clamp(d, 0.0f, h);
+  const float beyond = d - inside;
+  const float slope = (theta[j + 1] - theta[j]) * inverse_h;
+  const float half = 0.5f * slope * inside;
+  const float chord = inside * spine_sinc(half);
+  const float end = theta[j] + 2.0f * half;
+  const float x_origin = derived[j] + chord * cos(theta[j] + half) + beyond * cos(end);
+  const float z_origin = derived[count + j] + chord * sin(theta[j] + half) + beyond * sin(end);
+  for (int k = 0; k < count; ++k) {
+    derived[k] -= x_origin;
+    derived[count + k] -= z_origin;
+  }
+}
