@@ -37,10 +37,10 @@ FF_INLINE SecantSample spine_sample(float x, float z, __global const float* thet
   const float beyond = d - inside;            /* beyond the ends theta is constant */
   const float theta_j = theta[j];
   const float slope = (theta[j + 1] - theta_j) * inverse_h;
-  const float half = 0.5f * slope * inside;
-  const float chord = inside * spine_sinc(half);
-  const float mid = theta_j + half;
-  const float end = theta_j + 2.0f * half;
+  const float half_turn = 0.5f * slope * inside;
+  const float chord = inside * spine_sinc(half_turn);
+  const float mid = theta_j + half_turn;
+  const float end = theta_j + 2.0f * half_turn;
   const float sin_end = sin(end);
   const float cos_end = cos(end);
   SecantSample s;
@@ -71,9 +71,9 @@ FF_INLINE void spine_prepare(__global const float* theta, __global float* derive
   derived[0] = 0.0f;
   derived[count] = 0.0f;
   for (int j = 0; j + 1 < count; ++j) {
-    const float half = 0.5f * (theta[j + 1] - theta[j]);
-    const float chord = h * spine_sinc(half);
-    const float mid = theta[j] + half;
+    const float half_turn = 0.5f * (theta[j + 1] - theta[j]);
+    const float chord = h * spine_sinc(half_turn);
+    const float mid = theta[j] + half_turn;
     x_sum += chord * cos(mid);
     z_sum += chord * sin(mid);
     derived[j + 1] = x_sum;
@@ -87,11 +87,11 @@ FF_INLINE void spine_prepare(__global const float* theta, __global float* derive
   const float inside = clamp(d, 0.0f, h);
   const float beyond = d - inside;
   const float slope = (theta[j + 1] - theta[j]) * inverse_h;
-  const float half = 0.5f * slope * inside;
-  const float chord = inside * spine_sinc(half);
-  const float end = theta[j] + 2.0f * half;
-  const float x_origin = derived[j] + chord * cos(theta[j] + half) + beyond * cos(end);
-  const float z_origin = derived[count + j] + chord * sin(theta[j] + half) + beyond * sin(end);
+  const float half_turn = 0.5f * slope * inside;
+  const float chord = inside * spine_sinc(half_turn);
+  const float end = theta[j] + 2.0f * half_turn;
+  const float x_origin = derived[j] + chord * cos(theta[j] + half_turn) + beyond * cos(end);
+  const float z_origin = derived[count + j] + chord * sin(theta[j] + half_turn) + beyond * sin(end);
   for (int k = 0; k < count; ++k) {
     derived[k] -= x_origin;
     derived[count + k] -= z_origin;

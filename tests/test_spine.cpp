@@ -1,0 +1,212 @@
+// The spine deformer (METHOD.md section 6): a table of tangent angles along x. Checked
+// against its definition (identity at zero angles, the spine's arc length kept at
+// angles the paper's series cannot reach, the paper's bend as the special case
+// theta = asin(2 m x)), the OpenCL kernels against the double reference on a
+// synthetic and a real fish, and fold-over refused or clamped.
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "finflex/finflex.hpp"
+#include "support/deform.hpp"
+#include "support/synthetic_fish.hpp"
+#include "support/test_support.hpp"
+
+namespace finflex {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// A whole-body spine of `samples` angles (parameter "wave") in the identity frame.
+RiggedMesh spine_model(const Mesh& mesh, std::size_t samples,
+                       FrameSpec::Mode frame = FrameSpec::Mode::kIdentity) {
+  RigSpec spec;
+  spec.frame.mode = frame;
+  ComponentSpec body;
+  body.name = "body";
+  StageSpec stage = make_stage("spine", "wave");
+  set_option(stage, "samples", double(samples));
+  body.chain.push_back(stage);
+  spec.components.push_back(body);
+  return RiggedMesh(mesh, resolve_rig(spec, mesh));
+}
+
+// The sample positions of the spine stage's table.
+std::vector<double> sample_x(const RiggedMesh& model) {
+  const RigStage& stage = model.rig().components[0].chain[0];
+  const std::size_t n = model.rig().parameters[0].count;
+  std::vector<double> x(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    x[k] = stage.geometry.x_lowest +
+           (stage.geometry.x_highest - stage.geometry.x_lowest) * double(k) / double(n - 1);
+  }
+  return x;
+}
+
+// One instance per function: its angles at the samples.
+RigParameters angles(const RiggedMesh& model,
+                     const std::vector<std::function<double(double)>>& functions) {
+  const std::vector<double> x = sample_x(model);
+  RigParameters values(model, functions.size());
+  for (std::size_t i = 0; i < functions.size(); ++i) {
+    std::vector<float> row;
+    for (double xk : x) row.push_back(static_cast<float>(functions[i](xk)));
+    values.set(i, "wave", row);
+  }
+  return values;
+}
+
+double spine_length(const DeformedBatch<float>& batch, std::size_t instance, std::size_t count) {
+  double length = 0.0;
+  for (std::size_t v = 1; v < count; ++v) {
+    length += glm::length(glm::dvec3(batch.position(instance, v)) -
+                          glm::dvec3(batch.position(instance, v - 1)));
+  }
+  return length;
+}
+
+TEST(Spine, ZeroAnglesAreTheIdentity) {
+  const Mesh mesh = test::synthetic_fish(32, 16, true);
+  const RiggedMesh model = spine_model(mesh, 32);
+  const RigParameters zero(model, 1);
+  const DeformedBatch<double> out = run_reference(model, zero, NormalMode::kJacobian);
+  ClDeformer deformer(test::shared_context(), model);
+  const DeformedBatch<float> device = test::run_on_device(deformer, zero, NormalMode::kJacobian);
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+    EXPECT_LT(glm::length(out.position(0, v) - glm::dvec3(mesh.positions[v])), 1e-12);
+    EXPECT_LT(glm::length(glm::dvec3(device.position(0, v)) - glm::dvec3(mesh.positions[v])), 1e-6);
+    EXPECT_LT(glm::length(glm::dvec3(device.normal(0, v)) - glm::dvec3(mesh.normals[v])), 1e-6);
+  }
+}
+
+TEST(Spine, KeepsTheSpineArcLengthWhereThePaperSeriesCannotGo) {
+  // A ribbon on the spine, x in [-0.5, 0.5]: angles up to 2.5 rad (143 degrees), a
+  // travelling wave and a C-shape beyond the paper's range |2 m x| <= 1.
+  const int points = 4001;
+  const Mesh ribbon = test::spine_ribbon(points, 0.5);
+  const RiggedMesh model = spine_model(ribbon, 64);
+  const RigParameters values =
+      angles(model, {[](double x) { return 2.5 * std::sin(2.0 * kPi * x); },
+                     [](double x) { return 2.4 * x + 0.3; },
+                     [](double x) { return -1.2 * std::cos(7.0 * x); }});
+  ClDeformer deformer(test::shared_context(), model);
+  const DeformedBatch<float> device = test::run_on_device(deformer, values, NormalMode::kRotate);
+  const DeformedBatch<double> exact = run_reference(model, values, NormalMode::kRotate);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_LT(std::fabs(spine_length(device, i, points) - 1.0), 1e-5) << "instance " << i;
+    double reference_length = 0.0;
+    for (std::size_t v = 1; v < std::size_t(points); ++v)
+      reference_length += glm::length(exact.position(i, v) - exact.position(i, v - 1));
+    // The polyline through 4001 points is shorter than the curve by about
+    // k^2 h^2 / 24 (k <= 16, h = 1 / 4000): 7e-7 at most.
+    EXPECT_LT(std::fabs(reference_length - 1.0), 1e-6) << "instance " << i;
+  }
+  // The pivot (x = 0, the ribbon's middle) stays fixed.
+  EXPECT_LT(glm::length(device.position(0, points / 2)), 1e-6);
+}
+
+TEST(Spine, ThePaperBendIsTheCaseThetaEqualsAsinTwoMX) {
+  // The exact bend with m, against a spine of angles asin(2 m x_k): piecewise linear
+  // angles differ from asin by O(h^2), so the shapes agree to about 1e-4 of the length
+  // with 64 samples at 0.8 of the bend's range.
+  const Mesh mesh = test::synthetic_fish(48, 24);
+  const RiggedMesh spine = spine_model(mesh, 64);
+  const RiggedMesh bend = RiggedMesh::single_bend(mesh, BodyFrame::identity(), BendMode::kExact);
+  const double m = 0.8 * test::bend_limit(bend);
+  const RigParameters table =
+      angles(spine, {[m](double x) { return std::asin(std::clamp(2.0 * m * x, -1.0, 1.0)); }});
+  const DeformedBatch<double> from_spine = run_reference(spine, table, NormalMode::kJacobian);
+  const DeformedBatch<double> from_bend =
+      run_reference(bend, test::values_of(bend, {float(m)}), NormalMode::kJacobian);
+  double position = 0.0, normal = 0.0;
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+    position = std::max(position, glm::length(from_spine.position(0, v) - from_bend.position(0, v)));
+    normal = std::max(normal, glm::length(from_spine.normal(0, v) - from_bend.normal(0, v)));
+  }
+  EXPECT_LT(position, 2e-4);
+  EXPECT_LT(normal, 2e-2);  // the Jacobian's curvature is piecewise constant in the table
+  EXPECT_GT(position, 0.0);
+}
+
+TEST(Spine, DeviceMatchesTheReference) {
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> amplitude(-0.8, 0.8), phase(0.0, 2.0 * kPi);
+  std::vector<std::function<double(double)>> waves;
+  for (int i = 0; i < 5; ++i) {
+    const double a = amplitude(random), b = amplitude(random), p = phase(random);
+    waves.push_back([a, b, p](double x) { return a * std::sin(6.0 * x + p) + b * x; });
+  }
+  const std::pair<Mesh, FrameSpec::Mode> meshes[] = {
+      {test::synthetic_fish(64, 32, true), FrameSpec::Mode::kIdentity},
+      {load_mesh(test::data_path("barramundi/BarramundiFish.gltf")), FrameSpec::Mode::kAuto}};
+  for (const auto& [mesh, frame] : meshes) {
+    const RiggedMesh model = spine_model(mesh, 32, frame);
+    const RigParameters values = angles(model, waves);
+    for (const ClOptions& options :
+         {ClOptions{0, RigDispatch::kPerComponent, true}, ClOptions{0, RigDispatch::kByPathShape, true},
+          ClOptions{3, RigDispatch::kAuto, true}}) {
+      ClDeformer deformer(test::shared_context(), model, options);
+      for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {
+        for (RigPath path : {RigPath::kFused, RigPath::kPasses}) {
+          SCOPED_TRACE(std::string(to_string(normals)) + " " + to_string(path));
+          const DeformedBatch<float> device =
+              test::run_on_device(deformer, values, normals, path);
+          const AccuracyReport report = compare_to_reference(
+              model, values.view(), normals, device, run_reference(model, values, normals));
+          EXPECT_LE(report.max_position_ratio, 1.0) << report.max_position_error;
+          EXPECT_LE(report.max_normal_ratio, 1.0) << report.max_normal_error;
+          EXPECT_EQ(report.skipped_normals, 0u);
+        }
+      }
+    }
+  }
+}
+
+TEST(Spine, FoldOverIsRefusedOrClampedNeverDrawn) {
+  // A sharp kink: one segment turning by 1.5 rad folds the thick body through itself.
+  const Mesh mesh = test::synthetic_fish(64, 32);
+  const RiggedMesh model = spine_model(mesh, 32);
+  const RigParameters kink = angles(model, {[](double x) { return x > 0.1 ? 1.5 : 0.0; }});
+  try {
+    run_reference(model, kink, NormalMode::kRotate);
+    FAIL() << "expected a fold-over error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::kOutOfRange);
+    EXPECT_EQ(e.field(), "wave[0]");
+    EXPECT_NE(std::string(e.what()).find("folds the surface"), std::string::npos) << e.what();
+  }
+  ClDeformer deformer(test::shared_context(), model);
+  EXPECT_THROW(test::run_on_device(deformer, kink, NormalMode::kRotate), Error);
+  // Clamped: bent less, so that nothing folds.
+  std::vector<float> clamped(kink.values().size());
+  check_parameters(model.rig(), kink.view(), true, clamped.data());
+  const RigParameters fixed = test::values_of(model, clamped);
+  EXPECT_EQ(count_folded_vertices(model, fixed.view(), 0), 0u);
+  EXPECT_GT(count_folded_vertices(model, kink.view(), 0), 0u);
+  const DeformedBatch<float> device =
+      test::run_on_device(deformer, kink, NormalMode::kRotate, RigPath::kAuto, true);
+  const DeformedBatch<double> reference = run_reference(model, fixed, NormalMode::kRotate);
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
+    EXPECT_LT(glm::length(glm::dvec3(device.position(0, v)) - reference.position(0, v)), 1e-5);
+}
+
+TEST(Spine, RigFilesNameItWithItsSamples) {
+  const RigSpec spec = parse_rig_json(R"({"frame": {"mode": "identity"}, "components": [
+      {"name": "body", "select": "all",
+       "chain": [{"deformer": "spine", "samples": 40, "param": "wave"}]}]})");
+  const Rig rig = resolve_rig(spec, test::synthetic_fish(16, 8));
+  ASSERT_EQ(rig.parameters.size(), 1u);
+  EXPECT_EQ(rig.parameters[0].count, 40u);
+  EXPECT_DOUBLE_EQ(rig.parameters[0].limit, kPi);
+  EXPECT_THROW(parse_rig_json(R"({"components": [{"name": "body", "select": "all",
+       "chain": [{"deformer": "spine", "samples": 1.5, "param": "wave"}]}]})"),
+               Error);
+  RigParameters values(rig, 2);
+  EXPECT_THROW(values.set(0, "wave", 0.5f), Error);  // a table takes 40 values
+  values.set(1, "wave", std::vector<float>(40, 0.25f));
+  EXPECT_EQ(values.values()[40 + 39], 0.25f);
+}
+
+}  // namespace
+}  // namespace finflex
