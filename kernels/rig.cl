@@ -16,7 +16,8 @@
  * branch is straight-line code that PoCL vectorises across work-items.
  *
  * The kernels' arguments end with the instances' values (params, param_count values
- * each) and their derived values (derived_values, derived_count each).
+ * each), their derived values (derived_values, derived_count each), their world
+ * placements (common/placement.cl; read when FF_PLACEMENT is 1) and the outputs.
  *
  * Build options: FF_NORMALS_JACOBIAN (common/secant.cl), FF_HALF_NORMALS,
  * FF_TANGENTS and FF_INSTANCES_PER_ITEM (common/planes.cl; half normals in the
@@ -43,6 +44,7 @@
       const uint param_count, __constant const float* stages,                           \
       __global const uint* restrict group_paths,                                        \
       __global const float* restrict derived_values, const uint derived_count,          \
+      __global const float* restrict placements,                                        \
       __global float* restrict out_positions, __global float* restrict out_normals,     \
       __global float* restrict out_tangents, const uint stride, const uint instances) {  \
     const size_t v = get_global_id(0);                                                  \
@@ -58,6 +60,7 @@
       __global const float* derived = derived_values + instance * derived_count;        \
       Vec3 p = rest_p, n = rest_n, t = rest_t;                                          \
       FF_RIG_FUSED_##r                                                                  \
+      FF_PLACE(instance)                                                                \
       store_plane3(out_positions, instance * 3, stride, v, p);                          \
       store_direction3(out_normals, instance * 3, stride, v, n);                        \
       FF_STORE_TANGENT(out_tangents, instance * 3, stride, v, t);                       \
@@ -97,6 +100,7 @@ FF_RIG_FUSED_KERNELS
 #define FF_STORE_SCRATCH_A FF_STORE_SCRATCH(a)
 #define FF_STORE_SCRATCH_B FF_STORE_SCRATCH(b)
 #define FF_STORE_OUTPUT                                                 \
+  FF_PLACE(instance)                                                    \
   store_plane3(out_positions, instance * 3, stride, v, p);              \
   store_direction3(out_normals, instance * 3, stride, v, n);            \
   FF_STORE_TANGENT(out_tangents, instance * 3, stride, v, t);
@@ -112,6 +116,7 @@ FF_RIG_FUSED_KERNELS
       const uint param_count, __constant const float* stages,                           \
       __global const uint* restrict group_paths,                                        \
       __global const float* restrict derived_values, const uint derived_count,          \
+      __global const float* restrict placements,                                        \
       __global float* restrict out_positions, __global float* restrict out_normals,     \
       __global float* restrict out_tangents, const uint stride, const uint instances) {  \
     const size_t v = get_global_id(0);                                                  \

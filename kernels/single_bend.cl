@@ -10,6 +10,8 @@
  * rest_*: the rest mesh in the body frame, planes of `stride` floats (padding
  *         vertices hold harmless values: the origin, e_z, e_x).
  * m:      one bend parameter per instance, checked on the host.
+ * placements: per instance a world placement record (common/placement.cl), read
+ *         when FF_PLACEMENT is 1.
  * out_*:  planes as finflex/batch.hpp describes: (instance * 3 + component) * stride + v.
  * back_*: the way back to mesh coordinates, M^-1 of (2):
  *         p_b = origin + s (x e_x + y e_y + z e_z), n_b = x e_x + y e_y + z e_z;
@@ -30,6 +32,7 @@ __kernel void single_bend(__global const float* restrict rest_positions,
                           __global const float* restrict rest_normals,
                           __global const float* restrict rest_tangents,
                           __global const float* restrict m,
+                          __global const float* restrict placements,
                           __global float* restrict out_positions,
                           __global float* restrict out_normals,
                           __global float* restrict out_tangents,
@@ -41,20 +44,21 @@ __kernel void single_bend(__global const float* restrict rest_positions,
   const size_t v = get_global_id(0);
   const size_t first_instance = get_global_id(1) * FF_INSTANCES_PER_ITEM;
   const float4 no_offset = (float4)(0.0f);
-  const Vec3 p = load_plane3(rest_positions, 0, stride, v);
-  const Vec3 n = load_plane3(rest_normals, 0, stride, v);
-  const Vec3 t = FF_LOAD_TANGENT(rest_tangents, 0, stride, v);
+  const Vec3 rest_p = load_plane3(rest_positions, 0, stride, v);
+  const Vec3 rest_n = load_plane3(rest_normals, 0, stride, v);
+  const Vec3 rest_t = FF_LOAD_TANGENT(rest_tangents, 0, stride, v);
   for (uint k = 0; k < FF_INSTANCES_PER_ITEM; ++k) {
     const size_t instance = first_instance + k;
     if (instance >= instances) break;
-    const SecantSample s = bend_sample(p.x, p.z, m[instance]);
+    const SecantSample s = bend_sample(rest_p.x, rest_p.z, m[instance]);
     const size_t out_plane = instance * 3;
-    store_plane3(out_positions, out_plane, stride, v,
-                 to_mesh(secant_position(p, s), scaled_axis_x, scaled_axis_y, scaled_axis_z,
-                         origin));
-    store_direction3(out_normals, out_plane, stride, v,
-                     to_mesh(secant_normal(n, s), axis_x, axis_y, axis_z, no_offset));
-    FF_STORE_TANGENT(out_tangents, out_plane, stride, v,
-                     to_mesh(secant_tangent(t, s), axis_x, axis_y, axis_z, no_offset));
+    Vec3 p = to_mesh(secant_position(rest_p, s), scaled_axis_x, scaled_axis_y, scaled_axis_z,
+                     origin);
+    Vec3 n = to_mesh(secant_normal(rest_n, s), axis_x, axis_y, axis_z, no_offset);
+    Vec3 t = to_mesh(secant_tangent(rest_t, s), axis_x, axis_y, axis_z, no_offset);
+    FF_PLACE(instance)
+    store_plane3(out_positions, out_plane, stride, v, p);
+    store_direction3(out_normals, out_plane, stride, v, n);
+    FF_STORE_TANGENT(out_tangents, out_plane, stride, v, t);
   }
 }

@@ -67,6 +67,7 @@ ClDeformer::Impl::Impl(Context& context_in, const RiggedMesh& model_in, const Cl
   rest_tangents_ = tangents_ ? detail::make_buffer(cl_context, CL_MEM_READ_ONLY, plane_bytes,
                                                    rest.tangents.data())
                              : detail::make_buffer(cl_context, CL_MEM_READ_ONLY, sizeof(float));
+  no_placements_ = detail::make_buffer(cl_context, CL_MEM_READ_ONLY, sizeof(float));
 
   if (single_bend) {
     // The rest planes are in the bend's frame already; the kernel goes back by (2).
@@ -192,7 +193,9 @@ void ClDeformer::Impl::check(const ClJob& job) const {
 
 ClDeformer::Impl::BoundKernel& ClDeformer::Impl::kernel(std::size_t index, const ClJob& job) {
   const NormalFormat format = job.outputs->layout.normal_format;
-  const detail::KernelVariant variant{index, job.normals, format, tangents_, per_item(format)};
+  const bool placed = job.placements != nullptr || job.placement_buffer != nullptr;
+  const detail::KernelVariant variant{index, job.normals, format, tangents_, per_item(format),
+                                      placed};
   auto found = kernels_.find(variant);
   if (found == kernels_.end()) {
     const std::size_t fused = fused_launches_.size();
@@ -228,18 +231,20 @@ void ClDeformer::Impl::ensure_derived(std::size_t instances) {
   ++generation_;
 }
 
-// rig_prepare over the job's instances: the derived values from the uploaded ones.
-void ClDeformer::Impl::prepare_derived(const ClJob& job) {
+// rig_prepare over the job's instances: the derived values from the frame's values.
+void ClDeformer::Impl::prepare_derived(const ClJob& job, const FrameInputs& inputs) {
   const std::size_t instances = job.parameters.instance_count;
   if (!prepare_()) {
-    // From the program the frame's kernels come from: no build of its own.
+    // From a program the frame's kernels come from: no build of its own.
     const NormalFormat format = job.outputs->layout.normal_format;
-    const detail::KernelVariant variant{0, job.normals, format, tangents_, per_item(format)};
+    const bool placed = job.placements != nullptr || job.placement_buffer != nullptr;
+    const detail::KernelVariant variant{0, job.normals, format, tangents_, per_item(format),
+                                        placed};
     prepare_ = context.kernel("rig_prepare", program_, variant.options());
   }
   cl_uint arg = 0;
   auto set = [&](const auto& value) { check_cl(prepare_.setArg(arg++, value), "clSetKernelArg"); };
-  set(upload_.buffer());
+  set(*inputs.parameters);
   set(static_cast<cl_uint>(model.values_per_instance()));
   set(stages_);
   set(derived_);
@@ -252,8 +257,8 @@ void ClDeformer::Impl::prepare_derived(const ClJob& job) {
 }
 
 // kernels/single_bend.cl's and kernels/rig.cl's arguments, in their order.
-void ClDeformer::Impl::set_arguments(cl::Kernel& kernel, std::size_t index,
-                                     const ClJob& job) const {
+void ClDeformer::Impl::set_arguments(cl::Kernel& kernel, std::size_t index, const ClJob& job,
+                                     const FrameInputs& inputs) const {
   const DeviceBatch& batch = *job.outputs;
   cl_uint arg = 0;
   auto set = [&](const auto& value) { check_cl(kernel.setArg(arg++, value), "clSetKernelArg"); };
@@ -268,7 +273,7 @@ void ClDeformer::Impl::set_arguments(cl::Kernel& kernel, std::size_t index,
       set(k < scratch_.size() ? scratch_[k] : *rest[k % 3]);
     }
   }
-  set(upload_.buffer());
+  set(*inputs.parameters);
   if (!single_bend) {
     set(static_cast<cl_uint>(model.values_per_instance()));
     set(stages_);
@@ -276,6 +281,7 @@ void ClDeformer::Impl::set_arguments(cl::Kernel& kernel, std::size_t index,
     set(derived_);
     set(static_cast<cl_uint>(derived_per_instance_));
   }
+  set(*inputs.placements);
   set(batch.positions);
   set(batch.normals);
   set(batch.tangents);
@@ -306,37 +312,82 @@ void ClDeformer::Impl::launch(BoundKernel& bound, const ClJob& job, std::size_t 
 // ----------------------------------------------------------------------------------
 // A frame
 
+// The frame's values and placements on the device: uploaded from the job's host
+// arrays through the staging rings (checked, or copied when `checked` already), or the
+// job's own device buffers. The uploads wait for job.wait.
+ClDeformer::Impl::FrameInputs ClDeformer::Impl::upload_inputs(const ClJob& job, bool checked) {
+  const std::size_t per_instance = model.values_per_instance();
+  const std::size_t instances = job.parameters.instance_count;
+  FrameInputs inputs;
+  const std::vector<cl::Event>* wait = job.wait;
+  if (job.parameter_buffer) {
+    inputs.parameters = job.parameter_buffer;
+  } else {
+    std::vector<float>& staged = upload_.acquire(instances * per_instance);
+    const std::size_t stride = job.parameters.stride ? job.parameters.stride : per_instance;
+    if (checked && !job.clamp && stride == per_instance && !staged.empty()) {
+      std::memcpy(staged.data(), job.parameters.data, staged.size() * sizeof(float));
+    } else {
+      checker_.check(job.parameters, job.clamp, staged.data());
+    }
+    if (upload_.upload(context, wait)) ++generation_;
+    wait = nullptr;  // the in-order queue runs the rest after the upload
+    inputs.parameters = &upload_.buffer();
+  }
+  if (job.placement_buffer) {
+    inputs.placements = job.placement_buffer;
+  } else if (job.placements) {
+    std::vector<float>& staged = placement_upload_.acquire(instances * kPlacementFloats);
+    const BodyFrame& body = model.rig().components.front().frame;
+    for (std::size_t i = 0; i < instances; ++i) {
+      PlacementRecord record;
+      try {
+        record = placement_record(job.placements[i], body);
+      } catch (const Error& e) {
+        const std::string field = "job.placements[" + std::to_string(i) + "]";
+        throw Error(e.code(), field, field + ": " + e.what());
+      }
+      std::copy(record.begin(), record.end(), staged.begin() + std::ptrdiff_t(i * kPlacementFloats));
+    }
+    if (placement_upload_.upload(context, wait)) ++generation_;
+    wait = nullptr;
+    inputs.placements = &placement_upload_.buffer();
+  } else {
+    inputs.placements = &no_placements_;
+  }
+  if (wait && !wait->empty()) {
+    check_cl(context.queue().enqueueBarrierWithWaitList(wait, nullptr),
+             "clEnqueueBarrierWithWaitList");
+  }
+  return inputs;
+}
+
 cl::Event ClDeformer::Impl::enqueue(const ClJob& job, std::vector<cl::Event>* kernel_events,
                                     bool checked) {
   if (kernel_events) kernel_events->clear();
   if (!checked) check_shape(job);
   check_buffer_sizes(*job.outputs);
-  const std::size_t per_instance = model.values_per_instance();
   const std::size_t instances = job.parameters.instance_count;
-  std::vector<float>& staged = upload_.acquire(instances * per_instance);
-  const std::size_t stride = job.parameters.stride ? job.parameters.stride : per_instance;
-  if (checked && !job.clamp && stride == per_instance && !staged.empty()) {
-    std::memcpy(staged.data(), job.parameters.data, staged.size() * sizeof(float));
-  } else {
-    checker_.check(job.parameters, job.clamp, staged.data());
-  }
-  if (upload_.upload(context, job.wait)) ++generation_;
+  const FrameInputs inputs = upload_inputs(job, checked);
 
   RigPath path = job.path == RigPath::kAuto ? automatic_path : job.path;
   if (pass_count == 0) path = RigPath::kFused;  // no stage at all: the fused copy
   if (path == RigPath::kPasses && !single_bend) ensure_scratch(instances);
   if (derived_per_instance_ > 0) {
     ensure_derived(instances);
-    prepare_derived(job);
+    prepare_derived(job, inputs);
   }
 
   auto run = [&](std::size_t index, std::size_t first_group, std::size_t end_group, bool last,
                  cl::Event* done) {
     BoundKernel& bound = kernel(index, job);
-    if (bound.batch_serial != job.outputs->serial || bound.generation != generation_) {
-      set_arguments(bound.kernel, index, job);
+    if (bound.batch_serial != job.outputs->serial || bound.generation != generation_ ||
+        bound.parameters != (*inputs.parameters)() || bound.placements != (*inputs.placements)()) {
+      set_arguments(bound.kernel, index, job, inputs);
       bound.batch_serial = job.outputs->serial;
       bound.generation = generation_;
+      bound.parameters = (*inputs.parameters)();
+      bound.placements = (*inputs.placements)();
     }
     launch(bound, job, first_group, end_group, kernel_events, last ? done : nullptr);
   };
@@ -348,10 +399,12 @@ cl::Event ClDeformer::Impl::enqueue(const ClJob& job, std::vector<cl::Event>* ke
     }
   } else {
     for (std::size_t q = 0; q < pass_count; ++q) {
-      run(fused_launches_.size() + q, 0, slot_count_ / kWorkGroupSize, q + 1 == pass_count, &done);
+      run(fused_launches_.size() + q, 0, slot_count_ / kWorkGroupSize, q + 1 == pass_count,
+          &done);
     }
   }
-  upload_.used(done);
+  if (!job.parameter_buffer) upload_.used(done);
+  if (job.placements) placement_upload_.used(done);
   return done;
 }
 

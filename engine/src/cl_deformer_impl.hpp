@@ -44,6 +44,14 @@ class ClDeformer::Impl {
     cl::Kernel kernel;
     std::uint64_t batch_serial = 0;
     std::uint64_t generation = 0;
+    cl_mem parameters = nullptr;
+    cl_mem placements = nullptr;
+  };
+
+  // A frame's inputs on the device: the deformer's uploads or the job's own buffers.
+  struct FrameInputs {
+    const cl::Buffer* parameters = nullptr;
+    const cl::Buffer* placements = nullptr;  // a placeholder when the job places nothing
   };
 
   const detail::ParameterChecker checker_;
@@ -60,6 +68,8 @@ class ClDeformer::Impl {
   std::size_t scratch_sets_ = 0;
 
   detail::ParameterUpload upload_;
+  detail::ParameterUpload placement_upload_;  // world placement records (16 floats each)
+  cl::Buffer no_placements_;                  // the kernels' argument when nothing is placed
   std::vector<cl::Buffer> scratch_;  // 3 per set: positions, normals, tangents
   std::size_t scratch_instances_ = 0;
   // Derived values (DeformerType::derived_count): per instance, written by rig_prepare.
@@ -80,10 +90,12 @@ class ClDeformer::Impl {
   BoundKernel& kernel(std::size_t index, const ClJob& job);
   void ensure_scratch(std::size_t instances);
   void ensure_derived(std::size_t instances);
-  void prepare_derived(const ClJob& job);
+  FrameInputs upload_inputs(const ClJob& job, bool checked);
+  void prepare_derived(const ClJob& job, const FrameInputs& inputs);
   void launch(BoundKernel& bound, const ClJob& job, std::size_t first_group, std::size_t end_group,
               std::vector<cl::Event>* kernel_events, cl::Event* done);
-  void set_arguments(cl::Kernel& kernel, std::size_t index, const ClJob& job) const;
+  void set_arguments(cl::Kernel& kernel, std::size_t index, const ClJob& job,
+                     const FrameInputs& inputs) const;
 };
 
 }  // namespace finflex

@@ -17,19 +17,21 @@ struct KernelVariant {
   NormalFormat format = NormalFormat::kFloat32;
   bool tangents = false;
   std::size_t instances_per_item = 1;
+  bool placement = false;  // world placement as the last stage
 
   bool operator<(const KernelVariant& other) const {
-    return std::tie(kernel, normals, format, tangents, instances_per_item) <
+    return std::tie(kernel, normals, format, tangents, instances_per_item, placement) <
            std::tie(other.kernel, other.normals, other.format, other.tangents,
-                    other.instances_per_item);
+                    other.instances_per_item, other.placement);
   }
 
-  // -D options of kernels/common/secant.cl and kernels/common/planes.cl.
+  // -D options of kernels/common/secant.cl, planes.cl and placement.cl.
   std::string options() const {
     return std::string("-DFF_NORMALS_JACOBIAN=") + (normals == NormalMode::kJacobian ? "1" : "0") +
            " -DFF_TANGENTS=" + (tangents ? "1" : "0") +
            " -DFF_HALF_NORMALS=" + (format == NormalFormat::kHalf ? "1" : "0") +
-           " -DFF_INSTANCES_PER_ITEM=" + std::to_string(instances_per_item);
+           " -DFF_INSTANCES_PER_ITEM=" + std::to_string(instances_per_item) +
+           " -DFF_PLACEMENT=" + (placement ? "1" : "0");
   }
 };
 

@@ -2,9 +2,13 @@
 // through its path of stages, literally, in double precision.
 #include "finflex/reference.hpp"
 
+#include <string>
 #include <vector>
 
+#include "finflex/error.hpp"
+
 #include "parameter_checks.hpp"
+#include "placement_transform.hpp"
 #include "stage_walk.hpp"
 
 namespace finflex {
@@ -24,12 +28,28 @@ void run_reference(const ReferenceJob& job) {
   layout.tangents = model.mesh().has_tangents();
   DeformedBatch<double> out;
   out.resize(layout);
+  std::vector<detail::PlacementTransform> placed;
+  if (job.placements) {
+    const BodyFrame& body = model.rig().components.front().frame;
+    for (std::size_t i = 0; i < instances; ++i) {
+      try {
+        placed.push_back(detail::placement_transform(job.placements[i], body));
+      } catch (const Error& e) {
+        const std::string field = "job.placements[" + std::to_string(i) + "]";
+        throw Error(e.code(), field, field + ": " + e.what());
+      }
+    }
+  }
   std::vector<double> row(per_instance);
   for (std::size_t i = 0; i < instances; ++i) {
     std::copy(values.begin() + static_cast<std::ptrdiff_t>(i * per_instance),
               values.begin() + static_cast<std::ptrdiff_t>((i + 1) * per_instance), row.begin());
     for (std::size_t v = 0; v < layout.vertex_count; ++v) {
-      const detail::Vertex x = detail::deform_vertex(model, v, row.data(), job.normals);
+      detail::Vertex x = detail::deform_vertex(model, v, row.data(), job.normals);
+      if (!placed.empty()) {
+        x = {placed[i].point(x.position), placed[i].direction(x.normal),
+             placed[i].direction(x.tangent)};
+      }
       out.scatter(out.positions, i, v, x.position);
       out.scatter(out.normals, i, v, x.normal);
       if (layout.tangents) out.scatter(out.tangents, i, v, x.tangent);

@@ -39,12 +39,15 @@ struct AccuracyReport {
 };
 
 // Compares `device` with `reference`, both deformations of `model` with `parameters`
-// (already checked or clamped: the values the backends used) and `normals`. Throws
+// (already checked or clamped: the values the backends used) and `normals`, placed
+// with `placements` when given (one per instance: the position bounds then scale with
+// |position| + length in world units instead of the root frame's). Throws
 // kInvalidArgument when the batches do not match the model and the instance count.
 FINFLEX_API AccuracyReport compare_to_reference(const RiggedMesh& model,
                                                 const ParameterView& parameters, NormalMode normals,
                                                 const DeformedBatch<float>& device,
-                                                const DeformedBatch<double>& reference);
+                                                const DeformedBatch<double>& reference,
+                                                const Placement* placements = nullptr);
 
 // Mean angle (radians) between the mesh's vertex normals and the area-weighted normals
 // of its own faces: how well normals agree with the surface they shade.

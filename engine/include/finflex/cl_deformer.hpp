@@ -48,7 +48,7 @@
 
 namespace finflex {
 
-using ClJob = BasicDeformJob<DeviceBatch, cl::Event>;
+using ClJob = BasicDeformJob<DeviceBatch, cl::Event, cl::Buffer>;
 
 // How the generated rig kernels tell the work-groups' stages apart (every branch is
 // uniform over a work-group).

@@ -43,7 +43,7 @@ struct ProgramSource {
 };
 
 // The library's shared kernel files, in build order: vectors, the secant surface's
-// (7) and (8), the output planes, stage frames.
+// (7) and (8), the output planes, stage frames, world placement.
 FINFLEX_API const std::vector<std::string>& common_kernel_files();
 
 class FINFLEX_API Context {

@@ -22,6 +22,7 @@
 #include "finflex/export.hpp"
 #include "finflex/model.hpp"
 #include "finflex/parameters.hpp"
+#include "finflex/placement.hpp"
 
 namespace finflex {
 
@@ -45,10 +46,12 @@ enum class RigPath {
 FINFLEX_API const char* to_string(RigPath path);
 FINFLEX_API RigPath parse_rig_path(const std::string& text, const std::string& field = "path");
 
-// The event type of a backend that runs at once (the CPU reference).
+// The event and buffer types of a backend that runs at once on host memory (the CPU
+// reference).
 struct NoEvent {};
+struct NoBuffer {};
 
-template <typename Outputs, typename Event>
+template <typename Outputs, typename Event, typename Buffer>
 struct BasicDeformJob {
   // ---- Job input ----
   // The rest mesh and its rig.
@@ -60,6 +63,19 @@ struct BasicDeformJob {
   // Out-of-range values: an error (false), or clamped into their range (true).
   bool clamp = false;
   RigPath path = RigPath::kAuto;
+  // Optional world placement, one per instance (finflex/placement.hpp): outputs in
+  // world space. Null: mesh coordinates.
+  const Placement* placements = nullptr;
+
+  // ---- Job input already on the device (OpenCL) ----
+  // Written by a kernel of the caller's (e.g. a swim driver, finflex/swim.hpp) and used
+  // instead of uploading: `parameter_buffer` instead of parameters.data (rows of
+  // values_per_instance() floats, packed; parameters.instance_count still counts the
+  // instances; the values are the writer's to keep in range, nothing checks them on
+  // the host), `placement_buffer` instead of `placements` (kPlacementFloats per
+  // instance). Null: none.
+  const Buffer* parameter_buffer = nullptr;
+  const Buffer* placement_buffer = nullptr;
 
   // ---- Job output ----
   // Where the deformed positions, normals and tangents go (the backend's kind).
@@ -71,8 +87,9 @@ struct BasicDeformJob {
 
   // Throws kInvalidArgument naming the field ("job.model", "job.outputs",
   // "job.parameters.data", "job.parameters.instance_count",
-  // "job.parameters.stride") when one is missing or inconsistent. Values are checked
-  // by the backends (check_parameters), which name the value at fault.
+  // "job.parameters.stride", "job.placements") when one is missing or inconsistent.
+  // Values are checked by the backends (check_parameters), which name the value at
+  // fault.
   void validate() const {
     if (model == nullptr) fail("job.model", "job.model is null: the job needs a model");
     if (outputs == nullptr) fail("job.outputs", "job.outputs is null: the job needs outputs");
@@ -80,7 +97,11 @@ struct BasicDeformJob {
       fail("job.parameters.instance_count",
            "job.parameters.instance_count = 0: at least one instance is needed");
     }
+    if (placements != nullptr && placement_buffer != nullptr) {
+      fail("job.placements", "job.placements and job.placement_buffer are both set: give one");
+    }
     const std::size_t values = model->values_per_instance();
+    if (parameter_buffer != nullptr) return;  // values on the device
     if (parameters.data == nullptr && values > 0) {
       fail("job.parameters.data", "job.parameters.data is null: the model's rig reads " +
                                       std::to_string(values) + " values per instance");

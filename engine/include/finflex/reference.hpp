@@ -22,13 +22,14 @@
 
 namespace finflex {
 
-using ReferenceJob = BasicDeformJob<DeformedBatch<double>, NoEvent>;
+using ReferenceJob = BasicDeformJob<DeformedBatch<double>, NoEvent, NoBuffer>;
 
 // Validates the job (ReferenceJob::validate), checks the parameters
 // (check_parameters), then deforms every instance into *job.outputs, resized to the
 // model's vertices in the mesh's own order (plane_stride padded_plane_stride of the
-// vertex count). job.path and job.wait are ignored. On error the outputs are left as
-// they were.
+// vertex count), placed in the world when job.placements is given. job.path and
+// job.wait are ignored; job.parameter_buffer and job.placement_buffer must be null.
+// On error the outputs are left as they were.
 FINFLEX_API void run_reference(const ReferenceJob& job);
 
 // The same for a whole RigParameters: a convenience for tests and tools.
