@@ -20,7 +20,8 @@ constexpr float kPi = 3.14159265f;
 Placement placed(glm::vec3 position, float yaw, float pitch, float length) {
   Placement p;
   p.position = position;
-  p.orientation = glm::angleAxis(yaw, glm::vec3(0, 1, 0)) * glm::angleAxis(pitch, glm::vec3(0, 0, 1));
+  p.orientation =
+      glm::angleAxis(yaw, glm::vec3(0, 1, 0)) * glm::angleAxis(pitch, glm::vec3(0, 0, 1));
   p.length = length;
   return p;
 }
@@ -64,8 +65,8 @@ TEST(Placement, TheBodyFrameGoesWhereThePlacementSays) {
 
 TEST(Placement, DeviceMatchesTheReferenceFromHostAndDeviceBuffers) {
   const Mesh mesh = load_mesh(test::data_path("barramundi/BarramundiFish.gltf"));
-  const RiggedMesh rigged(mesh,
-                          resolve_rig(load_rig_file(test::data_path("rigs/barramundi.rig.json")), mesh));
+  const RiggedMesh rigged(
+      mesh, resolve_rig(load_rig_file(test::data_path("rigs/barramundi.rig.json")), mesh));
   const RiggedMesh bend = RiggedMesh::single_bend(mesh, find_body_frame(mesh), BendMode::kPaper);
   const std::vector<Placement> where = {placed({0.0f, 0.0f, 0.0f}, 0.0f, 0.0f, 0.3f),
                                         placed({1.5f, 0.7f, -0.4f}, 2.0f, 0.3f, 0.45f),
@@ -96,8 +97,8 @@ TEST(Placement, DeviceMatchesTheReferenceFromHostAndDeviceBuffers) {
       reference_job.placements = where.data();
       reference_job.outputs = &reference;
       run_reference(reference_job);
-      const AccuracyReport report = compare_to_reference(*model, values.view(), normals, from_host,
-                                                         reference, where.data());
+      const AccuracyReport report =
+          compare_to_reference(*model, values.view(), normals, from_host, reference, where.data());
       SCOPED_TRACE(std::string(model == &bend ? "bend " : "rig ") + to_string(normals));
       EXPECT_LE(report.max_position_ratio, 1.0) << report.max_position_error;
       EXPECT_LE(report.max_normal_ratio, 1.0) << report.max_normal_error;
@@ -121,8 +122,8 @@ TEST(Placement, DeviceMatchesTheReferenceFromHostAndDeviceBuffers) {
 }
 
 TEST(Placement, BadPlacementsAreNamed) {
-  const RiggedMesh model = RiggedMesh::single_bend(test::synthetic_fish(8, 8),
-                                                   BodyFrame::identity(), BendMode::kPaper);
+  const RiggedMesh model =
+      RiggedMesh::single_bend(test::synthetic_fish(8, 8), BodyFrame::identity(), BendMode::kPaper);
   ClDeformer deformer(test::shared_context(), model);
   DeviceBatch batch = deformer.allocate(2);
   const RigParameters values(model, 2);

@@ -121,7 +121,8 @@ TEST(Spine, ThePaperBendIsTheCaseThetaEqualsAsinTwoMX) {
       run_reference(bend, test::values_of(bend, {float(m)}), NormalMode::kJacobian);
   double position = 0.0, normal = 0.0;
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
-    position = std::max(position, glm::length(from_spine.position(0, v) - from_bend.position(0, v)));
+    position =
+        std::max(position, glm::length(from_spine.position(0, v) - from_bend.position(0, v)));
     normal = std::max(normal, glm::length(from_spine.normal(0, v) - from_bend.normal(0, v)));
   }
   EXPECT_LT(position, 2e-4);
@@ -144,16 +145,15 @@ TEST(Spine, DeviceMatchesTheReference) {
     const RiggedMesh model = spine_model(mesh, 32, frame);
     const RigParameters values = angles(model, waves);
     for (const ClOptions& options :
-         {ClOptions{0, RigDispatch::kPerComponent, true}, ClOptions{0, RigDispatch::kByPathShape, true},
-          ClOptions{3, RigDispatch::kAuto, true}}) {
+         {ClOptions{0, RigDispatch::kPerComponent, true},
+          ClOptions{0, RigDispatch::kByPathShape, true}, ClOptions{3, RigDispatch::kAuto, true}}) {
       ClDeformer deformer(test::shared_context(), model, options);
       for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {
         for (RigPath path : {RigPath::kFused, RigPath::kPasses}) {
           SCOPED_TRACE(std::string(to_string(normals)) + " " + to_string(path));
-          const DeformedBatch<float> device =
-              test::run_on_device(deformer, values, normals, path);
-          const AccuracyReport report = compare_to_reference(
-              model, values.view(), normals, device, run_reference(model, values, normals));
+          const DeformedBatch<float> device = test::run_on_device(deformer, values, normals, path);
+          const AccuracyReport report = compare_to_reference(model, values.view(), normals, device,
+                                                             run_reference(model, values, normals));
           EXPECT_LE(report.max_position_ratio, 1.0) << report.max_position_error;
           EXPECT_LE(report.max_normal_ratio, 1.0) << report.max_normal_error;
           EXPECT_EQ(report.skipped_normals, 0u);

@@ -10,8 +10,8 @@
 namespace finflex::detail {
 
 struct PlacementTransform {
-  glm::dmat3 m{1.0};      // orientation * (length / s_x) * R_body
-  glm::dvec3 t{0.0};      // position - m origin_body
+  glm::dmat3 m{1.0};           // orientation * (length / s_x) * R_body
+  glm::dvec3 t{0.0};           // position - m origin_body
   double inverse_scale = 1.0;  // s_x / length
 
   glm::dvec3 point(const glm::dvec3& p) const { return m * p + t; }

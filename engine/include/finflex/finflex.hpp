@@ -11,14 +11,17 @@
 //   parameters                        per-instance parameter values and their checks
 //   job                               the job both backends run
 //   batch                             deformed batches on the host; the planes layout
+//   placement                         world placement of an instance
 //   reference, accuracy, instance_mesh    the CPU reference and its diagnostics
-//   context, device_batch, cl_deformer    the OpenCL backend (needs CL/opencl.hpp)
+//   swim                              swimming: kinematics and the CPU driver
+//   context, device_batch, cl_deformer, cl_swim   the OpenCL backend (needs CL/opencl.hpp)
 #pragma once
 
 #include "finflex/accuracy.hpp"
 #include "finflex/batch.hpp"
 #include "finflex/body_frame.hpp"
 #include "finflex/cl_deformer.hpp"
+#include "finflex/cl_swim.hpp"
 #include "finflex/context.hpp"
 #include "finflex/deformer_type.hpp"
 #include "finflex/device_batch.hpp"
@@ -29,6 +32,8 @@
 #include "finflex/mesh_io.hpp"
 #include "finflex/model.hpp"
 #include "finflex/parameters.hpp"
+#include "finflex/placement.hpp"
 #include "finflex/reference.hpp"
 #include "finflex/rig.hpp"
 #include "finflex/subdivide.hpp"
+#include "finflex/swim.hpp"

@@ -25,7 +25,7 @@ namespace finflex {
 struct Placement {
   glm::vec3 position{0.0f};
   glm::quat orientation{1.0f, 0.0f, 0.0f, 0.0f};  // w, x, y, z: no rotation
-  float length = 1.0f;                             // > 0, world units
+  float length = 1.0f;                            // > 0, world units
 };
 
 // What the kernels read per instance, 16 floats: the columns of the 3x3 matrix M

@@ -43,8 +43,7 @@ struct Running {
   double x = 0.0, z = 0.0, theta = 0.0, curvature = 0.0;
 };
 
-Running integrate_to(double x, const double* theta, std::size_t samples, double x_first,
-                     double h) {
+Running integrate_to(double x, const double* theta, std::size_t samples, double x_first, double h) {
   Running r;
   const double position = (x - x_first) / h;
   const std::size_t last_segment = samples - 2;
@@ -144,7 +143,12 @@ const DeformerType kSpine = {
     "spine",
     "the general inextensible spine: a table of tangent angles along x, arc length kept",
     "the tangent angle at each sample, in radians; |theta| <= pi",
-    {{"samples", {}, 2.0, 256.0, true, 32.0,
+    {{"samples",
+      {},
+      2.0,
+      256.0,
+      true,
+      32.0,
       "the angles per instance, evenly spaced over the stage's extent in x"}},
     [](const StageOptions& options) { return samples_of(options); },
     [](const StageOptions&, const StageGeometry&) { return kPi; },

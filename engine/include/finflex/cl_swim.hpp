@@ -1,0 +1,63 @@
+// The swim driver on an OpenCL device (finflex/swim.hpp has the kinematics): per frame
+// the host uploads a few numbers per fish (SwimInput: pose, speed, turning rate) and a
+// kernel advances every fish's phases and writes its swim rig's parameters and its
+// placement into device buffers that a ClJob then reads, with no copy through the host:
+//
+//   ClSwimDriver driver(context, swim, lengths);
+//   ClDeformer deformer(context, swim.model());
+//   ClJob job;  job.model = &swim.model();
+//   job.parameters.instance_count = lengths.size();
+//   job.parameter_buffer = &driver.parameter_buffer();
+//   job.placement_buffer = &driver.placement_buffer();
+//   each frame: driver.enqueue(inputs, dt); deformer.enqueue(job);
+//
+// The device's state: per fish its wave and pectoral phases (2 floats). Memory per
+// fish: 8 floats of inputs, the rig's values, 16 floats of placement.
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+#include <CL/opencl.hpp>
+
+#include "finflex/context.hpp"
+#include "finflex/export.hpp"
+#include "finflex/parameters.hpp"
+#include "finflex/swim.hpp"
+
+namespace finflex {
+
+class FINFLEX_API ClSwimDriver {
+ public:
+  // One fish per length (m, > 0), phases from `phases` (cycles) or 0: errors as
+  // SwimReference's. The swim model must outlive the driver.
+  ClSwimDriver(Context& context, const SwimModel& swim, const std::vector<float>& lengths,
+               const std::vector<float>& phases = {});
+  ~ClSwimDriver();
+  ClSwimDriver(const ClSwimDriver&) = delete;
+  ClSwimDriver& operator=(const ClSwimDriver&) = delete;
+
+  std::size_t fish_count() const;
+  // Checks the inputs (check_swim_inputs), uploads them without blocking after `wait`
+  // and enqueues the driver kernel. Returns its event.
+  cl::Event enqueue(const std::vector<SwimInput>& inputs, float dt,
+                    const std::vector<cl::Event>* wait = nullptr);
+
+  // What a ClJob reads: rows of the rig's values, and placement records.
+  const cl::Buffer& parameter_buffer() const;
+  const cl::Buffer& placement_buffer() const;
+
+  // Blocking reads, for tests and tools: the parameters, the wave phases, and the spine
+  // segments the last frame bent less than asked (to clear folding), summed.
+  RigParameters read_parameters();
+  std::vector<float> read_wave_phases();
+  std::vector<PlacementRecord> read_placements();
+  std::size_t read_limited_segments();
+
+ private:
+  class Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace finflex

@@ -1,0 +1,214 @@
+// ClSwimDriver (finflex/cl_swim.hpp): the swim model's constants generated into the
+// driver program (kernels/swim/driver.cl), per-fish state on the device.
+#include "finflex/cl_swim.hpp"
+
+#include <cmath>
+#include <numeric>
+#include <sstream>
+#include <string>
+
+#include "device_buffers.hpp"
+#include "finflex/error.hpp"
+
+namespace finflex {
+namespace {
+
+constexpr std::size_t kInputFloats = 8;
+constexpr std::size_t kGroupSize = 64;
+
+std::string literal(double value) {
+  std::ostringstream out;
+  out.precision(9);
+  out << std::scientific << value << "f";
+  return out.str();
+}
+
+long offset_or_none(std::size_t offset) {
+  return offset == SwimModel::kNone ? -1L : static_cast<long>(offset);
+}
+
+// The driver program's generated constants.
+std::string driver_constants(const SwimModel& swim) {
+  const SwimKinematics& k = swim.kinematics();
+  const RiggedMesh& model = swim.model();
+  const BodyFrame& body = model.rig().components.front().frame;
+  std::ostringstream out;
+  out << "#define FF_SWIM_SAMPLES " << swim.samples() << "\n"
+      << "#define FF_SWIM_VALUES " << model.values_per_instance() << "\n"
+      << "#define FF_SWIM_WAVE " << swim.wave_offset() << "\n"
+      << "#define FF_SWIM_TAIL " << offset_or_none(swim.tail_offset()) << "\n"
+      << "#define FF_SWIM_RIGHT " << offset_or_none(swim.right_pectoral_offset()) << "\n"
+      << "#define FF_SWIM_LEFT " << offset_or_none(swim.left_pectoral_offset()) << "\n"
+      << "#define FF_SWIM_X_FIRST " << literal(swim.sample_x(0)) << "\n"
+      << "#define FF_SWIM_SPACING " << literal(swim.spacing()) << "\n"
+      << "#define FF_SWIM_EXTENT " << literal(swim.x_snout() - swim.sample_x(0)) << "\n";
+  const std::pair<const char*, double> kinematics[] = {
+      {"FREQUENCY_SIZE", k.frequency_size},
+      {"FREQUENCY_SPEED", k.frequency_speed},
+      {"ENVELOPE0", k.envelope[0]},
+      {"ENVELOPE1", k.envelope[1]},
+      {"ENVELOPE2", k.envelope[2]},
+      {"AMPLITUDE_BASE", k.amplitude_base},
+      {"AMPLITUDE_SPEED", k.amplitude_speed},
+      {"AMPLITUDE_MIN", k.amplitude_min},
+      {"WAVELENGTH", k.wavelength},
+      {"MAX_TURN_CURVATURE", k.max_turn_curvature},
+      {"MIN_TURN_SPEED", k.min_turn_speed},
+      {"CAUDAL_AMPLITUDE", k.caudal_amplitude},
+      {"PEDUNCLE", k.peduncle},
+      {"PECTORAL_REST", k.pectoral_rest},
+      {"PECTORAL_AMPLITUDE", k.pectoral_amplitude},
+      {"PECTORAL_HOVER_SPEED", k.pectoral_hover_speed}};
+  for (const auto& [name, value] : kinematics)
+    out << "#define FF_K_" << name << " " << literal(value) << "\n";
+  auto vector = [&](const char* name, const glm::dvec3& v) {
+    out << "#define FF_BODY_" << name << " " << literal(v.x) << ", " << literal(v.y) << ", "
+        << literal(v.z) << "\n";
+  };
+  vector("AXIS_X", body.axis_x);
+  vector("AXIS_Y", body.axis_y);
+  vector("AXIS_Z", body.axis_z);
+  vector("ORIGIN", body.origin);
+  out << "#define FF_BODY_LENGTH " << literal(body.length) << "\n";
+  auto table = [&](const char* name, const std::vector<double>& values) {
+    out << "__constant float " << name << "[" << values.size() << "] = {";
+    for (std::size_t j = 0; j < values.size(); ++j)
+      out << (j ? ", " : "") << literal(std::min(values[j], 1e30));
+    out << "};\n";
+  };
+  table("swim_max_positive", swim.max_bend_positive());
+  table("swim_max_negative", swim.max_bend_negative());
+  return out.str();
+}
+
+}  // namespace
+
+class ClSwimDriver::Impl {
+ public:
+  Impl(Context& context_in, const SwimModel& swim_in, const std::vector<float>& lengths,
+       const std::vector<float>& phases)
+      : context(context_in), swim(swim_in), fish(lengths.size()) {
+    SwimReference check(swim, lengths, phases);  // validates lengths and phases
+    const cl::Context& cl_context = context.context();
+    lengths_ =
+        detail::make_buffer(cl_context, CL_MEM_READ_ONLY, fish * sizeof(float), lengths.data());
+    std::vector<float> state(2 * fish);
+    for (std::size_t i = 0; i < fish; ++i) {
+      state[2 * i] = state[2 * i + 1] = static_cast<float>(check.wave_phases()[i]);
+    }
+    phases_ = detail::make_buffer(cl_context, CL_MEM_READ_WRITE, state.size() * sizeof(float),
+                                  state.data());
+    const std::vector<float> zeros(fish *
+                                   std::max<std::size_t>(swim.model().values_per_instance(), 1));
+    parameters_ = detail::make_buffer(cl_context, CL_MEM_READ_WRITE, zeros.size() * sizeof(float),
+                                      zeros.data());
+    placements_ =
+        detail::make_buffer(cl_context, CL_MEM_READ_WRITE, fish * kPlacementFloats * sizeof(float));
+    limited_ = detail::make_buffer(cl_context, CL_MEM_READ_WRITE, fish * sizeof(cl_uint));
+    kernel_ = context.kernel("swim_drive",
+                             ProgramSource{{"swim/driver.cl"}, driver_constants(swim), ""}, "");
+  }
+
+  Context& context;
+  const SwimModel& swim;
+  std::size_t fish;
+  cl::Buffer lengths_, phases_, parameters_, placements_, limited_;
+  cl::Kernel kernel_;
+  detail::ParameterUpload inputs_;
+  bool bound_ = false;
+};
+
+ClSwimDriver::ClSwimDriver(Context& context, const SwimModel& swim,
+                           const std::vector<float>& lengths, const std::vector<float>& phases)
+    : impl_(std::make_unique<Impl>(context, swim, lengths, phases)) {}
+
+ClSwimDriver::~ClSwimDriver() = default;
+
+std::size_t ClSwimDriver::fish_count() const { return impl_->fish; }
+
+cl::Event ClSwimDriver::enqueue(const std::vector<SwimInput>& inputs, float dt,
+                                const std::vector<cl::Event>* wait) {
+  Impl& d = *impl_;
+  check_swim_inputs(inputs, d.fish, dt);
+  std::vector<float>& staged = d.inputs_.acquire(d.fish * kInputFloats);
+  for (std::size_t i = 0; i < d.fish; ++i) {
+    const SwimInput& in = inputs[i];
+    float* out = staged.data() + i * kInputFloats;
+    out[0] = in.position.x;
+    out[1] = in.position.y;
+    out[2] = in.position.z;
+    out[3] = in.yaw;
+    out[4] = in.pitch;
+    out[5] = in.speed;
+    out[6] = in.turn_rate;
+    out[7] = 0.0f;
+  }
+  const bool replaced = d.inputs_.upload(d.context, wait);
+  cl::Kernel& kernel = d.kernel_;
+  if (replaced || !d.bound_) {
+    cl_uint arg = 0;
+    auto set = [&](const auto& value) { check_cl(kernel.setArg(arg++, value), "clSetKernelArg"); };
+    set(d.inputs_.buffer());
+    set(d.lengths_);
+    set(d.phases_);
+    set(d.parameters_);
+    set(d.placements_);
+    set(d.limited_);
+    set(dt);
+    set(static_cast<cl_uint>(d.fish));
+    d.bound_ = true;
+  }
+  check_cl(kernel.setArg(6, dt), "clSetKernelArg dt");
+  cl::Event done;
+  const std::size_t global = (d.fish + kGroupSize - 1) / kGroupSize * kGroupSize;
+  check_cl(d.context.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global),
+                                                  cl::NDRange(kGroupSize), nullptr, &done),
+           "clEnqueueNDRangeKernel swim_drive");
+  d.inputs_.used(done);
+  return done;
+}
+
+const cl::Buffer& ClSwimDriver::parameter_buffer() const { return impl_->parameters_; }
+const cl::Buffer& ClSwimDriver::placement_buffer() const { return impl_->placements_; }
+
+RigParameters ClSwimDriver::read_parameters() {
+  Impl& d = *impl_;
+  RigParameters values(d.swim.model(), d.fish);
+  if (!values.values().empty()) {
+    check_cl(d.context.queue().enqueueReadBuffer(d.parameters_, CL_TRUE, 0,
+                                                 values.values().size() * sizeof(float),
+                                                 values.values().data()),
+             "clEnqueueReadBuffer");
+  }
+  return values;
+}
+
+std::vector<float> ClSwimDriver::read_wave_phases() {
+  Impl& d = *impl_;
+  std::vector<float> state(2 * d.fish), phases(d.fish);
+  check_cl(d.context.queue().enqueueReadBuffer(d.phases_, CL_TRUE, 0, state.size() * sizeof(float),
+                                               state.data()),
+           "clEnqueueReadBuffer");
+  for (std::size_t i = 0; i < d.fish; ++i) phases[i] = state[2 * i];
+  return phases;
+}
+
+std::vector<PlacementRecord> ClSwimDriver::read_placements() {
+  Impl& d = *impl_;
+  std::vector<PlacementRecord> records(d.fish);
+  check_cl(d.context.queue().enqueueReadBuffer(d.placements_, CL_TRUE, 0,
+                                               d.fish * sizeof(PlacementRecord), records.data()),
+           "clEnqueueReadBuffer");
+  return records;
+}
+
+std::size_t ClSwimDriver::read_limited_segments() {
+  Impl& d = *impl_;
+  std::vector<cl_uint> limited(d.fish);
+  check_cl(d.context.queue().enqueueReadBuffer(d.limited_, CL_TRUE, 0, d.fish * sizeof(cl_uint),
+                                               limited.data()),
+           "clEnqueueReadBuffer");
+  return std::accumulate(limited.begin(), limited.end(), std::size_t{0});
+}
+
+}  // namespace finflex

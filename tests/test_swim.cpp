@@ -1,0 +1,226 @@
+// Swimming (finflex/swim.hpp, finflex/cl_swim.hpp): the swim rig's binding, the
+// device driver against the double-precision one, phases that integrate the
+// frequency (no jump when the speed changes), a wave that travels from head to tail,
+// and a whole frame (driver, then the deformation reading its buffers) against the
+// reference.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "finflex/finflex.hpp"
+#include "support/deform.hpp"
+#include "support/test_support.hpp"
+
+namespace finflex {
+namespace {
+
+RiggedMesh load_model(const char* mesh_file, const char* rig_file) {
+  const Mesh mesh = load_mesh(test::data_path(mesh_file));
+  return RiggedMesh(mesh, resolve_rig(load_rig_file(test::data_path(rig_file)), mesh));
+}
+
+const RiggedMesh& barramundi() {
+  static const RiggedMesh model =
+      load_model("barramundi/BarramundiFish.gltf", "rigs/barramundi_swim.rig.json");
+  return model;
+}
+
+// Fish i: cruising at 0.6 + 0.2 i body lengths per second, turning now and then.
+std::vector<SwimInput> inputs_at(std::size_t fish, const std::vector<float>& lengths, int frame) {
+  std::vector<SwimInput> inputs(fish);
+  for (std::size_t i = 0; i < fish; ++i) {
+    inputs[i].position = {0.3f * float(i), 0.5f, -0.2f * float(i)};
+    inputs[i].yaw = 0.4f * float(i) + 0.01f * float(frame);
+    inputs[i].pitch = 0.05f * float(i % 3) - 0.05f;
+    inputs[i].speed = lengths[i] * (0.6f + 0.2f * float(i));
+    inputs[i].turn_rate = (i % 2 ? 0.5f : -0.3f) * std::sin(0.1f * float(frame));
+  }
+  return inputs;
+}
+
+TEST(Swim, ASwimRigNeedsASpineOnItsBody) {
+  try {
+    SwimModel swim(load_model("barramundi/BarramundiFish.gltf", "rigs/barramundi.rig.json"));
+    FAIL() << "a bend body is not a swim rig";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.field(), "swim.wave");
+    EXPECT_NE(std::string(e.what()).find("needs a body"), std::string::npos) << e.what();
+  }
+  SwimBinding binding;
+  binding.tail = "body_wave";  // read by the spine, not a fin's hinge
+  EXPECT_THROW(SwimModel(barramundi(), {}, binding), Error);
+  SwimKinematics kinematics;
+  kinematics.wavelength = 0.0;
+  EXPECT_THROW(SwimModel(barramundi(), kinematics), Error);
+  const SwimModel swim(barramundi());
+  EXPECT_EQ(swim.samples(), 32u);
+  EXPECT_NE(swim.tail_offset(), SwimModel::kNone);
+  EXPECT_NE(swim.left_pectoral_offset(), SwimModel::kNone);
+}
+
+TEST(Swim, DeviceDriverMatchesTheReference) {
+  const SwimModel swim(barramundi());
+  const std::vector<float> lengths = {0.3f, 0.45f, 0.38f, 0.6f, 0.25f};
+  const std::vector<float> phases = {0.0f, 0.3f, 0.7f, 0.1f, 0.95f};
+  SwimReference reference(swim, lengths, phases);
+  ClSwimDriver driver(test::shared_context(), swim, lengths, phases);
+  const float dt = 1.0f / 30.0f;
+  for (int frame = 0; frame < 40; ++frame) {
+    const std::vector<SwimInput> inputs = inputs_at(lengths.size(), lengths, frame);
+    reference.step(inputs, dt);
+    driver.enqueue(inputs, dt);
+  }
+  const std::vector<float> device_phases = driver.read_wave_phases();
+  const RigParameters device = driver.read_parameters();
+  const std::vector<PlacementRecord> records = driver.read_placements();
+  const BodyFrame& body = swim.model().rig().components.front().frame;
+  for (std::size_t i = 0; i < lengths.size(); ++i) {
+    // 40 float additions of f dt: a few ulps of 1 each.
+    EXPECT_NEAR(device_phases[i], reference.wave_phases()[i], 2e-5) << "fish " << i;
+    for (std::size_t k = 0; k < device.values_per_instance(); ++k) {
+      EXPECT_NEAR(device.values()[i * device.values_per_instance() + k],
+                  reference.parameters().values()[i * device.values_per_instance() + k], 2e-4)
+          << "fish " << i << " value " << k;
+    }
+    const PlacementRecord expected = placement_record(reference.placements()[i], body);
+    for (std::size_t k = 0; k < 13; ++k)
+      EXPECT_NEAR(records[i][k], expected[k], 2e-5 * (1.0 + std::fabs(expected[k]))) << k;
+  }
+  EXPECT_EQ(driver.read_limited_segments(), reference.limited_segments());
+}
+
+TEST(Swim, PhasesIntegrateTheFrequencyWithoutJumps) {
+  const SwimModel swim(barramundi());
+  const std::vector<float> lengths = {0.4f};
+  SwimReference fish(swim, lengths);
+  std::vector<SwimInput> input(1);
+  const double dt = 0.01;
+  double previous = 0.0;
+  for (int frame = 0; frame < 400; ++frame) {
+    input[0].speed = frame < 200 ? 0.2f : 1.0f;  // 0.5 then 2.5 body lengths per second
+    fish.step(input, dt);
+    const double advanced = std::fmod(fish.wave_phases()[0] - previous + 1.0, 1.0);
+    // Each step advances by this step's frequency times dt: continuous, never back.
+    EXPECT_NEAR(advanced, fish.frequencies()[0] * dt, 1e-12) << "frame " << frame;
+    previous = fish.wave_phases()[0];
+  }
+  // Webb et al. 1984: f = 3.19 L_cm^(-1/3) + 1.29 U / L.
+  EXPECT_NEAR(fish.frequencies()[0], 3.19 / std::cbrt(40.0) + 1.29 * 2.5, 1e-6);  // 0.4f, 1.0f
+}
+
+// The midline's lateral offset at the samples, from the spine's angles (Z of the spine).
+std::vector<double> midline(const SwimModel& swim, const float* theta) {
+  std::vector<double> z(swim.samples(), 0.0);
+  for (std::size_t k = 1; k < z.size(); ++k)
+    z[k] = z[k - 1] + swim.spacing() * std::sin(0.5 * (theta[k] + theta[k - 1]));
+  return z;
+}
+
+TEST(Swim, TheWaveTravelsFromHeadToTail) {
+  const SwimModel swim(barramundi());
+  const std::vector<float> lengths = {0.4f};
+  SwimReference fish(swim, lengths);
+  std::vector<SwimInput> input(1);
+  input[0].speed = 0.4f;
+  fish.step(input, 0.01);
+  const std::size_t wave = swim.wave_offset();
+  const std::vector<double> before = midline(swim, fish.parameters().values().data() + wave);
+  fish.step(input, 0.02);
+  const std::vector<double> after = midline(swim, fish.parameters().values().data() + wave);
+  // The shift of the pattern along the body that best maps `before` onto `after`:
+  // samples run from the tail (k = 0) to the snout, so tailward is negative k.
+  double best = 1e300;
+  int best_shift = 0;
+  for (int shift = -4; shift <= 4; ++shift) {
+    double error = 0.0;
+    for (int k = 8; k + 8 < int(after.size()); ++k) {
+      // Compare slopes (the rigid offset of the pivot drops out).
+      const double a = after[std::size_t(k + 1)] - after[std::size_t(k)];
+      const double b = before[std::size_t(k + 1 - shift)] - before[std::size_t(k - shift)];
+      error += (a - b) * (a - b);
+    }
+    if (error < best) {
+      best = error;
+      best_shift = shift;
+    }
+  }
+  EXPECT_LT(best_shift, 0) << "the wave must move towards the tail";
+}
+
+TEST(Swim, AFrameFromTheDeviceDriverMatchesTheReference) {
+  const SwimModel swim(barramundi());
+  const std::vector<float> lengths = {0.3f, 0.45f, 0.38f};
+  SwimReference reference(swim, lengths);
+  ClSwimDriver driver(test::shared_context(), swim, lengths);
+  ClDeformer deformer(test::shared_context(), swim.model());
+  DeviceBatch batch = deformer.allocate(lengths.size());
+  for (int frame = 0; frame < 5; ++frame) {
+    const std::vector<SwimInput> inputs = inputs_at(lengths.size(), lengths, frame);
+    reference.step(inputs, 1.0 / 30.0);
+    driver.enqueue(inputs, 1.0f / 30.0f);
+  }
+  for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {
+    ClJob job;
+    job.model = &swim.model();
+    job.parameters.instance_count = lengths.size();
+    job.parameter_buffer = &driver.parameter_buffer();
+    job.placement_buffer = &driver.placement_buffer();
+    job.normals = normals;
+    job.outputs = &batch;
+    deformer.enqueue(job);
+    const DeformedBatch<float> device = deformer.read(batch);
+    // The reference deforms with the device driver's own values (float), so that only
+    // the deformation is compared here (the drivers are compared above).
+    const RigParameters values = driver.read_parameters();
+    ReferenceJob reference_job;
+    DeformedBatch<double> expected;
+    reference_job.model = &swim.model();
+    reference_job.parameters = values.view();
+    reference_job.placements = reference.placements().data();
+    reference_job.normals = normals;
+    reference_job.outputs = &expected;
+    run_reference(reference_job);
+    const AccuracyReport report = compare_to_reference(swim.model(), values.view(), normals, device,
+                                                       expected, reference.placements().data());
+    EXPECT_LE(report.max_position_ratio, 1.0) << report.max_position_error;
+    EXPECT_LE(report.max_normal_ratio, 1.0) << report.max_normal_error;
+  }
+}
+
+TEST(Swim, BadInputsAreNamed) {
+  const SwimModel swim(barramundi());
+  SwimReference fish(swim, {0.4f, 0.3f});
+  ClSwimDriver driver(test::shared_context(), swim, {0.4f, 0.3f});
+  auto field_of = [&](const std::vector<SwimInput>& inputs, double dt) {
+    std::string reference_field = "accepted", device_field = "accepted";
+    try {
+      fish.step(inputs, dt);
+    } catch (const Error& e) {
+      reference_field = e.field();
+    }
+    try {
+      driver.enqueue(inputs, float(dt));
+    } catch (const Error& e) {
+      device_field = e.field();
+    }
+    EXPECT_EQ(reference_field, device_field);
+    return reference_field;
+  };
+  std::vector<SwimInput> inputs(2);
+  EXPECT_EQ(field_of(inputs, 0.0), "dt");
+  EXPECT_EQ(field_of(inputs, NAN), "dt");
+  EXPECT_EQ(field_of(std::vector<SwimInput>(3), 0.1), "inputs");
+  inputs[1].speed = -1.0f;
+  EXPECT_EQ(field_of(inputs, 0.1), "inputs[1].speed");
+  inputs[1].speed = 0.0f;
+  inputs[0].turn_rate = INFINITY;
+  EXPECT_EQ(field_of(inputs, 0.1), "inputs[0].turn_rate");
+  inputs[0].turn_rate = 0.0f;
+  EXPECT_EQ(field_of(inputs, 0.1), "accepted");
+  EXPECT_THROW(SwimReference(swim, {0.4f, 0.0f}), Error);
+  EXPECT_THROW(ClSwimDriver(test::shared_context(), swim, {NAN}), Error);
+  EXPECT_THROW(SwimReference(swim, {}), Error);
+}
+
+}  // namespace
+}  // namespace finflex
