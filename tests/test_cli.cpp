@@ -287,5 +287,86 @@ TEST(Cli, ClampBringsParameterIntoRange) {
   EXPECT_TRUE(std::filesystem::exists(out));
 }
 
+// The tank with the low-resolution Blub (fast), a few fish, a fraction of a second.
+std::string small_swim(const std::string& fish_count = "12") {
+  return "swim --fish " + fish_count + " --seconds 0.2 --fps 30 --species " +
+         fish("blub/fish_low_resolution.obj") + ":" +
+         test::data_path("rigs/blub_low_resolution_swim.rig.json");
+}
+
+TEST(Cli, SwimsAndWritesASummaryAndMeshes) {
+  const std::string out = test::temp_path("tank");
+  const RunResult r = run_cli(small_swim() + " --out '" + out + "' --mesh-frames 0,last --seed 4");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("swam 12 fish (12 blub_low_resolution)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("6 frames"), std::string::npos) << r.out;
+  const std::string summary = read_text(out + "/summary.json");
+  for (const char* key : {"\"fish\": 12", "\"frames\": 6", "\"seed\": 4", "\"tracks\"",
+                          "\"vertices_per_frame\": 11340"}) {
+    EXPECT_NE(summary.find(key), std::string::npos) << key;
+  }
+  // Both frames as whole-tank meshes: 12 fish of 945 vertices, in the tank's water.
+  for (const char* frame : {"tank_frame_000000.glb", "tank_frame_000005.glb"}) {
+    const Mesh tank = load_mesh(out + "/" + frame);
+    EXPECT_EQ(tank.vertex_count(), 12u * 945u);
+    for (const glm::vec3& p : tank.positions) {
+      EXPECT_LT(std::hypot(p.x, p.z), 1.83f + 0.3f);
+      EXPECT_GT(p.y, -0.2f);
+      EXPECT_LT(p.y, 1.22f + 0.2f);
+    }
+  }
+  // The same seed, the same tank.
+  const std::string again = test::temp_path("tank_again");
+  ASSERT_EQ(run_cli(small_swim() + " --out '" + again + "' --mesh-frames last --seed 4").exit_code,
+            0);
+  EXPECT_EQ(read_text(out + "/tank_frame_000005.glb"), read_text(again + "/tank_frame_000005.glb"));
+}
+
+TEST(Cli, BadSwimInputsExitTwoAndWriteNothing) {
+  const std::string rig_without_body = test::data_path("rigs/blub_low_resolution.rig.json");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"--fish 0", "--fish"},
+      {"--fish -1", "--fish '-1'"},
+      {"--fish 2.5", "--fish"},
+      {" --fps 0", "--fps"},
+      {" --seconds nan", "--seconds"},
+      {" --tank 0.5,0.5", "tank.diameter"},
+      {" --tank 3", "--tank"},
+      {" --seed x", "--seed"},
+      {" --normals smooth", "--normals"},
+      {" --mesh-frames 99", "--mesh-frames '99'"},
+      {" --species '/nonexistent.obj:x.rig.json'", "/nonexistent.obj"},
+      {" --species nocolon", "MESH:RIG"},
+      {" --species " + fish("blub/fish_low_resolution.obj") + ":" + rig_without_body,
+       "needs a body"},
+      {" --device no-such-device", "no-such-device"},
+  };
+  for (const auto& [arguments, expected] : cases) {
+    const std::string out = test::temp_path("never");
+    // Cases starting with "--fish" give the count themselves; the species option is
+    // repeatable, so a case's own --species comes after the small tank's one and
+    // both are read: the bad one fails.
+    const bool own_count = arguments.rfind("--fish", 0) == 0;
+    const RunResult r =
+        run_cli((own_count ? small_swim(arguments.substr(7)) : small_swim() + arguments) +
+                " --out '" + out + "'");
+    SCOPED_TRACE(arguments);
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(line_count(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(expected), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+  }
+  const RunResult no_out = run_cli(small_swim() + " --mesh-frames 1");
+  EXPECT_EQ(no_out.exit_code, 2);
+  EXPECT_NE(no_out.err.find("--mesh-frames needs --out"), std::string::npos) << no_out.err;
+  // --out naming a file.
+  const std::string file = test::temp_path("a_file");
+  { std::ofstream(file) << "keep\n"; }
+  const RunResult r = run_cli(small_swim() + " --out '" + file + "'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("not a folder"), std::string::npos) << r.err;
+  EXPECT_EQ(read_text(file), "keep\n");
+}
+
 }  // namespace
 }  // namespace finflex

@@ -4,7 +4,12 @@
 //
 //   finflex bench --mesh PATH --instances N --frames F [--mode paper|exact]
 //                 [--normals rotate|jacobian] [--normal-format float32|half]
-//                 [--rig RIG.json [--path fused|passes]] [--device NAME] [--json]
+//                 [--rig RIG.json [--path fused|passes] [--swim]] [--device NAME] [--json]
+//
+// --swim: a tank of N swimming fish (the swim rig given by --rig): per frame the swim
+// driver kernel, the rig's prepare kernel and the deformation with world placement,
+// timed from the driver's start to the deformation's end; the host time is the
+// enqueue (inputs gathered and uploaded, launches), the tank's simulation excluded.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -14,10 +19,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "arguments.hpp"
 #include "cli_errors.hpp"
 #include "commands.hpp"
 #include "finflex/finflex.hpp"
 #include "reference_kernels.hpp"
+#include "swim_scene.hpp"
 #include "timing.hpp"
 
 namespace finflex::cli {
@@ -25,15 +32,27 @@ namespace {
 
 struct BenchOptions {
   std::string mesh;
-  std::size_t instances = 1000;
-  std::size_t frames = 100;
+  std::string instances = "1000";
+  std::string frames = "100";
   std::string mode = "paper";
   std::string normals = "rotate";
   std::string normal_format = "float32";
   std::string rig;
   std::string path = "auto";
+  bool swim = false;
   std::string device;
   bool json = false;
+};
+
+// What a benchmark measured, before the write-only comparison.
+struct Measured {
+  std::string what;
+  std::size_t passes = 1;
+  double scratch_records = 0.0;  // float32 vertex records through scratch, per slot
+  bench::FrameTimes times;
+  DeviceBatch* batch = nullptr;
+  std::size_t per_item = 1;
+  std::size_t vertices = 0;  // per instance
 };
 
 // The write-only kernel over the batch's planes: the faster of the deformer's
@@ -53,96 +72,155 @@ double write_only_median(Context& context, DeviceBatch& batch, std::size_t per_i
   return fastest;
 }
 
+// Value k of a table parameter (a spine's angles) for instance i at frame f: a smooth
+// travelling wave of 0.3 rad, far from folding.
+float table_wave(std::size_t count, std::size_t i, std::size_t k, std::size_t f) {
+  return static_cast<float>(
+      0.3 * std::sin(6.0 * double(k) / double(count) - 0.2 * double(f) + 0.1 * double(i)));
+}
+
 // Parameter p of instance i at frame f: half the range, a travelling phase.
 float swing(double limit, std::size_t i, std::size_t p, std::size_t f) {
   return static_cast<float>(0.5 * limit * std::sin(0.05 * double(f) + 0.1 * double(i) + double(p)));
 }
 
+// The whole-body bend or a rig, its parameters animated on the host.
+struct DeformBench {
+  std::unique_ptr<RiggedMesh> model;
+  std::unique_ptr<ClDeformer> deformer;
+  DeviceBatch batch;
+};
+
+Measured measure_deform(const BenchOptions& options, const Mesh& mesh, Context& context,
+                        std::size_t instances, std::size_t frames, NormalMode normals,
+                        NormalFormat format, DeformBench& bench) {
+  bench.model = std::make_unique<RiggedMesh>(
+      options.rig.empty()
+          ? RiggedMesh::single_bend(mesh, find_body_frame(mesh),
+                                    parse_bend_mode(options.mode, "--mode"))
+          : RiggedMesh(mesh,
+                       resolve_rig(for_option("--rig", [&] { return load_rig_file(options.rig); }),
+                                   mesh)));
+  const RiggedMesh& model = *bench.model;
+  const RigPath path = parse_rig_path(options.path, "--path");
+  bench.deformer = std::make_unique<ClDeformer>(context, model);
+  ClDeformer& deformer = *bench.deformer;
+  bench.batch = deformer.allocate(instances, format);
+  RigParameters values(model, instances);
+  ClJob job;
+  job.model = &model;
+  job.parameters = values.view();
+  job.normals = normals;
+  job.path = path;
+  job.outputs = &bench.batch;
+  const RigPath chosen = path == RigPath::kAuto ? deformer.automatic_path() : path;
+  const bool passes_path = chosen == RigPath::kPasses && !deformer.uses_single_bend_kernel();
+  Measured measured;
+  measured.passes = passes_path ? deformer.pass_count() : 1;
+  measured.scratch_records = passes_path ? deformer.scratch_records_per_slot() : 0.0;
+  const Rig& rig = model.rig();
+  measured.times = bench::time_frames(
+      frames,
+      [&](std::size_t f) {
+        for (std::size_t i = 0; i < instances; ++i) {
+          for (std::size_t p = 0; p < rig.parameters.size(); ++p) {
+            const RigParameter& parameter = rig.parameters[p];
+            for (std::size_t k = 0; k < parameter.count; ++k) {
+              values.values()[i * values.values_per_instance() + parameter.offset + k] =
+                  parameter.count == 1 ? swing(parameter.limit, i, p, f)
+                                       : table_wave(parameter.count, i, k, f);
+            }
+          }
+        }
+      },
+      [&](std::vector<cl::Event>& events) { deformer.enqueue(job, &events); });
+  measured.what = options.rig.empty() ? std::string("bend ") + options.mode
+                                      : std::string("rig ") + to_string(chosen);
+  measured.batch = &bench.batch;
+  measured.per_item = deformer.instances_per_item(format);
+  measured.vertices = mesh.vertex_count();
+  return measured;
+}
+
+// A tank of swimming fish of one species, the tank scaled to keep the density of
+// 1,000 fish in the default tank.
+Measured measure_swim(const BenchOptions& options, Context& context, std::size_t instances,
+                      std::size_t frames, NormalMode normals, NormalFormat format,
+                      std::unique_ptr<tank::SwimScene>& scene) {
+  if (options.rig.empty()) {
+    throw Error(ErrorCode::kInvalidArgument, "--swim", "--swim needs --rig (a swim rig)");
+  }
+  tank::TankSettings settings;
+  const double scale = std::max(1.0, std::cbrt(double(instances) / 1000.0));
+  settings.diameter *= scale;
+  settings.depth *= scale;
+  scene = std::make_unique<tank::SwimScene>(
+      context, std::vector<tank::SpeciesFiles>{{options.mesh, options.rig}}, instances, settings, 1,
+      normals, format);
+  tank::Species& species = scene->species().front();
+  Measured measured;
+  std::vector<double> enqueue;  // per frame, the tank's step excluded
+  measured.times = bench::time_frames(
+      frames, [](std::size_t) {},
+      [&](std::vector<cl::Event>& events) {
+        const tank::FrameWork work = scene->enqueue_frame(1.0 / 30.0, true);
+        enqueue.push_back(work.enqueue_seconds);
+        events = work.kernels;
+      });
+  // time_frames timed the whole call on the host: keep the timed frames' enqueues.
+  measured.times.host.assign(enqueue.begin() + 1, enqueue.end());
+  measured.what = std::string("swim ") + to_string(species.deformer->automatic_path());
+  measured.batch = &species.batch;
+  measured.per_item = species.deformer->instances_per_item(format);
+  measured.vertices = species.swim.model().vertex_count();
+  return measured;
+}
+
 int run_bench(const BenchOptions& options) {
   try {
-    if (options.instances == 0)
-      throw Error(ErrorCode::kInvalidArgument, "--instances", "--instances must be > 0");
-    if (options.frames == 0)
-      throw Error(ErrorCode::kInvalidArgument, "--frames", "--frames must be > 0");
+    const std::size_t instances = parse_count(options.instances, "--instances", 1, 100000000);
+    const std::size_t frames = parse_count(options.frames, "--frames", 1, 1000000);
     const NormalMode normals = parse_normal_mode(options.normals, "--normals");
     const NormalFormat format = parse_normal_format(options.normal_format, "--normal-format");
     const Mesh mesh = for_option("--mesh", [&] { return load_mesh(options.mesh); });
     Context context(options.device);
-    const RiggedMesh model =
-        options.rig.empty()
-            ? RiggedMesh::single_bend(mesh, find_body_frame(mesh),
-                                      parse_bend_mode(options.mode, "--mode"))
-            : RiggedMesh(mesh, resolve_rig(for_option("--rig",
-                                                      [&] { return load_rig_file(options.rig); }),
-                                           mesh));
-    const RigPath path = parse_rig_path(options.path, "--path");
-    ClDeformer deformer(context, model);
-    DeviceBatch batch = deformer.allocate(options.instances, format);
-    RigParameters values(model, options.instances);
-    const Rig& rig = model.rig();
-    ClJob job;
-    job.model = &model;
-    job.parameters = values.view();
-    job.normals = normals;
-    job.path = path;
-    job.outputs = &batch;
-    const RigPath chosen = path == RigPath::kAuto ? deformer.automatic_path() : path;
-    const bool passes_path = chosen == RigPath::kPasses && !deformer.uses_single_bend_kernel();
-    const std::size_t passes = passes_path ? deformer.pass_count() : 1;
-    // Float32 vertex records through scratch, per slot (multi-pass only).
-    const double scratch_records = passes_path ? deformer.scratch_records_per_slot() : 0.0;
-    const bench::FrameTimes times = bench::time_frames(
-        options.frames,
-        [&](std::size_t f) {
-          for (std::size_t i = 0; i < options.instances; ++i) {
-            for (std::size_t p = 0; p < rig.parameters.size(); ++p) {
-              const RigParameter& parameter = rig.parameters[p];
-              for (std::size_t k = 0; k < parameter.count; ++k) {
-                values.values()[i * values.values_per_instance() + parameter.offset + k] =
-                    swing(parameter.limit, i, p + k, f);
-              }
-            }
-          }
-        },
-        [&](std::vector<cl::Event>& events) { deformer.enqueue(job, &events); });
-    const std::string what =
-        options.rig.empty()
-            ? std::string("bend ") + options.mode
-            : std::string("rig ") + to_string(chosen);
-    const double seconds = bench::median(times.device);
-    const double write_seconds = write_only_median(
-        context, batch, deformer.instances_per_item(format), options.frames);
-    const double vertices = double(mesh.vertex_count()) * double(options.instances);
-    const double bytes_per_vertex = double(batch.layout.bytes_per_vertex());
-    const double written =
-        double(batch.layout.plane_stride) * double(options.instances) * bytes_per_vertex;
+    DeformBench deform;
+    std::unique_ptr<tank::SwimScene> scene;
+    std::vector<double> hosts;
+    const Measured m =
+        options.swim
+            ? measure_swim(options, context, instances, frames, normals, format, scene)
+            : measure_deform(options, mesh, context, instances, frames, normals, format, deform);
+    const double seconds = bench::median(m.times.device);
+    const double write_seconds = write_only_median(context, *m.batch, m.per_item, frames);
+    const double vertices = double(m.vertices) * double(instances);
+    const BatchLayout& layout = m.batch->layout;
+    const double bytes_per_vertex = double(layout.bytes_per_vertex());
+    const double written = double(layout.plane_stride) * double(instances) * bytes_per_vertex;
 
     nlohmann::ordered_json result;
     result["device"] = context.description().device_name;
     result["mesh"] = options.mesh;
-    result["deformation"] = what;
+    result["deformation"] = m.what;
     result["normals"] = to_string(normals);
     result["normal_format"] = to_string(format);
-    result["vertices"] = mesh.vertex_count();
-    result["instances"] = options.instances;
-    result["frames"] = options.frames;
-    result["passes"] = passes;
+    result["vertices"] = m.vertices;
+    result["instances"] = instances;
+    result["frames"] = frames;
+    result["passes"] = m.passes;
     result["seconds_per_frame_median"] = seconds;
-    result["seconds_per_frame_min"] = *std::min_element(times.device.begin(), times.device.end());
+    result["seconds_per_frame_min"] =
+        *std::min_element(m.times.device.begin(), m.times.device.end());
     result["vertices_per_second"] = vertices / seconds;
     result["output_bytes_per_second"] = written / seconds;
     // Multi-pass: intermediate results go through float32 scratch sets (12 B per
     // attribute each way).
-    const double scratch_record_bytes = 12.0 * (batch.layout.tangents ? 3.0 : 2.0);
-    result["moved_bytes_per_vertex"] = bytes_per_vertex + scratch_record_bytes * scratch_records;
+    const double scratch_record_bytes = 12.0 * (layout.tangents ? 3.0 : 2.0);
+    result["moved_bytes_per_vertex"] = bytes_per_vertex + scratch_record_bytes * m.scratch_records;
     result["write_bandwidth_bytes_per_second"] = written / write_seconds;
     result["write_fraction"] = write_seconds / seconds;
-    result["host_enqueue_seconds_median"] = bench::median(times.host);
-    if (options.json) {
-      std::printf("%s\n", result.dump().c_str());
-    } else {
-      std::printf("%s\n", result.dump(2).c_str());
-    }
+    result["host_enqueue_seconds_median"] = bench::median(m.times.host);
+    std::printf("%s\n", options.json ? result.dump().c_str() : result.dump(2).c_str());
     return kExitSuccess;
   } catch (const std::exception& error) {
     return fail("bench", error.what());
@@ -168,6 +246,8 @@ Command add_bench_command(CLI::App& app) {
   bench->add_option("--rig", options->rig, "Rig file: time the rig instead of the single bend");
   bench->add_option("--path", options->path, "With --rig: auto, fused or passes")
       ->capture_default_str();
+  bench->add_flag("--swim", options->swim,
+                  "With a swim rig: a tank of swimming fish (driver, deformation, placement)");
   bench->add_option("--device", options->device, "OpenCL device: 'P:D' or a name substring");
   bench->add_flag("--json", options->json, "One JSON object on one line");
   return [options] { return run_bench(*options); };

@@ -1,9 +1,9 @@
 // finflex info: the OpenCL platforms and devices, and which one is the default.
 #include <iostream>
 
-#include "finflex/context.hpp"
 #include "cli_errors.hpp"
 #include "commands.hpp"
+#include "finflex/context.hpp"
 #include "finflex/error.hpp"
 
 namespace finflex::cli {

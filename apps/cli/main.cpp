@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   const Command rig_info = add_rig_info_command(app);
   const Command bench = add_bench_command(app);
   const Command subdivide = add_subdivide_command(app);
+  const Command swim = add_swim_command(app);
   const Command info = add_info_command(app);
   try {
     app.parse(argc, argv);
@@ -39,5 +40,6 @@ int main(int argc, char** argv) {
   if (app.got_subcommand("rig-info")) return rig_info();
   if (app.got_subcommand("bench")) return bench();
   if (app.got_subcommand("subdivide")) return subdivide();
+  if (app.got_subcommand("swim")) return swim();
   return info();
 }

@@ -2,20 +2,6 @@
  * ramp of its angle): a fin folding about its base. Registry entry:
  * engine/src/deformers/hinge.cpp. */
 
-/* sin(h) / h and cos(h) for |h| <= pi/2 by their Taylor series to h^12 (truncation
- * below 1e-8): no calls and no branches, so it vectorises. */
-FF_INLINE float sin_over_h(float h) {
-  const float q = h * h;
-  return 1.0f + q * (-1.0f / 6.0f + q * (1.0f / 120.0f + q * (-1.0f / 5040.0f +
-         q * (1.0f / 362880.0f + q * (-1.0f / 39916800.0f + q * (1.0f / 6227020800.0f))))));
-}
-
-FF_INLINE float cos_of_h(float h) {
-  const float q = h * h;
-  return 1.0f + q * (-0.5f + q * (1.0f / 24.0f + q * (-1.0f / 720.0f +
-         q * (1.0f / 40320.0f + q * (-1.0f / 3628800.0f + q * (1.0f / 479001600.0f))))));
-}
-
 /* Hinge (METHOD.md section 6, the general inextensible spine): the spine's angle
  * theta(x) ramps linearly from 0 at x = 0 to `angle` at x = width (a step at 0 when
  * width = 0), |angle| <= pi. x < 0 is untouched; the ramp bends into a circular arc

@@ -15,11 +15,9 @@
  * Stage table constants (DeformerType::stage_constants): 0 x_0 (the first sample),
  * 1 1 / h, 2 h (the spacing), 3 samples - 1. Derived values: X_0..X_{n-1}, Z_0..Z_{n-1}. */
 
-/* sin(u) / u, without the 0/0 at u = 0. */
-FF_INLINE float spine_sinc(float u) {
-  const float u2 = u * u;
-  return u2 < 1e-6f ? 1.0f - u2 * (1.0f / 6.0f) : sin(u) / u;
-}
+/* Trigonometry from kernels/common/trig.cl (no calls: the kernel vectorises). Angles
+ * stay within [-pi, pi] (the values' limit); half a segment's turn within pi/2, where
+ * sin_over_h holds, as long as no segment turns by more than pi. */
 
 /* The spine at x of a vertex at height z: theta (the angles), derived (X_k then Z_k). */
 FF_INLINE SecantSample spine_sample(float x, float z, __global const float* theta,
@@ -38,14 +36,13 @@ FF_INLINE SecantSample spine_sample(float x, float z, __global const float* thet
   const float theta_j = theta[j];
   const float slope = (theta[j + 1] - theta_j) * inverse_h;
   const float half_turn = 0.5f * slope * inside;
-  const float chord = inside * spine_sinc(half_turn);
-  const float mid = theta_j + half_turn;
-  const float end = theta_j + 2.0f * half_turn;
-  const float sin_end = sin(end);
-  const float cos_end = cos(end);
+  const float chord = inside * sin_over_h(half_turn);
+  float sin_mid, cos_mid, sin_end, cos_end;
+  sin_cos(theta_j + half_turn, &sin_mid, &cos_mid);
+  sin_cos(theta_j + 2.0f * half_turn, &sin_end, &cos_end);
   SecantSample s;
-  s.spine_x = derived[j] + chord * cos(mid) + beyond * cos_end;
-  s.spine_z = derived[count + j] + chord * sin(mid) + beyond * sin_end;
+  s.spine_x = derived[j] + chord * cos_mid + beyond * cos_end;
+  s.spine_z = derived[count + j] + chord * sin_mid + beyond * sin_end;
   s.sin_t = sin_end;
   s.cos_t = cos_end;
   /* |df/dx| = 1; k = slope within the table, 0 beyond it (METHOD.md section 6). */
@@ -72,10 +69,11 @@ FF_INLINE void spine_prepare(__global const float* theta, __global float* derive
   derived[count] = 0.0f;
   for (int j = 0; j + 1 < count; ++j) {
     const float half_turn = 0.5f * (theta[j + 1] - theta[j]);
-    const float chord = h * spine_sinc(half_turn);
-    const float mid = theta[j] + half_turn;
-    x_sum += chord * cos(mid);
-    z_sum += chord * sin(mid);
+    const float chord = h * sin_over_h(half_turn);
+    float sin_mid, cos_mid;
+    sin_cos(theta[j] + half_turn, &sin_mid, &cos_mid);
+    x_sum += chord * cos_mid;
+    z_sum += chord * sin_mid;
     derived[j + 1] = x_sum;
     derived[count + j + 1] = z_sum;
   }
@@ -88,10 +86,12 @@ FF_INLINE void spine_prepare(__global const float* theta, __global float* derive
   const float beyond = d - inside;
   const float slope = (theta[j + 1] - theta[j]) * inverse_h;
   const float half_turn = 0.5f * slope * inside;
-  const float chord = inside * spine_sinc(half_turn);
-  const float end = theta[j] + 2.0f * half_turn;
-  const float x_origin = derived[j] + chord * cos(theta[j] + half_turn) + beyond * cos(end);
-  const float z_origin = derived[count + j] + chord * sin(theta[j] + half_turn) + beyond * sin(end);
+  const float chord = inside * sin_over_h(half_turn);
+  float sin_mid, cos_mid, sin_end, cos_end;
+  sin_cos(theta[j] + half_turn, &sin_mid, &cos_mid);
+  sin_cos(theta[j] + 2.0f * half_turn, &sin_end, &cos_end);
+  const float x_origin = derived[j] + chord * cos_mid + beyond * cos_end;
+  const float z_origin = derived[count + j] + chord * sin_mid + beyond * sin_end;
   for (int k = 0; k < count; ++k) {
     derived[k] -= x_origin;
     derived[count + k] -= z_origin;

@@ -1,0 +1,108 @@
+#include "swim_scene.hpp"
+
+#include <filesystem>
+
+namespace finflex::tank {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+std::string species_name(const SpeciesFiles& files) {
+  // "data/rigs/blub_swim.rig.json" -> "blub".
+  std::string name = std::filesystem::path(files.rig).filename().string();
+  for (const char* suffix : {".json", ".rig", "_swim"}) {
+    const std::string end(suffix);
+    if (name.size() > end.size() && name.compare(name.size() - end.size(), end.size(), end) == 0)
+      name.erase(name.size() - end.size());
+  }
+  return name;
+}
+
+SpeciesFiles parse_species(const std::string& text, const std::string& option) {
+  const std::size_t colon = text.rfind(':');
+  if (colon == std::string::npos || colon == 0 || colon + 1 == text.size()) {
+    throw Error(ErrorCode::kInvalidArgument, option,
+                option + " '" + text + "' is not MESH:RIG (a mesh file and its swim rig file)");
+  }
+  return {text.substr(0, colon), text.substr(colon + 1)};
+}
+
+std::vector<SpeciesFiles> bundled_species(const std::string& data_dir) {
+  return {
+      {data_dir + "/blub/fish.obj", data_dir + "/rigs/blub_swim.rig.json"},
+      {data_dir + "/barramundi/BarramundiFish.gltf", data_dir + "/rigs/barramundi_swim.rig.json"}};
+}
+
+SwimScene::SwimScene(Context& context, const std::vector<SpeciesFiles>& files, std::size_t fish,
+                     const TankSettings& settings, std::uint64_t seed, NormalMode normals,
+                     NormalFormat format)
+    : context_(context) {
+  if (files.empty()) {
+    throw Error(ErrorCode::kInvalidArgument, "species", "species: at least one is needed");
+  }
+  // Every model first: a bad file is found before any device work.
+  std::vector<std::size_t> counts;
+  species_.reserve(files.size());
+  for (std::size_t s = 0; s < files.size(); ++s) {
+    const std::string at = "species[" + std::to_string(s) + "]";
+    try {
+      const Mesh mesh = load_mesh(files[s].mesh);
+      SwimModel swim(RiggedMesh(mesh, resolve_rig(load_rig_file(files[s].rig), mesh)));
+      species_.push_back(
+          Species{species_name(files[s]), std::move(swim), nullptr, nullptr, {}, {}, {}});
+    } catch (const Error& e) {
+      throw Error(e.code(), at, at + ": " + e.what());
+    }
+    counts.push_back(fish / files.size() + (s < fish % files.size() ? 1 : 0));
+  }
+  tank_ = std::make_unique<Tank>(settings, counts, seed);
+  for (std::size_t s = 0; s < species_.size(); ++s) {
+    Species& sp = species_[s];
+    if (counts[s] == 0) continue;
+    sp.deformer = std::make_unique<ClDeformer>(context_, sp.swim.model());
+    sp.driver = std::make_unique<ClSwimDriver>(context_, sp.swim, tank_->lengths(s));
+    sp.batch = sp.deformer->allocate(counts[s], format);
+    sp.job.model = &sp.swim.model();
+    sp.job.parameters.instance_count = counts[s];
+    sp.job.parameter_buffer = &sp.driver->parameter_buffer();
+    sp.job.placement_buffer = &sp.driver->placement_buffer();
+    sp.job.normals = normals;
+    sp.job.outputs = &sp.batch;
+  }
+}
+
+FrameWork SwimScene::enqueue_frame(double dt, bool profile) {
+  FrameWork work;
+  const auto start = std::chrono::steady_clock::now();
+  tank_->step(dt);
+  work.simulation_seconds = seconds_since(start);
+  const auto enqueue_start = std::chrono::steady_clock::now();
+  std::vector<cl::Event> events;
+  for (std::size_t s = 0; s < species_.size(); ++s) {
+    Species& sp = species_[s];
+    if (!sp.driver) continue;
+    tank_->inputs(s, sp.inputs);
+    const cl::Event driven = sp.driver->enqueue(sp.inputs, static_cast<float>(dt));
+    sp.deformer->enqueue(sp.job, profile ? &events : nullptr);
+    if (profile) {
+      work.kernels.push_back(driven);
+      work.kernels.insert(work.kernels.end(), events.begin(), events.end());
+    }
+  }
+  work.enqueue_seconds = seconds_since(enqueue_start);
+  return work;
+}
+
+std::size_t SwimScene::vertices_per_frame() const {
+  std::size_t vertices = 0;
+  for (const Species& sp : species_) {
+    if (sp.driver) vertices += sp.swim.model().vertex_count() * sp.driver->fish_count();
+  }
+  return vertices;
+}
+
+}  // namespace finflex::tank

@@ -1,0 +1,120 @@
+// The virtual RAS tank (apps/tank/): deterministic for a seed, fish that stay inside
+// the water and never become NaN over 10,000 steps, bad settings named, and a swim
+// scene whose deformed fish are where the tank says.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "support/test_support.hpp"
+#include "swim_scene.hpp"
+#include "tank.hpp"
+
+namespace finflex::tank {
+namespace {
+
+TEST(Tank, TheSameSeedGivesTheSameTank) {
+  Tank a(TankSettings{}, {30, 20}, 7), b(TankSettings{}, {30, 20}, 7),
+      c(TankSettings{}, {30, 20}, 8);
+  for (int step = 0; step < 100; ++step) {
+    a.step(1.0 / 30.0);
+    b.step(1.0 / 30.0);
+    c.step(1.0 / 30.0);
+  }
+  double difference = 0.0;
+  for (std::size_t i = 0; i < a.fish().size(); ++i) {
+    EXPECT_EQ(a.fish()[i].position, b.fish()[i].position);
+    EXPECT_EQ(a.fish()[i].yaw, b.fish()[i].yaw);
+    difference = std::max(difference, glm::length(a.fish()[i].position - c.fish()[i].position));
+  }
+  EXPECT_GT(difference, 0.01);  // another seed, another tank
+}
+
+TEST(Tank, FishStayInTheWaterAndFiniteForTenThousandSteps) {
+  const TankSettings settings;
+  Tank tank(settings, {150, 50}, 3);
+  const double radius = 0.5 * settings.diameter;
+  for (int step = 0; step < 10000; ++step) {
+    tank.step(1.0 / 30.0);
+    for (const Fish& fish : tank.fish()) {
+      ASSERT_TRUE(std::isfinite(fish.position.x) && std::isfinite(fish.position.y) &&
+                  std::isfinite(fish.position.z) && std::isfinite(fish.yaw) &&
+                  std::isfinite(fish.speed) && std::isfinite(fish.turn_rate))
+          << "step " << step;
+      ASSERT_LE(std::hypot(fish.position.x, fish.position.z), radius) << "step " << step;
+      ASSERT_GE(fish.position.y, 0.0);
+      ASSERT_LE(fish.position.y, settings.depth);
+      ASSERT_GE(fish.speed, 0.0);
+      ASSERT_LE(std::fabs(fish.turn_rate), settings.max_yaw_rate + 1e-12);
+    }
+  }
+  // Steering keeps them off the boundaries nearly always (a correction puts a fish back).
+  EXPECT_LT(double(tank.corrections()) / (10000.0 * 200.0), 0.02) << tank.corrections();
+}
+
+TEST(Tank, FishSwimAgainstTheCurrent) {
+  Tank tank(TankSettings{}, {100}, 11);
+  for (int step = 0; step < 300; ++step) tank.step(1.0 / 30.0);
+  double upstream = 0.0;
+  for (const Fish& fish : tank.fish()) {
+    const glm::dvec3 heading(std::cos(fish.yaw), 0.0, -std::sin(fish.yaw));
+    const glm::dvec3 flow = tank.current(fish.position);
+    if (glm::length(flow) > 1e-6) upstream += glm::dot(heading, -glm::normalize(flow));
+  }
+  EXPECT_GT(upstream / 100.0, 0.5);  // mostly heading into the current (positive rheotaxis)
+}
+
+TEST(Tank, BadSettingsAreNamed) {
+  auto field_of = [](TankSettings settings, std::vector<std::size_t> fish) {
+    try {
+      Tank tank(settings, fish, 1);
+    } catch (const Error& e) {
+      return e.field();
+    }
+    return std::string("accepted");
+  };
+  TankSettings small;
+  small.diameter = 1.0;  // under 4 lengths of 0.4 m
+  EXPECT_EQ(field_of(small, {10}), "tank.diameter");
+  TankSettings shallow;
+  shallow.depth = 0.5;
+  EXPECT_EQ(field_of(shallow, {10}), "tank.depth");
+  TankSettings nan_depth;
+  nan_depth.depth = NAN;
+  EXPECT_EQ(field_of(nan_depth, {10}), "tank.depth");
+  EXPECT_EQ(field_of(TankSettings{}, {0, 0}), "fish");
+  EXPECT_EQ(field_of(TankSettings{}, {1}), "accepted");
+  Tank tank(TankSettings{}, {1}, 1);
+  EXPECT_THROW(tank.step(0.0), Error);
+  EXPECT_THROW(parse_species("fish.obj", "--species"), Error);
+  EXPECT_EQ(parse_species("a/b:c.obj:rig.json", "--species").rig, "rig.json");
+}
+
+TEST(SwimScene, DeformedFishAreWhereTheTankPutsThem) {
+  SwimScene scene(test::shared_context(), bundled_species(test::data_path("")), 6, TankSettings{},
+                  5, NormalMode::kJacobian);
+  for (int frame = 0; frame < 3; ++frame) scene.enqueue_frame(1.0 / 30.0);
+  ASSERT_EQ(scene.species().size(), 2u);
+  std::size_t index = 0;
+  for (std::size_t s = 0; s < 2; ++s) {
+    Species& species = scene.species()[s];
+    const DeformedBatch<float> batch = species.deformer->read(species.batch);
+    for (std::size_t i = 0; i < batch.layout.instance_count; ++i, ++index) {
+      // The fish (in tank order, species by species) is within a body length of where
+      // the tank says its pivot is.
+      const Fish* fish = nullptr;
+      std::size_t seen = 0;
+      for (const Fish& f : scene.tank().fish()) {
+        if (f.species == s && seen++ == i) fish = &f;
+      }
+      ASSERT_NE(fish, nullptr);
+      glm::dvec3 centre(0.0);
+      for (std::size_t v = 0; v < batch.layout.vertex_count; ++v)
+        centre += glm::dvec3(batch.position(i, v));
+      centre /= double(batch.layout.vertex_count);
+      EXPECT_LT(glm::length(centre - fish->position), fish->length) << species.name << " " << i;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace finflex::tank
