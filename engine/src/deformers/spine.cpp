@@ -159,7 +159,7 @@ const DeformerType kSpine = {
       const double h = spacing(options, geometry);
       return StageConstants{geometry.x_lowest, 1.0 / h, h, double(samples_of(options) - 1)};
     },
-    [](const StageOptions& options) { return 2 * samples_of(options); },
+    [](const StageOptions& options) { return 4 * samples_of(options); },
     "spine_prepare",
     measure_spine,
     check_spine,
