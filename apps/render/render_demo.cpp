@@ -155,10 +155,11 @@ finflex::render::FishDraw draw_of(const Species& species) {
   return draw;
 }
 
-finflex::render::Camera demo_camera() {
+finflex::render::Camera demo_camera(const std::vector<float>& eye,
+                                    const std::vector<float>& look_at) {
   finflex::render::Camera camera;
-  camera.position = {0.0f, 2.5f, 2.7f};
-  camera.target = {0.0f, 0.25f, 0.1f};
+  camera.position = {eye[0], eye[1], eye[2]};
+  camera.target = {look_at[0], look_at[1], look_at[2]};
   camera.vertical_fov_degrees = 42.0f;
   return camera;
 }
@@ -176,6 +177,8 @@ struct Options {
   float time = 0.4f;
   float seconds = 4.0f;
   int fps = 30;
+  std::vector<float> eye = {0.0f, 1.75f, 2.5f};
+  std::vector<float> look_at = {0.0f, 0.35f, 0.0f};
 };
 
 int run(const Options& options) {
@@ -198,7 +201,7 @@ int run(const Options& options) {
   for (Species& s : species) s.mesh_id = renderer.add_mesh(s.mesh.indices, s.mesh.vertex_count());
 
   const finflex::render::Scene scene;
-  const finflex::render::Camera camera = demo_camera();
+  const finflex::render::Camera camera = demo_camera(options.eye, options.look_at);
   const Clock::time_point deform_start = Clock::now();
   for (Species& s : species) pose(s, options.time);
   const double deform_ms = milliseconds_since(deform_start);
@@ -278,6 +281,9 @@ int main(int argc, char** argv) {
   app.add_option("--fps", options.fps, "frames per second of the animation");
   app.add_option("--blub", options.blub, "mesh of the first species");
   app.add_option("--barramundi", options.barramundi, "mesh of the second species");
+  app.add_option("--eye", options.eye, "camera position X Y Z, metres (floor centre at 0 0 0)")
+      ->expected(3);
+  app.add_option("--look-at", options.look_at, "point the camera looks at, X Y Z")->expected(3);
   app.add_option("--device", options.device, "OpenCL device (finflex info lists them)");
   CLI11_PARSE(app, argc, argv);
   try {

@@ -143,10 +143,20 @@ std::vector<Candidate> candidate_displays(std::vector<std::string>& tried) {
   if (has_extension(client, "EGL_MESA_platform_surfaceless")) {
     const EGLDisplay display =
         eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
-    if (display != EGL_NO_DISPLAY) candidates.push_back({display, "surfaceless"});
+    if (display != EGL_NO_DISPLAY) {
+      candidates.push_back({display, "surfaceless"});
+    } else {
+      tried.push_back("surfaceless: no display (" + last_egl_error() + ")");
+    }
+  } else {
+    tried.push_back("surfaceless: EGL_MESA_platform_surfaceless missing");
   }
   const EGLDisplay fallback = eglGetDisplay(EGL_DEFAULT_DISPLAY);
-  if (fallback != EGL_NO_DISPLAY) candidates.push_back({fallback, "default display"});
+  if (fallback != EGL_NO_DISPLAY) {
+    candidates.push_back({fallback, "default display"});
+  } else {
+    tried.push_back("default display: none");
+  }
   return candidates;
 }
 

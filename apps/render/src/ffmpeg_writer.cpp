@@ -139,6 +139,7 @@ void FfmpegWriter::finish() {
   const int status = stop();
   if (status != 0) fail("ffmpeg failed (exit status " + std::to_string(status) + ")");
   file_.commit();
+  log_.discard();
 }
 
 }  // namespace finflex::render::detail

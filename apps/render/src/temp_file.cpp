@@ -65,6 +65,13 @@ void TempFile::commit() {
   committed_ = true;
 }
 
+void TempFile::discard() {
+  if (descriptor_ >= 0) close(descriptor_);
+  descriptor_ = -1;
+  if (!committed_) std::remove(path_.c_str());
+  committed_ = true;  // nothing left to remove
+}
+
 void write_file_atomically(const std::string& path, const void* data, std::size_t bytes) {
   TempFile file(path);
   file.write(data, bytes);

@@ -24,6 +24,8 @@ class TempFile {
   void write(const void* data, std::size_t bytes);  // at the current position; kIo
   // Closes the file and renames it onto the destination. kIo on failure.
   void commit();
+  // Closes and removes the file now (the destructor would do it later).
+  void discard();
 
  private:
   std::string destination_;
