@@ -261,6 +261,58 @@ TEST(Render, ManyInstancesInOneDraw) {
   EXPECT_FALSE(s.inside[static_cast<std::size_t>(2 * kWidth + 2)]);  // a corner stays empty
 }
 
+TEST(Render, DrawsSplitIntoRunsGiveTheSamePicture) {
+  // Nine instances with their own vertices (straight and bent in turn), in planes; a
+  // second renderer whose buffer textures address only a little over two instances
+  // draws them in runs, binding each run's range: the picture must not change.
+  const FishPair& pair = fish_pair();
+  const BatchLayout& source = pair.batch.layout;
+  const std::size_t count = 9;
+  const std::size_t plane = source.plane_stride;
+  std::vector<float> positions(count * 3 * plane);
+  std::vector<float> normals(count * 3 * plane);
+  std::vector<glm::mat4> transforms;
+  for (std::size_t i = 0; i < count; ++i) {
+    for (int c = 0; c < 3; ++c) {
+      const std::size_t from = source.index(i % 2, c, 0);
+      std::copy_n(
+          pair.batch.positions.begin() + static_cast<long>(from), plane,
+          positions.begin() + static_cast<long>((i * 3 + static_cast<std::size_t>(c)) * plane));
+      std::copy_n(
+          pair.batch.normals.begin() + static_cast<long>(from), plane,
+          normals.begin() + static_cast<long>((i * 3 + static_cast<std::size_t>(c)) * plane));
+    }
+    const auto column = static_cast<float>(i % 3);
+    const auto row = static_cast<float>(i / 3);
+    transforms.push_back(glm::translate(glm::mat4(1.0f), glm::vec3(0.6f * (column - 1.0f), 0.0f,
+                                                                   0.5f * (row - 1.0f))) *
+                         glm::mat4(glm::mat3(0.3f)) * placement(pair.local.frame));
+  }
+  const auto draw_on = [&](Renderer& target, MeshId mesh) {
+    FishDraw draw;
+    draw.mesh = mesh;
+    draw.instance_count = count;
+    draw.positions = VertexStream::from_host(positions.data(), positions.size() * 4,
+                                             StreamLayout::planes(plane));
+    draw.normals =
+        VertexStream::from_host(normals.data(), normals.size() * 4, StreamLayout::planes(plane));
+    draw.transforms = transforms.data();
+    target.render(Scene{}, top_camera(), {draw});
+    return target.read_image();
+  };
+  const Image whole = draw_on(renderer(), blub_mesh());
+
+  RenderSettings settings{kWidth, kHeight, 4};
+  settings.max_buffer_texels = 7 * plane;  // runs of two instances (6 planes) and slack
+  Renderer split(settings);
+  EXPECT_EQ(split.device().max_buffer_texels, 7 * plane);
+  if (!split.device().texture_buffer_range) GTEST_SKIP() << "no glTexBufferRange";
+  const MeshId mesh = split.add_mesh(pair.mesh.indices, pair.mesh.vertex_count());
+  EXPECT_EQ(draw_on(split, mesh).rgb, whole.rgb);
+  // The first renderer still draws after the second one (each makes its context current).
+  EXPECT_EQ(draw_on(renderer(), blub_mesh()).rgb, whole.rgb);
+}
+
 RenderError error_of(const std::vector<FishDraw>& fish) {
   try {
     renderer().render(Scene{}, top_camera(), fish);

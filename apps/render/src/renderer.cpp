@@ -19,11 +19,14 @@ using namespace detail;
 
 namespace {
 
-GlLimits query_limits() {
+GlLimits query_limits(std::size_t max_buffer_texels) {
   GlLimits limits;
   GLint value = 0;
   glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &value);
   limits.max_buffer_texels = static_cast<std::size_t>(std::max(value, 0));
+  if (max_buffer_texels > 0) {
+    limits.max_buffer_texels = std::min(limits.max_buffer_texels, max_buffer_texels);
+  }
   glGetIntegerv(GL_MAX_SAMPLES, &value);
   limits.max_samples = std::max(value, 1);
   limits.texture_buffer_range =
@@ -78,7 +81,7 @@ struct Renderer::Impl {
 
   explicit Impl(const RenderSettings& requested)
       : settings(validated(requested)),
-        limits(query_limits()),
+        limits(query_limits(settings.max_buffer_texels)),
         device(describe(egl, limits, std::min(settings.samples, limits.max_samples))),
         targets(settings.width, settings.height, device.samples),
         scene_block(GlBuffer::create()),

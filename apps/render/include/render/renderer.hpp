@@ -40,6 +40,10 @@ struct RenderSettings {
   int width = 1280;  // the frame, pixels
   int height = 720;
   int samples = 4;  // multisampling: 1 (off) .. 16; more than the driver has is clamped
+  // Most elements one buffer texture may address, below the driver's
+  // GL_MAX_TEXTURE_BUFFER_SIZE; 0: the driver's. Larger draws go in runs of instances
+  // (see DeviceInfo::texture_buffer_range); a smaller cap exercises that path.
+  std::size_t max_buffer_texels = 0;
 
   // Throws RenderError (kInvalidArgument) naming "settings.width", ... : sizes 1..16384.
   void validate() const;
