@@ -102,7 +102,7 @@ std::vector<Swimmer> school(std::size_t count, unsigned seed, float max_radius) 
   };
   for (std::size_t i = 0; i < count; ++i) {
     Swimmer s{};
-    s.orbit_radius = 0.35f + (max_radius - 0.35f) * next();
+    s.orbit_radius = max_radius * std::sqrt(0.08f + 0.92f * next());  // even over the area
     s.angle = 2.0f * kPi * (static_cast<float>(i) + 0.6f * next()) / static_cast<float>(count);
     s.height = 0.2f + 0.6f * next();
     s.speed = 0.25f + 0.15f * next();
@@ -177,6 +177,8 @@ struct Options {
   float time = 0.4f;
   float seconds = 4.0f;
   int fps = 30;
+  std::size_t blub_count = 10;
+  std::size_t barramundi_count = 7;
   std::vector<float> eye = {0.0f, 1.75f, 2.5f};
   std::vector<float> look_at = {0.0f, 0.35f, 0.0f};
 };
@@ -191,14 +193,18 @@ int run(const Options& options) {
   species[1].name = "barramundi";
   species[1].albedo = {0.55f, 0.58f, 0.56f};  // silver
   species[1].length = 0.45f;
-  load_species(species[0], context, options.blub, 10, 7u);
-  load_species(species[1], context, options.barramundi, 7, 11u);
+  load_species(species[0], context, options.blub, options.blub_count, 7u);
+  load_species(species[1], context, options.barramundi, options.barramundi_count, 11u);
 
   finflex::render::Renderer renderer({options.width, options.height, options.samples});
   const finflex::render::DeviceInfo& device = renderer.device();
   std::printf("renderer: EGL %s, %s, %s, %dx MSAA\n", device.egl_display.c_str(),
               device.gl_renderer.c_str(), device.gl_version.c_str(), device.samples);
-  for (Species& s : species) s.mesh_id = renderer.add_mesh(s.mesh.indices, s.mesh.vertex_count());
+  for (Species& s : species) {
+    s.mesh_id = renderer.add_mesh(s.mesh.indices, s.mesh.vertex_count());
+    std::printf("%s: %zu fish of %zu vertices, %zu triangles\n", s.name.c_str(), s.swimmers.size(),
+                s.mesh.vertex_count(), s.mesh.triangle_count());
+  }
 
   const finflex::render::Scene scene;
   const finflex::render::Camera camera = demo_camera(options.eye, options.look_at);
@@ -223,10 +229,10 @@ int run(const Options& options) {
   finflex::render::write_png(options.out, image);
   const double png_ms = milliseconds_since(png_start);
   std::printf(
-      "frame %dx%d, 17 fish: draw %.1f ms, read back %.1f ms (median of %d), "
+      "frame %dx%d, %zu fish: draw %.1f ms, read back %.1f ms (median of %d), "
       "PNG %.1f ms, deform + read of the batches %.1f ms\nwrote %s\n",
-      options.width, options.height, median(draw_ms), median(read_ms), options.frames, png_ms,
-      deform_ms, options.out.c_str());
+      options.width, options.height, options.blub_count + options.barramundi_count, median(draw_ms),
+      median(read_ms), options.frames, png_ms, deform_ms, options.out.c_str());
 
   if (options.video.empty()) return 0;
   finflex::render::VideoOptions video;
@@ -280,6 +286,10 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   app.add_option("--fps", options.fps, "frames per second of the animation");
   app.add_option("--blub", options.blub, "mesh of the first species");
+  app.add_option("--blub-count", options.blub_count, "fish of the first species")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--barramundi-count", options.barramundi_count, "fish of the second species")
+      ->check(CLI::PositiveNumber);
   app.add_option("--barramundi", options.barramundi, "mesh of the second species");
   app.add_option("--eye", options.eye, "camera position X Y Z, metres (floor centre at 0 0 0)")
       ->expected(3);
