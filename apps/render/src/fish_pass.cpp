@@ -29,16 +29,12 @@ FishPass::FishPass(const GlLimits& limits)
       program_("fish", {"scene_block.glsl", "fish.vert.glsl"},
                {"scene_block.glsl", "shading.glsl", "surface.frag.glsl"}),
       positions_(GlTexture::create()),
-      normals_(GlTexture::create()),
-      transforms_(GlTexture::create()) {
+      normals_(GlTexture::create()) {
   program_.bind_block("Scene", 0);
   program_.bind_sampler("u_positions", 0);
   program_.bind_sampler("u_normals", 1);
-  program_.bind_sampler("u_transforms", 2);
   position_stream_ = program_.uniform("u_position_stream");
   normal_stream_ = program_.uniform("u_normal_stream");
-  first_transform_ = program_.uniform("u_first_transform");
-  has_transforms_ = program_.uniform("u_has_transforms");
   albedo_ = program_.uniform("u_albedo");
 }
 
@@ -126,30 +122,40 @@ void FishPass::draw(const std::vector<FishDraw>& fish, const std::vector<MeshRes
     const Stream positions = prepare(draw.positions, count, mesh.vertex_count, 3 * d, buffers);
     const Stream normals = prepare(draw.normals, count, mesh.vertex_count, 3 * d + 1, buffers);
 
-    glActiveTexture(GL_TEXTURE2);
-    glBindTexture(GL_TEXTURE_BUFFER, transforms_.get());
-    const GLuint transforms =
-        draw.transforms != nullptr
-            ? upload(3 * d + 2, draw.transforms, count * sizeof(glm::mat4))
-            : upload(3 * d + 2, nullptr, sizeof(glm::mat4));  // never read; keeps the sampler valid
-    glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, transforms);
-    glUniform1i(has_transforms_, draw.transforms != nullptr ? 1 : 0);
+    glBindVertexArray(mesh.vertex_array.get());
+    const bool placed = draw.transforms != nullptr;
+    if (placed) {
+      glBindBuffer(GL_ARRAY_BUFFER, upload(3 * d + 2, draw.transforms, count * sizeof(glm::mat4)));
+    }
+    for (GLuint column = 0; column < 4; ++column) {
+      if (placed) {
+        glEnableVertexAttribArray(column);
+        glVertexAttribDivisor(column, 1);
+      } else {  // the identity, as the attribute's constant value
+        glDisableVertexAttribArray(column);
+        glVertexAttrib4f(column, column == 0, column == 1, column == 2, column == 3);
+      }
+    }
     glUniform3f(albedo_, draw.albedo.r, draw.albedo.g, draw.albedo.b);
 
     const std::string field = "fish[" + std::to_string(d) + "]";
     const std::size_t run = std::min(
         instances_per_run(positions, count, mesh.vertex_count, (field + ".positions").c_str()),
         instances_per_run(normals, count, mesh.vertex_count, (field + ".normals").c_str()));
-    glBindVertexArray(mesh.vertex_array.get());
     for (std::size_t first = 0; first < count; first += run) {
       const std::size_t instances = std::min(run, count - first);
       bind_run(GL_TEXTURE0, positions_, position_stream_, positions, first, instances);
       bind_run(GL_TEXTURE1, normals_, normal_stream_, normals, first, instances);
-      glUniform1i(first_transform_, static_cast<GLint>(first));
+      for (GLuint column = 0; placed && column < 4; ++column) {
+        const std::size_t offset = (first * 4 + column) * sizeof(glm::vec4);
+        glVertexAttribPointer(column, 4, GL_FLOAT, GL_FALSE, sizeof(glm::mat4),
+                              reinterpret_cast<const void*>(offset));
+      }
       glDrawElementsInstanced(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr,
                               static_cast<GLsizei>(instances));
     }
     glBindVertexArray(0);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
   }
   glActiveTexture(GL_TEXTURE0);
 }

@@ -1,9 +1,10 @@
 // Draws fish: one glDrawElementsInstanced per FishDraw (more when its vertex data is
-// larger than one buffer texture can address), with no vertex attributes: the vertex
-// shader fetches positions and normals from buffer textures (samplerBuffer, GL 3.1)
-// by gl_VertexID and gl_InstanceID, as the stream's layout says, and the instance's
-// transform from a third one. Host streams are copied into buffers kept from frame to
-// frame (orphaned on each upload); streams in the renderer's buffers are read in place.
+// larger than one buffer texture can address), with no per-vertex attributes: the
+// vertex shader fetches positions and normals from buffer textures (samplerBuffer,
+// GL 3.1) by gl_VertexID and gl_InstanceID, as the stream's layout says; the
+// instance's transform is an instanced attribute (a mat4, divisor 1). Host streams
+// and transforms are copied into buffers kept from frame to frame (orphaned on each
+// upload); streams in the renderer's buffers are read in place.
 //
 // Splitting: a buffer texture addresses at most GL_MAX_TEXTURE_BUFFER_SIZE texels
 // (2^27 on Mesa and NVIDIA: 4,000 instances of a 10,816-slot fish is 1.3e8 floats per
@@ -40,12 +41,9 @@ class FishPass {
   ShaderProgram program_;
   GlTexture positions_;
   GlTexture normals_;
-  GlTexture transforms_;
   std::vector<GlBuffer> uploads_;  // three per draw: positions, normals, transforms
   GLint position_stream_ = -1;
   GLint normal_stream_ = -1;
-  GLint first_transform_ = -1;
-  GLint has_transforms_ = -1;
   GLint albedo_ = -1;
 
   GLuint upload(std::size_t slot, const void* data, std::size_t bytes);
