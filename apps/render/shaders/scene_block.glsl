@@ -8,5 +8,5 @@ layout(std140) uniform Scene {
   vec4 u_sky_ambient;      // rgb: ambient from above; w: Blinn-Phong exponent
   vec4 u_ground_ambient;   // rgb: ambient from below
   vec4 u_fog_colour;       // rgb: what far water fades to; w: height of the water surface
-  vec4 u_extinction;       // rgb: water's extinction per metre
+  vec4 u_extinction;       // rgb: water's extinction per metre; w: the tank's radius
 };

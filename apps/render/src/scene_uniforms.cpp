@@ -12,7 +12,7 @@ SceneBlock make_scene_block(const Scene& scene, const Camera& camera, float aspe
   block.sky_ambient = glm::vec4(light.sky_ambient, light.shininess);
   block.ground_ambient = glm::vec4(light.ground_ambient, 0.0f);
   block.fog_colour = glm::vec4(scene.water.fog_colour, scene.tank.water_depth);
-  block.extinction = glm::vec4(scene.water.extinction, 0.0f);
+  block.extinction = glm::vec4(scene.water.extinction, scene.tank.radius);
   return block;
 }
 

@@ -9,7 +9,7 @@ namespace {
 constexpr float kPi = 3.14159265358979f;
 constexpr float kRimBand = 0.06f;      // metres of lighter wall below the rim
 constexpr float kDrainRadius = 0.08f;  // of the tank's radius
-constexpr float kDrainAlbedo = 0.25f;  // of the floor's albedo
+constexpr float kDrainAlbedo = 0.4f;   // of the floor's albedo
 
 glm::vec3 on_circle(float radius, float angle, float y) {
   return {radius * std::cos(angle), y, radius * std::sin(angle)};

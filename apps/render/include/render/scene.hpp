@@ -22,7 +22,8 @@ struct Tank {
 // Water between the camera and what it sees: light of each channel is absorbed and
 // scattered at its own rate per metre, so far things fade towards `fog_colour`
 // (exponential fog); light from above loses the same way with depth (the tint).
-// The part of a view ray above the surface (camera above the water) is clear air.
+// Only the part of a view ray inside the tank's water (the cylinder below the surface)
+// counts: a camera above or beside the tank looks through clear air first.
 struct Water {
   glm::vec3 extinction{0.60f, 0.28f, 0.30f};    // per metre: red goes first, then blue
   glm::vec3 fog_colour{0.02f, 0.075f, 0.072f};  // the colour far water fades to
