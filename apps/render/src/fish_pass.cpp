@@ -133,7 +133,8 @@ void FishPass::draw(const std::vector<FishDraw>& fish, const std::vector<MeshRes
         glVertexAttribDivisor(column, 1);
       } else {  // the identity, as the attribute's constant value
         glDisableVertexAttribArray(column);
-        glVertexAttrib4f(column, column == 0, column == 1, column == 2, column == 3);
+        const glm::vec4 identity = glm::mat4(1.0f)[static_cast<int>(column)];
+        glVertexAttrib4f(column, identity.x, identity.y, identity.z, identity.w);
       }
     }
     glUniform3f(albedo_, draw.albedo.r, draw.albedo.g, draw.albedo.b);
