@@ -16,7 +16,7 @@ struct SceneBlock {
   glm::vec4 sky_ambient;  // w: shininess
   glm::vec4 ground_ambient;
   glm::vec4 fog_colour;  // w: height of the water surface
-  glm::vec4 extinction;      // w: the tank's radius
+  glm::vec4 extinction;  // w: the tank's radius
 };
 static_assert(sizeof(SceneBlock) == 64 + 7 * 16, "std140: a mat4 and seven vec4");
 
