@@ -8,6 +8,7 @@ packages=(
   pocl-opencl-icd ocl-icd-opencl-dev opencl-c-headers opencl-clhpp-headers clinfo
   libglm-dev libopenmesh-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev libstb-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  libegl-dev libgles-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri libepoxy-dev zlib1g-dev ffmpeg
 )
 
 missing=()

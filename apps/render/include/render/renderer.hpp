@@ -1,0 +1,112 @@
+// The off-screen fish-tank renderer: OpenGL 3.3 core through EGL, with no display
+// (an EGL device, else Mesa's surfaceless platform, else the default display), so it
+// runs on Mesa llvmpipe on a CPU machine and on NVIDIA's EGL driver alike.
+//
+//   Renderer renderer({1280, 720});                       // throws kNoDevice without EGL
+//   MeshId blub = renderer.add_mesh(mesh.indices, mesh.vertex_count());
+//   for each frame:
+//     FishDraw fish{blub, albedo, n};
+//     fish.positions = VertexStream::from_host(batch.positions.data(), bytes,
+//                                              StreamLayout::planes(plane_stride));
+//     fish.normals = ...; fish.transforms = placements.data();
+//     renderer.render(scene, camera, {fish});
+//     write_png("frame.png", renderer.read_image());
+//
+// A frame: the tank and every FishDraw (one instanced draw each; vertex data fetched
+// by gl_VertexID and gl_InstanceID from buffer textures) into a multisampled linear
+// RGBA16F framebuffer, resolved to a single-sample one, then encoded to sRGB 8-bit
+// once. docs/rendering.md describes the passes, the colour pipeline and the cost.
+//
+// Threads: one thread at a time. Every member that draws or touches a buffer makes the
+// renderer's context current on the calling thread first (several renderers may
+// share a thread); make_current() does only that, e.g. before OpenCL-GL interop.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "render/camera.hpp"
+#include "render/error.hpp"
+#include "render/fish_draw.hpp"
+#include "render/image.hpp"
+#include "render/scene.hpp"
+
+namespace finflex::render {
+
+struct RenderSettings {
+  int width = 1280;  // the frame, pixels
+  int height = 720;
+  int samples = 4;  // multisampling: 1 (off) .. 16; more than the driver has is clamped
+  // Most elements one buffer texture may address, below the driver's
+  // GL_MAX_TEXTURE_BUFFER_SIZE; 0: the driver's. Larger draws go in runs of instances
+  // (see DeviceInfo::texture_buffer_range); a smaller cap exercises that path.
+  std::size_t max_buffer_texels = 0;
+
+  // Throws RenderError (kInvalidArgument) naming "settings.width", ... : sizes 1..16384.
+  void validate() const;
+};
+
+// What the renderer runs on, for logs and benchmark records.
+struct DeviceInfo {
+  std::string egl_display;  // how EGL was reached, e.g. "device 0 (software)", "surfaceless"
+  std::string gl_vendor;
+  std::string gl_renderer;
+  std::string gl_version;
+  int samples = 0;                    // multisampling in use
+  std::size_t max_buffer_texels = 0;  // GL_MAX_TEXTURE_BUFFER_SIZE
+  bool texture_buffer_range = false;  // GL 4.3 / ARB_texture_buffer_range: draws of
+                                      // any size are split into ranges that fit
+};
+
+class Renderer {
+ public:
+  // Creates the EGL display and context (made current) and the framebuffers.
+  // Errors: kInvalidArgument (settings); kNoDevice, one line naming what was tried,
+  // when no EGL device or display initialises or none gives a GL 3.3 core context;
+  // kGraphics when the driver refuses a framebuffer or a shader.
+  explicit Renderer(const RenderSettings& settings = {});
+  ~Renderer();
+  Renderer(Renderer&&) noexcept;
+  Renderer& operator=(Renderer&&) noexcept;
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  const RenderSettings& settings() const;
+  const DeviceInfo& device() const;
+
+  // A mesh (species): triangles counter-clockwise seen from outside, indices below
+  // vertex_count. Uploaded once. kInvalidArgument naming "indices" or "indices[k]".
+  MeshId add_mesh(const std::vector<std::uint32_t>& indices, std::size_t vertex_count);
+
+  // A GL buffer of `bytes` in this renderer's context, for streams that stay on the
+  // device (VertexStream::from_buffer). gl_buffer() gives its GL name, e.g. for
+  // clCreateFromGLBuffer; write_buffer() copies host bytes into it.
+  BufferId create_buffer(std::size_t bytes);
+  void write_buffer(BufferId buffer, std::size_t offset, const void* data, std::size_t bytes);
+  std::uint32_t gl_buffer(BufferId buffer) const;
+  std::size_t buffer_bytes(BufferId buffer) const;
+
+  // Draws a frame. Every draw is validated before anything is drawn: kInvalidArgument
+  // naming the field, e.g. "fish[1].normals.layout.vertex_stride" or
+  // "fish[0].positions" (too few bytes for its instances), and the value.
+  void render(const Scene& scene, const Camera& camera, const std::vector<FishDraw>& fish);
+
+  // Waits until the GPU has drawn the frames rendered so far (glFinish): for timing.
+  void finish();
+
+  // The last frame as RGB8, sRGB-encoded, rows from the top (waits for the GPU).
+  Image read_image();
+  void read_image(Image& out);  // reuses out's storage
+
+  // Makes the context current on the calling thread.
+  void make_current();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace finflex::render

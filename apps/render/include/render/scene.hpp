@@ -1,0 +1,56 @@
+// What surrounds the fish: a round tank of water, the light, the water's colour.
+// Colours are linear RGB (the renderer shades in linear light and encodes sRGB once,
+// on output). Lengths are metres; y is up and the tank's floor is the disc y = 0
+// around the origin.
+#pragma once
+
+#include <glm/glm.hpp>
+
+namespace finflex::render {
+
+// A round RAS tank: a cylindrical wall and a flat floor. The wall is drawn from the
+// inside only, so a camera outside or above the tank sees through its near side.
+struct Tank {
+  float radius = 1.5f;                          // inner radius of the wall
+  float wall_height = 1.1f;                     // floor to rim
+  float water_depth = 1.0f;                     // floor to water surface, <= wall_height
+  glm::vec3 wall_albedo{0.30f, 0.37f, 0.40f};   // grey-blue fibreglass
+  glm::vec3 floor_albedo{0.18f, 0.22f, 0.23f};  // darker, with the drain at the centre
+  int segments = 96;                            // facets around the wall, >= 8
+};
+
+// Water between the camera and what it sees: light of each channel is absorbed and
+// scattered at its own rate per metre, so far things fade towards `fog_colour`
+// (exponential fog); light from above loses the same way with depth (the tint).
+// Only the part of a view ray inside the tank's water (the cylinder below the surface)
+// counts: a camera above or beside the tank looks through clear air first.
+struct Water {
+  glm::vec3 extinction{0.60f, 0.28f, 0.30f};    // per metre: red goes first, then blue
+  glm::vec3 fog_colour{0.02f, 0.075f, 0.072f};  // the colour far water fades to
+};
+
+// A key light from above (directional) plus hemispheric ambient light: Lambert
+// diffuse and a little Blinn-Phong specular.
+struct Lighting {
+  glm::vec3 direction_to_light{0.25f, 1.0f, 0.15f};  // normalised on use; y > 0: from above
+  glm::vec3 key_colour{1.25f, 1.22f, 1.15f};         // irradiance at the surface
+  glm::vec3 sky_ambient{0.16f, 0.22f, 0.24f};        // ambient from above (n.y = 1)
+  glm::vec3 ground_ambient{0.03f, 0.04f, 0.04f};     // ambient from below (n.y = -1)
+  float specular = 0.25f;                            // Blinn-Phong strength, 0..1
+  float shininess = 48.0f;                           // Blinn-Phong exponent
+};
+
+struct Scene {
+  Tank tank;
+  Water water;
+  Lighting lighting;
+  glm::vec3 background{0.015f, 0.017f, 0.02f};  // outside the tank: a dim room
+
+  // Throws RenderError (kInvalidArgument) naming the field ("scene.tank.radius", ...)
+  // when a value is not finite, a length is not > 0, water_depth exceeds wall_height,
+  // a colour or extinction is negative, specular is outside 0..1, shininess < 1,
+  // segments < 8, or direction_to_light is zero.
+  void validate() const;
+};
+
+}  // namespace finflex::render

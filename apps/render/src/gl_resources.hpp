@@ -1,0 +1,33 @@
+// What the renderer keeps on the device between frames, and the driver limits the
+// fish pass plans its draws by.
+#pragma once
+
+#include <cstddef>
+
+#include "gl_object.hpp"
+
+namespace finflex::render::detail {
+
+// A species' triangles: an element buffer recorded in a vertex array with no
+// attributes (vertices come from buffer textures).
+struct MeshResources {
+  GlVertexArray vertex_array;
+  GlBuffer indices;
+  GLsizei index_count = 0;
+  std::size_t vertex_count = 0;
+};
+
+// A buffer of Renderer::create_buffer.
+struct BufferResource {
+  GlBuffer buffer;
+  std::size_t bytes = 0;
+};
+
+struct GlLimits {
+  std::size_t max_buffer_texels = 0;        // GL_MAX_TEXTURE_BUFFER_SIZE
+  std::size_t buffer_offset_alignment = 1;  // GL_TEXTURE_BUFFER_OFFSET_ALIGNMENT
+  bool texture_buffer_range = false;        // glTexBufferRange (GL 4.3, ARB_texture_buffer_range)
+  int max_samples = 1;
+};
+
+}  // namespace finflex::render::detail

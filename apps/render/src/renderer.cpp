@@ -1,0 +1,245 @@
+#include "render/renderer.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "checks.hpp"
+#include "egl_context.hpp"
+#include "encode_pass.hpp"
+#include "fish_pass.hpp"
+#include "fish_validation.hpp"
+#include "gl_resources.hpp"
+#include "render_targets.hpp"
+#include "scene_uniforms.hpp"
+#include "tank_pass.hpp"
+
+namespace finflex::render {
+
+using namespace detail;
+
+namespace {
+
+GlLimits query_limits(std::size_t max_buffer_texels) {
+  GlLimits limits;
+  GLint value = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &value);
+  limits.max_buffer_texels = static_cast<std::size_t>(std::max(value, 0));
+  if (max_buffer_texels > 0) {
+    limits.max_buffer_texels = std::min(limits.max_buffer_texels, max_buffer_texels);
+  }
+  glGetIntegerv(GL_MAX_SAMPLES, &value);
+  limits.max_samples = std::max(value, 1);
+  limits.texture_buffer_range =
+      epoxy_gl_version() >= 43 || epoxy_has_gl_extension("GL_ARB_texture_buffer_range");
+  if (limits.texture_buffer_range) {
+    glGetIntegerv(GL_TEXTURE_BUFFER_OFFSET_ALIGNMENT, &value);
+    limits.buffer_offset_alignment = static_cast<std::size_t>(std::max(value, 1));
+  }
+  return limits;
+}
+
+std::string gl_string(GLenum name) {
+  const auto* text = reinterpret_cast<const char*>(glGetString(name));
+  return text != nullptr ? text : "";
+}
+
+void require_no_gl_error(const char* during) {
+  const GLenum error = glGetError();
+  if (error != GL_NO_ERROR) {
+    char code[16];
+    std::snprintf(code, sizeof code, "0x%04x", error);
+    throw RenderError(ErrorCode::kGraphics, "gl",
+                      std::string("GL error ") + code + " during " + during);
+  }
+}
+
+const RenderSettings& validated(const RenderSettings& settings) {
+  settings.validate();
+  return settings;
+}
+
+}  // namespace
+
+void RenderSettings::validate() const {
+  require_in_range("settings.width", width, 1, 16384);
+  require_in_range("settings.height", height, 1, 16384);
+  require_in_range("settings.samples", samples, 1, 16);
+}
+
+struct Renderer::Impl {
+  RenderSettings settings;
+  EglContext egl;  // first: the GL objects below go before their context
+  GlLimits limits;
+  DeviceInfo device;
+  RenderTargets targets;
+  GlBuffer scene_block;
+  TankPass tank;
+  FishPass fish;
+  EncodePass encode;
+  std::vector<MeshResources> meshes;
+  std::vector<BufferResource> buffers;
+
+  explicit Impl(const RenderSettings& requested)
+      : settings(validated(requested)),
+        limits(query_limits(settings.max_buffer_texels)),
+        device(describe(egl, limits, std::min(settings.samples, limits.max_samples))),
+        targets(settings.width, settings.height, device.samples),
+        scene_block(GlBuffer::create()),
+        fish(limits) {
+    glBindBuffer(GL_UNIFORM_BUFFER, scene_block.get());
+    glBufferData(GL_UNIFORM_BUFFER, sizeof(SceneBlock), nullptr, GL_DYNAMIC_DRAW);
+    glBindBuffer(GL_UNIFORM_BUFFER, 0);
+    require_no_gl_error("set-up");
+  }
+
+  // GL objects are deleted in the context they belong to, whichever is current now.
+  ~Impl() { egl.try_make_current(); }
+
+  static DeviceInfo describe(const EglContext& egl, const GlLimits& limits, int samples) {
+    DeviceInfo info;
+    info.egl_display = egl.description();
+    info.gl_vendor = gl_string(GL_VENDOR);
+    info.gl_renderer = gl_string(GL_RENDERER);
+    info.gl_version = gl_string(GL_VERSION);
+    info.samples = samples;
+    info.max_buffer_texels = limits.max_buffer_texels;
+    info.texture_buffer_range = limits.texture_buffer_range;
+    return info;
+  }
+
+  const BufferResource& buffer(BufferId id) const {
+    if (id >= buffers.size()) {
+      invalid("buffer", std::to_string(id) + " is not a buffer of this renderer");
+    }
+    return buffers[id];
+  }
+};
+
+Renderer::Renderer(const RenderSettings& settings) : impl_(std::make_unique<Impl>(settings)) {}
+Renderer::~Renderer() = default;
+Renderer::Renderer(Renderer&&) noexcept = default;
+Renderer& Renderer::operator=(Renderer&&) noexcept = default;
+
+const RenderSettings& Renderer::settings() const { return impl_->settings; }
+const DeviceInfo& Renderer::device() const { return impl_->device; }
+
+MeshId Renderer::add_mesh(const std::vector<std::uint32_t>& indices, std::size_t vertex_count) {
+  impl_->egl.make_current();
+  if (indices.empty() || indices.size() % 3 != 0) {
+    invalid("indices", std::to_string(indices.size()) + " indices: not a positive multiple of 3");
+  }
+  if (vertex_count == 0) invalid("vertex_count", "0");
+  for (std::size_t k = 0; k < indices.size(); ++k) {
+    if (indices[k] >= vertex_count) {
+      invalid("indices[" + std::to_string(k) + "]", std::to_string(indices[k]) +
+                                                        " is not below the vertex count " +
+                                                        std::to_string(vertex_count));
+    }
+  }
+  MeshResources mesh;
+  mesh.vertex_array = GlVertexArray::create();
+  mesh.indices = GlBuffer::create();
+  mesh.index_count = static_cast<GLsizei>(indices.size());
+  mesh.vertex_count = vertex_count;
+  glBindVertexArray(mesh.vertex_array.get());
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.indices.get());
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER,
+               static_cast<GLsizeiptr>(indices.size() * sizeof(std::uint32_t)), indices.data(),
+               GL_STATIC_DRAW);
+  glBindVertexArray(0);
+  require_no_gl_error("add_mesh");
+  impl_->meshes.push_back(std::move(mesh));
+  return impl_->meshes.size() - 1;
+}
+
+BufferId Renderer::create_buffer(std::size_t bytes) {
+  impl_->egl.make_current();
+  if (bytes == 0) invalid("bytes", "0");
+  BufferResource resource{GlBuffer::create(), bytes};
+  glBindBuffer(GL_COPY_WRITE_BUFFER, resource.buffer.get());
+  glBufferData(GL_COPY_WRITE_BUFFER, static_cast<GLsizeiptr>(bytes), nullptr, GL_DYNAMIC_DRAW);
+  glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+  require_no_gl_error("create_buffer");
+  impl_->buffers.push_back(std::move(resource));
+  return impl_->buffers.size() - 1;
+}
+
+void Renderer::write_buffer(BufferId buffer, std::size_t offset, const void* data,
+                            std::size_t bytes) {
+  impl_->egl.make_current();
+  const BufferResource& resource = impl_->buffer(buffer);
+  if (offset > resource.bytes || bytes > resource.bytes - offset) {
+    invalid("bytes", std::to_string(bytes) + " bytes at offset " + std::to_string(offset) +
+                         " do not fit the buffer's " + std::to_string(resource.bytes));
+  }
+  if (bytes == 0) return;
+  if (data == nullptr) invalid("data", "null");
+  glBindBuffer(GL_COPY_WRITE_BUFFER, resource.buffer.get());
+  glBufferSubData(GL_COPY_WRITE_BUFFER, static_cast<GLintptr>(offset),
+                  static_cast<GLsizeiptr>(bytes), data);
+  glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+}
+
+std::uint32_t Renderer::gl_buffer(BufferId buffer) const {
+  return impl_->buffer(buffer).buffer.get();
+}
+
+std::size_t Renderer::buffer_bytes(BufferId buffer) const { return impl_->buffer(buffer).bytes; }
+
+void Renderer::render(const Scene& scene, const Camera& camera, const std::vector<FishDraw>& fish) {
+  impl_->egl.make_current();
+  scene.validate();
+  camera.validate();
+  validate_fish(fish, impl_->meshes, impl_->buffers);
+  Impl& r = *impl_;
+
+  const float aspect = static_cast<float>(r.settings.width) / static_cast<float>(r.settings.height);
+  const SceneBlock block = make_scene_block(scene, camera, aspect);
+  glBindBuffer(GL_UNIFORM_BUFFER, r.scene_block.get());
+  glBufferSubData(GL_UNIFORM_BUFFER, 0, sizeof block, &block);
+  glBindBuffer(GL_UNIFORM_BUFFER, 0);
+  glBindBufferBase(GL_UNIFORM_BUFFER, 0, r.scene_block.get());
+
+  r.targets.bind_scene();
+  glClearColor(scene.background.r, scene.background.g, scene.background.b, 1.0f);
+  glClearDepth(1.0);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glEnable(GL_CULL_FACE);
+  glCullFace(GL_BACK);
+  glFrontFace(GL_CCW);
+  r.tank.draw(scene.tank);
+  r.fish.draw(fish, r.meshes, r.buffers);
+
+  r.targets.resolve();
+  r.encode.draw(r.targets);
+  require_no_gl_error("render");
+}
+
+void Renderer::finish() {
+  impl_->egl.make_current();
+  glFinish();
+}
+
+void Renderer::read_image(Image& out) {
+  impl_->egl.make_current();
+  Impl& r = *impl_;
+  out.width = r.settings.width;
+  out.height = r.settings.height;
+  out.rgb.resize(out.row_bytes() * static_cast<std::size_t>(out.height));
+  r.targets.bind_output_for_reading();
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, out.width, out.height, GL_RGB, GL_UNSIGNED_BYTE, out.rgb.data());
+  require_no_gl_error("read_image");
+}
+
+Image Renderer::read_image() {
+  Image image;
+  read_image(image);
+  return image;
+}
+
+void Renderer::make_current() { impl_->egl.make_current(); }
+
+}  // namespace finflex::render

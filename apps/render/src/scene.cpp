@@ -1,0 +1,33 @@
+#include "render/scene.hpp"
+
+#include "checks.hpp"
+
+namespace finflex::render {
+
+void Scene::validate() const {
+  using namespace detail;
+  require_positive("scene.tank.radius", tank.radius);
+  require_positive("scene.tank.wall_height", tank.wall_height);
+  require_positive("scene.tank.water_depth", tank.water_depth);
+  if (tank.water_depth > tank.wall_height) {
+    invalid("scene.tank.water_depth",
+            to_text(tank.water_depth) + " is above the wall_height " + to_text(tank.wall_height));
+  }
+  require_non_negative("scene.tank.wall_albedo", tank.wall_albedo);
+  require_non_negative("scene.tank.floor_albedo", tank.floor_albedo);
+  require_in_range("scene.tank.segments", tank.segments, 8, 4096);
+  require_non_negative("scene.water.extinction", water.extinction);
+  require_non_negative("scene.water.fog_colour", water.fog_colour);
+  require_finite("scene.lighting.direction_to_light", lighting.direction_to_light);
+  if (glm::length(lighting.direction_to_light) <= 0.0f) {
+    invalid("scene.lighting.direction_to_light", "is zero");
+  }
+  require_non_negative("scene.lighting.key_colour", lighting.key_colour);
+  require_non_negative("scene.lighting.sky_ambient", lighting.sky_ambient);
+  require_non_negative("scene.lighting.ground_ambient", lighting.ground_ambient);
+  require_in_range("scene.lighting.specular", lighting.specular, 0.0f, 1.0f);
+  require_in_range("scene.lighting.shininess", lighting.shininess, 1.0f, 10000.0f);
+  require_non_negative("scene.background", background);
+}
+
+}  // namespace finflex::render

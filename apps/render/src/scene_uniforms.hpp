@@ -1,0 +1,25 @@
+// The Scene uniform block of shaders/scene_block.glsl, as std140 lays it out.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include "render/camera.hpp"
+#include "render/scene.hpp"
+
+namespace finflex::render::detail {
+
+struct SceneBlock {
+  glm::mat4 view_projection;
+  glm::vec4 camera_position;
+  glm::vec4 light_direction;
+  glm::vec4 key_colour;   // w: specular strength
+  glm::vec4 sky_ambient;  // w: shininess
+  glm::vec4 ground_ambient;
+  glm::vec4 fog_colour;  // w: height of the water surface
+  glm::vec4 extinction;  // w: the tank's radius
+};
+static_assert(sizeof(SceneBlock) == 64 + 7 * 16, "std140: a mat4 and seven vec4");
+
+SceneBlock make_scene_block(const Scene& scene, const Camera& camera, float aspect);
+
+}  // namespace finflex::render::detail

@@ -1,0 +1,15 @@
+# Writes a C++ source that holds every GLSL file given as a raw string literal, by
+# file name. Run as: cmake -DOUTPUT=file.cpp -DSOURCES="a.glsl;b.glsl" -P embed_shaders.cmake
+set(body "// Generated from apps/render/shaders/*.glsl by cmake/embed_shaders.cmake: do not edit.\n")
+string(APPEND body "#include \"shader_files.hpp\"\n\nnamespace finflex::render::detail {\n\n")
+string(APPEND body "const std::vector<ShaderFile>& shader_files() {\n")
+string(APPEND body "  static const std::vector<ShaderFile> files = {\n")
+foreach(path IN LISTS SOURCES)
+  get_filename_component(name "${path}" NAME)
+  file(READ "${path}" text)
+  string(APPEND body "    {\"${name}\", R\"FINFLEX_GLSL(${text})FINFLEX_GLSL\"},\n")
+endforeach()
+string(APPEND body "  };\n  return files;\n}\n\n}  // namespace finflex::render::detail\n")
+file(WRITE "${OUTPUT}.tmp" "${body}")
+execute_process(COMMAND ${CMAKE_COMMAND} -E copy_if_different "${OUTPUT}.tmp" "${OUTPUT}")
+file(REMOVE "${OUTPUT}.tmp")

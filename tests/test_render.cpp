@@ -1,0 +1,378 @@
+// The off-screen renderer (apps/render) on whatever EGL gives: Mesa llvmpipe with no
+// display in CI. A straight and a bent fish (the OpenCL deformer's output, read back
+// as FinFlex planes) seen from above: both are drawn, lit (not black) and the bent
+// one's silhouette moves towards the side it bends to. The stream layouts and sources
+// give the same picture; bad draws are refused naming the field.
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/packing.hpp>
+
+#include "finflex/body_frame.hpp"
+#include "finflex/cl_deformer.hpp"
+#include "finflex/local_mesh.hpp"
+#include "finflex/mesh_io.hpp"
+#include "render/renderer.hpp"
+#include "support/test_support.hpp"
+
+namespace finflex::render {
+namespace {
+
+constexpr int kWidth = 256;
+constexpr int kHeight = 192;
+
+// Blub (low resolution) straight (instance 0) and bent (instance 1, m at 0.8 of its
+// range: the spine becomes z = m x^2, both ends towards the body's +z side).
+struct FishPair {
+  Mesh mesh;
+  LocalMesh local;
+  DeformedBatch<float> batch;
+};
+
+const FishPair& fish_pair() {
+  static const FishPair pair = [] {
+    FishPair p;
+    p.mesh = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
+    p.local = make_local_mesh(p.mesh, find_body_frame(p.mesh));
+    ClDeformer deformer(test::shared_context(), p.local);
+    DeviceBatch batch = deformer.allocate(2);
+    const auto bend = static_cast<float>(0.8 * max_abs_m(p.local.x_max));
+    deformer.enqueue({0.0f, bend}, {BendMode::kExact, NormalMode::kJacobian}, batch);
+    p.batch = deformer.read(batch);
+    return p;
+  }();
+  return pair;
+}
+
+// World from mesh: the body frame's e_x (head) to world +x, e_y (back) up, e_z to
+// world +z; one metre long, at the middle of the water.
+glm::mat4 placement(const BodyFrame& frame) {
+  glm::mat4 rows(1.0f);
+  rows[0] = glm::vec4(frame.axis_x.x, frame.axis_y.x, frame.axis_z.x, 0.0);
+  rows[1] = glm::vec4(frame.axis_x.y, frame.axis_y.y, frame.axis_z.y, 0.0);
+  rows[2] = glm::vec4(frame.axis_x.z, frame.axis_y.z, frame.axis_z.z, 0.0);
+  glm::mat4 world(1.0f);
+  world[3] = glm::vec4(0.0f, 0.5f, 0.0f, 1.0f);
+  const auto scale = static_cast<float>(1.0 / frame.length);
+  return world * glm::mat4(glm::mat3(scale)) * rows *
+         glm::translate(glm::mat4(1.0f), -glm::vec3(frame.origin));
+}
+
+// Straight down onto the fish, world -z at the top of the image.
+Camera top_camera() {
+  Camera camera;
+  camera.position = {0.0f, 1.6f, 0.0f};
+  camera.target = {0.0f, 0.5f, 0.0f};
+  camera.up = {0.0f, 0.0f, -1.0f};
+  camera.vertical_fov_degrees = 50.0f;
+  return camera;
+}
+
+Renderer& renderer() {
+  static Renderer shared({kWidth, kHeight, 4});
+  return shared;
+}
+
+MeshId blub_mesh() {
+  static const MeshId id =
+      renderer().add_mesh(fish_pair().mesh.indices, fish_pair().mesh.vertex_count());
+  return id;
+}
+
+// Instance `instance` of the pair as planes straight from the batch (an offset picks it).
+FishDraw planes_draw(std::size_t instance) {
+  const DeformedBatch<float>& batch = fish_pair().batch;
+  StreamLayout layout = StreamLayout::planes(batch.layout.plane_stride);
+  layout.offset = instance * layout.instance_stride;
+  FishDraw draw;
+  draw.mesh = blub_mesh();
+  draw.instance_count = 1;
+  draw.positions = VertexStream::from_host(batch.positions.data(),
+                                           batch.positions.size() * sizeof(float), layout);
+  draw.normals =
+      VertexStream::from_host(batch.normals.data(), batch.normals.size() * sizeof(float), layout);
+  return draw;
+}
+
+Image render_fish(const std::vector<FishDraw>& fish, const glm::mat4* transform) {
+  std::vector<FishDraw> placed = fish;
+  for (FishDraw& draw : placed) draw.transforms = transform;
+  renderer().render(Scene{}, top_camera(), placed);
+  return renderer().read_image();
+}
+
+// Pixels that differ from the empty tank: the fish's silhouette.
+struct Silhouette {
+  std::vector<bool> inside;
+  std::size_t count = 0;
+  glm::dvec2 centroid{0.0};
+  double mean_brightness = 0.0;  // of the fish's pixels, 0..255
+};
+
+Silhouette silhouette(const Image& image, const Image& empty) {
+  Silhouette s;
+  s.inside.assign(static_cast<std::size_t>(kWidth * kHeight), false);
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x = 0; x < kWidth; ++x) {
+      const std::uint8_t* a = image.pixel(x, y);
+      const std::uint8_t* b = empty.pixel(x, y);
+      int difference = 0;
+      for (int c = 0; c < 3; ++c) difference += std::abs(int{a[c]} - int{b[c]});
+      if (difference <= 24) continue;
+      s.inside[static_cast<std::size_t>(y * kWidth + x)] = true;
+      ++s.count;
+      s.centroid += glm::dvec2(x, y);
+      s.mean_brightness += (a[0] + a[1] + a[2]) / 3.0;
+    }
+  }
+  if (s.count > 0) {
+    s.centroid /= static_cast<double>(s.count);
+    s.mean_brightness /= static_cast<double>(s.count);
+  }
+  return s;
+}
+
+// The image direction (unit) of the body's +z side, seen by top_camera.
+glm::dvec2 lateral_direction() {
+  const glm::vec3 centre = project_to_pixel(top_camera(), kWidth, kHeight, {0.0f, 0.5f, 0.0f});
+  const glm::vec3 side = project_to_pixel(top_camera(), kWidth, kHeight, {0.0f, 0.5f, 0.3f});
+  return glm::normalize(glm::dvec2(side.x - centre.x, side.y - centre.y));
+}
+
+TEST(Render, DrawsAStraightAndABentFishThatBendsToItsSide) {
+  const glm::mat4 transform = placement(fish_pair().local.frame);
+  const Image empty = render_fish({}, &transform);
+  const Image straight = render_fish({planes_draw(0)}, &transform);
+  const Image bent = render_fish({planes_draw(1)}, &transform);
+  ASSERT_EQ(straight.width, kWidth);
+  ASSERT_EQ(straight.rgb.size(), static_cast<std::size_t>(kWidth * kHeight * 3));
+
+  const Silhouette s = silhouette(straight, empty);
+  const Silhouette b = silhouette(bent, empty);
+  const auto pixels = static_cast<double>(kWidth * kHeight);
+  // A one-metre fish seen from 1.1 m covers a good part of the image, not all of it.
+  EXPECT_GT(static_cast<double>(s.count), 0.03 * pixels);
+  EXPECT_LT(static_cast<double>(s.count), 0.6 * pixels);
+  EXPECT_GT(static_cast<double>(b.count), 0.03 * pixels);
+  // Lit: neither black nor burnt out.
+  EXPECT_GT(s.mean_brightness, 50.0);
+  EXPECT_LT(s.mean_brightness, 235.0);
+  EXPECT_GT(b.mean_brightness, 50.0);
+
+  // The straight fish lies across the image centre; the bent one's ends move to +z.
+  const glm::dvec2 centre(kWidth / 2.0, kHeight / 2.0);
+  const glm::dvec2 lateral = lateral_direction();
+  EXPECT_LT(std::abs(glm::dot(s.centroid - centre, lateral)), 6.0);
+  EXPECT_GT(glm::dot(b.centroid - s.centroid, lateral), 2.0);
+  // Pixels the bend adds lie on the +z side of the straight fish's centre line; those
+  // it removes, on the -z side.
+  std::size_t added_plus = 0;
+  std::size_t added_minus = 0;
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x = 0; x < kWidth; ++x) {
+      const auto i = static_cast<std::size_t>(y * kWidth + x);
+      if (!b.inside[i] || s.inside[i]) continue;
+      const double side = glm::dot(glm::dvec2(x, y) - s.centroid, lateral);
+      (side > 0.0 ? added_plus : added_minus) += 1;
+    }
+  }
+  EXPECT_GT(added_plus, 200u);
+  EXPECT_GT(added_plus, 4 * added_minus);
+}
+
+TEST(Render, PlanesInterleavedHalfAndDeviceBuffersGiveTheSamePicture) {
+  const FishPair& pair = fish_pair();
+  const glm::mat4 transform = placement(pair.local.frame);
+  const Image reference = render_fish({planes_draw(1)}, &transform);
+
+  const std::size_t vertices = pair.mesh.vertex_count();
+  std::vector<float> positions;
+  std::vector<float> normals;
+  std::vector<std::uint16_t> half_normals;
+  for (std::size_t v = 0; v < vertices; ++v) {
+    for (int c = 0; c < 3; ++c) {
+      positions.push_back(pair.batch.positions[pair.batch.layout.index(1, c, v)]);
+      normals.push_back(pair.batch.normals[pair.batch.layout.index(1, c, v)]);
+      half_normals.push_back(glm::packHalf1x16(normals.back()));
+    }
+  }
+  FishDraw interleaved;
+  interleaved.mesh = blub_mesh();
+  interleaved.instance_count = 1;
+  interleaved.positions = VertexStream::from_host(positions.data(), positions.size() * 4,
+                                                  StreamLayout::interleaved(vertices));
+  interleaved.normals = VertexStream::from_host(normals.data(), normals.size() * 4,
+                                                StreamLayout::interleaved(vertices));
+  EXPECT_EQ(render_fish({interleaved}, &transform).rgb, reference.rgb);
+
+  FishDraw device = interleaved;
+  const BufferId buffer = renderer().create_buffer(positions.size() * 4);
+  renderer().write_buffer(buffer, 0, positions.data(), positions.size() * 4);
+  device.positions = VertexStream::from_buffer(buffer, StreamLayout::interleaved(vertices));
+  EXPECT_EQ(render_fish({device}, &transform).rgb, reference.rgb);
+
+  FishDraw half = interleaved;
+  half.normals =
+      VertexStream::from_host(half_normals.data(), half_normals.size() * 2,
+                              StreamLayout::interleaved(vertices, ComponentType::kFloat16));
+  const Image half_image = render_fish({half}, &transform);
+  int largest = 0;
+  for (std::size_t i = 0; i < half_image.rgb.size(); ++i) {
+    largest = std::max(largest, std::abs(int{half_image.rgb[i]} - int{reference.rgb[i]}));
+  }
+  EXPECT_LE(largest, 3) << "half normals shade like float ones, within rounding";
+}
+
+TEST(Render, ManyInstancesInOneDraw) {
+  // The same straight fish 9 times on a 3 x 3 grid, in one draw: 9 separate blobs.
+  const FishPair& pair = fish_pair();
+  std::vector<glm::mat4> transforms;
+  for (int row = 0; row < 3; ++row) {
+    for (int column = 0; column < 3; ++column) {
+      const glm::mat4 shift =
+          glm::translate(glm::mat4(1.0f), glm::vec3(0.6f * static_cast<float>(column - 1), 0.0f,
+                                                    0.5f * static_cast<float>(row - 1)));
+      transforms.push_back(shift * glm::mat4(glm::mat3(0.3f)) * placement(pair.local.frame));
+    }
+  }
+  StreamLayout layout = StreamLayout::planes(pair.batch.layout.plane_stride);
+  layout.instance_stride = 0;  // every instance reads instance 0's vertices
+  FishDraw draw = planes_draw(0);
+  draw.instance_count = transforms.size();
+  draw.positions.layout = layout;
+  draw.normals.layout = layout;
+  draw.transforms = transforms.data();
+  renderer().render(Scene{}, top_camera(), {draw});
+  const Image many = renderer().read_image();
+  const Image empty = render_fish({}, nullptr);
+  const Silhouette s = silhouette(many, empty);
+  // Each fish at the centre of its cell.
+  for (const glm::mat4& t : transforms) {
+    const glm::vec3 at = project_to_pixel(top_camera(), kWidth, kHeight, glm::vec3(t[3]));
+    const auto i =
+        static_cast<std::size_t>(static_cast<int>(at.y) * kWidth + static_cast<int>(at.x));
+    EXPECT_TRUE(s.inside[i]) << "no fish at " << at.x << ", " << at.y;
+  }
+  EXPECT_FALSE(s.inside[static_cast<std::size_t>(2 * kWidth + 2)]);  // a corner stays empty
+}
+
+TEST(Render, DrawsSplitIntoRunsGiveTheSamePicture) {
+  // Nine instances with their own vertices (straight and bent in turn), in planes; a
+  // second renderer whose buffer textures address only a little over two instances
+  // draws them in runs, binding each run's range: the picture must not change.
+  const FishPair& pair = fish_pair();
+  const BatchLayout& source = pair.batch.layout;
+  const std::size_t count = 9;
+  const std::size_t plane = source.plane_stride;
+  std::vector<float> positions(count * 3 * plane);
+  std::vector<float> normals(count * 3 * plane);
+  std::vector<glm::mat4> transforms;
+  for (std::size_t i = 0; i < count; ++i) {
+    for (int c = 0; c < 3; ++c) {
+      const std::size_t from = source.index(i % 2, c, 0);
+      std::copy_n(
+          pair.batch.positions.begin() + static_cast<long>(from), plane,
+          positions.begin() + static_cast<long>((i * 3 + static_cast<std::size_t>(c)) * plane));
+      std::copy_n(
+          pair.batch.normals.begin() + static_cast<long>(from), plane,
+          normals.begin() + static_cast<long>((i * 3 + static_cast<std::size_t>(c)) * plane));
+    }
+    const auto column = static_cast<float>(i % 3);
+    const auto row = static_cast<float>(i / 3);
+    transforms.push_back(glm::translate(glm::mat4(1.0f), glm::vec3(0.6f * (column - 1.0f), 0.0f,
+                                                                   0.5f * (row - 1.0f))) *
+                         glm::mat4(glm::mat3(0.3f)) * placement(pair.local.frame));
+  }
+  const auto draw_on = [&](Renderer& target, MeshId mesh) {
+    FishDraw draw;
+    draw.mesh = mesh;
+    draw.instance_count = count;
+    draw.positions = VertexStream::from_host(positions.data(), positions.size() * 4,
+                                             StreamLayout::planes(plane));
+    draw.normals =
+        VertexStream::from_host(normals.data(), normals.size() * 4, StreamLayout::planes(plane));
+    draw.transforms = transforms.data();
+    target.render(Scene{}, top_camera(), {draw});
+    return target.read_image();
+  };
+  const Image whole = draw_on(renderer(), blub_mesh());
+
+  RenderSettings settings{kWidth, kHeight, 4};
+  settings.max_buffer_texels = 7 * plane;  // runs of two instances (6 planes) and slack
+  Renderer split(settings);
+  EXPECT_EQ(split.device().max_buffer_texels, 7 * plane);
+  if (!split.device().texture_buffer_range) GTEST_SKIP() << "no glTexBufferRange";
+  const MeshId mesh = split.add_mesh(pair.mesh.indices, pair.mesh.vertex_count());
+  EXPECT_EQ(draw_on(split, mesh).rgb, whole.rgb);
+  // The first renderer still draws after the second one (each makes its context current).
+  EXPECT_EQ(draw_on(renderer(), blub_mesh()).rgb, whole.rgb);
+}
+
+RenderError error_of(const std::vector<FishDraw>& fish) {
+  try {
+    renderer().render(Scene{}, top_camera(), fish);
+  } catch (const RenderError& error) {
+    return error;
+  }
+  return RenderError(ErrorCode::kGraphics, "none", "no error");
+}
+
+TEST(Render, RefusesBadDrawsNamingTheField) {
+  FishDraw short_stream = planes_draw(1);
+  short_stream.positions.host_bytes =
+      short_stream.positions.layout.required_bytes(1, fish_pair().mesh.vertex_count()) - 4;
+  RenderError error = error_of({planes_draw(0), short_stream});
+  EXPECT_EQ(error.code(), ErrorCode::kInvalidArgument);
+  EXPECT_EQ(error.field(), "fish[1].positions");
+
+  FishDraw odd_stride = planes_draw(0);
+  odd_stride.normals.layout.vertex_stride = 6;
+  error = error_of({odd_stride});
+  EXPECT_EQ(error.field(), "fish[0].normals.layout.vertex_stride");
+  EXPECT_NE(std::string(error.what()).find("6"), std::string::npos);
+
+  FishDraw no_mesh = planes_draw(0);
+  no_mesh.mesh = 99;
+  EXPECT_EQ(error_of({no_mesh}).field(), "fish[0].mesh");
+
+  FishDraw two_sources = planes_draw(0);
+  two_sources.normals.buffer = 0;
+  EXPECT_EQ(error_of({two_sources}).field(), "fish[0].normals");
+
+  Camera camera = top_camera();
+  camera.up = {0.0f, 1.0f, 0.0f};  // along the view
+  try {
+    renderer().render(Scene{}, camera, {});
+    ADD_FAILURE() << "a camera looking along its up vector was accepted";
+  } catch (const RenderError& e) {
+    EXPECT_EQ(e.field(), "camera.up");
+  }
+  EXPECT_THROW(renderer().add_mesh({0, 1, 7}, 3), RenderError);
+}
+
+TEST(Render, WithoutAnyEglDeviceTheErrorIsOneLine) {
+  GTEST_FLAG_SET(death_test_style, "threadsafe");  // a fresh process: EGL not loaded yet
+  EXPECT_EXIT(
+      {
+        // GLVND loads no vendor library: no EGL device or display exists.
+        setenv("__EGL_VENDOR_LIBRARY_FILENAMES", "/nonexistent/vendor.json", 1);
+        try {
+          Renderer renderer({64, 64, 1});
+        } catch (const RenderError& error) {
+          const std::string message = error.what();
+          const bool one_line = message.find('\n') == std::string::npos;
+          std::fprintf(stderr, "%s\n", message.c_str());
+          std::exit(error.code() == ErrorCode::kNoDevice && one_line ? 0 : 1);
+        }
+        std::exit(3);
+      },
+      testing::ExitedWithCode(0), "no EGL device or display could be initialised");
+}
+
+}  // namespace
+}  // namespace finflex::render
