@@ -39,6 +39,8 @@ struct BenchOptions {
   std::string normal_format = "float32";
   std::string rig;
   std::string path = "auto";
+  std::string per_item = "0";
+  std::string dispatch = "auto";
   bool swim = false;
   std::string device;
   bool json = false;
@@ -91,6 +93,22 @@ struct DeformBench {
   DeviceBatch batch;
 };
 
+// --per-item and --dispatch: the backend's choices, for experiments.
+ClOptions cl_options(const BenchOptions& options) {
+  ClOptions cl;
+  cl.instances_per_item = parse_count(options.per_item, "--per-item", 0, 64);
+  if (options.dispatch == "per-component") {
+    cl.dispatch = RigDispatch::kPerComponent;
+  } else if (options.dispatch == "by-path-shape") {
+    cl.dispatch = RigDispatch::kByPathShape;
+  } else if (options.dispatch != "auto") {
+    throw Error(ErrorCode::kInvalidArgument, "--dispatch",
+                "--dispatch '" + options.dispatch +
+                    "' is not a dispatch (expected auto, per-component or by-path-shape)");
+  }
+  return cl;
+}
+
 Measured measure_deform(const BenchOptions& options, const Mesh& mesh, Context& context,
                         std::size_t instances, std::size_t frames, NormalMode normals,
                         NormalFormat format, DeformBench& bench) {
@@ -103,7 +121,7 @@ Measured measure_deform(const BenchOptions& options, const Mesh& mesh, Context& 
                                    mesh)));
   const RiggedMesh& model = *bench.model;
   const RigPath path = parse_rig_path(options.path, "--path");
-  bench.deformer = std::make_unique<ClDeformer>(context, model);
+  bench.deformer = std::make_unique<ClDeformer>(context, model, cl_options(options));
   ClDeformer& deformer = *bench.deformer;
   bench.batch = deformer.allocate(instances, format);
   RigParameters values(model, instances);
@@ -156,7 +174,7 @@ Measured measure_swim(const BenchOptions& options, Context& context, std::size_t
   settings.depth *= scale;
   scene = std::make_unique<tank::SwimScene>(
       context, std::vector<tank::SpeciesFiles>{{options.mesh, options.rig}}, instances, settings, 1,
-      normals, format);
+      normals, format, cl_options(options));
   tank::Species& species = scene->species().front();
   Measured measured;
   std::vector<double> enqueue;  // per frame, the tank's step excluded
@@ -220,6 +238,10 @@ int run_bench(const BenchOptions& options) {
     result["write_bandwidth_bytes_per_second"] = written / write_seconds;
     result["write_fraction"] = write_seconds / seconds;
     result["host_enqueue_seconds_median"] = bench::median(m.times.host);
+    // Each kernel of a frame, in launch order (swim: the driver, rig_prepare, then the
+    // deformation's).
+    result["kernel_seconds_median"] = m.times.kernel_medians();
+    result["instances_per_item"] = m.per_item;
     std::printf("%s\n", options.json ? result.dump().c_str() : result.dump(2).c_str());
     return kExitSuccess;
   } catch (const std::exception& error) {
@@ -245,6 +267,11 @@ Command add_bench_command(CLI::App& app) {
       ->capture_default_str();
   bench->add_option("--rig", options->rig, "Rig file: time the rig instead of the single bend");
   bench->add_option("--path", options->path, "With --rig: auto, fused or passes")
+      ->capture_default_str();
+  bench->add_option("--per-item", options->per_item,
+                    "Instances per work-item (0: the device's choice)")
+      ->capture_default_str();
+  bench->add_option("--dispatch", options->dispatch, "auto, per-component or by-path-shape")
       ->capture_default_str();
   bench->add_flag("--swim", options->swim,
                   "With a swim rig: a tank of swimming fish (driver, deformation, placement)");

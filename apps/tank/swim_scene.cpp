@@ -39,7 +39,7 @@ std::vector<SpeciesFiles> bundled_species(const std::string& data_dir) {
 
 SwimScene::SwimScene(Context& context, const std::vector<SpeciesFiles>& files, std::size_t fish,
                      const TankSettings& settings, std::uint64_t seed, NormalMode normals,
-                     NormalFormat format)
+                     NormalFormat format, const ClOptions& options)
     : context_(context) {
   if (files.empty()) {
     throw Error(ErrorCode::kInvalidArgument, "species", "species: at least one is needed");
@@ -63,7 +63,7 @@ SwimScene::SwimScene(Context& context, const std::vector<SpeciesFiles>& files, s
   for (std::size_t s = 0; s < species_.size(); ++s) {
     Species& sp = species_[s];
     if (counts[s] == 0) continue;
-    sp.deformer = std::make_unique<ClDeformer>(context_, sp.swim.model());
+    sp.deformer = std::make_unique<ClDeformer>(context_, sp.swim.model(), options);
     sp.driver = std::make_unique<ClSwimDriver>(context_, sp.swim, tank_->lengths(s));
     sp.batch = sp.deformer->allocate(counts[s], format);
     sp.job.model = &sp.swim.model();

@@ -53,7 +53,7 @@ class SwimScene {
   // fish among them as evenly as possible, builds the tank, the drivers and the batches.
   SwimScene(Context& context, const std::vector<SpeciesFiles>& species, std::size_t fish,
             const TankSettings& settings, std::uint64_t seed, NormalMode normals,
-            NormalFormat format = NormalFormat::kFloat32);
+            NormalFormat format = NormalFormat::kFloat32, const ClOptions& options = {});
 
   // One frame: the tank steps by dt, then each species' driver and deformation are
   // enqueued (nothing waits). With `profile`, every kernel's event goes to the result.

@@ -20,4 +20,16 @@ double median(std::vector<double> values) {
   return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
+std::vector<double> FrameTimes::kernel_medians() const {
+  std::vector<double> medians;
+  for (std::size_t k = 0; !kernels.empty() && k < kernels.front().size(); ++k) {
+    std::vector<double> values;
+    for (const std::vector<double>& frame : kernels) {
+      if (k < frame.size()) values.push_back(frame[k]);
+    }
+    medians.push_back(median(values));
+  }
+  return medians;
+}
+
 }  // namespace finflex::bench

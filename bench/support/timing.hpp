@@ -21,6 +21,10 @@ double median(std::vector<double> values);
 struct FrameTimes {
   std::vector<double> device;  // kernel time per frame
   std::vector<double> host;    // wall time of the enqueue call (checks, upload, launches)
+  std::vector<std::vector<double>> kernels;  // per frame, each kernel's own time
+
+  // Each kernel's median over the frames (kernels in launch order).
+  std::vector<double> kernel_medians() const;
 };
 
 // Runs one warm-up frame (PoCL compiles per work-group shape), then `frames` timed
@@ -41,6 +45,9 @@ FrameTimes time_frames(std::size_t frames, Prepare prepare, Enqueue enqueue) {
     const auto end = std::chrono::steady_clock::now();
     times.host.push_back(std::chrono::duration<double>(end - start).count());
     times.device.push_back(span_seconds(kernels.front(), kernels.back()));
+    std::vector<double> own;
+    for (const cl::Event& kernel : kernels) own.push_back(event_seconds(kernel));
+    times.kernels.push_back(own);
   }
   return times;
 }

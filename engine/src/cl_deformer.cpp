@@ -232,7 +232,8 @@ void ClDeformer::Impl::ensure_derived(std::size_t instances) {
 }
 
 // rig_prepare over the job's instances: the derived values from the frame's values.
-void ClDeformer::Impl::prepare_derived(const ClJob& job, const FrameInputs& inputs) {
+void ClDeformer::Impl::prepare_derived(const ClJob& job, const FrameInputs& inputs,
+                                       std::vector<cl::Event>* kernel_events) {
   const std::size_t instances = job.parameters.instance_count;
   if (!prepare_()) {
     // From a program the frame's kernels come from: no build of its own.
@@ -251,9 +252,12 @@ void ClDeformer::Impl::prepare_derived(const ClJob& job, const FrameInputs& inpu
   set(static_cast<cl_uint>(derived_per_instance_));
   set(static_cast<cl_uint>(instances));
   const std::size_t global = (instances + kWorkGroupSize - 1) / kWorkGroupSize * kWorkGroupSize;
+  cl::Event prepared;
   check_cl(context.queue().enqueueNDRangeKernel(prepare_, cl::NullRange, cl::NDRange(global),
-                                                cl::NDRange(kWorkGroupSize)),
+                                                cl::NDRange(kWorkGroupSize), nullptr,
+                                                kernel_events ? &prepared : nullptr),
            "clEnqueueNDRangeKernel rig_prepare");
+  if (kernel_events) kernel_events->push_back(prepared);
 }
 
 // kernels/single_bend.cl's and kernels/rig.cl's arguments, in their order.
@@ -375,7 +379,7 @@ cl::Event ClDeformer::Impl::enqueue(const ClJob& job, std::vector<cl::Event>* ke
   if (path == RigPath::kPasses && !single_bend) ensure_scratch(instances);
   if (derived_per_instance_ > 0) {
     ensure_derived(instances);
-    prepare_derived(job, inputs);
+    prepare_derived(job, inputs, kernel_events);
   }
 
   auto run = [&](std::size_t index, std::size_t first_group, std::size_t end_group, bool last,

@@ -91,7 +91,8 @@ class ClDeformer::Impl {
   void ensure_scratch(std::size_t instances);
   void ensure_derived(std::size_t instances);
   FrameInputs upload_inputs(const ClJob& job, bool checked);
-  void prepare_derived(const ClJob& job, const FrameInputs& inputs);
+  void prepare_derived(const ClJob& job, const FrameInputs& inputs,
+                       std::vector<cl::Event>* kernel_events);
   void launch(BoundKernel& bound, const ClJob& job, std::size_t first_group, std::size_t end_group,
               std::vector<cl::Event>* kernel_events, cl::Event* done);
   void set_arguments(cl::Kernel& kernel, std::size_t index, const ClJob& job,

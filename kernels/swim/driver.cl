@@ -9,7 +9,7 @@
  *   (axes, origin, length in mesh units) and the per-segment bend limits
  *   swim_max_positive[] and swim_max_negative[].
  *
- * inputs:   8 floats per fish: position (3), yaw, pitch, speed, turn rate, unused
+ * inputs:   7 floats per fish: position (3), yaw, pitch, speed, turn rate (SwimInput)
  * lengths:  the fish's length (m)
  * phases:   2 floats per fish, read and written: the wave's and the pectoral fins'
  * params:   FF_SWIM_VALUES floats per fish (slots not driven keep their values)
@@ -26,7 +26,7 @@ __kernel void swim_drive(__global const float* restrict inputs,
                          const float dt, const uint fish) {
   const size_t i = get_global_id(0);
   if (i >= fish) return;
-  __global const float* in = inputs + i * 8;
+  __global const float* in = inputs + i * 7;
   const float length = lengths[i];
   const float speed = in[5];
   const float body_lengths = speed / length;

@@ -95,7 +95,8 @@ class FINFLEX_API ClDeformer {
   // "job.outputs" names what does not fit), checks its parameters (check_parameters)
   // into the next staging buffer, uploads them without blocking after job.wait, and
   // enqueues the kernels. Returns the last kernel's event. `kernel_events`, when given,
-  // receives the event of every kernel launched (profiling).
+  // receives the event of every kernel launched, in order (profiling): rig_prepare when
+  // the rig has derived values, then the deformation's.
   cl::Event enqueue(const ClJob& job, std::vector<cl::Event>* kernel_events = nullptr);
   // Throws what enqueue() would throw for `job`, and enqueues nothing.
   void check(const ClJob& job) const;

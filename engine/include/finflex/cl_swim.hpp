@@ -12,7 +12,8 @@
 //   each frame: driver.enqueue(inputs, dt); deformer.enqueue(job);
 //
 // The device's state: per fish its wave and pectoral phases (2 floats). Memory per
-// fish: 8 floats of inputs, the rig's values, 16 floats of placement.
+// fish: 7 floats of inputs (a SwimInput as it is), the rig's values, 16 floats of
+// placement. Host work per frame: a copy of the inputs and one pass checking them.
 #pragma once
 
 #include <cstddef>

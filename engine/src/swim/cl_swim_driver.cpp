@@ -3,6 +3,7 @@
 #include "finflex/cl_swim.hpp"
 
 #include <cmath>
+#include <cstring>
 #include <numeric>
 #include <sstream>
 #include <string>
@@ -13,7 +14,21 @@
 namespace finflex {
 namespace {
 
-constexpr std::size_t kInputFloats = 8;
+// A SwimInput as the kernel reads it: 7 floats (position, yaw, pitch, speed, turn rate).
+constexpr std::size_t kInputFloats = 7;
+static_assert(sizeof(SwimInput) == kInputFloats * sizeof(float),
+              "SwimInput is uploaded as it is: 7 packed floats");
+
+// True when every value is finite and every speed >= 0: one branch-free pass.
+bool inputs_valid(const float* values, std::size_t fish) {
+  int bad = 0;
+  for (std::size_t i = 0; i < fish; ++i) {
+    const float* in = values + i * kInputFloats;
+    for (std::size_t k = 0; k < kInputFloats; ++k) bad |= !std::isfinite(in[k]);
+    bad |= !(in[5] >= 0.0f);
+  }
+  return bad == 0;
+}
 constexpr std::size_t kGroupSize = 64;
 
 std::string literal(double value) {
@@ -129,20 +144,14 @@ std::size_t ClSwimDriver::fish_count() const { return impl_->fish; }
 cl::Event ClSwimDriver::enqueue(const std::vector<SwimInput>& inputs, float dt,
                                 const std::vector<cl::Event>* wait) {
   Impl& d = *impl_;
-  check_swim_inputs(inputs, d.fish, dt);
-  std::vector<float>& staged = d.inputs_.acquire(d.fish * kInputFloats);
-  for (std::size_t i = 0; i < d.fish; ++i) {
-    const SwimInput& in = inputs[i];
-    float* out = staged.data() + i * kInputFloats;
-    out[0] = in.position.x;
-    out[1] = in.position.y;
-    out[2] = in.position.z;
-    out[3] = in.yaw;
-    out[4] = in.pitch;
-    out[5] = in.speed;
-    out[6] = in.turn_rate;
-    out[7] = 0.0f;
+  if (inputs.size() != d.fish || !std::isfinite(dt) || !(dt > 0.0f)) {
+    check_swim_inputs(inputs, d.fish, dt);  // names the problem
   }
+  // Copied as they are (the upload reads them after this returns), then checked in
+  // one pass; only a bad value is looked for by name.
+  std::vector<float>& staged = d.inputs_.acquire(d.fish * kInputFloats);
+  std::memcpy(staged.data(), inputs.data(), staged.size() * sizeof(float));
+  if (!inputs_valid(staged.data(), d.fish)) check_swim_inputs(inputs, d.fish, dt);
   const bool replaced = d.inputs_.upload(d.context, wait);
   cl::Kernel& kernel = d.kernel_;
   if (replaced || !d.bound_) {

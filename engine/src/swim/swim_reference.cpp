@@ -27,6 +27,12 @@ void check_swim_inputs(const std::vector<SwimInput>& inputs, std::size_t fish, d
   }
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     const SwimInput& in = inputs[i];
+    // The common case in one pass of comparisons; names only for a bad value.
+    const bool finite = std::isfinite(in.position.x) && std::isfinite(in.position.y) &&
+                        std::isfinite(in.position.z) && std::isfinite(in.yaw) &&
+                        std::isfinite(in.pitch) && std::isfinite(in.speed) &&
+                        std::isfinite(in.turn_rate);
+    if (finite && in.speed >= 0.0f) continue;
     const std::string at = "inputs[" + std::to_string(i) + "].";
     const std::pair<const char*, float> values[] = {
         {"position.x", in.position.x}, {"position.y", in.position.y},
