@@ -15,9 +15,10 @@
 
 #include "finflex/body_frame.hpp"
 #include "finflex/cl_deformer.hpp"
-#include "finflex/local_mesh.hpp"
+#include "finflex/reference.hpp"
 #include "finflex/mesh_io.hpp"
 #include "render/renderer.hpp"
+#include "support/deform.hpp"
 #include "support/test_support.hpp"
 
 namespace finflex::render {
@@ -30,7 +31,7 @@ constexpr int kHeight = 192;
 // range: the spine becomes z = m x^2, both ends towards the body's +z side).
 struct FishPair {
   Mesh mesh;
-  LocalMesh local;
+  BodyFrame frame;
   DeformedBatch<float> batch;
 };
 
@@ -38,12 +39,12 @@ const FishPair& fish_pair() {
   static const FishPair pair = [] {
     FishPair p;
     p.mesh = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
-    p.local = make_local_mesh(p.mesh, find_body_frame(p.mesh));
-    ClDeformer deformer(test::shared_context(), p.local);
-    DeviceBatch batch = deformer.allocate(2);
-    const auto bend = static_cast<float>(0.8 * max_abs_m(p.local.x_max));
-    deformer.enqueue({0.0f, bend}, {BendMode::kExact, NormalMode::kJacobian}, batch);
-    p.batch = deformer.read(batch);
+    p.frame = find_body_frame(p.mesh);
+    const RiggedMesh model = RiggedMesh::single_bend(p.mesh, p.frame, BendMode::kExact);
+    ClDeformer deformer(test::shared_context(), model);
+    const auto bend = static_cast<float>(0.8 * model.rig().parameters[0].limit);
+    p.batch = test::run_on_device(deformer, test::values_of(model, {0.0f, bend}),
+                                  NormalMode::kJacobian);
     return p;
   }();
   return pair;
@@ -145,7 +146,7 @@ glm::dvec2 lateral_direction() {
 }
 
 TEST(Render, DrawsAStraightAndABentFishThatBendsToItsSide) {
-  const glm::mat4 transform = placement(fish_pair().local.frame);
+  const glm::mat4 transform = placement(fish_pair().frame);
   const Image empty = render_fish({}, &transform);
   const Image straight = render_fish({planes_draw(0)}, &transform);
   const Image bent = render_fish({planes_draw(1)}, &transform);
@@ -187,7 +188,7 @@ TEST(Render, DrawsAStraightAndABentFishThatBendsToItsSide) {
 
 TEST(Render, PlanesInterleavedHalfAndDeviceBuffersGiveTheSamePicture) {
   const FishPair& pair = fish_pair();
-  const glm::mat4 transform = placement(pair.local.frame);
+  const glm::mat4 transform = placement(pair.frame);
   const Image reference = render_fish({planes_draw(1)}, &transform);
 
   const std::size_t vertices = pair.mesh.vertex_count();
@@ -237,7 +238,7 @@ TEST(Render, ManyInstancesInOneDraw) {
       const glm::mat4 shift =
           glm::translate(glm::mat4(1.0f), glm::vec3(0.6f * static_cast<float>(column - 1), 0.0f,
                                                     0.5f * static_cast<float>(row - 1)));
-      transforms.push_back(shift * glm::mat4(glm::mat3(0.3f)) * placement(pair.local.frame));
+      transforms.push_back(shift * glm::mat4(glm::mat3(0.3f)) * placement(pair.frame));
     }
   }
   StreamLayout layout = StreamLayout::planes(pair.batch.layout.plane_stride);
@@ -286,7 +287,7 @@ TEST(Render, DrawsSplitIntoRunsGiveTheSamePicture) {
     const auto row = static_cast<float>(i / 3);
     transforms.push_back(glm::translate(glm::mat4(1.0f), glm::vec3(0.6f * (column - 1.0f), 0.0f,
                                                                    0.5f * (row - 1.0f))) *
-                         glm::mat4(glm::mat3(0.3f)) * placement(pair.local.frame));
+                         glm::mat4(glm::mat3(0.3f)) * placement(pair.frame));
   }
   const auto draw_on = [&](Renderer& target, MeshId mesh) {
     FishDraw draw;

@@ -57,7 +57,7 @@ struct Species {
   glm::vec3 albedo;
   float length;  // metres, nose to tail
   finflex::Mesh mesh;
-  finflex::LocalMesh local;
+  std::unique_ptr<finflex::RiggedMesh> model;  // the whole-body exact bend
   std::unique_ptr<finflex::ClDeformer> deformer;
   finflex::DeviceBatch batch;
   finflex::DeformedBatch<float> host;
@@ -118,8 +118,9 @@ std::vector<Swimmer> school(std::size_t count, unsigned seed, float max_radius) 
 void load_species(Species& species, finflex::Context& context, const std::string& path,
                   std::size_t count, unsigned seed) {
   species.mesh = finflex::load_mesh(path);
-  species.local = finflex::make_local_mesh(species.mesh, finflex::find_body_frame(species.mesh));
-  species.deformer = std::make_unique<finflex::ClDeformer>(context, species.local);
+  species.model = std::make_unique<finflex::RiggedMesh>(finflex::RiggedMesh::single_bend(
+      species.mesh, finflex::find_body_frame(species.mesh), finflex::BendMode::kExact));
+  species.deformer = std::make_unique<finflex::ClDeformer>(context, *species.model);
   species.batch = species.deformer->allocate(count);
   species.swimmers = school(count, seed, 1.15f);
   species.m.resize(count);
@@ -128,14 +129,21 @@ void load_species(Species& species, finflex::Context& context, const std::string
 
 // Bends and places every fish of a species for time t, and reads the batch back.
 void pose(Species& species, float t) {
-  const auto max_m = static_cast<float>(finflex::max_abs_m(species.local.x_max));
+  const auto max_m = static_cast<float>(species.model->rig().parameters[0].limit);
+  const finflex::BodyFrame& frame = species.model->rig().components[0].frame;
   for (std::size_t i = 0; i < species.swimmers.size(); ++i) {
     const Swimmer& s = species.swimmers[i];
     species.m[i] = 0.8f * max_m * std::sin(2.0f * kPi * s.beat * t + s.phase);
-    species.transforms[i] = place(s, species.length, t) * body_from_mesh(species.local.frame);
+    species.transforms[i] = place(s, species.length, t) * body_from_mesh(frame);
   }
-  species.deformer->enqueue(species.m, {finflex::BendMode::kExact, finflex::NormalMode::kJacobian},
-                            species.batch);
+  finflex::RigParameters values(*species.model, species.m.size());
+  values.values() = species.m;
+  finflex::ClJob job;
+  job.model = species.model.get();
+  job.parameters = values.view();
+  job.normals = finflex::NormalMode::kJacobian;
+  job.outputs = &species.batch;
+  species.deformer->enqueue(job);
   species.host = species.deformer->read(species.batch);
 }
 

@@ -12,7 +12,8 @@ shift 2
 rm -rf "$out"
 mkdir -p "$out/bin" "$out/lib"
 binaries=("$build/apps/finflex" "$build/bench/bench_deform")
-for test in test_cl_deformer test_rig_deformer test_normal_format test_geometry; do
+for test in test_cl_deformer test_rig_deformer test_normal_format test_geometry test_spine \
+    test_swim test_placement; do
   binaries+=("$build/tests/$test")
 done
 binaries+=("$@")
