@@ -7,7 +7,8 @@
  * Which stages apply to which work-groups is the rig's, so it is generated for each
  * rig (engine/src/rig_program.cpp) as macros over the deformers' stage functions
  * (kernels/deformers/; enter_frame before every stage but a vertex's first, then
- * <function>(&p, &n, &t, f, values + <offset of the stage's values>)):
+ * s = <function>(p, f, values + <offset of the stage's values>, ...) and
+ * leave_frame, or FF_LEAVE_LAST at the root's last stage):
  *   FF_RIG_FUSED_<r>     the whole bottom-up path of the group's component, for the
  *                        fused kernel rig_fused_<r>; FF_RIG_FUSED_KERNELS defines them;
  *   FF_RIG_PASS_<q>      the stage pass q applies to the group, if any;
@@ -18,11 +19,15 @@
  * The kernels' arguments end with the instances' values (params, param_count values
  * each), their derived values (derived_values, derived_count each), their world
  * placements (common/placement.cl; read when FF_PLACEMENT is 1) and the outputs.
+ * A placed vertex leaves the root's last stage straight for the world, so placing
+ * costs no extra transform (FF_PLACE_FROM_MESH does it only for a root without
+ * stages).
  *
  * Build options: FF_NORMALS_JACOBIAN (common/secant.cl), FF_HALF_NORMALS,
  * FF_TANGENTS and FF_INSTANCES_PER_ITEM (common/planes.cl; half normals in the
  * outputs only: scratch sets stay float32). Generated before the files:
- * FF_STAGE_COUNT, FF_RIG_GROUP_COUNT and the macros above. */
+ * FF_STAGE_COUNT (the stage table's rows), FF_ROOT_FRAME (the root frame's row, when
+ * the root has no stage), FF_RIG_GROUP_COUNT and the macros above. */
 /* The path table (group_path_table in engine/src/rig_program.cpp): the stage at
  * position j of the path of the work-group's component. Uniform over a work-group. */
 #define FF_PATH_STAGE(j) group_paths[(j) * FF_RIG_GROUP_COUNT + group]
@@ -60,7 +65,7 @@
       __global const float* derived = derived_values + instance * derived_count;        \
       Vec3 p = rest_p, n = rest_n, t = rest_t;                                          \
       FF_RIG_FUSED_##r                                                                  \
-      FF_PLACE(instance)                                                                \
+      FF_PLACE_FROM_MESH                                                                \
       store_plane3(out_positions, instance * 3, stride, v, p);                          \
       store_direction3(out_normals, instance * 3, stride, v, n);                        \
       FF_STORE_TANGENT(out_tangents, instance * 3, stride, v, t);                       \
@@ -100,7 +105,7 @@ FF_RIG_FUSED_KERNELS
 #define FF_STORE_SCRATCH_A FF_STORE_SCRATCH(a)
 #define FF_STORE_SCRATCH_B FF_STORE_SCRATCH(b)
 #define FF_STORE_OUTPUT                                                 \
-  FF_PLACE(instance)                                                    \
+  FF_PLACE_FROM_MESH                                                    \
   store_plane3(out_positions, instance * 3, stride, v, p);              \
   store_direction3(out_normals, instance * 3, stride, v, n);            \
   FF_STORE_TANGENT(out_tangents, instance * 3, stride, v, t);

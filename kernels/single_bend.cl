@@ -11,7 +11,7 @@
  *         vertices hold harmless values: the origin, e_z, e_x).
  * m:      one bend parameter per instance, checked on the host.
  * placements: per instance a world placement record (common/placement.cl), read
- *         when FF_PLACEMENT is 1.
+ *         when FF_PLACEMENT is 1 instead of the back transform.
  * out_*:  planes as finflex/batch.hpp describes: (instance * 3 + component) * stride + v.
  * back_*: the way back to mesh coordinates, M^-1 of (2):
  *         p_b = origin + s (x e_x + y e_y + z e_z), n_b = x e_x + y e_y + z e_z;
@@ -52,11 +52,17 @@ __kernel void single_bend(__global const float* restrict rest_positions,
     if (instance >= instances) break;
     const SecantSample s = bend_sample(rest_p.x, rest_p.z, m[instance]);
     const size_t out_plane = instance * 3;
-    Vec3 p = to_mesh(secant_position(rest_p, s), scaled_axis_x, scaled_axis_y, scaled_axis_z,
-                     origin);
-    Vec3 n = to_mesh(secant_normal(rest_n, s), axis_x, axis_y, axis_z, no_offset);
-    Vec3 t = to_mesh(secant_tangent(rest_t, s), axis_x, axis_y, axis_z, no_offset);
-    FF_PLACE(instance)
+#if FF_PLACEMENT /* from the body frame straight to the world */
+    __global const float* record = placements + instance * 16;
+    const Vec3 p = world_point(secant_position(rest_p, s), record);
+    const Vec3 n = world_direction(secant_normal(rest_n, s), record);
+    const Vec3 t = world_direction(secant_tangent(rest_t, s), record);
+#else
+    const Vec3 p = to_mesh(secant_position(rest_p, s), scaled_axis_x, scaled_axis_y,
+                           scaled_axis_z, origin);
+    const Vec3 n = to_mesh(secant_normal(rest_n, s), axis_x, axis_y, axis_z, no_offset);
+    const Vec3 t = to_mesh(secant_tangent(rest_t, s), axis_x, axis_y, axis_z, no_offset);
+#endif
     store_plane3(out_positions, out_plane, stride, v, p);
     store_direction3(out_normals, out_plane, stride, v, n);
     FF_STORE_TANGENT(out_tangents, out_plane, stride, v, t);

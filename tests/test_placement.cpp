@@ -59,7 +59,19 @@ TEST(Placement, TheBodyFrameGoesWhereThePlacementSays) {
   EXPECT_NEAR(highest - lowest, 1.0, 1e-9);  // the body's length is the placed length
   // The pivot (the body frame's origin, the surface centroid) is at the position.
   const glm::dvec3 origin_world = glm::dvec3(2.0, 0.5, -1.0);
-  EXPECT_LT(glm::length(place_point(placement_record(where, body), body.origin) - origin_world),
+  EXPECT_LT(glm::length(place_point(placement_record(where), glm::dvec3(0.0)) - origin_world),
+            1e-6);
+  // The record places body-local coordinates: the snout's, (2), lands where the
+  // reference put it.
+  std::size_t snout = 0;
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+    if (body.point_to_local(glm::dvec3(mesh.positions[v])).x >
+        body.point_to_local(glm::dvec3(mesh.positions[snout])).x) {
+      snout = v;
+    }
+  }
+  const glm::dvec3 snout_local = body.point_to_local(glm::dvec3(mesh.positions[snout]));
+  EXPECT_LT(glm::length(place_point(placement_record(where), snout_local) - out.position(0, snout)),
             1e-6);
 }
 
@@ -106,7 +118,7 @@ TEST(Placement, DeviceMatchesTheReferenceFromHostAndDeviceBuffers) {
       // The same records written to a buffer of the caller's.
       std::vector<float> records;
       for (const Placement& p : where) {
-        const PlacementRecord r = placement_record(p, model->rig().components.front().frame);
+        const PlacementRecord r = placement_record(p);
         records.insert(records.end(), r.begin(), r.end());
       }
       cl::Buffer buffer(test::shared_context().context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
@@ -118,6 +130,52 @@ TEST(Placement, DeviceMatchesTheReferenceFromHostAndDeviceBuffers) {
       EXPECT_EQ(from_buffer.positions, from_host.positions);
       EXPECT_EQ(from_buffer.normals, from_host.normals);
     }
+  }
+}
+
+TEST(Placement, ARootWithoutStagesIsPlacedFromMeshCoordinates) {
+  // The last stage of every path is the tail's, in its own frame: the kernels place
+  // from mesh coordinates through the root frame's row of the stage table.
+  const Mesh mesh = load_mesh(test::data_path("barramundi/BarramundiFish.gltf"));
+  const RigSpec spec = parse_rig_json(R"({
+    "components": [
+      {"name": "body", "select": "all", "chain": []},
+      {"name": "tail", "parent": "body",
+       "select": {"box": {"min": [-1, -1, -1], "max": [-0.2, 1, 1]}},
+       "chain": [{"deformer": "bend", "mode": "exact", "param": "tail_m"},
+                 {"deformer": "hinge", "param": "tail_angle", "width": 0.3}]}]})");
+  const RiggedMesh model(mesh, resolve_rig(spec, mesh));
+  ASSERT_TRUE(model.rig().components.front().chain.empty());
+  const std::vector<Placement> where = {placed({1.5f, 0.7f, -0.4f}, 2.0f, 0.3f, 0.45f),
+                                        placed({-1.2f, 0.2f, 1.1f}, -2.6f, -0.2f, 0.38f)};
+  RigParameters values(model, 2);
+  for (std::size_t i = 0; i < 2; ++i) {
+    for (const RigParameter& p : model.rig().parameters)
+      values.values()[i * values.values_per_instance() + p.offset] =
+          static_cast<float>(0.4 * double(i + 1) * p.limit);
+  }
+  ReferenceJob reference_job;
+  DeformedBatch<double> reference;
+  reference_job.model = &model;
+  reference_job.parameters = values.view();
+  reference_job.placements = where.data();
+  reference_job.outputs = &reference;
+  run_reference(reference_job);
+  ClDeformer deformer(test::shared_context(), model);
+  DeviceBatch batch = deformer.allocate(2);
+  for (RigPath path : {RigPath::kFused, RigPath::kPasses}) {
+    ClJob job;
+    job.model = &model;
+    job.parameters = values.view();
+    job.path = path;
+    job.placements = where.data();
+    job.outputs = &batch;
+    deformer.enqueue(job);
+    const AccuracyReport report = compare_to_reference(
+        model, values.view(), job.normals, deformer.read(batch), reference, where.data());
+    SCOPED_TRACE(path == RigPath::kFused ? "fused" : "passes");
+    EXPECT_LE(report.max_position_ratio, 1.0) << report.max_position_error;
+    EXPECT_LE(report.max_normal_ratio, 1.0) << report.max_normal_error;
   }
 }
 

@@ -84,7 +84,7 @@ ClDeformer::Impl::Impl(Context& context_in, const RiggedMesh& model_in, const Cl
     files.push_back(stage.deformer->cl_file);
     files.push_back("single_bend.cl");
     const bool exact =
-        stage.deformer->cl_function(stage.options) == std::string("bend_exact_in_frame");
+        stage.deformer->cl_function(stage.options) == std::string("bend_exact_stage");
     program_ = {files, std::string("#define FF_BEND_EXACT ") + (exact ? "1" : "0") + "\n", ""};
     fused_launches_.emplace_back(0, slot_count_ / kWorkGroupSize);
     pass_count = 1;
@@ -194,8 +194,8 @@ void ClDeformer::Impl::check(const ClJob& job) const {
 ClDeformer::Impl::BoundKernel& ClDeformer::Impl::kernel(std::size_t index, const ClJob& job) {
   const NormalFormat format = job.outputs->layout.normal_format;
   const bool placed = job.placements != nullptr || job.placement_buffer != nullptr;
-  const detail::KernelVariant variant{index, job.normals, format, tangents_, per_item(format),
-                                      placed};
+  const detail::KernelVariant variant{index,     job.normals,      format,
+                                      tangents_, per_item(format), placed};
   auto found = kernels_.find(variant);
   if (found == kernels_.end()) {
     const std::size_t fused = fused_launches_.size();
@@ -239,8 +239,8 @@ void ClDeformer::Impl::prepare_derived(const ClJob& job, const FrameInputs& inpu
     // From a program the frame's kernels come from: no build of its own.
     const NormalFormat format = job.outputs->layout.normal_format;
     const bool placed = job.placements != nullptr || job.placement_buffer != nullptr;
-    const detail::KernelVariant variant{0, job.normals, format, tangents_, per_item(format),
-                                        placed};
+    const detail::KernelVariant variant{0,         job.normals,      format,
+                                        tangents_, per_item(format), placed};
     prepare_ = context.kernel("rig_prepare", program_, variant.options());
   }
   cl_uint arg = 0;
@@ -342,16 +342,16 @@ ClDeformer::Impl::FrameInputs ClDeformer::Impl::upload_inputs(const ClJob& job, 
     inputs.placements = job.placement_buffer;
   } else if (job.placements) {
     std::vector<float>& staged = placement_upload_.acquire(instances * kPlacementFloats);
-    const BodyFrame& body = model.rig().components.front().frame;
     for (std::size_t i = 0; i < instances; ++i) {
       PlacementRecord record;
       try {
-        record = placement_record(job.placements[i], body);
+        record = placement_record(job.placements[i]);
       } catch (const Error& e) {
         const std::string field = "job.placements[" + std::to_string(i) + "]";
         throw Error(e.code(), field, field + ": " + e.what());
       }
-      std::copy(record.begin(), record.end(), staged.begin() + std::ptrdiff_t(i * kPlacementFloats));
+      std::copy(record.begin(), record.end(),
+                staged.begin() + std::ptrdiff_t(i * kPlacementFloats));
     }
     if (placement_upload_.upload(context, wait)) ++generation_;
     wait = nullptr;
@@ -403,8 +403,7 @@ cl::Event ClDeformer::Impl::enqueue(const ClJob& job, std::vector<cl::Event>* ke
     }
   } else {
     for (std::size_t q = 0; q < pass_count; ++q) {
-      run(fused_launches_.size() + q, 0, slot_count_ / kWorkGroupSize, q + 1 == pass_count,
-          &done);
+      run(fused_launches_.size() + q, 0, slot_count_ / kWorkGroupSize, q + 1 == pass_count, &done);
     }
   }
   if (!job.parameter_buffer) upload_.used(done);

@@ -19,7 +19,7 @@ namespace {
 
 namespace detail {
 
-PlacementTransform placement_transform(const Placement& placement, const BodyFrame& body) {
+glm::dmat3 checked_rotation(const Placement& placement) {
   const glm::vec3& p = placement.position;
   if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
     fail("placement.position", "is not finite");
@@ -32,27 +32,30 @@ PlacementTransform placement_transform(const Placement& placement, const BodyFra
   if (!std::isfinite(norm) || std::fabs(norm - 1.0) > 1e-3) {
     fail("placement.orientation", "is not a unit quaternion (|q| = " + std::to_string(norm) + ")");
   }
+  return glm::mat3_cast(glm::normalize(q));
+}
+
+PlacementTransform placement_transform(const Placement& placement, const BodyFrame& body) {
+  const glm::dmat3 rotation = checked_rotation(placement);
   // R_body: rows are the body axes, so R_body v gives body coordinates.
   const glm::dmat3 body_rotation =
       glm::transpose(glm::dmat3(body.axis_x, body.axis_y, body.axis_z));
   const double scale = double(placement.length) / body.length;
-  const glm::dmat3 m = glm::mat3_cast(glm::normalize(q)) * body_rotation * scale;
-  const glm::dvec3 t = glm::dvec3(p) - m * body.origin;
+  const glm::dmat3 m = rotation * body_rotation * scale;
+  const glm::dvec3 t = glm::dvec3(placement.position) - m * body.origin;
   return {m, t, 1.0 / scale};
 }
 
 }  // namespace detail
 
-PlacementRecord placement_record(const Placement& placement, const BodyFrame& body) {
-  const detail::PlacementTransform transform = detail::placement_transform(placement, body);
+PlacementRecord placement_record(const Placement& placement) {
+  const glm::dmat3 scaled = detail::checked_rotation(placement) * double(placement.length);
   PlacementRecord record{};
   for (int c = 0; c < 3; ++c) {
-    for (int r = 0; r < 3; ++r) {
-      record[std::size_t(3 * c + r)] = static_cast<float>(transform.m[c][r]);
-    }
-    record[std::size_t(9 + c)] = static_cast<float>(transform.t[c]);
+    for (int r = 0; r < 3; ++r) record[std::size_t(3 * c + r)] = static_cast<float>(scaled[c][r]);
+    record[std::size_t(9 + c)] = placement.position[c];
   }
-  record[12] = static_cast<float>(transform.inverse_scale);
+  record[12] = static_cast<float>(1.0 / double(placement.length));
   return record;
 }
 

@@ -1,5 +1,6 @@
 // World placement in double precision (finflex/placement.hpp): what the reference
-// applies and what the kernels' float records are rounded from.
+// applies, from mesh coordinates (the kernels' records place body-local coordinates:
+// the same map, composed with (2)).
 #pragma once
 
 #include <glm/glm.hpp>
@@ -18,7 +19,10 @@ struct PlacementTransform {
   glm::dvec3 direction(const glm::dvec3& d) const { return m * d * inverse_scale; }
 };
 
-// Validates `placement` (errors as placement_record's) and composes it with `body`.
+// Validates `placement` (errors as placement_record's); its orientation as a matrix.
+glm::dmat3 checked_rotation(const Placement& placement);
+
+// Validates `placement` and composes it with `body`: mesh coordinates to the world.
 PlacementTransform placement_transform(const Placement& placement, const BodyFrame& body);
 
 }  // namespace finflex::detail

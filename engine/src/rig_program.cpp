@@ -26,14 +26,17 @@ std::size_t values_offset(const Rig& rig, const RigStage& stage) {
 // Applies the stage at path position j of the group's path to the vertex; a vertex's
 // first stage finds it in its frame already (the rest planes):
 // "{ const StageFrame f = stages + <k>; [enter_frame(&p, &n, &t, f);]
-//    <function>(&p, &n, &t, f, values + <offset>, derived + <offset>); }", with <k>
-// and the offsets compiled in (`literal`: the group range has one stage there) or read
-// from the path and stage tables (FF_PATH_STAGE(j), FF_STAGE_VALUES(f),
-// FF_STAGE_DERIVED(f)).
+//    const SecantSample s = <function>(p, f, values + <offset>, derived + <offset>);
+//    leave_frame(&p, &n, &t, f, s); }", with <k> and the offsets compiled in
+// (`literal`: the group range has one stage there) or read from the path and stage
+// tables (FF_PATH_STAGE(j), FF_STAGE_VALUES(f), FF_STAGE_DERIVED(f)). The root's last
+// stage leaves with FF_LEAVE_LAST instead (kernels/common/placement.cl: to the world
+// when placing).
 struct StageCall {
   const char* function = nullptr;
   std::size_t position = 0;
   bool first = false;
+  bool last_of_root = false;
   bool literal = false;
   std::size_t stage = 0;    // stage index, when literal
   std::size_t values = 0;   // values offset, when literal
@@ -49,13 +52,14 @@ std::string stage_call(const StageCall& c) {
     call << "FF_PATH_STAGE(" << c.position << "); ";
   }
   if (!c.first) call << "enter_frame(&p, &n, &t, f); ";
-  call << c.function << "(&p, &n, &t, f, values + ";
+  call << "const SecantSample s = " << c.function << "(p, f, values + ";
   if (c.literal) {
     call << c.values << ", derived + " << c.derived;
   } else {
     call << "FF_STAGE_VALUES(f), derived + FF_STAGE_DERIVED(f)";
   }
-  call << "); }";
+  call << "); " << (c.last_of_root ? "FF_LEAVE_LAST(f, s)" : "leave_frame(&p, &n, &t, f, s);")
+       << " }";
   return call.str();
 }
 
@@ -166,29 +170,39 @@ std::size_t derived_offset(const Rig& rig, std::size_t component, std::size_t st
   return derived_offset_of(rig, stage_index(rig, component, stage));
 }
 
+std::size_t stage_table_rows(const Rig& rig) { return stage_count(rig) + 1; }
+
 std::vector<float> stage_table(const Rig& rig) {
-  const std::size_t count = std::max<std::size_t>(stage_count(rig), 1);
-  std::vector<float> table(kStageValues * count, 0.0f);  // valid (unused) without stages
-  std::size_t k = 0;
+  const std::size_t count = stage_table_rows(rig);
+  std::vector<float> table(kStageValues * count, 0.0f);
+  // A row per stage, in rig order, then the root's frame (for placing from mesh
+  // coordinates when the root has no stage).
+  std::vector<const RigStage*> rows;
   for (const RigComponent& component : rig.components) {
-    for (const RigStage& stage : component.chain) {
-      const BodyFrame& f = stage.frame;
-      const StageConstants c = stage.deformer->stage_constants(stage.options, stage.geometry);
-      const double offset = double(values_offset(rig, stage));
-      const double derived = double(derived_offset_of(rig, k));
-      // kernels/common/stage_frame.cl's layout.
-      // clang-format off
-      const double values[kStageValues] = {
-          f.axis_x.x, f.axis_x.y, f.axis_x.z, 1.0 / f.length,   // 0-3
-          f.axis_y.x, f.axis_y.y, f.axis_y.z, c[0],             // 4-7
-          f.axis_z.x, f.axis_z.y, f.axis_z.z, offset,           // 8-11
-          f.origin.x, f.origin.y, f.origin.z, f.length,         // 12-15
-          c[1], c[2], c[3], derived};                           // 16-19
-      // clang-format on
-      for (std::size_t v = 0; v < kStageValues; ++v)
-        table[v * count + k] = static_cast<float>(values[v]);
-      ++k;
-    }
+    for (const RigStage& stage : component.chain) rows.push_back(&stage);
+  }
+  RigStage root;
+  root.frame = rig.components.front().frame;
+  rows.push_back(&root);
+  for (std::size_t k = 0; k < count; ++k) {
+    const RigStage& stage = *rows[k];
+    const BodyFrame& f = stage.frame;
+    const StageConstants c = stage.deformer
+                                 ? stage.deformer->stage_constants(stage.options, stage.geometry)
+                                 : StageConstants{};
+    const double offset = stage.deformer ? double(values_offset(rig, stage)) : 0.0;
+    const double derived = double(derived_offset_of(rig, k));
+    // kernels/common/stage_frame.cl's layout.
+    // clang-format off
+    const double values[kStageValues] = {
+        f.axis_x.x, f.axis_x.y, f.axis_x.z, 1.0 / f.length,   // 0-3
+        f.axis_y.x, f.axis_y.y, f.axis_y.z, c[0],             // 4-7
+        f.axis_z.x, f.axis_z.y, f.axis_z.z, offset,           // 8-11
+        f.origin.x, f.origin.y, f.origin.z, f.length,         // 12-15
+        c[1], c[2], c[3], derived};                           // 16-19
+    // clang-format on
+    for (std::size_t v = 0; v < kStageValues; ++v)
+      table[v * count + k] = static_cast<float>(values[v]);
   }
   return table;
 }
@@ -330,7 +344,9 @@ std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots
   std::ostringstream out;
   out << "/* Generated for one rig by engine/src/rig_program.cpp: which stages apply to\n"
          " * which work-groups (kernels/rig.cl). */\n";
-  out << "#define FF_STAGE_COUNT " << std::max<std::size_t>(stage_count(rig), 1) << "u\n";
+  out << "#define FF_STAGE_COUNT " << stage_table_rows(rig) << "u\n";
+  const bool root_has_stages = !rig.components.front().chain.empty();
+  if (!root_has_stages) out << "#define FF_ROOT_FRAME " << stage_count(rig) << "u\n";
   out << "#define FF_RIG_GROUP_COUNT " << slots.slot_count / group_size << "u\n";
   // Fused: the group's component's whole path, bottom-up; a kernel per launch, a branch
   // per run of components in it (none when the launch has one).
@@ -351,6 +367,7 @@ std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots
         const StageCall call{shape[j],
                              j,
                              j == 0,
+                             root_has_stages && j + 1 == path.size(),
                              !share_code,
                              stage_index(rig, path[j].component, path[j].stage),
                              values_offset(rig, rig.stage(path[j])),
@@ -372,8 +389,13 @@ std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots
       out << " \\\n  " << branch << " (group >= " << step.first_group << "u && group < "
           << step.end_group << "u) { FF_LOAD_" << plane_set_name(step.source) << " ";
       if (step.function) {
-        const StageCall call{step.function, step.path_position, step.source == PlaneSet::kRest,
-                             !share_code,   step.stage,         step.values,
+        const StageCall call{step.function,
+                             step.path_position,
+                             step.source == PlaneSet::kRest,
+                             root_has_stages && step.target == PlaneSet::kOutput,
+                             !share_code,
+                             step.stage,
+                             step.values,
                              step.derived};
         out << stage_call(call) << " ";
       }

@@ -39,9 +39,12 @@ RestPlanes make_rest_planes(const RiggedMesh& model, const SlotLayout& slots);
 std::size_t stage_index(const Rig& rig, std::size_t component, std::size_t stage);
 std::size_t stage_count(const Rig& rig);
 
-// The stage table of kernels/common/stage_frame.cl: kStageValues values per stage,
-// stage-interleaved (value c of stage k at [c * stage_count + k]).
+// The stage table of kernels/common/stage_frame.cl: kStageValues values per row,
+// row-interleaved (value c of row k at [c * stage_table_rows + k]); a row per stage,
+// in rig order, then one for the root's frame (FF_ROOT_FRAME, kernels/common/
+// placement.cl).
 constexpr std::size_t kStageValues = 20;
+std::size_t stage_table_rows(const Rig& rig);
 std::vector<float> stage_table(const Rig& rig);
 
 // Derived values (DeformerType::derived_count) per instance, over all stages, and the

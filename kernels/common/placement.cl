@@ -1,7 +1,10 @@
-/* World placement (finflex/placement.hpp), the last stage of every deformation kernel
- * when FF_PLACEMENT is 1: per instance a record of 16 floats, the columns of M (0-8),
- * the translation t (9-11) and s_x / length (12); world(p) = M p + t, directions
- * (M d) s_x / length (M is a rotation times length / s_x, so they stay unit). */
+/* World placement (finflex/placement.hpp) when FF_PLACEMENT is 1: per instance a
+ * record of 16 floats, the columns of L Q (0-8: the orientation Q scaled by the fish's
+ * length L), the position (9-11) and 1 / L (12). A vertex leaves the root's body frame
+ * (lengths in body lengths) straight into the world:
+ *   world(p) = position + L Q p,   world(d) = Q d = (L Q d) / L.
+ * At a rig's last stage (the root's), this replaces leaving the frame to mesh
+ * coordinates, so placing costs nothing more than not placing. */
 #ifndef FF_PLACEMENT
 #define FF_PLACEMENT 0
 #endif
@@ -11,19 +14,49 @@ FF_INLINE Vec3 place_linear(Vec3 v, __global const float* r) {
               v.x * r[2] + v.y * r[5] + v.z * r[8]);
 }
 
-FF_INLINE void place_vertex(Vec3* p, Vec3* n, Vec3* t, __global const float* r) {
-  const Vec3 moved = place_linear(*p, r);
-  *p = vec3(moved.x + r[9], moved.y + r[10], moved.z + r[11]);
-  const Vec3 normal = place_linear(*n, r);
-  const Vec3 tangent = place_linear(*t, r);
-  const float inverse_scale = r[12];
-  *n = vec3(normal.x * inverse_scale, normal.y * inverse_scale, normal.z * inverse_scale);
-  *t = vec3(tangent.x * inverse_scale, tangent.y * inverse_scale, tangent.z * inverse_scale);
+FF_INLINE Vec3 world_point(Vec3 p, __global const float* r) {
+  const Vec3 moved = place_linear(p, r);
+  return vec3(moved.x + r[9], moved.y + r[10], moved.z + r[11]);
 }
 
-/* Places the kernel's p, n, t for `instance` (kernels take `placements`). */
+FF_INLINE Vec3 world_direction(Vec3 d, __global const float* r) {
+  const Vec3 turned = place_linear(d, r);
+  const float inverse_length = r[12];
+  return vec3(turned.x * inverse_length, turned.y * inverse_length, turned.z * inverse_length);
+}
+
+/* Places a vertex given in the root's body frame. */
+FF_INLINE void place_local(Vec3* p, Vec3* n, Vec3* t, __global const float* r) {
+  *p = world_point(*p, r);
+  *n = world_direction(*n, r);
+  *t = world_direction(*t, r);
+}
+
+/* Applies a stage's sample and leaves its frame (the root's body frame) for the world. */
+FF_INLINE void leave_to_world(Vec3* p, Vec3* n, Vec3* t, __global const float* r, SecantSample s) {
+  *p = world_point(secant_position(*p, s), r);
+  *n = world_direction(secant_normal(*n, s), r);
+  *t = world_direction(secant_tangent(*t, s), r);
+}
+
+/* In the rig kernels (variables p, n, t, instance, stages and placements in scope):
+ *   FF_LEAVE_LAST(f, s)  the root's last stage leaves its frame: to the world when
+ *                        placing, else to mesh coordinates;
+ *   FF_PLACE_FROM_MESH   after a path that does not end at the root (a root without
+ *                        stages), from mesh coordinates into the root's frame (its
+ *                        row FF_ROOT_FRAME of the stage table) and to the world. */
 #if FF_PLACEMENT
-#define FF_PLACE(instance) place_vertex(&p, &n, &t, placements + (instance) * 16);
+#define FF_LEAVE_LAST(f, s) leave_to_world(&p, &n, &t, placements + instance * 16, s);
 #else
-#define FF_PLACE(instance)
+#define FF_LEAVE_LAST(f, s) leave_frame(&p, &n, &t, f, s);
+#endif
+#if FF_PLACEMENT && defined(FF_ROOT_FRAME)
+#define FF_PLACE_FROM_MESH                                   \
+  {                                                          \
+    const StageFrame root = stages + FF_ROOT_FRAME;          \
+    enter_frame(&p, &n, &t, root);                           \
+    place_local(&p, &n, &t, placements + instance * 16);     \
+  }
+#else
+#define FF_PLACE_FROM_MESH
 #endif

@@ -55,17 +55,19 @@ FF_INLINE void enter_frame(Vec3* p, Vec3* n, Vec3* t, StageFrame f) {
   *t = rotate_into(*t, f);
 }
 
-/* The body of a deformer's stage function
- *   void <name>_in_frame(Vec3* p, Vec3* n, Vec3* t, StageFrame f,
- *                        __global const float* values, __global const float* derived)
+/* A deformer's stage function (DeformerType::cl_function) gives its secant surface at
+ * the vertex, in the stage's frame:
+ *   SecantSample <name>(Vec3 p, StageFrame f, __global const float* values,
+ *                       __global const float* derived)
  * (values: the stage's values of the instance's parameter row; derived: its derived
- * values, for deformers that have them): (7) and (8) (or the
- * Jacobian) with the deformer's SecantSample at the vertex, then out of the frame to
- * mesh coordinates. The vertex is three separate Vec3 variables, never a struct of
- * structs: copying such a struct makes the compiler move pairs of floats as
- * 2-vectors, which stops PoCL from vectorising across work-items. */
-#define FF_STAGE_BODY(SAMPLE)                            \
-  const SecantSample s = SAMPLE;                         \
-  *p = point_out_of(secant_position(*p, s), f);          \
-  *n = rotate_out_of(secant_normal(*n, s), f);           \
+ * values, for deformers that have them). The shared code applies it, (7) and (8) or the
+ * Jacobian, and leaves the frame: to mesh coordinates (leave_frame), or, at the last
+ * stage of a placed instance, straight to the world (kernels/common/placement.cl).
+ * The vertex is three separate Vec3 variables, never a struct of structs: copying
+ * such a struct makes the compiler move pairs of floats as 2-vectors, which stops PoCL
+ * from vectorising across work-items. */
+FF_INLINE void leave_frame(Vec3* p, Vec3* n, Vec3* t, StageFrame f, SecantSample s) {
+  *p = point_out_of(secant_position(*p, s), f);
+  *n = rotate_out_of(secant_normal(*n, s), f);
   *t = rotate_out_of(secant_tangent(*t, s), f);
+}

@@ -81,12 +81,12 @@ FF_INLINE SecantSample bend_sample(float x, float z, float m) {
 }
 
 /* Stage functions (kernels/common/stage_frame.cl): values[0] is m. */
-FF_INLINE void bend_paper_in_frame(Vec3* p, Vec3* n, Vec3* t, StageFrame f,
-                                   __global const float* values, __global const float* derived) {
-  FF_STAGE_BODY(bend_sample_paper(p->x, p->z, values[0]))
+FF_INLINE SecantSample bend_paper_stage(Vec3 p, StageFrame f, __global const float* values,
+                                        __global const float* derived) {
+  return bend_sample_paper(p.x, p.z, values[0]);
 }
 
-FF_INLINE void bend_exact_in_frame(Vec3* p, Vec3* n, Vec3* t, StageFrame f,
-                                   __global const float* values, __global const float* derived) {
-  FF_STAGE_BODY(bend_sample_exact(p->x, p->z, values[0]))
+FF_INLINE SecantSample bend_exact_stage(Vec3 p, StageFrame f, __global const float* values,
+                                        __global const float* derived) {
+  return bend_sample_exact(p.x, p.z, values[0]);
 }

@@ -36,8 +36,7 @@ FF_INLINE SecantSample hinge_sample(float x, float z, float angle, float width,
 
 /* Stage function (kernels/common/stage_frame.cl): values[0] is the angle; the stage
  * table's constants 0 and 1 are the width and 1 / width. */
-FF_INLINE void hinge_in_frame(Vec3* p, Vec3* n, Vec3* t, StageFrame f,
-                              __global const float* values, __global const float* derived) {
-  FF_STAGE_BODY(hinge_sample(p->x, p->z, values[0], FF_STAGE_CONSTANT(f, 0),
-                             FF_STAGE_CONSTANT(f, 1)))
+FF_INLINE SecantSample hinge_stage(Vec3 p, StageFrame f, __global const float* values,
+                                   __global const float* derived) {
+  return hinge_sample(p.x, p.z, values[0], FF_STAGE_CONSTANT(f, 0), FF_STAGE_CONSTANT(f, 1));
 }

@@ -65,9 +65,9 @@ FF_INLINE SecantSample spine_sample(float x, float z, __global const float* thet
 }
 
 /* Stage function (kernels/common/stage_frame.cl): values are the angles. */
-FF_INLINE void spine_in_frame(Vec3* p, Vec3* n, Vec3* t, StageFrame f,
-                              __global const float* values, __global const float* derived) {
-  FF_STAGE_BODY(spine_sample(p->x, p->z, values, derived, f))
+FF_INLINE SecantSample spine_stage(Vec3 p, StageFrame f, __global const float* values,
+                                   __global const float* derived) {
+  return spine_sample(p.x, p.z, values, derived, f);
 }
 
 /* The running integrals X_k, Z_k of one instance's angles, from x = 0, and sin theta_k,

@@ -5,9 +5,8 @@
  * sources). Generated before this file (engine/src/swim/cl_swim_driver.cpp):
  *   FF_SWIM_SAMPLES, FF_SWIM_VALUES (values per instance), FF_SWIM_WAVE, FF_SWIM_TAIL,
  *   FF_SWIM_RIGHT, FF_SWIM_LEFT (offsets in a row; -1: not driven), FF_SWIM_X_FIRST,
- *   FF_SWIM_SPACING, FF_SWIM_EXTENT, the kinematics FF_K_*, the body frame FF_BODY_*
- *   (axes, origin, length in mesh units) and the per-segment bend limits
- *   swim_max_positive[] and swim_max_negative[].
+ *   FF_SWIM_SPACING, FF_SWIM_EXTENT, the kinematics FF_K_* and the per-segment bend
+ *   limits swim_max_positive[] and swim_max_negative[].
  *
  * inputs:   7 floats per fish: position (3), yaw, pitch, speed, turn rate (SwimInput)
  * lengths:  the fish's length (m)
@@ -82,25 +81,16 @@ __kernel void swim_drive(__global const float* restrict inputs,
   row[FF_SWIM_LEFT] = FF_K_PECTORAL_REST - beat;
 #endif
 
-  /* Placement: M = (length / s_x) R_y(yaw) R_z(pitch) R_body, t = position - M origin. */
+  /* Placement (common/placement.cl): the columns of L Q with Q = R_y(yaw) R_z(pitch),
+   * the position, 1 / L. */
   const float cy = cos(in[3]), sy = sin(in[3]), cp = cos(in[4]), sp = sin(in[4]);
-  /* Q = R_y(yaw) R_z(pitch), row-major. */
-  const float q[9] = {cy * cp, -cy * sp, sy, sp, cp, 0.0f, -sy * cp, sy * sp, cy};
-  const float body[9] = {FF_BODY_AXIS_X, FF_BODY_AXIS_Y, FF_BODY_AXIS_Z}; /* rows */
-  const float s = length / FF_BODY_LENGTH;
+  const float q[9] = {cy * cp, -cy * sp, sy, sp, cp, 0.0f, -sy * cp, sy * sp, cy}; /* rows */
   __global float* record = placements + i * 16;
-  float t[3] = {in[0], in[1], in[2]};
-  const float origin[3] = {FF_BODY_ORIGIN};
-  for (int c = 0; c < 3; ++c) {    /* column c of M = s Q (column c of R_body) */
-    for (int r = 0; r < 3; ++r) {
-      const float m = s * (q[3 * r] * body[c] + q[3 * r + 1] * body[3 + c] +
-                           q[3 * r + 2] * body[6 + c]);
-      record[3 * c + r] = m;
-      t[r] -= m * origin[c];
-    }
+  for (int c = 0; c < 3; ++c) {
+    for (int r = 0; r < 3; ++r) record[3 * c + r] = length * q[3 * r + c];
   }
-  record[9] = t[0];
-  record[10] = t[1];
-  record[11] = t[2];
-  record[12] = 1.0f / s;
+  record[9] = in[0];
+  record[10] = in[1];
+  record[11] = in[2];
+  record[12] = 1.0f / length;
 }

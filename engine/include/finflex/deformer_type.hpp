@@ -84,9 +84,9 @@ struct DeformerType {
                          const StageGeometry& geometry) = nullptr;
 
   // OpenCL: the file under kernels/ that defines the deformer, and the function that
-  // applies a stage in its frame, `void <function>(Vec3* p, Vec3* n, Vec3* t,
-  // StageFrame f, __global const float* values, __global const float* derived)`
-  // (kernels/common/stage_frame.cl).
+  // gives a stage's secant surface at a vertex in its frame, `SecantSample
+  // <function>(Vec3 p, StageFrame f, __global const float* values, __global const
+  // float* derived)` (kernels/common/stage_frame.cl; the shared code applies it).
   const char* cl_file = "";
   const char* (*cl_function)(const StageOptions& options) = nullptr;
   // The stage table's constants for the OpenCL function (zeros when it needs none).

@@ -17,7 +17,6 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "finflex/body_frame.hpp"
 #include "finflex/export.hpp"
 
 namespace finflex {
@@ -28,19 +27,22 @@ struct Placement {
   float length = 1.0f;                            // > 0, world units
 };
 
-// What the kernels read per instance, 16 floats: the columns of the 3x3 matrix M
-// (orientation * (length / s_x) * R_body, 9 values), the translation t (3), s_x /
-// length (1), 3 unused. world(p) = M p + t; world(d) = (M d) * (s_x / length).
+// What the kernels read per instance, 16 floats: the columns of L Q (the orientation
+// scaled by the length, 9 values), the position (3), 1 / L (1), 3 unused. It places
+// points given in the body frame's local coordinates (METHOD.md (2): lengths in body
+// lengths), which is where a rig's last stage leaves every vertex:
+//   world(p_local) = position + L Q p_local,   world(d_local) = (L Q d_local) / L.
+// It does not depend on the mesh, so one record places any rig's instance.
 constexpr std::size_t kPlacementFloats = 16;
 using PlacementRecord = std::array<float, kPlacementFloats>;
 
-// The record of `placement` for instances whose body frame (in mesh coordinates) is
-// `body`. kInvalidArgument naming "placement.length" (not finite and > 0) or
-// "placement.orientation" (not a finite unit quaternion within 1e-3) or
+// The record of `placement`. kInvalidArgument naming "placement.length" (not finite and
+// > 0) or "placement.orientation" (not a finite unit quaternion within 1e-3) or
 // "placement.position" (not finite).
-FINFLEX_API PlacementRecord placement_record(const Placement& placement, const BodyFrame& body);
+FINFLEX_API PlacementRecord placement_record(const Placement& placement);
 
-// A placed point and direction (the record applied), for tests and tools.
+// A placed point and direction in body-local coordinates (the record applied), for
+// tests and tools.
 FINFLEX_API glm::dvec3 place_point(const PlacementRecord& record, const glm::dvec3& p);
 FINFLEX_API glm::dvec3 place_direction(const PlacementRecord& record, const glm::dvec3& d);
 

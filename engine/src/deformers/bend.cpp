@@ -81,7 +81,7 @@ const DeformerType kBend = {
     },
     "deformers/bend.cl",
     [](const StageOptions& options) {
-      return mode_of(options) == BendMode::kExact ? "bend_exact_in_frame" : "bend_paper_in_frame";
+      return mode_of(options) == BendMode::kExact ? "bend_exact_stage" : "bend_paper_stage";
     },
     [](const StageOptions&, const StageGeometry&) { return StageConstants{}; },
 };

@@ -56,7 +56,7 @@ const DeformerType kHinge = {
       return hinge_secant(x, values[0], options[kWidth]);
     },
     "deformers/hinge.cl",
-    [](const StageOptions&) { return "hinge_in_frame"; },
+    [](const StageOptions&) { return "hinge_stage"; },
     [](const StageOptions& options, const StageGeometry&) {
       // The kernel's hinge_sample reads width and 1 / width (0 for width 0).
       const double width = options[kWidth];

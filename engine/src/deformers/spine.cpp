@@ -154,7 +154,7 @@ const DeformerType kSpine = {
     [](const StageOptions&, const StageGeometry&) { return kPi; },
     spine_secant,
     "deformers/spine.cl",
-    [](const StageOptions&) { return "spine_in_frame"; },
+    [](const StageOptions&) { return "spine_stage"; },
     [](const StageOptions& options, const StageGeometry& geometry) {
       const double h = spacing(options, geometry);
       return StageConstants{geometry.x_lowest, 1.0 / h, h, double(samples_of(options) - 1)};

@@ -46,7 +46,6 @@ long offset_or_none(std::size_t offset) {
 std::string driver_constants(const SwimModel& swim) {
   const SwimKinematics& k = swim.kinematics();
   const RiggedMesh& model = swim.model();
-  const BodyFrame& body = model.rig().components.front().frame;
   std::ostringstream out;
   out << "#define FF_SWIM_SAMPLES " << swim.samples() << "\n"
       << "#define FF_SWIM_VALUES " << model.values_per_instance() << "\n"
@@ -76,15 +75,6 @@ std::string driver_constants(const SwimModel& swim) {
       {"PECTORAL_HOVER_SPEED", k.pectoral_hover_speed}};
   for (const auto& [name, value] : kinematics)
     out << "#define FF_K_" << name << " " << literal(value) << "\n";
-  auto vector = [&](const char* name, const glm::dvec3& v) {
-    out << "#define FF_BODY_" << name << " " << literal(v.x) << ", " << literal(v.y) << ", "
-        << literal(v.z) << "\n";
-  };
-  vector("AXIS_X", body.axis_x);
-  vector("AXIS_Y", body.axis_y);
-  vector("AXIS_Z", body.axis_z);
-  vector("ORIGIN", body.origin);
-  out << "#define FF_BODY_LENGTH " << literal(body.length) << "\n";
   auto table = [&](const char* name, const std::vector<double>& values) {
     out << "__constant float " << name << "[" << values.size() << "] = {";
     for (std::size_t j = 0; j < values.size(); ++j)
