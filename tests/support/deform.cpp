@@ -40,4 +40,37 @@ RigParameters bend_fractions(const RiggedMesh& model, const std::vector<double>&
 
 double bend_limit(const RiggedMesh& model) { return model.rig().parameters.at(0).limit; }
 
+RigParameters at_fractions_of_the_limits(const RiggedMesh& model,
+                                         const std::vector<double>& fractions) {
+  RigParameters values(model, fractions.size());
+  const std::vector<RigParameter>& parameters = model.rig().parameters;
+  for (std::size_t i = 0; i < fractions.size(); ++i) {
+    for (std::size_t p = 0; p < parameters.size(); ++p) {
+      for (std::size_t k = 0; k < parameters[p].count; ++k) {
+        values.values()[i * values.values_per_instance() + parameters[p].offset + k] =
+            static_cast<float>(fractions[i] * parameters[p].limit * (p % 2 ? -1.0 : 1.0));
+      }
+    }
+  }
+  std::vector<float> clamped(values.values().size());
+  check_parameters(model.rig(), values.view(), /*clamp=*/true, clamped.data());
+  values.values() = clamped;
+  return values;
+}
+
+void enqueue_copy(Context& context, const DeviceBatch& from, DeviceBatch& to) {
+  const BatchLayout& layout = from.layout;
+  const std::size_t positions = layout.attribute_elements() * sizeof(float);
+  const std::size_t directions = layout.attribute_elements() * layout.normal_component_bytes();
+  cl::CommandQueue& queue = context.queue();
+  check_cl(queue.enqueueCopyBuffer(from.positions, to.positions, 0, 0, positions),
+           "clEnqueueCopyBuffer positions");
+  check_cl(queue.enqueueCopyBuffer(from.normals, to.normals, 0, 0, directions),
+           "clEnqueueCopyBuffer normals");
+  if (layout.tangents) {
+    check_cl(queue.enqueueCopyBuffer(from.tangents, to.tangents, 0, 0, directions),
+             "clEnqueueCopyBuffer tangents");
+  }
+}
+
 }  // namespace finflex::test
