@@ -1017,6 +1017,62 @@ TEST(ResolveRigErrors, AutomaticRootFrameFailureSaysSo) {
 }
 
 // ---------------------------------------------------------------------------------
+// Parameter limits (RigParameter::limit)
+
+// The largest |x| in `frame` of the vertices of component k and its descendants.
+double subtree_x_max(const Rig& rig, const Mesh& mesh, std::size_t k, const BodyFrame& frame) {
+  double x_max = 0.0;
+  for (const std::uint32_t v : subtree_vertices(rig, k))
+    x_max = std::max(x_max, std::abs(frame.point_to_local(glm::dvec3(mesh.positions[v])).x));
+  return x_max;
+}
+
+constexpr double kPi = 3.14159265358979323846;
+
+TEST(RigLimits, AParameterReadByTwoBendsTakesTheTighterLimit) {
+  // body_m is read by the body's bend (x in [-0.5, 0.5]: 0.5 / 0.5 = 1) and by the
+  // head's (its own frame from its seam at x = 0.3: a tighter limit); the hinges' angles
+  // are limited to pi.
+  const Rig rig = resolve(body_tail_fin_head());
+  const std::size_t body = index_of(rig, "body"), head = index_of(rig, "head");
+  const double body_limit = 0.5 / subtree_x_max(rig, fish(), body, rig.components[body].frame);
+  const double head_limit = 0.5 / subtree_x_max(rig, fish(), head, rig.components[head].frame);
+  EXPECT_NEAR(body_limit, 1.0, 1e-6);
+  ASSERT_LT(head_limit, body_limit);
+  const RigParameter& body_m = rig.parameters[rig.param_index("body_m")];
+  EXPECT_DOUBLE_EQ(body_m.limit, head_limit);
+  EXPECT_NE(body_m.limit_source.find("bend of 'head'"), std::string::npos) << body_m.limit_source;
+  for (const char* angle : {"tail_angle", "head_angle", "fin_angle"}) {
+    const RigParameter& parameter = rig.parameters[rig.param_index(angle)];
+    EXPECT_DOUBLE_EQ(parameter.limit, kPi) << angle;
+    EXPECT_NE(parameter.limit_source.find("hinge"), std::string::npos) << parameter.limit_source;
+  }
+  // The same bends reading two parameters: each takes its own stage's limit.
+  std::string text = body_tail_fin_head();
+  const std::size_t second = text.rfind("\"body_m\"");
+  ASSERT_NE(second, std::string::npos);
+  text.replace(second, 8, "\"head_m\"");
+  const Rig split = resolve(text);
+  EXPECT_DOUBLE_EQ(split.parameters[split.param_index("body_m")].limit, body_limit);
+  EXPECT_DOUBLE_EQ(split.parameters[split.param_index("head_m")].limit, head_limit);
+}
+
+TEST(RigLimits, ShippedLowResolutionBlubRig) {
+  // The body's exact bend reaches every vertex: 0.5 / the largest |x| in the automatic
+  // body frame (0.8547, as `finflex rig-info` prints); the three fins' hinges: pi.
+  const Rig rig =
+      resolve_rig(load_rig_file(test::data_path("rigs/blub_low_resolution.rig.json")), blub());
+  const BodyFrame& root = rig.components[0].frame;
+  double x_max = 0.0;
+  for (const glm::vec3& p : blub().positions)
+    x_max = std::max(x_max, std::abs(root.point_to_local(glm::dvec3(p)).x));
+  EXPECT_DOUBLE_EQ(rig.parameters[rig.param_index("body_m")].limit, 0.5 / x_max);
+  EXPECT_NEAR(0.5 / x_max, 0.8547, 5e-5);
+  for (const char* angle : {"tail_angle", "right_pectoral_angle", "left_pectoral_angle"})
+    EXPECT_DOUBLE_EQ(rig.parameters[rig.param_index(angle)].limit, kPi) << angle;
+}
+
+// ---------------------------------------------------------------------------------
 // single_bend_rig
 
 TEST(SingleBendRig, OneBodyWithOneBendReadingM) {

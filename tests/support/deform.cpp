@@ -1,5 +1,11 @@
 #include "support/deform.hpp"
 
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <string>
+
 #include "support/test_support.hpp"
 
 namespace finflex::test {
@@ -56,6 +62,32 @@ RigParameters at_fractions_of_the_limits(const RiggedMesh& model,
   check_parameters(model.rig(), values.view(), /*clamp=*/true, clamped.data());
   values.values() = clamped;
   return values;
+}
+
+double expected_limit(const Mesh& mesh, const Rig& rig, std::size_t parameter) {
+  const double pi = 3.14159265358979323846;
+  double limit = INFINITY;
+  for (std::size_t c = 0; c < rig.components.size(); ++c) {
+    for (const RigStage& stage : rig.components[c].chain) {
+      if (stage.param != parameter) continue;
+      const std::string name = stage.deformer->name;
+      if (name == "hinge") {
+        limit = std::min(limit, pi);
+      } else if (name == "bend") {
+        double x_max = 0.0;
+        for (std::size_t d = c; d < rig.subtree_end[c]; ++d) {
+          for (std::uint32_t v : rig.components[d].vertices) {
+            x_max = std::max(
+                x_max, std::fabs(stage.frame.point_to_local(glm::dvec3(mesh.positions[v])).x));
+          }
+        }
+        limit = std::min(limit, 0.5 / x_max);
+      } else {
+        ADD_FAILURE() << "no expected limit for the deformer " << name;
+      }
+    }
+  }
+  return limit;
 }
 
 void enqueue_copy(Context& context, const DeviceBatch& from, DeviceBatch& to) {

@@ -36,6 +36,13 @@ double bend_limit(const RiggedMesh& model);
 RigParameters at_fractions_of_the_limits(const RiggedMesh& model,
                                          const std::vector<double>& fractions);
 
+// The limit parameter `parameter` of `rig` (resolved on `mesh`) must have, computed
+// here from the stages' frames and the mesh's vertices, not from RigStage::x_max or
+// the registry: the tightest, over the stages that read it, of the bend's 0.5 / x_max
+// (13), x_max the largest |x| in the stage's frame of the vertices of its component
+// and its descendants, and the hinge's pi.
+double expected_limit(const Mesh& mesh, const Rig& rig, std::size_t parameter);
+
 // Enqueues a copy of `from`'s outputs (positions, normals, tangents) into `to`, on the
 // context's queue: a frame's outputs kept aside while later frames overwrite `from`.
 void enqueue_copy(Context& context, const DeviceBatch& from, DeviceBatch& to);
