@@ -703,7 +703,7 @@ TEST(BatchLayout, RawBuffersOfTheSingleBendFollowTheDocumentedLayout) {
 
 TEST(BatchLayout, RawBuffersOfARigFollowTheDocumentedLayoutOverSlots) {
   // A rig reorders vertices: each component a contiguous range of whole work-groups.
-  const RiggedMesh model = body_and_tail(test::synthetic_fish(48, 24, true));
+  const RiggedMesh model = body_and_tail(test::synthetic_fish(24, 16, true));
   ClDeformer deformer(test::shared_context(), model);
   bool reordered = false;
   for (std::size_t v = 0; v < model.vertex_count(); ++v)

@@ -215,15 +215,13 @@ void expect_bench_json(const std::string& arguments, const RiggedMesh& model, Ri
 
 TEST(Cli, BenchJsonKeysAndValues) {
   const Mesh mesh = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
-  const RiggedMesh bend = RiggedMesh::single_bend(mesh, find_body_frame(mesh), BendMode::kExact);
-  expect_bench_json(" --mode exact --normal-format half", bend, RigPath::kFused, "bend exact",
+  const RiggedMesh bend = RiggedMesh::single_bend(mesh, find_body_frame(mesh), BendMode::kPaper);
+  expect_bench_json(" --normal-format half", bend, RigPath::kFused, "bend paper",
                     NormalFormat::kHalf);
   const RiggedMesh rig(
       mesh, resolve_rig(load_rig_file(test::data_path("rigs/blub_low_resolution.rig.json")), mesh));
   expect_bench_json(" --rig " + fish("rigs/blub_low_resolution.rig.json") + " --path passes", rig,
                     RigPath::kPasses, "rig passes", NormalFormat::kFloat32);
-  expect_bench_json(" --rig " + fish("rigs/blub_low_resolution.rig.json") + " --path fused", rig,
-                    RigPath::kFused, "rig fused", NormalFormat::kFloat32);
   const RunResult zero =
       run_cli("bench --mesh " + fish("blub/fish_low_resolution.obj") + " --instances 0");
   EXPECT_EQ(zero.exit_code, 2);

@@ -2,8 +2,7 @@
 // that agree with the deformed mesh's own faces, and a body frame that moves with
 // the fish (a rigidly moved fish bends into the rigidly moved shape); the hinge's
 // geometry (untouched behind its base, arc length kept through the ramp, a rigid turn
-// by its angle past it, towards +z for a positive angle) on the kernels' output, on
-// every path and dispatch.
+// by its angle past it, towards +z for a positive angle) on the kernels' output.
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -182,20 +181,13 @@ RiggedMesh hinge_model(const Mesh& mesh, double width) {
   return RiggedMesh(mesh, resolve_rig(spec, mesh));
 }
 
-// The hinge's outputs on every path and dispatch (each device gets one dispatch; both
-// run here), one instance per angle.
-std::vector<DeformedBatch<float>> hinge_on_device(const RiggedMesh& model,
-                                                  const std::vector<float>& angles,
-                                                  NormalMode normals) {
-  std::vector<DeformedBatch<float>> out;
-  for (RigDispatch dispatch : {RigDispatch::kPerComponent, RigDispatch::kByPathShape}) {
-    ClOptions options;
-    options.dispatch = dispatch;
-    ClDeformer deformer(test::shared_context(), model, options);
-    for (RigPath path : {RigPath::kFused, RigPath::kPasses})
-      out.push_back(test::run_on_device(deformer, test::values_of(model, angles), normals, path));
-  }
-  return out;
+// The hinge's outputs on the device, one instance per angle (the paths and dispatches
+// agree with each other and with the reference on rigs with hinges:
+// tests/test_rig_deformer.cpp).
+DeformedBatch<float> hinge_on_device(const RiggedMesh& model, const std::vector<float>& angles,
+                                     NormalMode normals) {
+  ClDeformer deformer(test::shared_context(), model);
+  return test::run_on_device(deformer, test::values_of(model, angles), normals);
 }
 
 glm::dvec3 turned(const glm::dvec3& v, double angle) {
@@ -214,7 +206,8 @@ TEST(Geometry, HingeKeepsTheSpineArcLengthThroughTheRamp) {
   const std::vector<float> angles = {0.5f, -1.5f, 2.5f, static_cast<float>(kPi),
                                      -static_cast<float>(kPi)};
   ASSERT_FLOAT_EQ(static_cast<float>(model.rig().parameters[0].limit), static_cast<float>(kPi));
-  for (const DeformedBatch<float>& bent : hinge_on_device(model, angles, NormalMode::kRotate)) {
+  {
+    const DeformedBatch<float> bent = hinge_on_device(model, angles, NormalMode::kRotate);
     for (std::size_t i = 0; i < angles.size(); ++i) {
       EXPECT_LT(std::fabs(spine_length(bent, i, samples) - 1.0), 1e-6) << "angle " << angles[i];
       // The spine's end: the ramp's end (r sin a, 0, r (1 - cos a)), r = 0.4 / a, then
@@ -238,7 +231,8 @@ TEST(Geometry, HingeTurnsItsPartRigidlyAndLeavesTheRestUntouched) {
   const RiggedMesh model = hinge_model(mesh, width);
   const std::vector<float> angles = {0.8f, -2.2f, static_cast<float>(kPi)};
   for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {
-    for (const DeformedBatch<float>& bent : hinge_on_device(model, angles, normals)) {
+    {
+      const DeformedBatch<float> bent = hinge_on_device(model, angles, normals);
       double untouched = 0.0, untouched_directions = 0.0, turned_error = 0.0,
              turned_directions = 0.0;
       std::size_t behind = 0, past = 0;

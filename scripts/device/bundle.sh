@@ -12,7 +12,13 @@ shift 2
 rm -rf "$out"
 mkdir -p "$out/bin" "$out/lib"
 binaries=("$build/apps/finflex" "$build/bench/bench_deform")
+# Every test program that runs kernels on the default device (test_cli runs the tool
+# from its build path and stays here).
 for test in test_cl_deformer test_rig_deformer test_normal_format test_geometry; do
+  if [ ! -f "$build/tests/$test" ]; then
+    echo "bundle.sh: $build/tests/$test is missing (build the tests first)" >&2
+    exit 1
+  fi
   binaries+=("$build/tests/$test")
 done
 binaries+=("$@")
