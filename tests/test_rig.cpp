@@ -20,10 +20,13 @@
 
 #include <glm/gtc/quaternion.hpp>
 
+#include "finflex/accuracy.hpp"
 #include "finflex/body_frame.hpp"
 #include "finflex/error.hpp"
 #include "finflex/mesh.hpp"
 #include "finflex/mesh_io.hpp"
+#include "finflex/model.hpp"
+#include "finflex/parameters.hpp"
 #include "support/synthetic_fish.hpp"
 #include "support/test_support.hpp"
 
@@ -1070,6 +1073,78 @@ TEST(RigLimits, ShippedLowResolutionBlubRig) {
   EXPECT_NEAR(0.5 / x_max, 0.8547, 5e-5);
   for (const char* angle : {"tail_angle", "right_pectoral_angle", "left_pectoral_angle"})
     EXPECT_DOUBLE_EQ(rig.parameters[rig.param_index(angle)].limit, kPi) << angle;
+}
+
+// ---------------------------------------------------------------------------------
+// The shipped rigs: what docs/rigs.md says of them
+
+struct ShippedRig {
+  const char* mesh;
+  const char* rig;
+  std::vector<std::size_t> own_vertices;  // body, caudal_fin, right_pectoral_fin, left_...
+  double body_m_limit;                    // as rig-info prints it, 3 decimals
+  // Per hinge parameter and sign: the angle (2 decimals) from which the ramp folds over
+  // (count_folded_vertices > 0 at +0.01, none at -0.01); 0: none within pi.
+  std::vector<std::pair<const char*, std::pair<double, double>>> fold_from;
+};
+
+TEST(ShippedRigs, ComponentsLimitsAndFoldOverAsDocumented) {
+  const ShippedRig shipped[] = {
+      {"blub/fish.obj",
+       "rigs/blub.rig.json",
+       {8650, 1566, 271, 299},
+       0.894,
+       {{"tail_angle", {2.39, 2.83}},
+        {"right_pectoral_angle", {1.04, 1.50}},
+        {"left_pectoral_angle", {1.37, 1.79}}}},
+      {"blub/fish_low_resolution.obj",
+       "rigs/blub_low_resolution.rig.json",
+       {690, 105, 72, 78},
+       0.855,
+       {{"tail_angle", {2.60, 2.68}},
+        {"right_pectoral_angle", {2.60, 0.0}},
+        {"left_pectoral_angle", {2.61, 2.95}}}},
+      {"barramundi/BarramundiFish.gltf",
+       "rigs/barramundi.rig.json",
+       {1640, 190, 179, 179},
+       0.972,
+       {{"tail_angle", {2.91, 0.0}},
+        {"right_pectoral_angle", {0.0, 0.0}},
+        {"left_pectoral_angle", {0.0, 0.0}}}},
+  };
+  for (const ShippedRig& c : shipped) {
+    SCOPED_TRACE(c.rig);
+    const Mesh mesh = load_mesh(test::data_path(c.mesh));
+    const RiggedMesh model(mesh, resolve_rig(load_rig_file(test::data_path(c.rig)), mesh));
+    const Rig& rig = model.rig();
+    const std::vector<std::string> names = {"body", "caudal_fin", "right_pectoral_fin",
+                                            "left_pectoral_fin"};
+    ASSERT_EQ(rig.components.size(), names.size());
+    for (std::size_t k = 0; k < names.size(); ++k) {
+      EXPECT_EQ(rig.components[k].name, names[k]);
+      EXPECT_EQ(rig.components[k].vertices.size(), c.own_vertices[k]) << names[k];
+    }
+    EXPECT_NEAR(rig.parameters[rig.param_index("body_m")].limit, c.body_m_limit, 5e-4);
+    for (const auto& [name, from] : c.fold_from) {
+      for (double sign : {1.0, -1.0}) {
+        const double angle = sign > 0 ? from.first : from.second;
+        auto folded = [&](double a) {
+          RigParameters values(model, 1);
+          values.set(0, name, static_cast<float>(sign * std::min(a, kPi)));
+          return count_folded_vertices(model, values.view(), 0);
+        };
+        SCOPED_TRACE(std::string(name) + (sign > 0 ? " +" : " -"));
+        if (angle == 0.0) {
+          EXPECT_EQ(folded(kPi), 0u);
+        } else {
+          EXPECT_EQ(folded(angle - 0.01), 0u);
+          EXPECT_GT(folded(angle + 0.01), 0u);
+        }
+      }
+    }
+  }
+  // Blub's automatic body frame: s_x 2.905 mesh units.
+  EXPECT_NEAR(find_body_frame(load_mesh(test::data_path("blub/fish.obj"))).length, 2.905, 5e-4);
 }
 
 // ---------------------------------------------------------------------------------
