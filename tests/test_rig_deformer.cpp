@@ -16,6 +16,7 @@
 //    conditioning, and every Jacobian normal (the skipped ones included) with a bound
 //    that adds the reference's own spread under float rounding of the rest mesh.
 #include <cmath>
+#include <memory>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -166,12 +167,13 @@ RigParameters random_and_limit_parameters(const RiggedMesh& model) {
   return values;
 }
 
-// `skipped_at_limits`: the Jacobian normals compare_to_reference counts as ill-defined
-// (near a range limit or a fold) at the limits; a property of the reference alone, so
-// the same on every device (measured on this rig; a wider margin would show here).
+// Both ways of generating the dispatch code (each device gets one of them), against
+// each other's paths and the reference. `skipped_at_limits`: the Jacobian normals
+// compare_to_reference counts as ill-defined (near a range limit or a fold); a
+// property of the reference alone, so the same on every device (measured on this rig;
+// a wider margin would show here).
 void expect_paths_agree_with_each_other_and_the_reference(const Mesh& mesh, const Rig& rig,
                                                           const std::string& name,
-                                                          RigDispatch dispatch,
                                                           std::size_t skipped_at_limits) {
   const RiggedMesh model(mesh, rig);
   for (std::size_t p = 0; p < rig.parameters.size(); ++p) {
@@ -179,72 +181,72 @@ void expect_paths_agree_with_each_other_and_the_reference(const Mesh& mesh, cons
                 1e-12 * test::expected_limit(mesh, rig, p))
         << name << " " << rig.parameters[p].name;
   }
-  ClDeformer deformer(test::shared_context(), model, rig_kernels(dispatch));
+  const RigDispatch dispatches[] = {RigDispatch::kPerComponent, RigDispatch::kByPathShape};
+  std::vector<std::unique_ptr<ClDeformer>> deformers;
+  for (RigDispatch dispatch : dispatches) {
+    deformers.push_back(
+        std::make_unique<ClDeformer>(test::shared_context(), model, rig_kernels(dispatch)));
+  }
   const std::size_t instances = kRandom + kAtLimits;
   const RigParameters values = random_and_limit_parameters(model);
-  DeviceBatch batch = deformer.allocate(instances);
   const std::size_t longest = std::max<std::size_t>(model.longest_path(), 1);
   const double scale = coordinate_scale(rig);
   for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {
-    SCOPED_TRACE(name + " " + to_string(normals) +
-                 (dispatch == RigDispatch::kPerComponent ? " per component" : " by path shape"));
-    const DeformedBatch<float> fused =
-        test::run_on_device(deformer, batch, values, normals, RigPath::kFused);
-    const DeformedBatch<float> passes =
-        test::run_on_device(deformer, batch, values, normals, RigPath::kPasses);
     const DeformedBatch<double> exact = run_reference(model, values, normals);
+    const DeformedBatch<double> spread = normals == NormalMode::kJacobian
+                                             ? rounding_spread(model, values, exact)
+                                             : DeformedBatch<double>{};
+    for (std::size_t d = 0; d < deformers.size(); ++d) {
+      SCOPED_TRACE(
+          name + " " + to_string(normals) +
+          (dispatches[d] == RigDispatch::kPerComponent ? " per component" : " by path shape"));
+      ClDeformer& deformer = *deformers[d];
+      DeviceBatch batch = deformer.allocate(instances);
+      const DeformedBatch<float> fused =
+          test::run_on_device(deformer, batch, values, normals, RigPath::kFused);
+      const DeformedBatch<float> passes =
+          test::run_on_device(deformer, batch, values, normals, RigPath::kPasses);
 
-    // Every instance, the limits included: the paths agree on every attribute.
-    const Difference between = max_difference(fused, passes, mesh.vertex_count(), instances);
-    EXPECT_LT(between.position, 1e-6 * scale);
-    EXPECT_LT(between.normal, 1e-5);
-    EXPECT_LT(between.tangent, 1e-5);
-    EXPECT_EQ(between.tangents_compared, mesh.has_tangents());
-    // The random instances, every vertex, at the bounds of the longest path.
-    const Difference to_reference = max_difference(fused, exact, mesh.vertex_count(), kRandom);
-    EXPECT_LT(to_reference.position, 4e-6 * scale * static_cast<double>(longest));
-    EXPECT_LT(to_reference.normal, 2e-5 * static_cast<double>(longest));
-    EXPECT_LT(to_reference.tangent, 2e-5 * static_cast<double>(longest));
-    // Every instance with the bounds that follow each vertex's conditioning.
-    for (const DeformedBatch<float>* path : {&fused, &passes}) {
+      // Every instance, the limits included: the paths agree on every attribute.
+      const Difference between = max_difference(fused, passes, mesh.vertex_count(), instances);
+      EXPECT_LT(between.position, 1e-6 * scale);
+      EXPECT_LT(between.normal, 1e-5);
+      EXPECT_LT(between.tangent, 1e-5);
+      EXPECT_EQ(between.tangents_compared, mesh.has_tangents());
+      // The random instances, every vertex, at the bounds of the longest path.
+      const Difference to_reference = max_difference(fused, exact, mesh.vertex_count(), kRandom);
+      EXPECT_LT(to_reference.position, 4e-6 * scale * static_cast<double>(longest));
+      EXPECT_LT(to_reference.normal, 2e-5 * static_cast<double>(longest));
+      EXPECT_LT(to_reference.tangent, 2e-5 * static_cast<double>(longest));
+      // Every instance with the bounds that follow each vertex's conditioning (the
+      // passes are within 1e-6 of the fused path, above).
       const AccuracyReport report =
-          compare_to_reference(model, values.view(), normals, *path, exact);
+          compare_to_reference(model, values.view(), normals, fused, exact);
       EXPECT_LE(report.max_position_ratio, 1.0) << report.max_position_error;
       EXPECT_LE(report.max_normal_ratio, 1.0) << report.max_normal_error;
       EXPECT_EQ(report.skipped_normals,
                 normals == NormalMode::kJacobian ? skipped_at_limits : std::size_t{0});
-    }
-    if (normals != NormalMode::kJacobian) continue;
-    // The normals compare_to_reference skips are compared too: every normal within
-    // the bound of its path plus twice the reference's own spread there.
-    const DeformedBatch<double> spread = rounding_spread(model, values, exact);
-    double worst_ratio = 0.0;
-    std::size_t worst_instance = 0, worst_vertex = 0;
-    for (std::size_t i = 0; i < instances; ++i) {
-      for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
-        const double stages = static_cast<double>(
-            std::max<std::size_t>(model.paths()[model.component_of_vertex()[v]].size(), 1));
-        const double error = glm::length(glm::dvec3(fused.normal(i, v)) - exact.normal(i, v));
-        const double ratio =
-            error / (2e-5 * stages + 2.0 * spread.normals[spread.layout.index(i, 0, v)]);
-        if (ratio > worst_ratio) {
-          worst_ratio = ratio;
-          worst_instance = i;
-          worst_vertex = v;
+      if (normals != NormalMode::kJacobian) continue;
+      // The normals compare_to_reference skips are compared too: every normal within
+      // the bound of its path plus twice the reference's own spread there.
+      double worst_ratio = 0.0;
+      std::size_t worst_instance = 0, worst_vertex = 0;
+      for (std::size_t i = 0; i < instances; ++i) {
+        for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+          const double stages = static_cast<double>(
+              std::max<std::size_t>(model.paths()[model.component_of_vertex()[v]].size(), 1));
+          const double error = glm::length(glm::dvec3(fused.normal(i, v)) - exact.normal(i, v));
+          const double ratio =
+              error / (2e-5 * stages + 2.0 * spread.normals[spread.layout.index(i, 0, v)]);
+          if (ratio > worst_ratio) {
+            worst_ratio = ratio;
+            worst_instance = i;
+            worst_vertex = v;
+          }
         }
       }
+      EXPECT_LE(worst_ratio, 1.0) << "instance " << worst_instance << " vertex " << worst_vertex;
     }
-    EXPECT_LE(worst_ratio, 1.0) << "instance " << worst_instance << " vertex " << worst_vertex;
-  }
-}
-
-// Both ways of generating the dispatch code (each device gets one of them).
-void expect_paths_agree_with_each_other_and_the_reference(const Mesh& mesh, const Rig& rig,
-                                                          const std::string& name,
-                                                          std::size_t skipped_at_limits) {
-  for (RigDispatch dispatch : {RigDispatch::kPerComponent, RigDispatch::kByPathShape}) {
-    expect_paths_agree_with_each_other_and_the_reference(mesh, rig, name, dispatch,
-                                                         skipped_at_limits);
   }
 }
 
