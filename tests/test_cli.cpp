@@ -393,7 +393,8 @@ TEST(Cli, RigParametersGoWhereTheirNamesSay) {
     EXPECT_NE(r.out.find(said.str()), std::string::npos) << said.str() << " in " << r.out;
   }
   const Mesh got = load_mesh(out);
-  // The same values on this process's device: the tool writes exactly what it computed.
+  // The same values on this process's device (the same kernel, the same floats: the
+  // binary PLY keeps them exactly), and the reference within two stages' bounds.
   ClDeformer deformer(test::shared_context(), model);
   const Mesh on_device =
       instance_mesh(rest, test::run_on_device(deformer, values, NormalMode::kRotate), 0);
