@@ -1,6 +1,9 @@
 // The double-precision reference against the geometry it must have: identity at m = 0,
 // mirror symmetry in m, the spine's arc length, the paper's series error, and the
-// rotation (8) taking e_z to the secant normal (not the printed, transposed (9)).
+// rotation (8) taking e_z to the secant normal (not the printed, transposed (9)); the
+// hinge against its own geometry: untouched behind its base, a circular ramp that
+// keeps the spine's length, a rigid turn by its angle past the ramp, towards +z for a
+// positive angle.
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -178,6 +181,152 @@ TEST(BendReference, RejectsBadParameters) {
   const DeformedBatch<double> at_limit =
       run_reference(model, test::values_of(model, {1.0f}), normals);
   EXPECT_LT(glm::length(clamped.position(0, 0) - at_limit.position(0, 0)), 1e-6);
+}
+
+// ---------------------------------------------------------------------------------
+// The hinge (METHOD.md section 6; engine/src/deformers/hinge.cpp): in its frame the
+// spine's angle ramps linearly from 0 at x = 0 to `angle` at x = width (a step at 0
+// for width 0), |angle| <= pi.
+
+LocalVertex hinge_local_vertex(const LocalVertex& rest, double angle, double width,
+                               NormalMode normals) {
+  StageSpec stage = make_stage("hinge", "angle");
+  set_option(stage, "width", width);
+  return apply_stage(*stage.deformer, stage.options, &angle, rest, normals);
+}
+
+// The rotation about e_y by `angle` that takes e_x to (cos, 0, sin) and e_z to
+// (-sin, 0, cos): a positive angle turns the spine towards +z.
+glm::dvec3 turned(const glm::dvec3& v, double angle) {
+  const double c = std::cos(angle), s = std::sin(angle);
+  return {c * v.x - s * v.z, v.y, s * v.x + c * v.z};
+}
+
+const double kPi = 3.14159265358979323846;
+// Angles up to the limit pi, both signs; widths: a step (0) and two ramps.
+const double kHingeAngles[] = {0.3, -0.7, 1.2, -2.0, kPi, -kPi};
+const double kHingeWidths[] = {0.0, 0.05, 0.3};
+
+// A vertex off the spine with a normal and a tangent that are not axis-aligned.
+LocalVertex off_spine(double x) {
+  return {{x, 0.04, -0.03},
+          glm::normalize(glm::dvec3(0.3, -0.2, 0.9)),
+          glm::normalize(glm::dvec3(0.9, 0.1, -0.3))};
+}
+
+TEST(HingeReference, LeavesEverythingBehindItsBaseUntouched) {
+  for (double angle : kHingeAngles) {
+    for (double width : kHingeWidths) {
+      for (NormalMode normals : kNormalModes) {
+        for (double x : {-0.5, -0.1, -1e-9, 0.0}) {
+          const LocalVertex rest = off_spine(x);
+          const LocalVertex bent = hinge_local_vertex(rest, angle, width, normals);
+          EXPECT_LT(glm::length(bent.position - rest.position), 1e-15) << angle << " " << x;
+          EXPECT_LT(glm::length(bent.normal - rest.normal), 1e-15) << angle << " " << x;
+          EXPECT_LT(glm::length(bent.tangent - rest.tangent), 1e-15) << angle << " " << x;
+        }
+      }
+    }
+  }
+}
+
+TEST(HingeReference, TurnsRigidlyByItsAnglePastTheRamp) {
+  // Past the ramp (x >= width) the part turns as one body: p' = f(width) +
+  // R (p - (width, 0, 0)), normals and tangents by R, in both normal modes (no
+  // curvature there, so the Jacobian is R itself). f(width) is the end of the circular
+  // ramp of radius width / angle: (r sin(angle), 0, r (1 - cos(angle))).
+  for (double angle : kHingeAngles) {
+    for (double width : kHingeWidths) {
+      const glm::dvec3 ramp_end = width == 0.0
+                                      ? glm::dvec3(0.0)
+                                      : glm::dvec3(width / angle * std::sin(angle), 0.0,
+                                                   width / angle * (1.0 - std::cos(angle)));
+      for (NormalMode normals : kNormalModes) {
+        for (double x : {width, width + 1e-9, width + 0.1, 0.5, 1.0}) {
+          if (x == 0.0) continue;  // the step's base belongs to the untouched side
+          const LocalVertex rest = off_spine(x);
+          const LocalVertex bent = hinge_local_vertex(rest, angle, width, normals);
+          SCOPED_TRACE(testing::Message() << "angle " << angle << " width " << width << " x " << x);
+          EXPECT_LT(
+              glm::length(bent.position -
+                          (ramp_end + turned(rest.position - glm::dvec3(width, 0, 0), angle))),
+              1e-14);
+          EXPECT_LT(glm::length(bent.normal - turned(rest.normal, angle)), 1e-14);
+          EXPECT_LT(glm::length(bent.tangent - turned(rest.tangent, angle)), 1e-14);
+        }
+      }
+    }
+  }
+}
+
+TEST(HingeReference, RampIsACircularArcThatKeepsTheSpineLength) {
+  // Through the ramp the spine bends into an arc of radius width / |angle| about
+  // (0, 0, width / angle), its normal pointing at the centre's side; sampled from
+  // behind the base to past the ramp, the spine keeps its length.
+  const int samples = 20001;
+  for (double angle : kHingeAngles) {
+    for (double width : {0.05, 0.3}) {
+      const double r = width / angle;
+      const double start = -0.2, end = width + 0.3;
+      double length = 0.0;
+      glm::dvec3 previous{};
+      for (int i = 0; i < samples; ++i) {
+        const double x = start + (end - start) * i / (samples - 1);
+        const LocalVertex bent = hinge_local_vertex({{x, 0.0, 0.0}, {0.0, 0.0, 1.0}, {1, 0, 0}},
+                                                    angle, width, NormalMode::kRotate);
+        if (i > 0) length += glm::length(bent.position - previous);
+        previous = bent.position;
+        if (x > 0.0 && x < width) {
+          SCOPED_TRACE(testing::Message() << "angle " << angle << " width " << width << " x " << x);
+          EXPECT_NEAR(glm::length(bent.position - glm::dvec3(0.0, 0.0, r)), std::fabs(r), 1e-12);
+          // The spine's direction turns by angle x / width: tangent (cos, 0, sin).
+          EXPECT_LT(glm::length(bent.tangent - turned({1.0, 0.0, 0.0}, angle * x / width)), 1e-12);
+          EXPECT_LT(glm::length(bent.normal - turned({0.0, 0.0, 1.0}, angle * x / width)), 1e-12);
+        }
+      }
+      EXPECT_NEAR(length, end - start, 1e-7 * (end - start)) << angle << " " << width;
+    }
+  }
+}
+
+TEST(HingeReference, PositiveAngleTurnsTowardsPlusZ) {
+  for (double width : kHingeWidths) {
+    for (double angle : {0.4, kPi / 2, 2.5}) {  // sin(angle) > 0: past the ramp, z grows
+      const LocalVertex tip{{1.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, {1.0, 0.0, 0.0}};
+      const LocalVertex up = hinge_local_vertex(tip, angle, width, NormalMode::kRotate);
+      const LocalVertex down = hinge_local_vertex(tip, -angle, width, NormalMode::kRotate);
+      EXPECT_GT(up.position.z, 0.1) << angle << " " << width;
+      EXPECT_LT(down.position.z, -0.1) << angle << " " << width;
+      EXPECT_GT(up.tangent.z, 0.0) << angle << " " << width;
+      EXPECT_LT(up.normal.x, 0.0) << angle << " " << width;  // n = (-sin, 0, cos)
+      // Opposite angles mirror each other in z.
+      const glm::dvec3 flip(1.0, 1.0, -1.0);
+      EXPECT_LT(glm::length(up.position * flip - down.position), 1e-14);
+    }
+  }
+  // A quarter turn with a step: the part past the base points along +z.
+  const LocalVertex quarter = hinge_local_vertex({{0.5, 0.0, 0.0}, {0.0, 0.0, 1.0}, {1, 0, 0}},
+                                                 kPi / 2, 0.0, NormalMode::kRotate);
+  EXPECT_LT(glm::length(quarter.position - glm::dvec3(0.0, 0.0, 0.5)), 1e-15);
+  EXPECT_LT(glm::length(quarter.tangent - glm::dvec3(0.0, 0.0, 1.0)), 1e-15);
+  EXPECT_LT(glm::length(quarter.normal - glm::dvec3(-1.0, 0.0, 0.0)), 1e-15);
+}
+
+TEST(HingeReference, JacobianNormalsInTheRampScaleTheAlongSpineComponent) {
+  // METHOD.md section 6 with k = angle / width in the ramp: normals by
+  // R diag(1 / (1 - z k), 1, 1), R the turn by theta = angle x / width.
+  const double angle = 1.1, width = 0.3, x = 0.12, z = 0.05;
+  const glm::dvec3 rest_normal = glm::normalize(glm::dvec3(0.5, 0.2, 0.8));
+  const LocalVertex bent =
+      hinge_local_vertex({{x, 0.0, z}, rest_normal, {}}, angle, width, NormalMode::kJacobian);
+  const double k = angle / width;
+  const glm::dvec3 scaled(rest_normal.x / (1.0 - z * k), rest_normal.y, rest_normal.z);
+  const glm::dvec3 expected = glm::normalize(turned(scaled, angle * x / width));
+  EXPECT_LT(glm::length(bent.normal - expected), 1e-14);
+  // Rotate mode: the plain turn.
+  const LocalVertex rotated =
+      hinge_local_vertex({{x, 0.0, z}, rest_normal, {}}, angle, width, NormalMode::kRotate);
+  EXPECT_LT(glm::length(rotated.normal - turned(rest_normal, angle * x / width)), 1e-14);
 }
 
 }  // namespace

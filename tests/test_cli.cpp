@@ -1,5 +1,6 @@
-// The finflex command line as other tools call it: exit codes, the one-line error
-// message naming the problem, and no output file on any error.
+// The finflex command line as other tools call it: what it writes, against the
+// library's own reference and device runs of the same values; exit codes, the
+// one-line error message naming the problem, and no output file on any error.
 #include <sys/wait.h>
 
 #include <cstdlib>
@@ -8,8 +9,10 @@
 #include <sstream>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "finflex/finflex.hpp"
+#include "support/deform.hpp"
 #include "support/synthetic_fish.hpp"
 #include "support/test_support.hpp"
 
@@ -137,6 +140,107 @@ TEST(Cli, BenchPrintsOneJsonObject) {
       2);
 }
 
+// Every key of `finflex bench --json` with its value: the counts as given, the passes
+// and bytes the library says for the model, and the rates consistent with the times
+// (docs/benchmarks.md's counters).
+void expect_bench_json(const std::string& arguments, const RiggedMesh& model, RigPath path,
+                       const std::string& deformation, NormalFormat format) {
+  SCOPED_TRACE(arguments);
+  const std::string mesh = test::data_path("blub/fish_low_resolution.obj");
+  const RunResult r =
+      run_cli("bench --mesh '" + mesh + "' --instances 8 --frames 3 --json" + arguments);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_EQ(line_count(r.out), 1) << r.out;
+  const nlohmann::ordered_json j = nlohmann::ordered_json::parse(r.out);
+  std::vector<std::string> keys;
+  for (const auto& item : j.items()) keys.push_back(item.key());
+  const std::vector<std::string> expected_keys = {"device",
+                                                  "mesh",
+                                                  "deformation",
+                                                  "normals",
+                                                  "normal_format",
+                                                  "vertices",
+                                                  "instances",
+                                                  "frames",
+                                                  "passes",
+                                                  "seconds_per_frame_median",
+                                                  "seconds_per_frame_min",
+                                                  "vertices_per_second",
+                                                  "output_bytes_per_second",
+                                                  "moved_bytes_per_vertex",
+                                                  "write_bandwidth_bytes_per_second",
+                                                  "write_fraction",
+                                                  "host_enqueue_seconds_median",
+                                                  "kernel_seconds_median",
+                                                  "instances_per_item"};
+  EXPECT_EQ(keys, expected_keys);  // in this order, none missing, none extra
+
+  ClDeformer deformer(test::shared_context(), model);
+  const bool passes = path == RigPath::kPasses;
+  EXPECT_EQ(j.at("device").get<std::string>(), test::shared_context().description().device_name);
+  EXPECT_EQ(j.at("mesh").get<std::string>(), mesh);
+  EXPECT_EQ(j.at("deformation").get<std::string>(), deformation);
+  EXPECT_EQ(j.at("normals").get<std::string>(), "rotate");
+  EXPECT_EQ(j.at("normal_format").get<std::string>(), to_string(format));
+  EXPECT_EQ(j.at("vertices").get<std::size_t>(), 945u);
+  EXPECT_EQ(j.at("instances").get<std::size_t>(), 8u);
+  EXPECT_EQ(j.at("frames").get<std::size_t>(), 3u);
+  EXPECT_EQ(j.at("passes").get<std::size_t>(), passes ? deformer.pass_count() : 1u);
+  if (passes) {
+    EXPECT_EQ(j.at("passes").get<std::size_t>(), 2u);  // the hinges, then the body's bend
+  }
+
+  const double median = j.at("seconds_per_frame_median").get<double>();
+  const double fastest = j.at("seconds_per_frame_min").get<double>();
+  EXPECT_GT(fastest, 0.0);
+  EXPECT_LE(fastest, median);
+  const BatchLayout layout = deformer.layout(8, format);
+  const double bytes_per_vertex = format == NormalFormat::kHalf ? 18.0 : 24.0;
+  EXPECT_EQ(double(layout.bytes_per_vertex()), bytes_per_vertex);
+  EXPECT_DOUBLE_EQ(j.at("vertices_per_second").get<double>(), 945.0 * 8.0 / median);
+  const double written = double(layout.plane_stride) * 8.0 * bytes_per_vertex;
+  EXPECT_DOUBLE_EQ(j.at("output_bytes_per_second").get<double>(), written / median);
+  // Multi-pass: 12 bytes per attribute (positions, normals) each way per scratch record.
+  EXPECT_DOUBLE_EQ(j.at("moved_bytes_per_vertex").get<double>(),
+                   bytes_per_vertex + (passes ? 24.0 * deformer.scratch_records_per_slot() : 0.0));
+  if (passes) {
+    EXPECT_GT(deformer.scratch_records_per_slot(), 0.0);
+  }
+  const double write_bandwidth = j.at("write_bandwidth_bytes_per_second").get<double>();
+  EXPECT_GT(write_bandwidth, 0.0);
+  // write_fraction = write-only time / frame time = output rate / write-only rate.
+  EXPECT_NEAR(j.at("write_fraction").get<double>(),
+              j.at("output_bytes_per_second").get<double>() / write_bandwidth,
+              1e-12 * j.at("write_fraction").get<double>());
+  EXPECT_GT(j.at("host_enqueue_seconds_median").get<double>(), 0.0);
+  // A frame's kernels, in launch order: one per pass, or the fused kernels (one per
+  // launch of the dispatch).
+  const std::vector<double> kernels = j.at("kernel_seconds_median").get<std::vector<double>>();
+  if (passes) {
+    EXPECT_EQ(kernels.size(), deformer.pass_count());
+  } else {
+    EXPECT_GE(kernels.size(), 1u);
+  }
+  for (double seconds : kernels) EXPECT_GT(seconds, 0.0);
+  EXPECT_EQ(j.at("instances_per_item").get<std::size_t>(), deformer.instances_per_item(format));
+}
+
+TEST(Cli, BenchJsonKeysAndValues) {
+  const Mesh mesh = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
+  const RiggedMesh bend = RiggedMesh::single_bend(mesh, find_body_frame(mesh), BendMode::kPaper);
+  expect_bench_json(" --normal-format half", bend, RigPath::kFused, "bend paper",
+                    NormalFormat::kHalf);
+  const RiggedMesh rig(
+      mesh, resolve_rig(load_rig_file(test::data_path("rigs/blub_low_resolution.rig.json")), mesh));
+  expect_bench_json(" --rig " + fish("rigs/blub_low_resolution.rig.json") + " --path passes", rig,
+                    RigPath::kPasses, "rig passes", NormalFormat::kFloat32);
+  const RunResult zero =
+      run_cli("bench --mesh " + fish("blub/fish_low_resolution.obj") + " --instances 0");
+  EXPECT_EQ(zero.exit_code, 2);
+  EXPECT_EQ(line_count(zero.err), 1) << zero.err;
+  EXPECT_NE(zero.err.find("--instances"), std::string::npos) << zero.err;
+}
+
 TEST(Cli, InfoListsTheDefaultDevice) {
   const RunResult r = run_cli("info");
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -152,6 +256,7 @@ struct BadCase {
 // Each case exits 2 with one line on stderr naming the problem, and writes nothing.
 void expect_deform_fails(const std::vector<BadCase>& cases) {
   for (const BadCase& c : cases) {
+    ASSERT_FALSE(c.expected.empty() || c.also.empty()) << c.arguments << ": say what to expect";
     const std::string out = test::temp_path("never.obj");
     const RunResult r = run_cli("deform --out '" + out + "' " + c.arguments);
     SCOPED_TRACE(c.arguments);
@@ -175,14 +280,14 @@ TEST(Cli, BadInputsExitTwoWithOneLineAndWriteNothing) {
       {"--in " + in + " --m 0.1 --normals smooth", "--normals", "smooth"},
       {"--in " + in + " --m 0.1 --frame body", "--frame", "body"},
       {"--in " + in + " --m 0.1 --device no-such-device", "device", "no-such-device"},
-      {"--in '/nonexistent/fish.obj' --m 0.1", "/nonexistent/fish.obj", ""},
-      {"--in " + fish("blub/README.md") + " --m 0.1", "README.md", ""},
+      {"--in '/nonexistent/fish.obj' --m 0.1", "/nonexistent/fish.obj", "does not exist"},
+      {"--in " + fish("blub/README.md") + " --m 0.1", "README.md", "unsupported extension '.md'"},
       {"--in " + in + " --m 0.1 --head 1,2", "--head", "X,Y,Z"},
       {"--in " + in + " --m 0.1 --pivot 0,0,nan", "--pivot", "not finite"},
-      {"--in " + in + " --m 0.1 --dorsal 0,0,0", "--dorsal", ""},
+      {"--in " + in + " --m 0.1 --dorsal 0,0,0", "--dorsal", "non-zero direction"},
       {"--in " + in + " --m 0.1 --head 0,0,1 --frame identity", "--frame", "--head"},
-      {"--m 0.1", "--in", ""},
-      {"--in " + in, "--m", ""},
+      {"--m 0.1", "--in", "required"},
+      {"--in " + in, "--m", "required"},
   };
   expect_deform_fails(cases);
 }
@@ -246,6 +351,76 @@ TEST(Cli, DeformsWithARigOnBothPaths) {
   }
   EXPECT_LT(between, 1e-5);
   EXPECT_GT(moved, 0.05);
+
+  // The oracle: the library's reference for the same values (body_m 0.4, tail_angle
+  // -0.5, the fins at rest), within the bounds of finflex/accuracy.hpp for two
+  // stages. Values given to the wrong parameters would be off by far more.
+  const RiggedMesh model(
+      rest, resolve_rig(load_rig_file(test::data_path("rigs/blub_low_resolution.rig.json")), rest));
+  RigParameters values(model, 1);
+  values.set(0, "body_m", 0.4f);
+  values.set(0, "tail_angle", -0.5f);
+  const Mesh expected = instance_mesh(rest, run_reference(model, values, NormalMode::kJacobian), 0);
+  const BodyFrame& root = model.rig().components.front().frame;
+  const double stages = double(model.longest_path());
+  for (const Mesh& got : bent) {
+    for (std::size_t v = 0; v < rest.vertex_count(); ++v) {
+      ASSERT_LT(glm::length(glm::dvec3(got.positions[v]) - glm::dvec3(expected.positions[v])),
+                stages * 4e-6 * (glm::length(root.origin) + root.length))
+          << "vertex " << v;
+      ASSERT_LT(glm::length(glm::dvec3(got.normals[v]) - glm::dvec3(expected.normals[v])),
+                stages * 2e-5)
+          << "vertex " << v;
+    }
+  }
+}
+
+// Each --set goes to the parameter it names: swapping the values between two
+// parameters (or leaving one out) gives another fish.
+TEST(Cli, RigParametersGoWhereTheirNamesSay) {
+  const std::string in = fish("blub/fish_low_resolution.obj");
+  const std::string rig = fish("rigs/blub_low_resolution.rig.json");
+  const Mesh rest = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
+  const RiggedMesh model(
+      rest, resolve_rig(load_rig_file(test::data_path("rigs/blub_low_resolution.rig.json")), rest));
+  const std::pair<const char*, float> settings[] = {{"body_m", -0.3f},
+                                                    {"tail_angle", 0.7f},
+                                                    {"right_pectoral_angle", 0.9f},
+                                                    {"left_pectoral_angle", -1.1f}};
+  std::string arguments;
+  RigParameters values(model, 1);
+  for (const auto& [name, value] : settings) {
+    std::ostringstream text;
+    text << " --set " << name << "=" << value;
+    arguments += text.str();
+    values.set(0, name, value);
+  }
+  const std::string out = test::temp_path("rigged.ply");  // binary: floats as written
+  const RunResult r =
+      run_cli("deform --in " + in + " --rig " + rig + arguments + " --out '" + out + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const auto& [name, value] : settings) {
+    std::ostringstream said;
+    said << name << " = " << value;
+    EXPECT_NE(r.out.find(said.str()), std::string::npos) << said.str() << " in " << r.out;
+  }
+  const Mesh got = load_mesh(out);
+  // The same values on this process's device (the same kernel, the same floats: the
+  // binary PLY keeps them exactly), and the reference within two stages' bounds.
+  ClDeformer deformer(test::shared_context(), model);
+  const Mesh on_device =
+      instance_mesh(rest, test::run_on_device(deformer, values, NormalMode::kRotate), 0);
+  const Mesh reference = instance_mesh(rest, run_reference(model, values, NormalMode::kRotate), 0);
+  const BodyFrame& root = model.rig().components.front().frame;
+  const double bound = 2.0 * 4e-6 * (glm::length(root.origin) + root.length);
+  for (std::size_t v = 0; v < rest.vertex_count(); ++v) {
+    ASSERT_EQ(got.positions[v], on_device.positions[v]) << "vertex " << v;
+    // Normals are renormalised when a file is read: rotate-mode normals are unit
+    // within 2e-6 (Geometry.RotatedNormalsStayUnit), so they move by as much.
+    ASSERT_LT(glm::length(got.normals[v] - on_device.normals[v]), 2e-6f) << "vertex " << v;
+    ASSERT_LT(glm::length(glm::dvec3(got.positions[v]) - glm::dvec3(reference.positions[v])), bound)
+        << "vertex " << v;
+  }
 }
 
 TEST(Cli, BadRigInputsExitTwoAndWriteNothing) {
@@ -272,7 +447,7 @@ TEST(Cli, BadRigInputsExitTwoAndWriteNothing) {
       {"--in " + in + " --rig " + rig + " --path sideways", "--path", "sideways"},
       {"--in " + in + " --rig " + rig + " --m 0.3", "--m", "--rig"},
       {"--in " + in + " --rig '/nonexistent.rig.json'", "--rig", "nonexistent"},
-      {"--in " + in + " --rig '" + broken + "'", "--rig", ""},
+      {"--in " + in + " --rig '" + broken + "'", "--rig", "malformed JSON"},
       {"--in " + in + " --rig '" + overlapping + "'", "'fin'", "'tail'"},
       {"--in " + in + " --m 0.1 --set body_m=1", "--set", "--rig"},
   };
@@ -366,6 +541,178 @@ TEST(Cli, BadSwimInputsExitTwoAndWriteNothing) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("not a folder"), std::string::npos) << r.err;
   EXPECT_EQ(read_text(file), "keep\n");
+}
+
+// --clamp writes what the limit itself gives: m = +-100 becomes +-limit (the library's
+// RigParameter::limit, 0.5 / x_max), and so does a rig parameter.
+TEST(Cli, ClampedOutputIsTheOutputAtTheLimit) {
+  const std::string in = fish("blub/fish_low_resolution.obj");
+  const Mesh rest = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
+  const RiggedMesh model = RiggedMesh::single_bend(rest, find_body_frame(rest), BendMode::kPaper);
+  const float limit = static_cast<float>(test::bend_limit(model));
+  ClDeformer deformer(test::shared_context(), model);
+  for (float sign : {1.0f, -1.0f}) {
+    const std::string clamped = test::temp_path("clamped.ply");  // binary: floats as written
+    const RunResult r = run_cli("deform --in " + in + " --out '" + clamped + "' --m " +
+                                (sign > 0 ? "100" : "-100") + " --clamp");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    // The value the library clamps to: the float next to the limit, towards 0.
+    float used = 0.0f;
+    check_parameters(model.rig(), test::values_of(model, {sign * 100.0f}).view(), true, &used);
+    EXPECT_EQ(used, sign * std::nextafter(limit, 0.0f));
+    std::ostringstream said;
+    said << "m = " << used;
+    EXPECT_NE(r.out.find(said.str()), std::string::npos) << said.str() << " in " << r.out;
+    const Mesh got = load_mesh(clamped);
+    // The library at the limit: on this process's device (the same kernel: the same
+    // floats) and in the reference.
+    const Mesh at_limit = instance_mesh(
+        rest, test::run_on_device(deformer, test::values_of(model, {used}), NormalMode::kRotate),
+        0);
+    const Mesh reference = instance_mesh(
+        rest, run_reference(model, test::values_of(model, {used}), NormalMode::kRotate), 0);
+    const BodyFrame& frame = model.rig().components[0].frame;
+    for (std::size_t v = 0; v < rest.vertex_count(); ++v) {
+      ASSERT_EQ(got.positions[v], at_limit.positions[v]) << "vertex " << v;
+      ASSERT_LT(glm::length(got.normals[v] - at_limit.normals[v]), 2e-6f)
+          << "vertex " << v;  // renormalised on reading, as above
+      ASSERT_LT(glm::length(glm::dvec3(got.positions[v]) - glm::dvec3(reference.positions[v])),
+                4e-6 * (glm::length(frame.origin) + frame.length))
+          << "vertex " << v;
+    }
+  }
+  // A rig parameter: body_m = 50 with --clamp is body_m at its limit.
+  const RiggedMesh rigged(
+      rest, resolve_rig(load_rig_file(test::data_path("rigs/blub_low_resolution.rig.json")), rest));
+  const std::string out = test::temp_path("rig_clamped.ply");
+  const RunResult r =
+      run_cli("deform --in " + in + " --rig " + fish("rigs/blub_low_resolution.rig.json") +
+              " --set body_m=50 --set tail_angle=-9 --clamp --out '" + out + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  RigParameters beyond(rigged, 1);
+  beyond.set(0, "body_m", 50.0f);
+  beyond.set(0, "tail_angle", -9.0f);
+  RigParameters at_limits(rigged, 1);
+  check_parameters(rigged.rig(), beyond.view(), true, at_limits.values().data());
+  const std::vector<RigParameter>& parameters = rigged.rig().parameters;
+  EXPECT_EQ(at_limits.get(0, rigged.rig().param_index("body_m")),
+            std::nextafter(static_cast<float>(parameters[0].limit), 0.0f));
+  EXPECT_EQ(at_limits.get(0, rigged.rig().param_index("tail_angle")),
+            -std::nextafter(3.14159265f, 0.0f));
+  ClDeformer rig_deformer(test::shared_context(), rigged);
+  const Mesh expected =
+      instance_mesh(rest, test::run_on_device(rig_deformer, at_limits, NormalMode::kRotate), 0);
+  const Mesh got = load_mesh(out);
+  for (std::size_t v = 0; v < rest.vertex_count(); ++v) {
+    ASSERT_EQ(got.positions[v], expected.positions[v]) << "vertex " << v;
+    ASSERT_LT(glm::length(got.normals[v] - expected.normals[v]), 2e-6f)
+        << "vertex " << v;  // renormalised on reading, as above
+  }
+}
+
+// ----------------------------------------------------------------------------------
+// subdivide and rig-info
+
+TEST(Cli, SubdivideWritesWhatTheLibraryComputes) {
+  const std::string in = test::data_path("blub/fish_control_mesh.obj");
+  const std::string out = test::temp_path("dense.ply");
+  const RunResult r = run_cli("subdivide --in '" + in + "' --levels 2 --out '" + out + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  const Mesh expected = subdivide_loop(load_mesh(in), 2);
+  const Mesh got = load_mesh(out);
+  ASSERT_EQ(got.vertex_count(), expected.vertex_count());
+  EXPECT_EQ(got.indices, expected.indices);
+  for (std::size_t v = 0; v < got.vertex_count(); ++v) {
+    ASSERT_EQ(got.positions[v], expected.positions[v]) << "vertex " << v;  // binary PLY
+  }
+  std::ostringstream said;
+  said << expected.vertex_count() << " vertices, " << expected.triangle_count() << " triangles";
+  EXPECT_NE(r.out.find(said.str()), std::string::npos) << r.out;
+  // Each level splits every triangle in four.
+  EXPECT_EQ(expected.triangle_count(), 16 * load_mesh(in).triangle_count());
+}
+
+TEST(Cli, SubdivideBadInputsExitTwoAndWriteNothing) {
+  const std::string in = "'" + test::data_path("blub/fish_control_mesh.obj") + "'";
+  const std::pair<std::string, std::pair<std::string, std::string>> cases[] = {
+      {"--in " + in + " --levels 9", {"levels", "[0, 8]"}},
+      {"--in " + in + " --levels -1", {"levels", "[0, 8]"}},
+      {"--in '/nonexistent/cage.obj' --levels 1", {"/nonexistent/cage.obj", "does not exist"}},
+  };
+  for (const auto& [arguments, expected] : cases) {
+    const std::string out = test::temp_path("never.obj");
+    const RunResult r = run_cli("subdivide " + arguments + " --out '" + out + "'");
+    SCOPED_TRACE(arguments);
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(line_count(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(expected.first), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(expected.second), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+  }
+  const std::string unsupported = test::temp_path("dense.xyz");
+  const RunResult r = run_cli("subdivide --in " + in + " --levels 1 --out '" + unsupported + "'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find(".xyz"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(unsupported));
+}
+
+TEST(Cli, RigInfoPrintsTheRigAndLabelsEveryVertex) {
+  const std::string mesh_path = test::data_path("blub/fish_low_resolution.obj");
+  const std::string rig_path = test::data_path("rigs/blub_low_resolution.rig.json");
+  const std::string labels = test::temp_path("labels.txt");
+  const RunResult r = run_cli("rig-info --in '" + mesh_path + "' --rig '" + rig_path +
+                              "' --labels '" + labels + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Mesh mesh = load_mesh(mesh_path);
+  const RiggedMesh model(mesh, resolve_rig(load_rig_file(rig_path), mesh));
+  const Rig& rig = model.rig();
+  EXPECT_NE(r.out.find("945 vertices): 4 components, 4 parameters"), std::string::npos) << r.out;
+  for (const RigComponent& component : rig.components) {
+    std::ostringstream own;
+    own << component.name << " (parent "
+        << (component.parent < 0 ? "none" : rig.components[component.parent].name) << ", depth "
+        << (component.parent < 0 ? 0 : 1) << "): " << component.vertices.size() << " own vertices";
+    EXPECT_NE(r.out.find(own.str()), std::string::npos) << own.str() << " in " << r.out;
+  }
+  for (const RigParameter& parameter : rig.parameters) {
+    char range[128];
+    std::snprintf(range, sizeof range, "parameter %s in [%.4f, %.4f]", parameter.name.c_str(),
+                  -parameter.limit, parameter.limit);
+    EXPECT_NE(r.out.find(range), std::string::npos) << range << " in " << r.out;
+  }
+  EXPECT_NE(r.out.find("parameter body_m in [-0.8547, 0.8547]"), std::string::npos) << r.out;
+
+  // The labels: a comment line, then one line per mesh vertex, in order: its
+  // component and its position in the root's body frame (6 decimals).
+  std::ifstream file(labels);
+  std::string line;
+  ASSERT_TRUE(std::getline(file, line));
+  EXPECT_EQ(line.rfind("# ", 0), 0u) << line;
+  const BodyFrame& root = rig.components.front().frame;
+  std::size_t v = 0;
+  while (std::getline(file, line)) {
+    ASSERT_LT(v, mesh.vertex_count()) << "more lines than vertices";
+    std::istringstream fields(line);
+    std::string name;
+    glm::dvec3 p;
+    ASSERT_TRUE(fields >> name >> p.x >> p.y >> p.z) << line;
+    EXPECT_EQ(name, rig.components[model.component_of_vertex()[v]].name) << "vertex " << v;
+    EXPECT_LT(glm::length(p - root.point_to_local(glm::dvec3(mesh.positions[v]))), 1e-6)
+        << "vertex " << v;
+    ++v;
+  }
+  EXPECT_EQ(v, mesh.vertex_count());
+
+  const RunResult bad = run_cli("rig-info --in '" + mesh_path + "' --rig '" + rig_path +
+                                "' --labels '" + test::temp_path("") + "'");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_EQ(line_count(bad.err), 1) << bad.err;
+  EXPECT_NE(bad.err.find("--labels"), std::string::npos) << bad.err;
+  const RunResult no_rig = run_cli("rig-info --in '" + mesh_path + "' --rig '/nonexistent.json'");
+  EXPECT_EQ(no_rig.exit_code, 2);
+  EXPECT_EQ(line_count(no_rig.err), 1) << no_rig.err;
+  EXPECT_NE(no_rig.err.find("nonexistent.json"), std::string::npos) << no_rig.err;
 }
 
 }  // namespace

@@ -1,6 +1,8 @@
 // Geometric properties of the OpenCL output itself: the spine's arc length, normals
 // that agree with the deformed mesh's own faces, and a body frame that moves with
-// the fish (a rigidly moved fish bends into the rigidly moved shape).
+// the fish (a rigidly moved fish bends into the rigidly moved shape); the hinge's
+// geometry (untouched behind its base, arc length kept through the ramp, a rigid turn
+// by its angle past it, towards +z for a positive angle) on the kernels' output.
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -160,6 +162,118 @@ TEST(Geometry, RigidlyMovedFishBendsIntoTheMovedShape) {
     SCOPED_TRACE(fish);
     EXPECT_LT(position_error, 2e-5 * (frame.length + 20.0));
     EXPECT_LT(normal_error, 1e-4);
+  }
+}
+
+// ---------------------------------------------------------------------------------
+// The hinge on the device
+
+// A rig of one hinge of `width` reading "angle", in the identity frame.
+RiggedMesh hinge_model(const Mesh& mesh, double width) {
+  RigSpec spec;
+  spec.frame.mode = FrameSpec::Mode::kIdentity;
+  ComponentSpec body;
+  body.name = "body";
+  StageSpec hinge = make_stage("hinge", "angle");
+  set_option(hinge, "width", width);
+  body.chain.push_back(hinge);
+  spec.components.push_back(body);
+  return RiggedMesh(mesh, resolve_rig(spec, mesh));
+}
+
+// The hinge's outputs on the device, one instance per angle (the paths and dispatches
+// agree with each other and with the reference on rigs with hinges:
+// tests/test_rig_deformer.cpp).
+DeformedBatch<float> hinge_on_device(const RiggedMesh& model, const std::vector<float>& angles,
+                                     NormalMode normals) {
+  ClDeformer deformer(test::shared_context(), model);
+  return test::run_on_device(deformer, test::values_of(model, angles), normals);
+}
+
+glm::dvec3 turned(const glm::dvec3& v, double angle) {
+  const double c = std::cos(angle), s = std::sin(angle);
+  return {c * v.x - s * v.z, v.y, s * v.x + c * v.z};
+}
+
+const double kPi = 3.14159265358979323846;
+
+TEST(Geometry, HingeKeepsTheSpineArcLengthThroughTheRamp) {
+  // The spine from x = -0.5 to 0.5 through a ramp of width 0.4 (its arc of radius
+  // 0.4 / |angle|), at angles up to the limit pi: its length stays 1. Float32 chords
+  // of 1/4000: measured within 7e-8 of it; bound 1e-6.
+  const int samples = 4001;
+  const RiggedMesh model = hinge_model(test::spine_ribbon(samples, 0.5), 0.4);
+  const std::vector<float> angles = {0.5f, -1.5f, 2.5f, static_cast<float>(kPi),
+                                     -static_cast<float>(kPi)};
+  ASSERT_FLOAT_EQ(static_cast<float>(model.rig().parameters[0].limit), static_cast<float>(kPi));
+  {
+    const DeformedBatch<float> bent = hinge_on_device(model, angles, NormalMode::kRotate);
+    for (std::size_t i = 0; i < angles.size(); ++i) {
+      EXPECT_LT(std::fabs(spine_length(bent, i, samples) - 1.0), 1e-6) << "angle " << angles[i];
+      // The spine's end: the ramp's end (r sin a, 0, r (1 - cos a)), r = 0.4 / a, then
+      // 0.1 along the turned spine.
+      const double a = angles[i], r = 0.4 / a;
+      const glm::dvec3 end =
+          glm::dvec3(r * std::sin(a), 0.0, r * (1.0 - std::cos(a))) + turned({0.1, 0, 0}, a);
+      EXPECT_LT(glm::length(glm::dvec3(bent.position(i, samples - 1)) - end), 2e-6)
+          << "angle " << a;
+    }
+  }
+}
+
+TEST(Geometry, HingeTurnsItsPartRigidlyAndLeavesTheRestUntouched) {
+  // On the synthetic fish (x in [-0.5, 0.5]) with its base at x = 0: behind it (x <=
+  // 0) every vertex keeps its position, normal and tangent; past the ramp (x >= 0.15)
+  // the part turns as one body by the angle about e_y, towards +z for a positive one:
+  // p' = f(width) + R (p - (width, 0, 0)), normals and tangents by R.
+  const Mesh mesh = test::synthetic_fish(48, 24, true);
+  const double width = 0.15;
+  const RiggedMesh model = hinge_model(mesh, width);
+  const std::vector<float> angles = {0.8f, -2.2f, static_cast<float>(kPi)};
+  for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {
+    {
+      const DeformedBatch<float> bent = hinge_on_device(model, angles, normals);
+      double untouched = 0.0, untouched_directions = 0.0, turned_error = 0.0,
+             turned_directions = 0.0;
+      std::size_t behind = 0, past = 0;
+      for (std::size_t i = 0; i < angles.size(); ++i) {
+        const double a = angles[i], r = width / a;
+        const glm::dvec3 ramp_end(r * std::sin(a), 0.0, r * (1.0 - std::cos(a)));
+        for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+          const glm::dvec3 p(mesh.positions[v]);
+          const glm::dvec3 n = glm::normalize(glm::dvec3(mesh.normals[v]));
+          const glm::dvec3 t(glm::vec3(mesh.tangents[v]));
+          const glm::dvec3 got(bent.position(i, v));
+          const double normal_error_rest = glm::length(glm::dvec3(bent.normal(i, v)) - n);
+          if (p.x <= 0.0) {
+            ++behind;
+            untouched = std::max(untouched, glm::length(got - p));
+            untouched_directions =
+                std::max({untouched_directions, normal_error_rest,
+                          glm::length(glm::dvec3(bent.tangent(i, v)) - glm::normalize(t))});
+          } else if (p.x >= width) {
+            ++past;
+            const glm::dvec3 expected = ramp_end + turned(p - glm::dvec3(width, 0.0, 0.0), a);
+            turned_error = std::max(turned_error, glm::length(got - expected));
+            turned_directions = std::max(
+                {turned_directions, glm::length(glm::dvec3(bent.normal(i, v)) - turned(n, a)),
+                 glm::length(glm::dvec3(bent.tangent(i, v)) - turned(glm::normalize(t), a))});
+            if (a > 0.0 && a < kPi && p.x > 0.3) {
+              ASSERT_GT(got.z, p.z) << "a positive angle turns towards +z, vertex " << v;
+            }
+          }
+        }
+      }
+      SCOPED_TRACE(to_string(normals));
+      EXPECT_GT(behind, mesh.vertex_count());
+      EXPECT_GT(past, mesh.vertex_count());
+      // finflex/accuracy.hpp's bounds for one stage on coordinates of size 1 (measured:
+      // 0 and 1.4e-7 behind the base, 6e-8 and 2.2e-7 past the ramp).
+      EXPECT_LT(untouched, 2e-6);
+      EXPECT_LT(untouched_directions, 2e-6);
+      EXPECT_LT(turned_error, 4e-6);
+      EXPECT_LT(turned_directions, 2e-5);
+    }
   }
 }
 

@@ -2,9 +2,17 @@
 // instead of 24. Positions stay float32 and bit-identical; normals and tangents round
 // to IEEE half, relative error 2^-11 per component, so unit vectors differ from the
 // float32 ones by under 1e-3.
+//
+// The GPU-only code is run here on any device: the half store of GPUs (vstore_half,
+// FF_GPU=1) and of CPUs (half_bits) both against the nearest half computed on the
+// host, and the GPUs' shapes (four instances per work-item, stages compiled in per
+// component) forced through ClOptions.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
 
 #include "finflex/finflex.hpp"
 #include "support/deform.hpp"
@@ -97,6 +105,146 @@ TEST(NormalFormat, HalfRigOnBothPathsKeepsFloatIntermediates) {
         test::run_on_device(deformer, full, values, NormalMode::kJacobian, path),
         test::run_on_device(deformer, half, values, NormalMode::kJacobian, path),
         mesh.vertex_count(), 2);
+  }
+}
+
+// The nearest IEEE half to `value` (ties to even), as bits, from the format's
+// definition: the candidates are the halves around it, found by scaling to the
+// half's 11-bit significand (subnormal below 2^-14). Values here are in [-1, 1].
+std::uint16_t nearest_half(float value) {
+  const double v = std::fabs(static_cast<double>(value));
+  const std::uint16_t sign = std::signbit(value) ? 0x8000 : 0;
+  if (v == 0.0) return sign;
+  const int exponent = v >= std::ldexp(1.0, -14) ? std::ilogb(v) : -15;  // -15: subnormal
+  const double unit = exponent >= -14 ? std::ldexp(1.0, exponent - 10) : std::ldexp(1.0, -24);
+  const double scaled = v / unit;  // exact: a power of two
+  double lower = std::floor(scaled);
+  const double above = scaled - lower;
+  if (above > 0.5 || (above == 0.5 && std::fmod(lower, 2.0) != 0.0)) lower += 1.0;
+  const double rounded = lower * unit;
+  if (rounded < std::ldexp(1.0, -14))
+    return sign | static_cast<std::uint16_t>(rounded / std::ldexp(1.0, -24));
+  const int e = std::ilogb(rounded);
+  const auto fraction = static_cast<std::uint16_t>(rounded / std::ldexp(1.0, e - 10) - 1024.0);
+  return sign | static_cast<std::uint16_t>((e + 15) << 10) | fraction;
+}
+
+TEST(NormalFormat, BothHalfStoresWriteTheNearestHalf) {
+  // kernels/common/planes.cl's store_direction3 in a kernel of the test's own, built
+  // once with the GPUs' branch (vstore_half) and once with the CPUs' (half_bits),
+  // whatever the device: values across [-1, 1] with ties between two halves, values
+  // that become subnormal halves, zeros of both signs.
+  std::vector<float> values = {0.0f,   -0.0f, 1.0f,  -1.0f,    0.5f,        1e-8f,
+                               -3e-8f, 6e-8f, 1e-5f, -6.1e-5f, 0.33333334f, -0.7071068f};
+  // Exact ties: half-way between two neighbouring halves in [0.5, 1) (spacing 2^-11),
+  // with an even and an odd lower neighbour, both signs.
+  for (int k : {0, 1, 2, 3, 100, 101, 1022}) {
+    const float tie = std::ldexp(1024.0f + float(k) + 0.5f, -11);
+    values.push_back(tie);
+    values.push_back(-tie);
+  }
+  for (int k = 0; k < 200; ++k) values.push_back(std::sin(0.37f * float(k)));
+  while (values.size() % 64) values.push_back(0.25f);
+  const std::size_t stride = values.size();
+  // One vector per slot: x, y and z take the values rotated by 0, 1 and 2 slots.
+  std::vector<float> planes(3 * stride);
+  for (std::size_t c = 0; c < 3; ++c) {
+    for (std::size_t v = 0; v < stride; ++v) planes[c * stride + v] = values[(v + c) % stride];
+  }
+  ProgramSource source;
+  source.files = common_kernel_files();
+  source.appended = R"(
+__kernel void store_halves(__global const float* in, __global float* out, const uint stride) {
+  const size_t v = get_global_id(0);
+  store_direction3(out, 3, stride, v, load_plane3(in, 0, stride, v));
+}
+)";
+  Context& context = test::shared_context();
+  for (int gpu : {1, 0}) {
+    SCOPED_TRACE(gpu ? "vstore_half (GPUs)" : "half_bits (CPUs)");
+    // The device's FF_GPU comes as a build option; the source replaces it before
+    // planes.cl reads it.
+    source.generated = "#undef FF_GPU\n#define FF_GPU " + std::to_string(gpu) + "\n";
+    cl::Kernel kernel = context.kernel("store_halves", source, "-DFF_HALF_NORMALS=1");
+    cl_int status = CL_SUCCESS;
+    cl::Buffer in(context.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                  planes.size() * sizeof(float), planes.data(), &status);
+    check_cl(status, "clCreateBuffer");
+    // Two instances' planes of halves: the kernel writes the second instance's (planes
+    // 3-5), the first must stay as it was (0xFFFF, a NaN no store writes).
+    std::vector<std::uint16_t> halves(6 * stride, 0xffff);
+    cl::Buffer out(context.context(), CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR,
+                   halves.size() * sizeof(std::uint16_t), halves.data(), &status);
+    check_cl(status, "clCreateBuffer");
+    check_cl(kernel.setArg(0, in), "clSetKernelArg");
+    check_cl(kernel.setArg(1, out), "clSetKernelArg");
+    check_cl(kernel.setArg(2, static_cast<cl_uint>(stride)), "clSetKernelArg");
+    check_cl(context.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(stride),
+                                                  cl::NDRange(64)),
+             "clEnqueueNDRangeKernel");
+    check_cl(context.queue().enqueueReadBuffer(
+                 out, CL_TRUE, 0, halves.size() * sizeof(std::uint16_t), halves.data()),
+             "clEnqueueReadBuffer");
+    for (std::size_t at = 0; at < 3 * stride; ++at) ASSERT_EQ(halves[at], 0xffff) << at;
+    for (std::size_t c = 0; c < 3; ++c) {
+      for (std::size_t v = 0; v < stride; ++v) {
+        const float value = planes[c * stride + v];
+        ASSERT_EQ(halves[(3 + c) * stride + v], nearest_half(value))
+            << "component " << c << " slot " << v << ": " << value;
+      }
+    }
+  }
+}
+
+// The shapes GPUs take by default, forced on this device: four instances per work-item
+// for half normals (single bend and rigs) and stages compiled in per component for
+// rigs. They must write what one instance per work-item writes (positions to float32
+// rounding: the compiler may contract multiply-adds differently; halves within one
+// rounding of each other's float value).
+TEST(NormalFormat, HalfNormalsInTheShapesGpusTake) {
+  const Mesh mesh = load_mesh(test::data_path("barramundi/BarramundiFish.gltf"));  // has tangents
+  const RiggedMesh bend = RiggedMesh::single_bend(mesh, find_body_frame(mesh), BendMode::kExact);
+  const RiggedMesh rig(
+      mesh, resolve_rig(load_rig_file(test::data_path("rigs/barramundi.rig.json")), mesh));
+  for (const RiggedMesh* model : {&bend, &rig}) {
+    const RigParameters values =
+        test::at_fractions_of_the_limits(*model, {0.3, -0.6, 0.9, 0.1, -0.2});
+    ClOptions one;
+    one.instances_per_item = 1;
+    one.dispatch = RigDispatch::kByPathShape;
+    ClOptions gpu_shape;
+    gpu_shape.instances_per_item = 4;
+    gpu_shape.dispatch = RigDispatch::kPerComponent;
+    ClDeformer expected_deformer(test::shared_context(), *model, one);
+    ClDeformer gpu_deformer(test::shared_context(), *model, gpu_shape);
+    const BodyFrame& root = model->rig().components.front().frame;
+    const double scale = glm::length(root.origin) + root.length;
+    for (RigPath path : {RigPath::kFused, RigPath::kPasses}) {
+      if (model == &bend && path == RigPath::kPasses) continue;
+      for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {
+        // Rigs: one normal mode (each is its own set of kernels to build per rig).
+        if (model == &rig && normals == NormalMode::kRotate) continue;
+        SCOPED_TRACE(std::string(model == &bend ? "bend " : "rig ") + to_string(path) + " " +
+                     to_string(normals));
+        const DeformedBatch<float> full =
+            test::run_on_device(expected_deformer, values, normals, path);
+        const DeformedBatch<float> half =
+            test::run_on_device(gpu_deformer, values, normals, path, false, NormalFormat::kHalf);
+        for (std::size_t i = 0; i < values.instance_count(); ++i) {
+          for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+            ASSERT_LT(
+                glm::length(glm::dvec3(full.position(i, v)) - glm::dvec3(half.position(i, v))),
+                1e-6 * scale)
+                << "instance " << i << " vertex " << v;
+            // One half rounding (2^-12 per component of a unit vector) plus float noise.
+            ASSERT_LT(glm::length(full.normal(i, v) - half.normal(i, v)), 1e-3f)
+                << "instance " << i << " vertex " << v;
+            ASSERT_LT(glm::length(full.tangent(i, v) - half.tangent(i, v)), 1e-3f)
+                << "instance " << i << " vertex " << v;
+          }
+        }
+      }
+    }
   }
 }
 

@@ -20,10 +20,13 @@
 
 #include <glm/gtc/quaternion.hpp>
 
+#include "finflex/accuracy.hpp"
 #include "finflex/body_frame.hpp"
 #include "finflex/error.hpp"
 #include "finflex/mesh.hpp"
 #include "finflex/mesh_io.hpp"
+#include "finflex/model.hpp"
+#include "finflex/parameters.hpp"
 #include "support/synthetic_fish.hpp"
 #include "support/test_support.hpp"
 
@@ -1014,6 +1017,134 @@ TEST(ResolveRigErrors, AutomaticRootFrameFailureSaysSo) {
                     "failed: mesh has zero surface area"));
   EXPECT_TRUE(Fails([&] { resolve(R"({"components": [)" + kBody + "]}", line); },
                     ErrorCode::kInvalidMesh, "mesh", "automatic body frame"));
+}
+
+// ---------------------------------------------------------------------------------
+// Parameter limits (RigParameter::limit)
+
+// The largest |x| in `frame` of the vertices of component k and its descendants.
+double subtree_x_max(const Rig& rig, const Mesh& mesh, std::size_t k, const BodyFrame& frame) {
+  double x_max = 0.0;
+  for (const std::uint32_t v : subtree_vertices(rig, k))
+    x_max = std::max(x_max, std::abs(frame.point_to_local(glm::dvec3(mesh.positions[v])).x));
+  return x_max;
+}
+
+constexpr double kPi = 3.14159265358979323846;
+
+TEST(RigLimits, AParameterReadByTwoBendsTakesTheTighterLimit) {
+  // body_m is read by the body's bend (x in [-0.5, 0.5]: 0.5 / 0.5 = 1) and by the
+  // head's (its own frame from its seam at x = 0.3: a tighter limit); the hinges' angles
+  // are limited to pi.
+  const Rig rig = resolve(body_tail_fin_head());
+  const std::size_t body = index_of(rig, "body"), head = index_of(rig, "head");
+  const double body_limit = 0.5 / subtree_x_max(rig, fish(), body, rig.components[body].frame);
+  const double head_limit = 0.5 / subtree_x_max(rig, fish(), head, rig.components[head].frame);
+  EXPECT_NEAR(body_limit, 1.0, 1e-6);
+  ASSERT_LT(head_limit, body_limit);
+  const RigParameter& body_m = rig.parameters[rig.param_index("body_m")];
+  EXPECT_DOUBLE_EQ(body_m.limit, head_limit);
+  EXPECT_NE(body_m.limit_source.find("bend of 'head'"), std::string::npos) << body_m.limit_source;
+  for (const char* angle : {"tail_angle", "head_angle", "fin_angle"}) {
+    const RigParameter& parameter = rig.parameters[rig.param_index(angle)];
+    EXPECT_DOUBLE_EQ(parameter.limit, kPi) << angle;
+    EXPECT_NE(parameter.limit_source.find("hinge"), std::string::npos) << parameter.limit_source;
+  }
+  // The same bends reading two parameters: each takes its own stage's limit.
+  std::string text = body_tail_fin_head();
+  const std::size_t second = text.rfind("\"body_m\"");
+  ASSERT_NE(second, std::string::npos);
+  text.replace(second, 8, "\"head_m\"");
+  const Rig split = resolve(text);
+  EXPECT_DOUBLE_EQ(split.parameters[split.param_index("body_m")].limit, body_limit);
+  EXPECT_DOUBLE_EQ(split.parameters[split.param_index("head_m")].limit, head_limit);
+}
+
+TEST(RigLimits, ShippedLowResolutionBlubRig) {
+  // The body's exact bend reaches every vertex: 0.5 / the largest |x| in the automatic
+  // body frame (0.8547, as `finflex rig-info` prints); the three fins' hinges: pi.
+  const Rig rig =
+      resolve_rig(load_rig_file(test::data_path("rigs/blub_low_resolution.rig.json")), blub());
+  const BodyFrame& root = rig.components[0].frame;
+  double x_max = 0.0;
+  for (const glm::vec3& p : blub().positions)
+    x_max = std::max(x_max, std::abs(root.point_to_local(glm::dvec3(p)).x));
+  EXPECT_DOUBLE_EQ(rig.parameters[rig.param_index("body_m")].limit, 0.5 / x_max);
+  EXPECT_NEAR(0.5 / x_max, 0.8547, 5e-5);
+  for (const char* angle : {"tail_angle", "right_pectoral_angle", "left_pectoral_angle"})
+    EXPECT_DOUBLE_EQ(rig.parameters[rig.param_index(angle)].limit, kPi) << angle;
+}
+
+// ---------------------------------------------------------------------------------
+// The shipped rigs: what docs/rigs.md says of them
+
+struct ShippedRig {
+  const char* mesh;
+  const char* rig;
+  std::vector<std::size_t> own_vertices;  // body, caudal_fin, right_pectoral_fin, left_...
+  double body_m_limit;                    // as rig-info prints it, 3 decimals
+  // Per hinge parameter and sign: the angle (2 decimals) from which the ramp folds over
+  // (count_folded_vertices > 0 at +0.01, none at -0.01); 0: none within pi.
+  std::vector<std::pair<const char*, std::pair<double, double>>> fold_from;
+};
+
+TEST(ShippedRigs, ComponentsLimitsAndFoldOverAsDocumented) {
+  const ShippedRig shipped[] = {
+      {"blub/fish.obj",
+       "rigs/blub.rig.json",
+       {8650, 1566, 271, 299},
+       0.894,
+       {{"tail_angle", {2.39, 2.83}},
+        {"right_pectoral_angle", {1.04, 1.50}},
+        {"left_pectoral_angle", {1.37, 1.79}}}},
+      {"blub/fish_low_resolution.obj",
+       "rigs/blub_low_resolution.rig.json",
+       {690, 105, 72, 78},
+       0.855,
+       {{"tail_angle", {2.60, 2.68}},
+        {"right_pectoral_angle", {2.60, 0.0}},
+        {"left_pectoral_angle", {2.61, 2.95}}}},
+      {"barramundi/BarramundiFish.gltf",
+       "rigs/barramundi.rig.json",
+       {1640, 190, 179, 179},
+       0.972,
+       {{"tail_angle", {2.91, 0.0}},
+        {"right_pectoral_angle", {0.0, 0.0}},
+        {"left_pectoral_angle", {0.0, 0.0}}}},
+  };
+  for (const ShippedRig& c : shipped) {
+    SCOPED_TRACE(c.rig);
+    const Mesh mesh = load_mesh(test::data_path(c.mesh));
+    const RiggedMesh model(mesh, resolve_rig(load_rig_file(test::data_path(c.rig)), mesh));
+    const Rig& rig = model.rig();
+    const std::vector<std::string> names = {"body", "caudal_fin", "right_pectoral_fin",
+                                            "left_pectoral_fin"};
+    ASSERT_EQ(rig.components.size(), names.size());
+    for (std::size_t k = 0; k < names.size(); ++k) {
+      EXPECT_EQ(rig.components[k].name, names[k]);
+      EXPECT_EQ(rig.components[k].vertices.size(), c.own_vertices[k]) << names[k];
+    }
+    EXPECT_NEAR(rig.parameters[rig.param_index("body_m")].limit, c.body_m_limit, 5e-4);
+    for (const auto& [name, from] : c.fold_from) {
+      for (double sign : {1.0, -1.0}) {
+        const double angle = sign > 0 ? from.first : from.second;
+        auto folded = [&](double a) {
+          RigParameters values(model, 1);
+          values.set(0, name, static_cast<float>(sign * std::min(a, kPi)));
+          return count_folded_vertices(model, values.view(), 0);
+        };
+        SCOPED_TRACE(std::string(name) + (sign > 0 ? " +" : " -"));
+        if (angle == 0.0) {
+          EXPECT_EQ(folded(kPi), 0u);
+        } else {
+          EXPECT_EQ(folded(angle - 0.01), 0u);
+          EXPECT_GT(folded(angle + 0.01), 0u);
+        }
+      }
+    }
+  }
+  // Blub's automatic body frame: s_x 2.905 mesh units.
+  EXPECT_NEAR(find_body_frame(load_mesh(test::data_path("blub/fish.obj"))).length, 2.905, 5e-4);
 }
 
 // ---------------------------------------------------------------------------------

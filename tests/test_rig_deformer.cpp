@@ -1,16 +1,22 @@
 // Rigged deformation: the fused and multi-pass OpenCL paths against each other and
 // against the CPU reference that applies the chains literally (METHOD.md section 2),
-// on every shipped rig and on deep and long synthetic rigs.
+// on every shipped rig and on deep and long synthetic rigs, with parameters up to
+// their full limits; the limits themselves, computed independently; RigFrame on every
+// path, normal mode and format.
 //
 // Tolerances, and why:
 //  - fused vs passes: the same float32 operations in the same order, the passes only
 //    storing intermediate float32 values: 1e-6 (|origin| + s_x) for positions, 1e-5 for
-//    normals (the compilers may contract a multiply-add differently per kernel);
+//    normals and tangents (the compilers may contract a multiply-add differently per
+//    kernel; measured: 0 on PoCL, at the limits too);
 //  - against the double reference: every stage adds a few float32 ulps, so the
 //    single-bend bounds (finflex/accuracy.hpp) times the length of the longest path.
-//    Parameters stay below 0.8 of their limits, away from the exact bend's
-//    ill-conditioned end and from folds.
+//    Random parameters stay below 0.8 of their limits; the instances at the full
+//    limits are compared with compare_to_reference, whose bounds follow each vertex's
+//    conditioning, and every Jacobian normal (the skipped ones included) with a bound
+//    that adds the reference's own spread under float rounding of the rest mesh.
 #include <cmath>
+#include <memory>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -112,28 +118,8 @@ ClOptions rig_kernels(RigDispatch dispatch = RigDispatch::kAuto, std::size_t per
   return options;
 }
 
-struct Difference {
-  double position = 0.0;
-  double normal = 0.0;
-};
-
-template <typename A, typename B>
-Difference max_difference(const A& a, const B& b, std::size_t vertices, std::size_t instances) {
-  Difference d;
-  for (std::size_t i = 0; i < instances; ++i) {
-    for (std::size_t v = 0; v < vertices; ++v) {
-      d.position = std::max(
-          d.position, glm::length(glm::dvec3(a.position(i, v)) - glm::dvec3(b.position(i, v))));
-      d.normal =
-          std::max(d.normal, glm::length(glm::dvec3(a.normal(i, v)) - glm::dvec3(b.normal(i, v))));
-      if (a.layout.tangents) {
-        d.normal = std::max(d.normal,
-                            glm::length(glm::dvec3(a.tangent(i, v)) - glm::dvec3(b.tangent(i, v))));
-      }
-    }
-  }
-  return d;
-}
+using test::Difference;
+using test::max_difference;
 
 // Scale of the coordinates the kernels handle: the root frame's origin and length.
 double coordinate_scale(const Rig& rig) {
@@ -141,39 +127,127 @@ double coordinate_scale(const Rig& rig) {
   return glm::length(f.origin) + f.length;
 }
 
+// How far the reference's Jacobian normals move when the rest mesh moves by 4 float32
+// roundings of the coordinate scale along each axis (the kernels hold the rest mesh
+// in float): near a range limit or a fold this is the size of the problem's own
+// uncertainty; elsewhere it is far below 1e-5.
+DeformedBatch<double> rounding_spread(const RiggedMesh& model, const RigParameters& values,
+                                      const DeformedBatch<double>& exact) {
+  const double delta = 4.0 * std::ldexp(1.0, -24) * coordinate_scale(model.rig());
+  DeformedBatch<double> spread = exact;  // normals: the largest move; the rest unused
+  std::fill(spread.normals.begin(), spread.normals.end(), 0.0);
+  for (int axis = 0; axis < 3; ++axis) {
+    for (double sign : {-1.0, 1.0}) {
+      Mesh moved = model.mesh();
+      for (glm::vec3& p : moved.positions) p[axis] += static_cast<float>(sign * delta);
+      const DeformedBatch<double> there =
+          run_reference(RiggedMesh(moved, model.rig()), values, NormalMode::kJacobian);
+      for (std::size_t i = 0; i < values.instance_count(); ++i) {
+        for (std::size_t v = 0; v < model.vertex_count(); ++v) {
+          const double move = glm::length(there.normal(i, v) - exact.normal(i, v));
+          const std::size_t at = spread.layout.index(i, 0, v);
+          spread.normals[at] = std::max(spread.normals[at], move);
+        }
+      }
+    }
+  }
+  return spread;
+}
+
+// Instances 0-4: random parameters within 0.8 of their limits; 5-8: every parameter
+// at its full limit (both signs, alternate parameters opposite), at 0.95 and at 0.6.
+const std::size_t kRandom = 5, kAtLimits = 4;
+
+RigParameters random_and_limit_parameters(const RiggedMesh& model) {
+  const RigParameters random = random_parameters(model.rig(), kRandom, 0.8, 11);
+  const RigParameters limits = test::at_fractions_of_the_limits(model, {1.0, -1.0, 0.95, -0.6});
+  RigParameters values(model, kRandom + kAtLimits);
+  values.values() = random.values();
+  values.values().insert(values.values().end(), limits.values().begin(), limits.values().end());
+  return values;
+}
+
+// Both ways of generating the dispatch code (each device gets one of them), against
+// each other's paths and the reference. `skipped_at_limits`: the Jacobian normals
+// compare_to_reference counts as ill-defined (near a range limit or a fold); a
+// property of the reference alone, so the same on every device (measured on this rig;
+// a wider margin would show here).
 void expect_paths_agree_with_each_other_and_the_reference(const Mesh& mesh, const Rig& rig,
                                                           const std::string& name,
-                                                          RigDispatch dispatch) {
+                                                          std::size_t skipped_at_limits) {
   const RiggedMesh model(mesh, rig);
-  ClDeformer deformer(test::shared_context(), model, rig_kernels(dispatch));
-  const std::size_t instances = 5;
-  const RigParameters values = random_parameters(rig, instances, 0.8, 11);
-  DeviceBatch batch = deformer.allocate(instances);
+  for (std::size_t p = 0; p < rig.parameters.size(); ++p) {
+    EXPECT_NEAR(rig.parameters[p].limit, test::expected_limit(mesh, rig, p),
+                1e-12 * test::expected_limit(mesh, rig, p))
+        << name << " " << rig.parameters[p].name;
+  }
+  const RigDispatch dispatches[] = {RigDispatch::kPerComponent, RigDispatch::kByPathShape};
+  std::vector<std::unique_ptr<ClDeformer>> deformers;
+  for (RigDispatch dispatch : dispatches) {
+    deformers.push_back(
+        std::make_unique<ClDeformer>(test::shared_context(), model, rig_kernels(dispatch)));
+  }
+  const std::size_t instances = kRandom + kAtLimits;
+  const RigParameters values = random_and_limit_parameters(model);
   const std::size_t longest = std::max<std::size_t>(model.longest_path(), 1);
   const double scale = coordinate_scale(rig);
   for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {
-    SCOPED_TRACE(name + " " + to_string(normals) +
-                 (dispatch == RigDispatch::kPerComponent ? " per component" : " by path shape"));
-    const DeformedBatch<float> fused =
-        test::run_on_device(deformer, batch, values, normals, RigPath::kFused);
-    const DeformedBatch<float> passes =
-        test::run_on_device(deformer, batch, values, normals, RigPath::kPasses);
     const DeformedBatch<double> exact = run_reference(model, values, normals);
+    const DeformedBatch<double> spread = normals == NormalMode::kJacobian
+                                             ? rounding_spread(model, values, exact)
+                                             : DeformedBatch<double>{};
+    for (std::size_t d = 0; d < deformers.size(); ++d) {
+      SCOPED_TRACE(
+          name + " " + to_string(normals) +
+          (dispatches[d] == RigDispatch::kPerComponent ? " per component" : " by path shape"));
+      ClDeformer& deformer = *deformers[d];
+      DeviceBatch batch = deformer.allocate(instances);
+      const DeformedBatch<float> fused =
+          test::run_on_device(deformer, batch, values, normals, RigPath::kFused);
+      const DeformedBatch<float> passes =
+          test::run_on_device(deformer, batch, values, normals, RigPath::kPasses);
 
-    const Difference between = max_difference(fused, passes, mesh.vertex_count(), instances);
-    EXPECT_LT(between.position, 1e-6 * scale);
-    EXPECT_LT(between.normal, 1e-5);
-    const Difference to_reference = max_difference(fused, exact, mesh.vertex_count(), instances);
-    EXPECT_LT(to_reference.position, 4e-6 * scale * static_cast<double>(longest));
-    EXPECT_LT(to_reference.normal, 2e-5 * static_cast<double>(longest));
+      // Every instance, the limits included: the paths agree on every attribute.
+      const Difference between = max_difference(fused, passes, mesh.vertex_count(), instances);
+      EXPECT_LT(between.position, 1e-6 * scale);
+      EXPECT_LT(between.normal, 1e-5);
+      EXPECT_LT(between.tangent, 1e-5);
+      EXPECT_EQ(between.tangents_compared, mesh.has_tangents());
+      // The random instances, every vertex, at the bounds of the longest path.
+      const Difference to_reference = max_difference(fused, exact, mesh.vertex_count(), kRandom);
+      EXPECT_LT(to_reference.position, 4e-6 * scale * static_cast<double>(longest));
+      EXPECT_LT(to_reference.normal, 2e-5 * static_cast<double>(longest));
+      EXPECT_LT(to_reference.tangent, 2e-5 * static_cast<double>(longest));
+      // Every instance with the bounds that follow each vertex's conditioning (the
+      // passes are within 1e-6 of the fused path, above).
+      const AccuracyReport report =
+          compare_to_reference(model, values.view(), normals, fused, exact);
+      EXPECT_LE(report.max_position_ratio, 1.0) << report.max_position_error;
+      EXPECT_LE(report.max_normal_ratio, 1.0) << report.max_normal_error;
+      EXPECT_EQ(report.skipped_normals,
+                normals == NormalMode::kJacobian ? skipped_at_limits : std::size_t{0});
+      if (normals != NormalMode::kJacobian) continue;
+      // The normals compare_to_reference skips are compared too: every normal within
+      // the bound of its path plus twice the reference's own spread there.
+      double worst_ratio = 0.0;
+      std::size_t worst_instance = 0, worst_vertex = 0;
+      for (std::size_t i = 0; i < instances; ++i) {
+        for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+          const double stages = static_cast<double>(
+              std::max<std::size_t>(model.paths()[model.component_of_vertex()[v]].size(), 1));
+          const double error = glm::length(glm::dvec3(fused.normal(i, v)) - exact.normal(i, v));
+          const double ratio =
+              error / (2e-5 * stages + 2.0 * spread.normals[spread.layout.index(i, 0, v)]);
+          if (ratio > worst_ratio) {
+            worst_ratio = ratio;
+            worst_instance = i;
+            worst_vertex = v;
+          }
+        }
+      }
+      EXPECT_LE(worst_ratio, 1.0) << "instance " << worst_instance << " vertex " << worst_vertex;
+    }
   }
-}
-
-// Both ways of generating the dispatch code (each device gets one of them).
-void expect_paths_agree_with_each_other_and_the_reference(const Mesh& mesh, const Rig& rig,
-                                                          const std::string& name) {
-  for (RigDispatch dispatch : {RigDispatch::kPerComponent, RigDispatch::kByPathShape})
-    expect_paths_agree_with_each_other_and_the_reference(mesh, rig, name, dispatch);
 }
 
 TEST(RigDeformer, DeepTreeFusedPassesAndReferenceAgree) {
@@ -183,7 +257,7 @@ TEST(RigDeformer, DeepTreeFusedPassesAndReferenceAgree) {
   EXPECT_EQ(rig.depth(4), 4u);
   ClDeformer deformer(test::shared_context(), RiggedMesh(mesh, rig), rig_kernels());
   EXPECT_EQ(deformer.pass_count(), 5u);  // one stage per level
-  expect_paths_agree_with_each_other_and_the_reference(mesh, rig, "deep tree");
+  expect_paths_agree_with_each_other_and_the_reference(mesh, rig, "deep tree", 4);
 }
 
 TEST(RigDeformer, LongChainFusedPassesAndReferenceAgree) {
@@ -191,7 +265,7 @@ TEST(RigDeformer, LongChainFusedPassesAndReferenceAgree) {
   const Rig rig = resolve_rig(long_chain_rig(), mesh);
   ClDeformer deformer(test::shared_context(), RiggedMesh(mesh, rig), rig_kernels());
   EXPECT_EQ(deformer.pass_count(), 5u);  // one per chain position
-  expect_paths_agree_with_each_other_and_the_reference(mesh, rig, "long chain");
+  expect_paths_agree_with_each_other_and_the_reference(mesh, rig, "long chain", 4);
 }
 
 // A root and a grandchild without stages between stage-bearing components: the
@@ -220,7 +294,7 @@ TEST(RigDeformer, StagelessComponentsAreCopiedOnThePassesPath) {
     ASSERT_FALSE(component.vertices.empty()) << component.name;
   ClDeformer deformer(test::shared_context(), RiggedMesh(mesh, rig), rig_kernels());
   EXPECT_EQ(deformer.pass_count(), 2u);  // depth 1: chain positions 0 and 1
-  expect_paths_agree_with_each_other_and_the_reference(mesh, rig, "stageless components");
+  expect_paths_agree_with_each_other_and_the_reference(mesh, rig, "stageless components", 6);
 }
 
 TEST(RigDeformer, PassesMoveEachVertexOnlyThroughItsOwnStages) {
@@ -239,15 +313,20 @@ TEST(RigDeformer, PassesMoveEachVertexOnlyThroughItsOwnStages) {
 }
 
 TEST(RigDeformer, ShippedRigsFusedPassesAndReferenceAgree) {
-  const std::pair<const char*, const char*> shipped[] = {
-      {"blub/fish.obj", "rigs/blub.rig.json"},
-      {"blub/fish_low_resolution.obj", "rigs/blub_low_resolution.rig.json"},
-      {"barramundi/BarramundiFish.gltf", "rigs/barramundi.rig.json"}};
-  for (const auto& [fish, rig_file] : shipped) {
-    const Mesh mesh = load_mesh(test::data_path(fish));
-    const Rig rig = resolve_rig(load_rig_file(test::data_path(rig_file)), mesh);
-    EXPECT_GE(rig.components.size(), 3u) << rig_file;  // body, caudal fin, a paired fin
-    expect_paths_agree_with_each_other_and_the_reference(mesh, rig, fish);
+  struct Shipped {
+    const char* fish;
+    const char* rig;
+    std::size_t skipped_at_limits;
+  };
+  const Shipped shipped[] = {
+      {"blub/fish.obj", "rigs/blub.rig.json", 107},
+      {"blub/fish_low_resolution.obj", "rigs/blub_low_resolution.rig.json", 17},
+      {"barramundi/BarramundiFish.gltf", "rigs/barramundi.rig.json", 0}};
+  for (const Shipped& c : shipped) {
+    const Mesh mesh = load_mesh(test::data_path(c.fish));
+    const Rig rig = resolve_rig(load_rig_file(test::data_path(c.rig)), mesh);
+    EXPECT_GE(rig.components.size(), 3u) << c.rig;  // body, caudal fin, a paired fin
+    expect_paths_agree_with_each_other_and_the_reference(mesh, rig, c.fish, c.skipped_at_limits);
   }
 }
 
@@ -266,6 +345,7 @@ TEST(RigDeformer, SingleBendRigMatchesTheBendKernel) {
         test::run_on_device(bend_deformer, m, NormalMode::kJacobian), mesh.vertex_count(), 1);
     EXPECT_LT(d.position, 2e-6 * coordinate_scale(model.rig()));
     EXPECT_LT(d.normal, 2e-5);
+    EXPECT_LT(d.tangent, 2e-5);
   }
 }
 
@@ -298,7 +378,7 @@ TEST(RigDeformer, ComponentMovesOnlyItsOwnVerticesUntilItsParentDoes) {
 TEST(RigDeformer, ChildFollowsItsParent) {
   // Deforming with (body_m, tail angle) equals bending, with the body's frame, the mesh
   // that the tail hinge alone produced: the child's result rides on the parent's bend.
-  const Mesh mesh = test::synthetic_fish(96, 32);
+  const Mesh mesh = test::synthetic_fish(96, 32, true);
   RigSpec spec;
   spec.frame.mode = FrameSpec::Mode::kIdentity;
   spec.components.push_back(root({bend("body_m")}));
@@ -318,6 +398,7 @@ TEST(RigDeformer, ChildFollowsItsParent) {
   const Difference d = max_difference(direct, composed, mesh.vertex_count(), 1);
   EXPECT_LT(d.position, 1e-6);  // float rounding of the intermediate mesh only
   EXPECT_LT(d.normal, 1e-6);
+  EXPECT_LT(d.tangent, 1e-6);
 }
 
 TEST(RigDeformer, SlotsKeepComponentsContiguousAndIndicesRemapped) {
@@ -348,10 +429,70 @@ TEST(RigDeformer, SlotsKeepComponentsContiguousAndIndicesRemapped) {
   }
 }
 
+// The deep rig on the synthetic fish with tangents, as DeepTreeFusedPassesAndReferenceAgree
+// deforms it (the frame tests below share its kernels).
+const Mesh& deep_fish() {
+  static const Mesh mesh = test::synthetic_fish(96, 32, true);
+  return mesh;
+}
+
+// Two species in one frame: the synthetic fish (with tangents) with its deep rig and the
+// Blub with its shipped rig, different instance counts, one enqueue; on both paths and
+// both normal modes, and with half normals, each entry equal to a separate run of it,
+// every attribute.
 TEST(RigDeformer, HeterogeneousFrameEqualsSeparateRuns) {
-  // Two species in one frame: the synthetic fish with its deep rig and the Blub with
-  // its shipped rig, different instance counts, one enqueue.
-  const Mesh synthetic = test::synthetic_fish(64, 24);
+  const Mesh& synthetic = deep_fish();
+  const Mesh blub = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
+  const Rig synthetic_rig = resolve_rig(deep_tail_rig(), synthetic);
+  const Rig blub_rig =
+      resolve_rig(load_rig_file(test::data_path("rigs/blub_low_resolution.rig.json")), blub);
+  ClDeformer a(test::shared_context(), RiggedMesh(synthetic, synthetic_rig));
+  ClDeformer b(test::shared_context(), RiggedMesh(blub, blub_rig));
+  struct Setting {
+    NormalFormat format;
+    NormalMode normals;
+    RigPath path;
+  };
+  const Setting settings[] = {{NormalFormat::kFloat32, NormalMode::kJacobian, RigPath::kFused},
+                              {NormalFormat::kFloat32, NormalMode::kJacobian, RigPath::kPasses},
+                              {NormalFormat::kFloat32, NormalMode::kRotate, RigPath::kFused},
+                              {NormalFormat::kFloat32, NormalMode::kRotate, RigPath::kPasses},
+                              {NormalFormat::kHalf, NormalMode::kJacobian, RigPath::kPasses}};
+  for (const auto& [format, normals, path] : settings) {
+    RigFrame frame;
+    const std::size_t first = frame.add(a, 7, format);
+    const std::size_t second = frame.add(b, 3, format);
+    EXPECT_EQ(frame.size(), 2u);
+    EXPECT_EQ(frame.batch(first).layout.normal_format, format);
+    frame.parameters(first) = random_parameters(synthetic_rig, 7, 0.7, 1);
+    frame.parameters(second) = random_parameters(blub_rig, 3, 0.7, 2);
+    SCOPED_TRACE(std::string(to_string(format)) + " " + to_string(normals) + " " + to_string(path));
+    const std::vector<cl::Event> done = frame.enqueue(normals, path);
+    ASSERT_EQ(done.size(), 2u);
+    const DeformedBatch<float> together_a = a.read(frame.batch(first));
+    const DeformedBatch<float> together_b = b.read(frame.batch(second));
+
+    const Difference d_a = max_difference(
+        test::run_on_device(a, frame.parameters(first), normals, path, false, format), together_a,
+        synthetic.vertex_count(), 7);
+    EXPECT_EQ(d_a.position, 0.0);
+    EXPECT_EQ(d_a.normal, 0.0);
+    EXPECT_EQ(d_a.tangent, 0.0);
+    EXPECT_TRUE(d_a.tangents_compared);
+    const Difference d_b = max_difference(
+        test::run_on_device(b, frame.parameters(second), normals, path, false, format), together_b,
+        blub.vertex_count(), 3);
+    EXPECT_EQ(d_b.position, 0.0);
+    EXPECT_EQ(d_b.normal, 0.0);
+  }
+}
+
+// "Every entry's job is validated and its parameters checked before any is launched":
+// a bad second entry (a value out of its own range, though under the other
+// parameters' limits; NaN; a parameter set for another instance count) leaves the
+// first entry's outputs as the last good frame wrote them.
+TEST(RigDeformer, RigFrameChecksEveryEntryBeforeLaunchingAny) {
+  const Mesh& synthetic = deep_fish();
   const Mesh blub = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
   const Rig synthetic_rig = resolve_rig(deep_tail_rig(), synthetic);
   const Rig blub_rig =
@@ -359,28 +500,66 @@ TEST(RigDeformer, HeterogeneousFrameEqualsSeparateRuns) {
   ClDeformer a(test::shared_context(), RiggedMesh(synthetic, synthetic_rig));
   ClDeformer b(test::shared_context(), RiggedMesh(blub, blub_rig));
   RigFrame frame;
-  const std::size_t first = frame.add(a, 7);
-  const std::size_t second = frame.add(b, 3);
-  frame.parameters(first) = random_parameters(synthetic_rig, 7, 0.7, 1);
-  frame.parameters(second) = random_parameters(blub_rig, 3, 0.7, 2);
-  const std::vector<cl::Event> done = frame.enqueue(NormalMode::kJacobian);
-  ASSERT_EQ(done.size(), 2u);
-  const DeformedBatch<float> together_a = a.read(frame.batch(first));
-  const DeformedBatch<float> together_b = b.read(frame.batch(second));
+  const std::size_t first = frame.add(a, 3);
+  const std::size_t second = frame.add(b, 2);
+  frame.parameters(first) = random_parameters(synthetic_rig, 3, 0.5, 31);
+  frame.parameters(second) = random_parameters(blub_rig, 2, 0.5, 32);
+  frame.enqueue(NormalMode::kRotate);
+  const DeformedBatch<float> good_a = a.read(frame.batch(first));
+  const DeformedBatch<float> good_b = b.read(frame.batch(second));
 
-  const DeformedBatch<float> alone =
-      test::run_on_device(a, frame.parameters(first), NormalMode::kJacobian);
-  EXPECT_EQ(max_difference(alone, together_a, synthetic.vertex_count(), 7).position, 0.0);
-  const DeformedBatch<float> alone_b =
-      test::run_on_device(b, frame.parameters(second), NormalMode::kJacobian);
-  EXPECT_EQ(max_difference(alone_b, together_b, blub.vertex_count(), 3).position, 0.0);
+  const RigParameters next_a = random_parameters(synthetic_rig, 3, 0.5, 33);
+  const RigParameters good_second = frame.parameters(second);
+  const std::size_t body_m = blub_rig.param_index("body_m");
+  const float body_limit = static_cast<float>(blub_rig.parameters[body_m].limit);
+  ASSERT_LT(1.5f * body_limit, 3.1f);  // between the bend's limit and the hinges' pi
+  RigParameters beyond_its_own(blub_rig, 2);
+  beyond_its_own.values() = good_second.values();
+  beyond_its_own.set(1, "body_m", 1.5f * body_limit);
+  RigParameters nan(blub_rig, 2);
+  nan.values() = good_second.values();
+  nan.set(0, "tail_angle", NAN);
+  const std::pair<RigParameters, std::string> bad_second[] = {
+      {beyond_its_own, "body_m[1]"},
+      {nan, "tail_angle[0]"},
+      {RigParameters(blub_rig, 4), "job.outputs"}};
+  for (const auto& [bad, field] : bad_second) {
+    SCOPED_TRACE(field);
+    frame.parameters(first) = next_a;
+    frame.parameters(second) = bad;
+    try {
+      frame.enqueue(NormalMode::kRotate);
+      ADD_FAILURE() << "expected an error";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.field(), field);
+    }
+    const Difference d_a =
+        max_difference(a.read(frame.batch(first)), good_a, synthetic.vertex_count(), 3);
+    EXPECT_EQ(d_a.position, 0.0);
+    EXPECT_EQ(d_a.normal, 0.0);
+    EXPECT_EQ(d_a.tangent, 0.0);
+    const Difference d_b =
+        max_difference(b.read(frame.batch(second)), good_b, blub.vertex_count(), 2);
+    EXPECT_EQ(d_b.position, 0.0);
+    EXPECT_EQ(d_b.normal, 0.0);
+  }
+  // With the second entry good again, the first gets its new values.
+  frame.parameters(second) = good_second;
+  frame.enqueue(NormalMode::kRotate);
+  const Difference d = max_difference(a.read(frame.batch(first)),
+                                      test::run_on_device(a, next_a, NormalMode::kRotate),
+                                      synthetic.vertex_count(), 3);
+  EXPECT_EQ(d.position, 0.0);
+  EXPECT_GT(
+      max_difference(a.read(frame.batch(first)), good_a, synthetic.vertex_count(), 3).position,
+      1e-3);
 }
 
 // Kernel arguments are set only when a frame goes to another batch than the kernel's
 // last one (and again when a batch gains scratch sets): alternating batches and paths
 // must each get their own frames.
 TEST(RigDeformer, AlternatingBatchesAndPathsEachGetTheirOwnFrames) {
-  const Mesh mesh = test::synthetic_fish(64, 24);
+  const Mesh& mesh = deep_fish();
   const Rig rig = resolve_rig(deep_tail_rig(), mesh);
   const RiggedMesh model(mesh, rig);
   ClDeformer deformer(test::shared_context(), model, rig_kernels());
@@ -410,8 +589,14 @@ TEST(RigDeformer, AlternatingBatchesAndPathsEachGetTheirOwnFrames) {
       test::run_on_device(fresh, c, NormalMode::kRotate, RigPath::kPasses);
   const DeformedBatch<float> expected_second =
       test::run_on_device(fresh, b, NormalMode::kRotate, RigPath::kPasses);
-  EXPECT_EQ(max_difference(from_first, expected_first, mesh.vertex_count(), 3).position, 0.0);
-  EXPECT_EQ(max_difference(from_second, expected_second, mesh.vertex_count(), 2).position, 0.0);
+  const Difference d_first = max_difference(from_first, expected_first, mesh.vertex_count(), 3);
+  const Difference d_second = max_difference(from_second, expected_second, mesh.vertex_count(), 2);
+  for (const Difference& d : {d_first, d_second}) {
+    EXPECT_EQ(d.position, 0.0);
+    EXPECT_EQ(d.normal, 0.0);
+    EXPECT_EQ(d.tangent, 0.0);
+    EXPECT_TRUE(d.tangents_compared);
+  }
 }
 
 TEST(RigDeformer, SeveralInstancesPerWorkItemGiveTheSameResult) {
@@ -423,13 +608,26 @@ TEST(RigDeformer, SeveralInstancesPerWorkItemGiveTheSameResult) {
   for (RigPath path : {RigPath::kFused, RigPath::kPasses}) {
     const DeformedBatch<float> expected =
         test::run_on_device(one, values, NormalMode::kJacobian, path);
-    for (std::size_t per_item : {2u, 3u, 4u}) {
-      ClDeformer several(test::shared_context(), model, rig_kernels(RigDispatch::kAuto, per_item));
+    // The device's own dispatch with 2, 3 and 4 per item, and the GPUs' shape (stages
+    // compiled in per component, 4 per item) forced on whatever device runs this.
+    const std::pair<RigDispatch, std::size_t> shapes[] = {{RigDispatch::kAuto, 2},
+                                                          {RigDispatch::kAuto, 3},
+                                                          {RigDispatch::kAuto, 4},
+                                                          {RigDispatch::kPerComponent, 4}};
+    for (const auto& [dispatch, per_item] : shapes) {
+      ClDeformer several(test::shared_context(), model, rig_kernels(dispatch, per_item));
+      EXPECT_EQ(several.instances_per_item(NormalFormat::kFloat32), per_item);
       const DeformedBatch<float> got =
           test::run_on_device(several, values, NormalMode::kJacobian, path);
       const Difference d = max_difference(got, expected, mesh.vertex_count(), 7);
-      EXPECT_LT(d.position, 1e-6 * coordinate_scale(rig)) << per_item << " " << to_string(path);
-      EXPECT_LT(d.normal, 1e-5) << per_item << " " << to_string(path);
+      SCOPED_TRACE(testing::Message()
+                   << per_item << " per item, "
+                   << (dispatch == RigDispatch::kPerComponent ? "per component" : "auto dispatch")
+                   << ", " << to_string(path));
+      EXPECT_LT(d.position, 1e-6 * coordinate_scale(rig));
+      EXPECT_LT(d.normal, 1e-5);
+      EXPECT_LT(d.tangent, 1e-5);
+      EXPECT_TRUE(d.tangents_compared);
     }
   }
 }
@@ -455,6 +653,86 @@ TEST(RigDeformer, BadParametersAreRejectedByName) {
   RigParameters wrong_count(rig, 3);
   EXPECT_THROW(test::run_on_device(deformer, batch, wrong_count, NormalMode::kRotate), Error);
   EXPECT_THROW(parse_rig_path("sideways"), Error);
+}
+
+// Each value is checked against its own parameter's limit: values between two limits
+// (above a bend's 0.5 / x_max, below the hinges' pi) are refused for the bend and
+// accepted for a hinge, by both backends and by check_parameters, and clamping brings
+// each one to its own limit.
+TEST(RigDeformer, EachParameterIsCheckedAgainstItsOwnLimit) {
+  const Mesh& mesh = deep_fish();
+  const Rig rig = resolve_rig(deep_tail_rig(), mesh);
+  const RiggedMesh model(mesh, rig);
+  ClDeformer deformer(test::shared_context(), model, rig_kernels());
+  DeviceBatch batch = deformer.allocate(2);
+  const double pi = 3.14159265358979323846;
+  // The limits themselves: the body's bend on x in [-0.5, 0.5] (identity frame), 1;
+  // the paper bends of tail2 and tail4 in their own frames; the hinges' pi.
+  for (std::size_t p = 0; p < rig.parameters.size(); ++p) {
+    EXPECT_NEAR(rig.parameters[p].limit, test::expected_limit(mesh, rig, p), 1e-12)
+        << rig.parameters[p].name;
+  }
+  EXPECT_DOUBLE_EQ(rig.parameters[rig.param_index("body_m")].limit, 1.0);
+  EXPECT_DOUBLE_EQ(rig.parameters[rig.param_index("tail1_angle")].limit, pi);
+  EXPECT_DOUBLE_EQ(rig.parameters[rig.param_index("tail3_angle")].limit, pi);
+  // tail2's frame starts at its cut and spans its extent: x_max 1, limit 0.5, below
+  // the body's 1, so 0.525 is refused for tail2_m while the body would take it.
+  EXPECT_NEAR(rig.parameters[rig.param_index("tail2_m")].limit, 0.5, 1e-3);
+
+  for (const char* name : {"body_m", "tail2_m", "tail4_m"}) {
+    const double limit = rig.parameters[rig.param_index(name)].limit;
+    ASSERT_LT(1.05 * limit, 3.0) << name;  // under pi: refused only by its own limit
+    RigParameters values(rig, 2);
+    values.set(0, name, static_cast<float>(limit));  // at the limit: accepted
+    values.set(1, name, static_cast<float>(-1.05 * limit));
+    const std::string field = std::string(name) + "[1]";
+    try {
+      test::run_on_device(deformer, batch, values, NormalMode::kRotate);
+      ADD_FAILURE() << name << ": expected an out-of-range error";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.code(), ErrorCode::kOutOfRange) << name;
+      EXPECT_EQ(e.field(), field);
+    }
+    try {
+      run_reference(model, values, NormalMode::kRotate);
+      ADD_FAILURE() << name << ": expected an out-of-range error from the reference";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.code(), ErrorCode::kOutOfRange) << name;
+      EXPECT_EQ(e.field(), field);
+    }
+    std::vector<float> clamped(values.values().size());
+    check_parameters(rig, values.view(), /*clamp=*/true, clamped.data());
+    const std::size_t at =
+        values.values_per_instance() + rig.parameters[rig.param_index(name)].offset;
+    EXPECT_LE(std::fabs(double(clamped[at])), limit) << name;
+    EXPECT_NEAR(clamped[at], -limit, 1e-6 * limit) << name;
+    values.set(1, name, static_cast<float>(0.99 * limit));
+    EXPECT_NO_THROW(test::run_on_device(deformer, batch, values, NormalMode::kRotate)) << name;
+  }
+  // A hinge takes values up to pi, above every bend's limit here.
+  RigParameters hinge_values(rig, 2);
+  hinge_values.set(0, "tail1_angle", 3.1f);
+  hinge_values.set(1, "tail3_angle", -3.1f);
+  EXPECT_NO_THROW(test::run_on_device(deformer, batch, hinge_values, NormalMode::kRotate));
+  EXPECT_NO_THROW(run_reference(model, hinge_values, NormalMode::kRotate));
+  // Clamped, each to its own limit: the body's m to 1, the angle to pi.
+  RigParameters beyond(rig, 1);
+  beyond.set(0, "body_m", 2.0f);
+  beyond.set(0, "tail1_angle", -4.0f);
+  std::vector<float> clamped(beyond.values().size());
+  check_parameters(rig, beyond.view(), /*clamp=*/true, clamped.data());
+  EXPECT_NEAR(clamped[rig.parameters[rig.param_index("body_m")].offset], 1.0, 1e-6);
+  EXPECT_NEAR(clamped[rig.parameters[rig.param_index("tail1_angle")].offset], -pi, 1e-6);
+  // The device clamps the same way: its output equals the output at those values.
+  DeviceBatch one = deformer.allocate(1);
+  const DeformedBatch<float> on_device =
+      test::run_on_device(deformer, one, beyond, NormalMode::kRotate, RigPath::kAuto, true);
+  const DeformedBatch<float> at_limits =
+      test::run_on_device(deformer, one, test::values_of(model, clamped), NormalMode::kRotate);
+  const Difference d = max_difference(on_device, at_limits, mesh.vertex_count(), 1);
+  EXPECT_EQ(d.position, 0.0);
+  EXPECT_EQ(d.normal, 0.0);
+  EXPECT_EQ(d.tangent, 0.0);
 }
 
 }  // namespace

@@ -12,8 +12,14 @@ shift 2
 rm -rf "$out"
 mkdir -p "$out/bin" "$out/lib"
 binaries=("$build/apps/finflex" "$build/bench/bench_deform")
+# Every test program that runs kernels on the default device (test_cli runs the tool
+# from its build path and stays here).
 for test in test_cl_deformer test_rig_deformer test_normal_format test_geometry test_spine \
     test_swim test_placement; do
+  if [ ! -f "$build/tests/$test" ]; then
+    echo "bundle.sh: $build/tests/$test is missing (build the tests first)" >&2
+    exit 1
+  fi
   binaries+=("$build/tests/$test")
 done
 binaries+=("$@")

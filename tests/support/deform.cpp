@@ -1,5 +1,11 @@
 #include "support/deform.hpp"
 
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <string>
+
 #include "support/test_support.hpp"
 
 namespace finflex::test {
@@ -39,5 +45,64 @@ RigParameters bend_fractions(const RiggedMesh& model, const std::vector<double>&
 }
 
 double bend_limit(const RiggedMesh& model) { return model.rig().parameters.at(0).limit; }
+
+RigParameters at_fractions_of_the_limits(const RiggedMesh& model,
+                                         const std::vector<double>& fractions) {
+  RigParameters values(model, fractions.size());
+  const std::vector<RigParameter>& parameters = model.rig().parameters;
+  for (std::size_t i = 0; i < fractions.size(); ++i) {
+    for (std::size_t p = 0; p < parameters.size(); ++p) {
+      for (std::size_t k = 0; k < parameters[p].count; ++k) {
+        values.values()[i * values.values_per_instance() + parameters[p].offset + k] =
+            static_cast<float>(fractions[i] * parameters[p].limit * (p % 2 ? -1.0 : 1.0));
+      }
+    }
+  }
+  std::vector<float> clamped(values.values().size());
+  check_parameters(model.rig(), values.view(), /*clamp=*/true, clamped.data());
+  values.values() = clamped;
+  return values;
+}
+
+double expected_limit(const Mesh& mesh, const Rig& rig, std::size_t parameter) {
+  const double pi = 3.14159265358979323846;
+  double limit = INFINITY;
+  for (std::size_t c = 0; c < rig.components.size(); ++c) {
+    for (const RigStage& stage : rig.components[c].chain) {
+      if (stage.param != parameter) continue;
+      const std::string name = stage.deformer->name;
+      if (name == "hinge") {
+        limit = std::min(limit, pi);
+      } else if (name == "bend") {
+        double x_max = 0.0;
+        for (std::size_t d = c; d < rig.subtree_end[c]; ++d) {
+          for (std::uint32_t v : rig.components[d].vertices) {
+            x_max = std::max(
+                x_max, std::fabs(stage.frame.point_to_local(glm::dvec3(mesh.positions[v])).x));
+          }
+        }
+        limit = std::min(limit, 0.5 / x_max);
+      } else {
+        ADD_FAILURE() << "no expected limit for the deformer " << name;
+      }
+    }
+  }
+  return limit;
+}
+
+void enqueue_copy(Context& context, const DeviceBatch& from, DeviceBatch& to) {
+  const BatchLayout& layout = from.layout;
+  const std::size_t positions = layout.attribute_elements() * sizeof(float);
+  const std::size_t directions = layout.attribute_elements() * layout.normal_component_bytes();
+  cl::CommandQueue& queue = context.queue();
+  check_cl(queue.enqueueCopyBuffer(from.positions, to.positions, 0, 0, positions),
+           "clEnqueueCopyBuffer positions");
+  check_cl(queue.enqueueCopyBuffer(from.normals, to.normals, 0, 0, directions),
+           "clEnqueueCopyBuffer normals");
+  if (layout.tangents) {
+    check_cl(queue.enqueueCopyBuffer(from.tangents, to.tangents, 0, 0, directions),
+             "clEnqueueCopyBuffer tangents");
+  }
+}
 
 }  // namespace finflex::test

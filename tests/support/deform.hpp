@@ -1,6 +1,9 @@
-// Shorthands for the tests: a job on either backend in one call.
+// Shorthands for the tests: a job on either backend in one call, and the largest
+// difference between two batches.
 #pragma once
 
+#include <algorithm>
+#include <cstddef>
 #include <vector>
 
 #include "finflex/finflex.hpp"
@@ -26,5 +29,51 @@ RigParameters bend_fractions(const RiggedMesh& model, const std::vector<double>&
 
 // The limit of the whole-body bend's m.
 double bend_limit(const RiggedMesh& model);
+
+// Every parameter of every instance at `fraction` of its limit, alternate parameters
+// with opposite signs, then clamped as the backends clamp (so a fraction of 1 gives
+// the values the backends use at the limits).
+RigParameters at_fractions_of_the_limits(const RiggedMesh& model,
+                                         const std::vector<double>& fractions);
+
+// The limit parameter `parameter` of `rig` (resolved on `mesh`) must have, computed
+// here from the stages' frames and the mesh's vertices, not from RigStage::x_max or
+// the registry: the tightest, over the stages that read it, of the bend's 0.5 / x_max
+// (13), x_max the largest |x| in the stage's frame of the vertices of its component
+// and its descendants, and the hinge's pi.
+double expected_limit(const Mesh& mesh, const Rig& rig, std::size_t parameter);
+
+// Enqueues a copy of `from`'s outputs (positions, normals, tangents) into `to`, on the
+// context's queue: a frame's outputs kept aside while later frames overwrite `from`.
+void enqueue_copy(Context& context, const DeviceBatch& from, DeviceBatch& to);
+
+// The largest difference between two batches of the same model, over every vertex
+// and instance: positions (mesh units), normals and tangents (|difference| of unit
+// vectors). Both batches must have tangents or neither.
+struct Difference {
+  double position = 0.0;
+  double normal = 0.0;
+  double tangent = 0.0;
+  bool tangents_compared = false;
+};
+
+template <typename A, typename B>
+Difference max_difference(const A& a, const B& b, std::size_t vertices, std::size_t instances) {
+  Difference d;
+  d.tangents_compared = a.layout.tangents && b.layout.tangents;
+  for (std::size_t i = 0; i < instances; ++i) {
+    for (std::size_t v = 0; v < vertices; ++v) {
+      d.position = std::max(
+          d.position, glm::length(glm::dvec3(a.position(i, v)) - glm::dvec3(b.position(i, v))));
+      d.normal =
+          std::max(d.normal, glm::length(glm::dvec3(a.normal(i, v)) - glm::dvec3(b.normal(i, v))));
+      if (d.tangents_compared) {
+        d.tangent = std::max(
+            d.tangent, glm::length(glm::dvec3(a.tangent(i, v)) - glm::dvec3(b.tangent(i, v))));
+      }
+    }
+  }
+  return d;
+}
 
 }  // namespace finflex::test
