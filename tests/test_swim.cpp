@@ -4,6 +4,7 @@
 // and a whole frame (driver, then the deformation reading its buffers) against the
 // reference.
 #include <cmath>
+#include <limits>
 
 #include <gtest/gtest.h>
 
@@ -215,6 +216,19 @@ TEST(Swim, BadInputsAreNamed) {
   inputs[0].turn_rate = INFINITY;
   EXPECT_EQ(field_of(inputs, 0.1), "inputs[0].turn_rate");
   inputs[0].turn_rate = 0.0f;
+  EXPECT_EQ(field_of(inputs, 0.1), "accepted");
+  // The device's check reads the bits: -0 is a speed of 0, the smallest negative
+  // subnormal is below 0, a NaN anywhere is named.
+  inputs[1].speed = -0.0f;
+  EXPECT_EQ(field_of(inputs, 0.1), "accepted");
+  inputs[1].speed = -std::numeric_limits<float>::denorm_min();
+  EXPECT_EQ(field_of(inputs, 0.1), "inputs[1].speed");
+  inputs[1].speed = NAN;
+  EXPECT_EQ(field_of(inputs, 0.1), "inputs[1].speed");
+  inputs[1].speed = 0.5f;
+  inputs[1].position.y = -INFINITY;
+  EXPECT_NE(field_of(inputs, 0.1).find("inputs[1].position"), std::string::npos);
+  inputs[1].position.y = 0.0f;
   EXPECT_EQ(field_of(inputs, 0.1), "accepted");
   EXPECT_THROW(SwimReference(swim, {0.4f, 0.0f}), Error);
   EXPECT_THROW(ClSwimDriver(test::shared_context(), swim, {NAN}), Error);

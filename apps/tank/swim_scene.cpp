@@ -79,13 +79,15 @@ FrameWork SwimScene::enqueue_frame(double dt, bool profile) {
   FrameWork work;
   const auto start = std::chrono::steady_clock::now();
   tank_->step(dt);
+  for (std::size_t s = 0; s < species_.size(); ++s) {
+    if (species_[s].driver) tank_->inputs(s, species_[s].inputs);
+  }
   work.simulation_seconds = seconds_since(start);
   const auto enqueue_start = std::chrono::steady_clock::now();
   std::vector<cl::Event> events;
   for (std::size_t s = 0; s < species_.size(); ++s) {
     Species& sp = species_[s];
     if (!sp.driver) continue;
-    tank_->inputs(s, sp.inputs);
     const cl::Event driven = sp.driver->enqueue(sp.inputs, static_cast<float>(dt));
     sp.deformer->enqueue(sp.job, profile ? &events : nullptr);
     if (profile) {

@@ -42,8 +42,8 @@ struct Species {
 
 // Host time of one frame's steps, and its kernels' events.
 struct FrameWork {
-  double simulation_seconds = 0.0;  // the tank's step
-  double enqueue_seconds = 0.0;     // inputs gathered, drivers' uploads and launches
+  double simulation_seconds = 0.0;  // the tank's step and its swim inputs
+  double enqueue_seconds = 0.0;     // the drivers' uploads and every launch
   std::vector<cl::Event> kernels;   // every kernel, in order (profiling)
 };
 

@@ -327,12 +327,13 @@ ClDeformer::Impl::FrameInputs ClDeformer::Impl::upload_inputs(const ClJob& job, 
   if (job.parameter_buffer) {
     inputs.parameters = job.parameter_buffer;
   } else {
-    std::vector<float>& staged = upload_.acquire(instances * per_instance);
+    const std::size_t values = instances * per_instance;
+    float* staged = upload_.acquire(context, values);
     const std::size_t stride = job.parameters.stride ? job.parameters.stride : per_instance;
-    if (checked && !job.clamp && stride == per_instance && !staged.empty()) {
-      std::memcpy(staged.data(), job.parameters.data, staged.size() * sizeof(float));
+    if (checked && !job.clamp && stride == per_instance && values > 0) {
+      std::memcpy(staged, job.parameters.data, values * sizeof(float));
     } else {
-      checker_.check(job.parameters, job.clamp, staged.data());
+      checker_.check(job.parameters, job.clamp, staged);
     }
     if (upload_.upload(context, wait)) ++generation_;
     wait = nullptr;  // the in-order queue runs the rest after the upload
@@ -341,7 +342,7 @@ ClDeformer::Impl::FrameInputs ClDeformer::Impl::upload_inputs(const ClJob& job, 
   if (job.placement_buffer) {
     inputs.placements = job.placement_buffer;
   } else if (job.placements) {
-    std::vector<float>& staged = placement_upload_.acquire(instances * kPlacementFloats);
+    float* staged = placement_upload_.acquire(context, instances * kPlacementFloats);
     for (std::size_t i = 0; i < instances; ++i) {
       PlacementRecord record;
       try {
@@ -350,8 +351,7 @@ ClDeformer::Impl::FrameInputs ClDeformer::Impl::upload_inputs(const ClJob& job, 
         const std::string field = "job.placements[" + std::to_string(i) + "]";
         throw Error(e.code(), field, field + ": " + e.what());
       }
-      std::copy(record.begin(), record.end(),
-                staged.begin() + std::ptrdiff_t(i * kPlacementFloats));
+      std::copy(record.begin(), record.end(), staged + i * kPlacementFloats);
     }
     if (placement_upload_.upload(context, wait)) ++generation_;
     wait = nullptr;

@@ -38,9 +38,8 @@ DeviceBatch allocate_batch(Context& context, const BatchLayout& layout) {
     throw Error(ErrorCode::kOutOfRange, "instances",
                 "instances = " + std::to_string(layout.instance_count) + " needs " +
                     std::to_string(instance_bytes) + " bytes each per attribute, above the " +
-                    "device's largest allocation (" +
-                    std::to_string(device.max_allocation_bytes) + " bytes on '" +
-                    device.device_name + "')");
+                    "device's largest allocation (" + std::to_string(device.max_allocation_bytes) +
+                    " bytes on '" + device.device_name + "')");
   }
   const std::size_t bytes = position_bytes(layout);
   const cl::Context& cl_context = context.context();
@@ -55,26 +54,53 @@ DeviceBatch allocate_batch(Context& context, const BatchLayout& layout) {
   return batch;
 }
 
-std::vector<float>& ParameterUpload::acquire(std::size_t values) {
-  cl::Event& last = done_[next_];
-  if (last()) check_cl(last.wait(), "clWaitForEvents");
-  staging_[next_].resize(values);
-  return staging_[next_];
+ParameterUpload::~ParameterUpload() {
+  for (Staging& staging : staging_) release(staging);
+}
+
+void ParameterUpload::release(Staging& staging) {
+  if (staging.mapped) {
+    // Nothing may throw from a destructor: a failed unmap leaves the driver to reclaim
+    // the buffer with its context.
+    staging.queue.enqueueUnmapMemObject(staging.pinned, staging.mapped);
+    staging.queue.finish();
+  }
+  staging = Staging{};
+}
+
+float* ParameterUpload::acquire(Context& context, std::size_t values) {
+  Staging& staging = staging_[next_];
+  if (staging.done()) check_cl(staging.done.wait(), "clWaitForEvents");
+  if (values > staging.capacity) {
+    // Grown by half again, so frames of slowly growing sizes do not map every time.
+    const std::size_t capacity = std::max(values, staging.capacity + staging.capacity / 2);
+    release(staging);
+    staging.queue = context.queue();
+    staging.pinned = make_buffer(context.context(), CL_MEM_READ_WRITE | CL_MEM_ALLOC_HOST_PTR,
+                                 capacity * sizeof(float));
+    cl_int status = CL_SUCCESS;
+    staging.mapped = static_cast<float*>(
+        staging.queue.enqueueMapBuffer(staging.pinned, CL_TRUE, CL_MAP_WRITE, 0,
+                                       capacity * sizeof(float), nullptr, nullptr, &status));
+    check_cl(status, "clEnqueueMapBuffer (staging)");
+    staging.capacity = capacity;
+  }
+  staging.size = values;
+  return values ? staging.mapped : nullptr;
 }
 
 bool ParameterUpload::upload(Context& context, const std::vector<cl::Event>* wait) {
-  const std::vector<float>& staged = staging_[next_];
+  const Staging& staged = staging_[next_];
   bool replaced = false;
-  if (staged.size() > device_values_ || !device_()) {
+  if (staged.size > device_values_ || !device_()) {
     // A new buffer for a larger frame; kernels still queued keep the old one alive.
-    device_values_ = std::max<std::size_t>(staged.size(), 1);
+    device_values_ = std::max<std::size_t>(staged.size, 1);
     device_ = make_buffer(context.context(), CL_MEM_READ_ONLY, device_values_ * sizeof(float));
     replaced = true;
   }
-  if (!staged.empty()) {
-    check_cl(context.queue().enqueueWriteBuffer(device_, CL_FALSE, 0,
-                                                staged.size() * sizeof(float), staged.data(),
-                                                wait, nullptr),
+  if (staged.size > 0) {
+    check_cl(context.queue().enqueueWriteBuffer(device_, CL_FALSE, 0, staged.size * sizeof(float),
+                                                staged.mapped, wait, nullptr),
              "clEnqueueWriteBuffer parameters");
   } else if (wait && !wait->empty()) {
     check_cl(context.queue().enqueueBarrierWithWaitList(wait, nullptr),
@@ -84,7 +110,7 @@ bool ParameterUpload::upload(Context& context, const std::vector<cl::Event>* wai
 }
 
 void ParameterUpload::used(const cl::Event& frame_done) {
-  done_[next_] = frame_done;
+  staging_[next_].done = frame_done;
   next_ = (next_ + 1) % kSlots;
 }
 

@@ -27,28 +27,44 @@ DeviceBatch allocate_batch(Context& context, const BatchLayout& layout);
 std::size_t position_bytes(const BatchLayout& layout);
 std::size_t direction_bytes(const BatchLayout& layout);
 
-// The parameter upload of a deformer, for frames in flight: a ring of host staging
-// buffers, each reused only once the frame that last used it is done (the last
-// kernel of that frame, after its upload in the in-order queue, proves it), and one
-// device buffer that grows to the largest frame.
+// The per-frame upload of a deformer's (or a driver's) inputs, for frames in flight:
+// a ring of staging areas in pinned host memory (a mapped CL_MEM_ALLOC_HOST_PTR
+// buffer: the device copies from it by DMA, so an upload costs the host no copy of its
+// own), each reused only once the frame that last used it is done (the last kernel of
+// that frame, after its upload in the in-order queue, proves it), and one device
+// buffer that grows to the largest frame.
 class ParameterUpload {
  public:
   static constexpr std::size_t kSlots = 3;
 
-  // The next staging buffer, resized to `values` floats, once its last frame is done
-  // (long done, in a steady frame loop).
-  std::vector<float>& acquire(std::size_t values);
-  // Uploads the buffer acquire() gave without blocking, after `wait`. Returns true
+  ParameterUpload() = default;
+  ParameterUpload(const ParameterUpload&) = delete;
+  ParameterUpload& operator=(const ParameterUpload&) = delete;
+  ~ParameterUpload();
+
+  // The next staging area, `values` floats, once its last frame is done (long done, in
+  // a steady frame loop); null for 0 values.
+  float* acquire(Context& context, std::size_t values);
+  // Uploads the area acquire() gave without blocking, after `wait`. Returns true
   // when the device buffer was replaced (kernels must be given the new one).
   bool upload(Context& context, const std::vector<cl::Event>* wait);
-  // Records the frame's last kernel event for the staging buffer it used, and moves on.
+  // Records the frame's last kernel event for the staging area it used, and moves on.
   void used(const cl::Event& frame_done);
 
   const cl::Buffer& buffer() const { return device_; }
 
  private:
-  std::array<std::vector<float>, kSlots> staging_;
-  std::array<cl::Event, kSlots> done_;
+  struct Staging {
+    cl::CommandQueue queue;  // the one it was mapped on, to unmap it
+    cl::Buffer pinned;
+    float* mapped = nullptr;
+    std::size_t capacity = 0;  // floats
+    std::size_t size = 0;      // floats of this frame
+    cl::Event done;
+  };
+  static void release(Staging& staging);
+
+  std::array<Staging, kSlots> staging_;
   std::size_t next_ = 0;
   cl::Buffer device_;
   std::size_t device_values_ = 0;

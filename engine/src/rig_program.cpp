@@ -71,13 +71,19 @@ std::vector<const char*> path_functions(const RiggedMesh& model, std::size_t c) 
   return functions;
 }
 
+// A stage's derived values, rounded up to 8 floats: every stage's start 32-byte
+// aligned (DeformerType::derived_count), and so every instance's row.
+std::size_t aligned_derived(const RigStage& stage) {
+  return round_up(stage.deformer->derived_count(stage.options), 8);
+}
+
 // Derived values before stage k (stages in rig order).
 std::size_t derived_offset_of(const Rig& rig, std::size_t k) {
   std::size_t offset = 0, index = 0;
   for (const RigComponent& component : rig.components) {
     for (const RigStage& stage : component.chain) {
       if (index++ == k) return offset;
-      if (stage.deformer->derived_count) offset += stage.deformer->derived_count(stage.options);
+      if (stage.deformer->derived_count) offset += aligned_derived(stage);
     }
   }
   return offset;

@@ -98,7 +98,9 @@ struct DeformerType {
   // cost every vertex to compute (a spine's running integrals): `derived_count` of
   // them per stage and instance, written each frame before the deformation kernels
   // by `void <cl_prepare_function>(__global const float* values, __global float*
-  // derived, StageFrame f)`, one work-item per instance.
+  // derived, StageFrame f)`, one work-item per instance. Each stage's derived values
+  // start 32-byte aligned (counts are rounded up to 8 floats), so a deformer may read
+  // records of 4 or 8 floats as vectors.
   std::size_t (*derived_count)(const StageOptions& options) = nullptr;
   const char* cl_prepare_function = nullptr;
   // Measures the stage's rest vertices (in its frame) once, for value checks beyond
