@@ -59,14 +59,14 @@ struct Measured {
 
 // The write-only kernel over the batch's planes: the faster of the deformer's
 // instances per work-item and 4 (the rig kernels' on GPUs).
-double write_only_median(Context& context, DeviceBatch& batch, std::size_t per_item,
-                         std::size_t frames) {
+double write_only_median(Context& context, DeviceBatch& batch, std::size_t vertices,
+                         std::size_t per_item, std::size_t frames) {
   double fastest = 0.0;
   for (std::size_t per : {per_item, std::size_t{4}}) {
     const bench::FrameTimes times = bench::time_frames(
         frames, [](std::size_t) {},
         [&](std::vector<cl::Event>& events) {
-          events.assign(1, bench::enqueue_write_only(context, batch, per));
+          events.assign(1, bench::enqueue_write_only(context, batch, vertices, per));
         });
     const double seconds = bench::median(times.device);
     fastest = fastest == 0.0 ? seconds : std::min(fastest, seconds);
@@ -210,7 +210,8 @@ int run_bench(const BenchOptions& options) {
             ? measure_swim(options, context, instances, frames, normals, format, scene)
             : measure_deform(options, mesh, context, instances, frames, normals, format, deform);
     const double seconds = bench::median(m.times.device);
-    const double write_seconds = write_only_median(context, *m.batch, m.per_item, frames);
+    const double write_seconds =
+        write_only_median(context, *m.batch, m.batch->layout.plane_stride, m.per_item, frames);
     const double vertices = double(m.vertices) * double(instances);
     const BatchLayout& layout = m.batch->layout;
     const double bytes_per_vertex = double(layout.bytes_per_vertex());

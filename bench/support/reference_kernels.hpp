@@ -21,10 +21,12 @@ enum class WriteValues {
   kVarying,
 };
 
-// Writes positions, normals (in the batch's format) and tangents when the batch has
-// them, `instances_per_item` instances per work-item (the deformer's:
-// ClDeformer::instances_per_item). Returns the kernel's event.
-cl::Event enqueue_write_only(Context& context, DeviceBatch& batch, std::size_t instances_per_item,
+// Writes every output the batch's layout has (positions, normals, tangents, previous
+// positions, in their formats and arrangements) for `vertices` vertices
+// (ClDeformer::output_vertices of its order), `instances_per_item` instances per
+// work-item (ClDeformer::instances_per_item). Returns the kernel's event.
+cl::Event enqueue_write_only(Context& context, DeviceBatch& batch, std::size_t vertices,
+                             std::size_t instances_per_item,
                              WriteValues values = WriteValues::kDeviceDefault);
 
 // Copies 6 planes of `source` (positions and normals of plane_stride slots) into every

@@ -8,7 +8,9 @@
 
 #include "cl_deformer_impl.hpp"
 #include "device_profile.hpp"
+#include "finflex/cl_outputs.hpp"
 #include "finflex/error.hpp"
+#include "outputs.hpp"
 #include "rig_program.hpp"
 
 namespace finflex {
@@ -29,11 +31,6 @@ cl_float4 to_cl_float4(const glm::dvec3& v) {
   throw Error(ErrorCode::kInvalidArgument, "job.outputs", "job.outputs: " + message);
 }
 
-std::size_t buffer_bytes(const cl::Buffer& buffer) {
-  std::size_t bytes = 0;
-  check_cl(buffer.getInfo(CL_MEM_SIZE, &bytes), "clGetMemObjectInfo");
-  return bytes;
-}
 
 }  // namespace
 
@@ -58,13 +55,21 @@ ClDeformer::Impl::Impl(Context& context_in, const RiggedMesh& model_in, const Cl
     remapped_indices.push_back(slot_of_vertex[index]);
 
   const cl::Context& cl_context = context.context();
+  std::vector<std::uint32_t> vertex_of_slot(slot_count_);
+  for (std::size_t slot = 0; slot < slot_count_; ++slot) {
+    const std::int64_t vertex = slots.vertex_of_slot[slot];
+    vertex_of_slot[slot] = vertex < 0 ? 0xffffffffu : static_cast<std::uint32_t>(vertex);
+  }
+  vertex_of_slot_ = detail::make_buffer(cl_context, CL_MEM_READ_ONLY,
+                                        slot_count_ * sizeof(std::uint32_t), vertex_of_slot.data());
   const detail::RestPlanes rest = detail::make_rest_planes(model, slots);
   const std::size_t plane_bytes = rest.positions.size() * sizeof(float);
   rest_positions_ =
       detail::make_buffer(cl_context, CL_MEM_READ_ONLY, plane_bytes, rest.positions.data());
   rest_normals_ =
       detail::make_buffer(cl_context, CL_MEM_READ_ONLY, plane_bytes, rest.normals.data());
-  rest_tangents_ = tangents_ ? detail::make_buffer(cl_context, CL_MEM_READ_ONLY, plane_bytes,
+  rest_tangents_ = tangents_ ? detail::make_buffer(cl_context, CL_MEM_READ_ONLY,
+                                                   rest.tangents.size() * sizeof(float),
                                                    rest.tangents.data())
                              : detail::make_buffer(cl_context, CL_MEM_READ_ONLY, sizeof(float));
   no_placements_ = detail::make_buffer(cl_context, CL_MEM_READ_ONLY, sizeof(float));
@@ -132,46 +137,46 @@ std::size_t ClDeformer::Impl::per_item(NormalFormat format) const {
              : detail::device_instances_per_item(context.description(), single_bend, format);
 }
 
+// Normals of fewer than 12 bytes (16-bit and octahedral formats) take the work-item
+// shape of half normals.
+std::size_t ClDeformer::Impl::per_item(const OutputLayout& outputs) const {
+  return per_item(format_bytes(outputs.normals.format) < 12 ? NormalFormat::kHalf
+                                                             : NormalFormat::kFloat32);
+}
+
+std::size_t ClDeformer::Impl::output_vertices(VertexOrder order) const {
+  return order == VertexOrder::kMesh ? model.vertex_count() : slot_count_;
+}
+
 // ----------------------------------------------------------------------------------
 // Checks
 
 void ClDeformer::Impl::check_outputs(const ClJob& job) const {
   const DeviceBatch& batch = *job.outputs;
   const BatchLayout& got = batch.layout;
-  const BatchLayout want = layout(job.parameters.instance_count, got.normal_format);
-  if (batch.serial == 0) fail_outputs("the batch was not allocated (use ClDeformer::allocate)");
-  if (got.vertex_count != want.vertex_count || got.plane_stride != want.plane_stride ||
-      got.tangents != want.tangents) {
-    fail_outputs("the batch is laid out for " + std::to_string(got.vertex_count) + " vertices on " +
-                 std::to_string(got.plane_stride) + " slots" +
-                 (got.tangents ? " with" : " without") + " tangents; this model needs " +
-                 std::to_string(want.vertex_count) + " on " + std::to_string(want.plane_stride) +
-                 (want.tangents ? " with" : " without") +
-                 " tangents (allocate it from this deformer)");
+  if (batch.serial == 0) {
+    fail_outputs("the batch was not made by a deformer (ClDeformer::allocate, bind or bind_host)");
   }
-  if (got.instance_count != want.instance_count) {
+  if (got.vertex_count != model.vertex_count() || got.tangents != tangents_) {
+    fail_outputs("the batch is for " + std::to_string(got.vertex_count) + " vertices" +
+                 (got.tangents ? " with" : " without") + " tangents; this model has " +
+                 std::to_string(model.vertex_count()) + (tangents_ ? " with" : " without") +
+                 " tangents (make it from this deformer)");
+  }
+  if (got.instance_count != job.parameters.instance_count) {
     fail_outputs("the batch holds " + std::to_string(got.instance_count) +
-                 " instances, the job's parameters are for " + std::to_string(want.instance_count));
+                 " instances, the job's parameters are for " +
+                 std::to_string(job.parameters.instance_count));
   }
 }
 
-// The buffers themselves, once per batch: a batch put together by hand must hold what
-// its layout says.
+// The layout and its buffers, once per batch: a batch put together by hand must hold
+// what its layout says for this model.
 void ClDeformer::Impl::check_buffer_sizes(const DeviceBatch& batch) {
   if (batch.serial == validated_serial_) return;
-  const BatchLayout& layout = batch.layout;
-  const std::pair<const char*, std::pair<const cl::Buffer*, std::size_t>> wanted[] = {
-      {"positions", {&batch.positions, detail::position_bytes(layout)}},
-      {"normals", {&batch.normals, detail::direction_bytes(layout)}},
-      {"tangents", {&batch.tangents, layout.tangents ? detail::direction_bytes(layout) : 0}}};
-  for (const auto& [name, buffer] : wanted) {
-    const std::size_t bytes = (*buffer.first)() ? buffer_bytes(*buffer.first) : 0;
-    if (bytes < buffer.second || bytes == 0) {
-      fail_outputs(std::string(name) + " holds " + std::to_string(bytes) + " bytes, the layout " +
-                   std::to_string(buffer.second));
-    }
-  }
+  detail::check_outputs(batch, output_vertices(batch.outputs.order), tangents_, "job.outputs");
   validated_serial_ = batch.serial;
+  batch_options_ = output_build_options(batch.outputs);
 }
 
 void ClDeformer::Impl::check_shape(const ClJob& job) const {
@@ -192,10 +197,9 @@ void ClDeformer::Impl::check(const ClJob& job) const {
 // Kernels
 
 ClDeformer::Impl::BoundKernel& ClDeformer::Impl::kernel(std::size_t index, const ClJob& job) {
-  const NormalFormat format = job.outputs->layout.normal_format;
   const bool placed = job.placements != nullptr || job.placement_buffer != nullptr;
-  const detail::KernelVariant variant{index,     job.normals,      format,
-                                      tangents_, per_item(format), placed};
+  const detail::KernelVariant variant{index, job.normals, batch_options_,
+                                      per_item(job.outputs->outputs), placed};
   auto found = kernels_.find(variant);
   if (found == kernels_.end()) {
     const std::size_t fused = fused_launches_.size();
@@ -237,10 +241,9 @@ void ClDeformer::Impl::prepare_derived(const ClJob& job, const FrameInputs& inpu
   const std::size_t instances = job.parameters.instance_count;
   if (!prepare_()) {
     // From a program the frame's kernels come from: no build of its own.
-    const NormalFormat format = job.outputs->layout.normal_format;
     const bool placed = job.placements != nullptr || job.placement_buffer != nullptr;
-    const detail::KernelVariant variant{0,         job.normals,      format,
-                                        tangents_, per_item(format), placed};
+    const detail::KernelVariant variant{0, job.normals, batch_options_,
+                                        per_item(job.outputs->outputs), placed};
     prepare_ = context.kernel("rig_prepare", program_, variant.options());
   }
   cl_uint arg = 0;
@@ -261,8 +264,8 @@ void ClDeformer::Impl::prepare_derived(const ClJob& job, const FrameInputs& inpu
 }
 
 // kernels/single_bend.cl's and kernels/rig.cl's arguments, in their order.
-void ClDeformer::Impl::set_arguments(cl::Kernel& kernel, std::size_t index, const ClJob& job,
-                                     const FrameInputs& inputs) const {
+cl_uint ClDeformer::Impl::set_arguments(cl::Kernel& kernel, std::size_t index, const ClJob& job,
+                                        const FrameInputs& inputs) const {
   const DeviceBatch& batch = *job.outputs;
   cl_uint arg = 0;
   auto set = [&](const auto& value) { check_cl(kernel.setArg(arg++, value), "clSetKernelArg"); };
@@ -289,11 +292,16 @@ void ClDeformer::Impl::set_arguments(cl::Kernel& kernel, std::size_t index, cons
   set(batch.positions);
   set(batch.normals);
   set(batch.tangents);
+  set(batch.previous_positions);
+  const cl_uint out_layout = arg;
+  set(output_layout_argument(batch.outputs, batch.frames_written > 0));
+  set(vertex_of_slot_);
   set(static_cast<cl_uint>(slot_count_));
   set(static_cast<cl_uint>(job.parameters.instance_count));
   if (single_bend) {
     for (const cl_float4& value : back_transform_) set(value);
   }
+  return out_layout;
 }
 
 void ClDeformer::Impl::launch(BoundKernel& bound, const ClJob& job, std::size_t first_group,
@@ -303,7 +311,7 @@ void ClDeformer::Impl::launch(BoundKernel& bound, const ClJob& job, std::size_t 
   // profiling (creating events costs host time on some drivers).
   cl::Event own;
   cl::Event* event = done ? done : kernel_events ? &own : nullptr;
-  const std::size_t per = per_item(job.outputs->layout.normal_format);
+  const std::size_t per = per_item(job.outputs->outputs);
   const cl::NDRange offset(first_group * kWorkGroupSize, 0);
   const cl::NDRange global((end_group - first_group) * kWorkGroupSize,
                            (job.parameters.instance_count + per - 1) / per);
@@ -371,6 +379,7 @@ cl::Event ClDeformer::Impl::enqueue(const ClJob& job, std::vector<cl::Event>* ke
   if (kernel_events) kernel_events->clear();
   if (!checked) check_shape(job);
   check_buffer_sizes(*job.outputs);
+  if (job.outputs->host_mapped) detail::unmap_host_outputs(context, *job.outputs);
   const std::size_t instances = job.parameters.instance_count;
   const FrameInputs inputs = upload_inputs(job, checked);
 
@@ -387,11 +396,17 @@ cl::Event ClDeformer::Impl::enqueue(const ClJob& job, std::vector<cl::Event>* ke
     BoundKernel& bound = kernel(index, job);
     if (bound.batch_serial != job.outputs->serial || bound.generation != generation_ ||
         bound.parameters != (*inputs.parameters)() || bound.placements != (*inputs.placements)()) {
-      set_arguments(bound.kernel, index, job, inputs);
+      bound.out_layout_argument = set_arguments(bound.kernel, index, job, inputs);
       bound.batch_serial = job.outputs->serial;
       bound.generation = generation_;
       bound.parameters = (*inputs.parameters)();
       bound.placements = (*inputs.placements)();
+    } else if (job.outputs->outputs.previous_positions) {
+      // Whether the positions hold a previous frame changes after the first.
+      check_cl(bound.kernel.setArg(bound.out_layout_argument, output_layout_argument(
+                                                       job.outputs->outputs,
+                                                       job.outputs->frames_written > 0)),
+               "clSetKernelArg out_layout");
     }
     launch(bound, job, first_group, end_group, kernel_events, last ? done : nullptr);
   };
@@ -408,6 +423,7 @@ cl::Event ClDeformer::Impl::enqueue(const ClJob& job, std::vector<cl::Event>* ke
   }
   if (!job.parameter_buffer) upload_.used(done);
   if (job.placements) placement_upload_.used(done);
+  ++job.outputs->frames_written;
   return done;
 }
 
@@ -430,6 +446,36 @@ DeviceBatch ClDeformer::allocate(std::size_t instances, NormalFormat format) con
   return detail::allocate_batch(impl_->context, layout(instances, format));
 }
 
+std::size_t ClDeformer::output_vertices(VertexOrder order) const {
+  return impl_->output_vertices(order);
+}
+
+OutputLayout ClDeformer::planes_layout(std::size_t instances, NormalFormat format) const {
+  return detail::planes_outputs(layout(instances, format));
+}
+
+DeviceBatch ClDeformer::allocate(std::size_t instances, const OutputLayout& outputs) const {
+  return detail::allocate_outputs(impl_->context, layout(instances, NormalFormat::kFloat32),
+                                  outputs, output_vertices(outputs.order));
+}
+
+DeviceBatch ClDeformer::bind(std::size_t instances, const OutputLayout& outputs,
+                             const OutputBuffers& buffers) const {
+  return detail::bind_outputs(impl_->context, layout(instances, NormalFormat::kFloat32), outputs,
+                              buffers, output_vertices(outputs.order));
+}
+
+DeviceBatch ClDeformer::bind_host(std::size_t instances, const OutputLayout& outputs,
+                                  const HostOutputs& host) const {
+  return detail::bind_host_outputs(impl_->context, layout(instances, NormalFormat::kFloat32),
+                                   outputs, host, output_vertices(outputs.order));
+}
+
+void ClDeformer::map_host(DeviceBatch& batch) { detail::map_host_outputs(impl_->context, batch); }
+void ClDeformer::unmap_host(DeviceBatch& batch) {
+  detail::unmap_host_outputs(impl_->context, batch);
+}
+
 cl::Event ClDeformer::enqueue(const ClJob& job, std::vector<cl::Event>* kernel_events) {
   return impl_->enqueue(job, kernel_events, false);
 }
@@ -437,8 +483,10 @@ cl::Event ClDeformer::enqueue(const ClJob& job, std::vector<cl::Event>* kernel_e
 void ClDeformer::check(const ClJob& job) const { impl_->check(job); }
 
 DeformedBatch<float> ClDeformer::read(const DeviceBatch& batch) {
-  DeformedBatch<float> out = detail::read_batch(impl_->context, batch);
-  out.slot_of_vertex = impl_->slot_of_vertex;
+  const VertexOrder order = batch.outputs.order;
+  DeformedBatch<float> out =
+      detail::read_outputs(impl_->context, batch, impl_->output_vertices(order));
+  if (order == VertexOrder::kSlots) out.slot_of_vertex = impl_->slot_of_vertex;
   return out;
 }
 
@@ -454,6 +502,9 @@ double ClDeformer::scratch_records_per_slot() const { return impl_->scratch_reco
 RigPath ClDeformer::automatic_path() const { return impl_->automatic_path; }
 std::size_t ClDeformer::instances_per_item(NormalFormat format) const {
   return impl_->per_item(format);
+}
+std::size_t ClDeformer::instances_per_item(const OutputLayout& outputs) const {
+  return impl_->per_item(outputs);
 }
 
 }  // namespace finflex

@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <map>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -26,6 +27,9 @@ class ClDeformer::Impl {
 
   BatchLayout layout(std::size_t instances, NormalFormat format) const;
   std::size_t per_item(NormalFormat format) const;
+  std::size_t per_item(const OutputLayout& outputs) const;
+  // The outputs' vertex count in `order`: slots, or the mesh's vertices.
+  std::size_t output_vertices(VertexOrder order) const;
 
   Context& context;
   const RiggedMesh model;
@@ -46,6 +50,7 @@ class ClDeformer::Impl {
     std::uint64_t generation = 0;
     cl_mem parameters = nullptr;
     cl_mem placements = nullptr;
+    cl_uint out_layout_argument = 0;  // its index (reset every frame with previous positions)
   };
 
   // A frame's inputs on the device: the deformer's uploads or the job's own buffers.
@@ -81,6 +86,9 @@ class ClDeformer::Impl {
   // up for an older generation get their arguments again.
   std::uint64_t generation_ = 1;
   std::uint64_t validated_serial_ = 0;
+  std::string batch_options_;  // output_build_options() of the batch validated last
+  // Per slot its mesh vertex (0xffffffff for padding): outputs in mesh order.
+  cl::Buffer vertex_of_slot_;
   std::map<detail::KernelVariant, BoundKernel> kernels_;
 
   // The job's fields, its model and its outputs (not its values).
@@ -95,8 +103,9 @@ class ClDeformer::Impl {
                        std::vector<cl::Event>* kernel_events);
   void launch(BoundKernel& bound, const ClJob& job, std::size_t first_group, std::size_t end_group,
               std::vector<cl::Event>* kernel_events, cl::Event* done);
-  void set_arguments(cl::Kernel& kernel, std::size_t index, const ClJob& job,
-                     const FrameInputs& inputs) const;
+  // Returns the index of the out_layout argument.
+  cl_uint set_arguments(cl::Kernel& kernel, std::size_t index, const ClJob& job,
+                        const FrameInputs& inputs) const;
 };
 
 }  // namespace finflex

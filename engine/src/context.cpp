@@ -149,7 +149,7 @@ Context::Context(const std::string& device) {
 
 const std::vector<std::string>& common_kernel_files() {
   static const std::vector<std::string> files = {"common/vec3.cl", "common/trig.cl", "common/secant.cl",
-                                                 "common/planes.cl", "common/stage_frame.cl",
+                                                 "common/planes.cl", "common/outputs.cl", "common/stage_frame.cl",
                                                  "common/placement.cl"};
   return files;
 }

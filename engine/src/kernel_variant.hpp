@@ -1,5 +1,5 @@
 // The build options that specialise a deformation kernel, as one key: kernels are
-// looked up by it every frame (no strings built) and built with options() once.
+// looked up by it every frame and built with options() once.
 #pragma once
 
 #include <cstddef>
@@ -14,23 +14,20 @@ namespace finflex::detail {
 struct KernelVariant {
   std::size_t kernel = 0;  // which kernel of the program (the deformer's numbering)
   NormalMode normals = NormalMode::kRotate;
-  NormalFormat format = NormalFormat::kFloat32;
-  bool tangents = false;
+  std::string outputs;  // output_build_options() of the batch's OutputLayout
   std::size_t instances_per_item = 1;
   bool placement = false;  // world placement as the last stage
 
   bool operator<(const KernelVariant& other) const {
-    return std::tie(kernel, normals, format, tangents, instances_per_item, placement) <
-           std::tie(other.kernel, other.normals, other.format, other.tangents,
-                    other.instances_per_item, other.placement);
+    return std::tie(kernel, normals, outputs, instances_per_item, placement) <
+           std::tie(other.kernel, other.normals, other.outputs, other.instances_per_item,
+                    other.placement);
   }
 
-  // -D options of kernels/common/secant.cl, planes.cl and placement.cl.
+  // -D options of kernels/common/secant.cl, planes.cl, outputs.cl and placement.cl.
   std::string options() const {
     return std::string("-DFF_NORMALS_JACOBIAN=") + (normals == NormalMode::kJacobian ? "1" : "0") +
-           " -DFF_TANGENTS=" + (tangents ? "1" : "0") +
-           " -DFF_HALF_NORMALS=" + (format == NormalFormat::kHalf ? "1" : "0") +
-           " -DFF_INSTANCES_PER_ITEM=" + std::to_string(instances_per_item) +
+           outputs + " -DFF_INSTANCES_PER_ITEM=" + std::to_string(instances_per_item) +
            " -DFF_PLACEMENT=" + (placement ? "1" : "0");
   }
 };

@@ -135,13 +135,16 @@ RestPlanes make_rest_planes(const RiggedMesh& model, const SlotLayout& slots) {
   const std::size_t n = slots.slot_count;
   rest.positions.assign(3 * n, 0.0f);
   rest.normals.assign(3 * n, 0.0f);
-  if (mesh.has_tangents()) rest.tangents.assign(3 * n, 0.0f);
+  if (mesh.has_tangents()) rest.tangents.assign(4 * n, 0.0f);  // x, y, z, handedness
   auto put = [n](std::vector<float>& planes, std::size_t slot, const glm::dvec3& value) {
     for (int c = 0; c < 3; ++c) planes[static_cast<std::size_t>(c) * n + slot] = float(value[c]);
   };
   for (std::size_t slot = 0; slot < n; ++slot) {  // padding: harmless values
     put(rest.normals, slot, glm::dvec3(0.0, 0.0, 1.0));
-    if (!rest.tangents.empty()) put(rest.tangents, slot, glm::dvec3(1.0, 0.0, 0.0));
+    if (!rest.tangents.empty()) {
+      put(rest.tangents, slot, glm::dvec3(1.0, 0.0, 0.0));
+      rest.tangents[3 * n + slot] = 1.0f;
+    }
   }
   for (std::size_t c = 0; c < rig.components.size(); ++c) {
     const std::vector<StageRef>& path = model.paths()[c];
@@ -154,6 +157,7 @@ RestPlanes make_rest_planes(const RiggedMesh& model, const SlotLayout& slots) {
       if (!rest.tangents.empty()) {
         put(rest.tangents, slot,
             first.vector_to_local(glm::normalize(glm::dvec3(mesh.tangents[v]))));
+        rest.tangents[3 * n + slot] = mesh.tangents[v].w;
       }
     }
   }

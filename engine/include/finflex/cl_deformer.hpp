@@ -85,10 +85,32 @@ class FINFLEX_API ClDeformer {
   Context& context() const;
 
   BatchLayout layout(std::size_t instances, NormalFormat format = NormalFormat::kFloat32) const;
-  // Allocates the outputs of `instances` instances, normals and tangents in `format`.
-  // kInvalidArgument for 0, kOutOfRange naming "instances" when one attribute array
-  // would exceed the device's largest allocation.
+  // Allocates the outputs of `instances` instances in FinFlex's planes, normals and
+  // tangents in `format`. kInvalidArgument for 0, kOutOfRange naming "instances" when
+  // one attribute array would exceed the device's largest allocation.
   DeviceBatch allocate(std::size_t instances, NormalFormat format = NormalFormat::kFloat32) const;
+
+  // ---- Hand-off (finflex/output_layout.hpp, docs/handoff.md) ----
+  // The vertices an output layout in `order` covers: the slots (slot_of_vertex(),
+  // padding included) or the mesh's vertices.
+  std::size_t output_vertices(VertexOrder order) const;
+  // FinFlex's planes for `instances` instances as an OutputLayout, to start from.
+  OutputLayout planes_layout(std::size_t instances,
+                             NormalFormat format = NormalFormat::kFloat32) const;
+  // Outputs in any layout: allocated by the deformer (a buffer per attribute), in the
+  // caller's buffers, or in the caller's host memory. Every descriptor and buffer is
+  // checked (validate_output_layout, sizes against OutputLayout::required_bytes):
+  // kInvalidArgument naming the attribute ("outputs.normals.vertex_stride", ...).
+  DeviceBatch allocate(std::size_t instances, const OutputLayout& outputs) const;
+  DeviceBatch bind(std::size_t instances, const OutputLayout& outputs,
+                   const OutputBuffers& buffers) const;
+  DeviceBatch bind_host(std::size_t instances, const OutputLayout& outputs,
+                        const HostOutputs& host) const;
+  // A bind_host batch's frame in the caller's memory: maps its buffers for the host,
+  // blocking until the frame is there (on CPU devices the kernels wrote it there
+  // already: no copy). The next enqueue() on the batch unmaps them; so does unmap_host.
+  void map_host(DeviceBatch& batch);
+  void unmap_host(DeviceBatch& batch);
 
   // Validates the job (ClJob::validate, then: the job's model is this deformer's,
   // and its outputs were allocated for this model with room for its instances:
@@ -101,7 +123,8 @@ class FINFLEX_API ClDeformer {
   // Throws what enqueue() would throw for `job`, and enqueues nothing.
   void check(const ClJob& job) const;
 
-  // Blocking read of a batch; the result's accessors take mesh vertex indices.
+  // Blocking read of a batch in any layout, decoded to float; the result's accessors
+  // take mesh vertex indices.
   DeformedBatch<float> read(const DeviceBatch& batch);
 
   const std::vector<std::uint32_t>& slot_of_vertex() const;
@@ -118,6 +141,7 @@ class FINFLEX_API ClDeformer {
   RigPath automatic_path() const;
   // Instances one work-item deforms for outputs in `format` (ClOptions).
   std::size_t instances_per_item(NormalFormat format) const;
+  std::size_t instances_per_item(const OutputLayout& outputs) const;
 
   // The work-group size along the slots (every plane stride is a multiple of it).
   static constexpr std::size_t kGroupSize = 64;
