@@ -31,7 +31,6 @@ cl_float4 to_cl_float4(const glm::dvec3& v) {
   throw Error(ErrorCode::kInvalidArgument, "job.outputs", "job.outputs: " + message);
 }
 
-
 }  // namespace
 
 // ----------------------------------------------------------------------------------
@@ -68,10 +67,10 @@ ClDeformer::Impl::Impl(Context& context_in, const RiggedMesh& model_in, const Cl
       detail::make_buffer(cl_context, CL_MEM_READ_ONLY, plane_bytes, rest.positions.data());
   rest_normals_ =
       detail::make_buffer(cl_context, CL_MEM_READ_ONLY, plane_bytes, rest.normals.data());
-  rest_tangents_ = tangents_ ? detail::make_buffer(cl_context, CL_MEM_READ_ONLY,
-                                                   rest.tangents.size() * sizeof(float),
-                                                   rest.tangents.data())
-                             : detail::make_buffer(cl_context, CL_MEM_READ_ONLY, sizeof(float));
+  rest_tangents_ =
+      tangents_ ? detail::make_buffer(cl_context, CL_MEM_READ_ONLY,
+                                      rest.tangents.size() * sizeof(float), rest.tangents.data())
+                : detail::make_buffer(cl_context, CL_MEM_READ_ONLY, sizeof(float));
   no_placements_ = detail::make_buffer(cl_context, CL_MEM_READ_ONLY, sizeof(float));
 
   if (single_bend) {
@@ -141,7 +140,7 @@ std::size_t ClDeformer::Impl::per_item(NormalFormat format) const {
 // shape of half normals.
 std::size_t ClDeformer::Impl::per_item(const OutputLayout& outputs) const {
   return per_item(format_bytes(outputs.normals.format) < 12 ? NormalFormat::kHalf
-                                                             : NormalFormat::kFloat32);
+                                                            : NormalFormat::kFloat32);
 }
 
 std::size_t ClDeformer::Impl::output_vertices(VertexOrder order) const {
@@ -173,10 +172,18 @@ void ClDeformer::Impl::check_outputs(const ClJob& job) const {
 // The layout and its buffers, once per batch: a batch put together by hand must hold
 // what its layout says for this model.
 void ClDeformer::Impl::check_buffer_sizes(const DeviceBatch& batch) {
-  if (batch.serial == validated_serial_) return;
+  // Checked again when anything the check read has changed since (a batch edited by
+  // hand keeps its serial).
+  const std::array<cl_mem, 4> buffers = {batch.positions(), batch.normals(), batch.tangents(),
+                                         batch.previous_positions()};
+  if (batch.serial == validated_.serial && batch.outputs == validated_.outputs &&
+      buffers == validated_.buffers && batch.layout.instance_count == validated_.instances) {
+    return;
+  }
   detail::check_outputs(batch, output_vertices(batch.outputs.order), tangents_, "job.outputs");
-  validated_serial_ = batch.serial;
+  validated_ = {batch.serial, batch.outputs, buffers, batch.layout.instance_count};
   batch_options_ = output_build_options(batch.outputs);
+  ++generation_;  // kernels take the batch's arguments again
 }
 
 void ClDeformer::Impl::check_shape(const ClJob& job) const {
@@ -403,9 +410,9 @@ cl::Event ClDeformer::Impl::enqueue(const ClJob& job, std::vector<cl::Event>* ke
       bound.placements = (*inputs.placements)();
     } else if (job.outputs->outputs.previous_positions) {
       // Whether the positions hold a previous frame changes after the first.
-      check_cl(bound.kernel.setArg(bound.out_layout_argument, output_layout_argument(
-                                                       job.outputs->outputs,
-                                                       job.outputs->frames_written > 0)),
+      check_cl(bound.kernel.setArg(
+                   bound.out_layout_argument,
+                   output_layout_argument(job.outputs->outputs, job.outputs->frames_written > 0)),
                "clSetKernelArg out_layout");
     }
     launch(bound, job, first_group, end_group, kernel_events, last ? done : nullptr);

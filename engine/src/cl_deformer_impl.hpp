@@ -75,7 +75,7 @@ class ClDeformer::Impl {
   detail::ParameterUpload upload_;
   detail::ParameterUpload placement_upload_;  // world placement records (16 floats each)
   cl::Buffer no_placements_;                  // the kernels' argument when nothing is placed
-  std::vector<cl::Buffer> scratch_;  // 3 per set: positions, normals, tangents
+  std::vector<cl::Buffer> scratch_;           // 3 per set: positions, normals, tangents
   std::size_t scratch_instances_ = 0;
   // Derived values (DeformerType::derived_count): per instance, written by rig_prepare.
   std::size_t derived_per_instance_ = 0;
@@ -85,7 +85,14 @@ class ClDeformer::Impl {
   // Bumped whenever the parameter buffer or the scratch sets are replaced: kernels set
   // up for an older generation get their arguments again.
   std::uint64_t generation_ = 1;
-  std::uint64_t validated_serial_ = 0;
+  // The batch the last check passed, as it was then.
+  struct ValidatedBatch {
+    std::uint64_t serial = 0;
+    OutputLayout outputs;
+    std::array<cl_mem, 4> buffers{};
+    std::size_t instances = 0;
+  };
+  ValidatedBatch validated_;
   std::string batch_options_;  // output_build_options() of the batch validated last
   // Per slot its mesh vertex (0xffffffff for padding): outputs in mesh order.
   cl::Buffer vertex_of_slot_;

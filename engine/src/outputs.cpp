@@ -32,7 +32,8 @@ std::string output_build_options(const OutputLayout& layout) {
            " -DFF_" + name + "_PACKED=" + (a.arrangement == Arrangement::kPacked ? "1" : "0");
   };
   return attribute("POSITION", layout.positions) + attribute("NORMAL", layout.normals) +
-         attribute("TANGENT", layout.tangent_layout) + attribute("PREVIOUS", layout.previous_layout) +
+         attribute("TANGENT", layout.tangent_layout) +
+         attribute("PREVIOUS", layout.previous_layout) +
          " -DFF_TANGENTS=" + (layout.tangents ? "1" : "0") +
          " -DFF_PREVIOUS=" + (layout.previous_positions ? "1" : "0") +
          " -DFF_MESH_ORDER=" + (layout.order == VertexOrder::kMesh ? "1" : "0");
@@ -83,12 +84,12 @@ template <typename Batch>
 auto attributes_of(Batch& batch) {
   using Buffer = std::conditional_t<std::is_const_v<Batch>, const cl::Buffer, cl::Buffer>;
   const OutputLayout& o = batch.outputs;
-  return std::array<Attribute<Batch, Buffer>, 4>{{
-      {"positions", &o.positions, &batch.positions, true},
-      {"normals", &o.normals, &batch.normals, true},
-      {"tangents", &o.tangent_layout, &batch.tangents, o.tangents},
-      {"previous_positions", &o.previous_layout, &batch.previous_positions,
-       o.previous_positions}}};
+  return std::array<Attribute<Batch, Buffer>, 4>{
+      {{"positions", &o.positions, &batch.positions, true},
+       {"normals", &o.normals, &batch.normals, true},
+       {"tangents", &o.tangent_layout, &batch.tangents, o.tangents},
+       {"previous_positions", &o.previous_layout, &batch.previous_positions,
+        o.previous_positions}}};
 }
 
 // The index of the first attribute with the same host memory as attribute k (k itself
@@ -148,7 +149,8 @@ glm::vec3 decode(const std::vector<unsigned char>& raw, const AttributeLayout& a
                  std::size_t v) {
   const std::size_t scalar = scalar_bytes(a.format);
   const bool packed = a.arrangement == Arrangement::kPacked;
-  const std::size_t first = a.offset + i * a.instance_stride + (packed ? v * a.vertex_stride : v * scalar);
+  const std::size_t first =
+      a.offset + i * a.instance_stride + (packed ? v * a.vertex_stride : v * scalar);
   const std::size_t apart = packed ? scalar : a.plane_stride * scalar;
   auto scalar_at = [&](std::size_t component, auto type) {
     decltype(type) value;
@@ -163,10 +165,12 @@ glm::vec3 decode(const std::vector<unsigned char>& raw, const AttributeLayout& a
       break;
     case AttributeFormat::kFloat16x3:
     case AttributeFormat::kFloat16x4:
-      for (int c = 0; c < 3; ++c) out[c] = half_to_float(scalar_at(std::size_t(c), std::uint16_t{}));
+      for (int c = 0; c < 3; ++c)
+        out[c] = half_to_float(scalar_at(std::size_t(c), std::uint16_t{}));
       break;
     case AttributeFormat::kSnorm16x4:
-      for (int c = 0; c < 3; ++c) out[c] = snorm16_to_float(scalar_at(std::size_t(c), std::int16_t{}));
+      for (int c = 0; c < 3; ++c)
+        out[c] = snorm16_to_float(scalar_at(std::size_t(c), std::int16_t{}));
       break;
     case AttributeFormat::kOctahedral16x2: {
       const std::uint32_t word = scalar_at(0, std::uint32_t{});
@@ -180,8 +184,7 @@ glm::vec3 decode(const std::vector<unsigned char>& raw, const AttributeLayout& a
 
 void read_attribute(Context& context, const cl::Buffer& buffer, const AttributeLayout& a,
                     const BatchLayout& planes, std::size_t vertices, std::vector<float>& out) {
-  std::vector<unsigned char> raw(
-      OutputLayout::required_bytes(a, planes.instance_count, vertices));
+  std::vector<unsigned char> raw(OutputLayout::required_bytes(a, planes.instance_count, vertices));
   check_cl(context.queue().enqueueReadBuffer(buffer, CL_TRUE, 0, raw.size(), raw.data()),
            "clEnqueueReadBuffer outputs");
   for (std::size_t i = 0; i < planes.instance_count; ++i) {
@@ -213,14 +216,16 @@ void check_outputs(const DeviceBatch& batch, std::size_t vertices, bool mesh_tan
   if (outputs.tangents && !mesh_tangents) fail(field + ".tangents", "the mesh has no tangents");
   const auto attributes = attributes_of(batch);
   std::uintptr_t ids[4];
-  for (std::size_t k = 0; k < 4; ++k) ids[k] = reinterpret_cast<std::uintptr_t>((*attributes[k].buffer)());
+  for (std::size_t k = 0; k < 4; ++k)
+    ids[k] = reinterpret_cast<std::uintptr_t>((*attributes[k].buffer)());
   try {
     validate_output_layout(outputs, batch.layout.instance_count, vertices, ids);
   } catch (const Error& e) {
     // "outputs.normals..." under the caller's name for the batch.
     const std::string inner = e.field().rfind("outputs", 0) == 0 ? e.field().substr(7) : e.field();
     const std::string what = e.what();
-    const std::string message = what.rfind(e.field(), 0) == 0 ? what.substr(e.field().size()) : ": " + what;
+    const std::string message =
+        what.rfind(e.field(), 0) == 0 ? what.substr(e.field().size()) : ": " + what;
     throw Error(e.code(), field + inner, field + inner + message);
   }
   for (const auto& a : attributes) {
@@ -230,9 +235,9 @@ void check_outputs(const DeviceBatch& batch, std::size_t vertices, bool mesh_tan
     const std::size_t have = buffer_bytes(*a.buffer);
     if (have < need) {
       fail(field + "." + a.name, "the buffer holds " + std::to_string(have) + " bytes, " +
-                                     std::to_string(batch.layout.instance_count) + " instances of " +
-                                     std::to_string(vertices) + " vertices in this layout need " +
-                                     std::to_string(need));
+                                     std::to_string(batch.layout.instance_count) +
+                                     " instances of " + std::to_string(vertices) +
+                                     " vertices in this layout need " + std::to_string(need));
     }
   }
 }
@@ -242,12 +247,14 @@ DeviceBatch allocate_outputs(Context& context, const BatchLayout& counts,
   if (counts.instance_count == 0) {
     throw Error(ErrorCode::kInvalidArgument, "instances", "instances = 0: at least one is needed");
   }
+  if (outputs.tangents && !counts.tangents) fail("outputs.tangents", "the mesh has no tangents");
   validate_output_layout(outputs, counts.instance_count, vertices);
   DeviceBatch batch = new_batch(context, counts, outputs);
   const DeviceDescription& device = context.description();
   for (const auto& a : attributes_of(batch)) {
     if (!a.used) continue;
-    const std::size_t bytes = OutputLayout::required_bytes(*a.layout, counts.instance_count, vertices);
+    const std::size_t bytes =
+        OutputLayout::required_bytes(*a.layout, counts.instance_count, vertices);
     if (bytes > device.max_allocation_bytes) {
       throw Error(ErrorCode::kOutOfRange, "instances",
                   "instances = " + std::to_string(counts.instance_count) + " needs " +
@@ -296,7 +303,8 @@ DeviceBatch bind_host_outputs(Context& context, const BatchLayout& counts,
         if (given[earlier].second != given[k].second) {
           fail(field + "_bytes", "the same memory as " + std::string(attributes[earlier].name) +
                                      " with another size (" + std::to_string(given[k].second) +
-                                     " bytes against " + std::to_string(given[earlier].second) + ")");
+                                     " bytes against " + std::to_string(given[earlier].second) +
+                                     ")");
         }
         *buffer = *attributes[earlier].buffer;  // one buffer for interleaved attributes
       }
@@ -317,8 +325,8 @@ void map_host_outputs(Context& context, DeviceBatch& batch) {
     if (!batch.host[k] || first_with_memory(batch, k) != k) continue;
     cl_int status = CL_SUCCESS;
     const std::size_t bytes = buffer_bytes(*attributes[k].buffer);
-    context.queue().enqueueMapBuffer(*attributes[k].buffer, CL_TRUE, CL_MAP_READ, 0, bytes,
-                                     nullptr, nullptr, &status);
+    context.queue().enqueueMapBuffer(*attributes[k].buffer, CL_TRUE, CL_MAP_READ, 0, bytes, nullptr,
+                                     nullptr, &status);
     check_cl(status, "clEnqueueMapBuffer (host outputs)");
   }
   batch.host_mapped = true;
@@ -347,7 +355,8 @@ DeformedBatch<float> read_outputs(Context& context, const DeviceBatch& batch,
   const OutputLayout& o = batch.outputs;
   read_attribute(context, batch.positions, o.positions, planes, vertices, out.positions);
   read_attribute(context, batch.normals, o.normals, planes, vertices, out.normals);
-  if (o.tangents) read_attribute(context, batch.tangents, o.tangent_layout, planes, vertices, out.tangents);
+  if (o.tangents)
+    read_attribute(context, batch.tangents, o.tangent_layout, planes, vertices, out.tangents);
   if (o.previous_positions) {
     out.previous_positions.assign(planes.attribute_elements(), 0.0f);
     read_attribute(context, batch.previous_positions, o.previous_layout, planes, vertices,

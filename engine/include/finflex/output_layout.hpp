@@ -67,6 +67,13 @@ struct AttributeLayout {
                                 std::size_t instance_stride = 0);
 };
 
+inline bool operator==(const AttributeLayout& a, const AttributeLayout& b) {
+  return a.format == b.format && a.arrangement == b.arrangement && a.offset == b.offset &&
+         a.vertex_stride == b.vertex_stride && a.plane_stride == b.plane_stride &&
+         a.instance_stride == b.instance_stride;
+}
+inline bool operator!=(const AttributeLayout& a, const AttributeLayout& b) { return !(a == b); }
+
 // Which vertex index the outputs use: the deformer's slots (a rig reorders vertices so
 // each component is contiguous, with padding: draw with ClDeformer::remapped_indices();
 // the fastest) or the mesh's own order (draw with the mesh's index buffer; padding
@@ -76,12 +83,12 @@ FINFLEX_API const char* to_string(VertexOrder order);
 
 struct OutputLayout {
   VertexOrder order = VertexOrder::kSlots;
-  AttributeLayout positions;           // kFloat32x3 or kFloat32x4
+  AttributeLayout positions;  // kFloat32x3 or kFloat32x4
   AttributeLayout normals;
-  bool tangents = false;               // written (the mesh must have them)
+  bool tangents = false;  // written (the mesh must have them)
   AttributeLayout tangent_layout;
-  bool previous_positions = false;     // each frame's positions before it (motion vectors)
-  AttributeLayout previous_layout;     // kFloat32x3 or kFloat32x4
+  bool previous_positions = false;  // each frame's positions before it (motion vectors)
+  AttributeLayout previous_layout;  // kFloat32x3 or kFloat32x4
 
   // The bytes a buffer needs to hold `attribute` for `instances` instances of
   // `vertices` vertices (slots or mesh vertices, as `order` says): the end of its last
@@ -89,6 +96,13 @@ struct OutputLayout {
   static std::size_t required_bytes(const AttributeLayout& attribute, std::size_t instances,
                                     std::size_t vertices);
 };
+
+inline bool operator==(const OutputLayout& a, const OutputLayout& b) {
+  return a.order == b.order && a.positions == b.positions && a.normals == b.normals &&
+         a.tangents == b.tangents && a.tangent_layout == b.tangent_layout &&
+         a.previous_positions == b.previous_positions && a.previous_layout == b.previous_layout;
+}
+inline bool operator!=(const OutputLayout& a, const OutputLayout& b) { return !(a == b); }
 
 // Checks `layout` for `instances` instances of `vertices` vertices: every attribute's
 // format allowed for it, offsets and strides multiples of the format's scalar, strides
