@@ -241,5 +241,7 @@ Image Renderer::read_image() {
 }
 
 void Renderer::make_current() { impl_->egl.make_current(); }
+void* Renderer::egl_display() const { return impl_->egl.display(); }
+void* Renderer::egl_context() const { return impl_->egl.context(); }
 
 }  // namespace finflex::render

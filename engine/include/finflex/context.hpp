@@ -53,12 +53,18 @@ class FINFLEX_API Context {
   // device or platform name ("pocl", "H100"). The first match wins. Throws kDevice
   // naming the value when nothing matches or no OpenCL platform exists.
   explicit Context(const std::string& device = "");
+  // The same with context properties after CL_CONTEXT_PLATFORM (pairs, without the
+  // closing 0), e.g. an OpenGL context to share buffers with (finflex/gl_outputs.hpp):
+  // kOpenCL when the platform refuses them.
+  Context(const std::string& device, const std::vector<cl_context_properties>& extra_properties);
   Context(const Context&) = delete;
   Context& operator=(const Context&) = delete;
 
   const DeviceDescription& description() const { return description_; }
   const cl::Device& device() const { return device_; }
   const cl::Context& context() const { return context_; }
+  // The extra context properties it was made with (pairs; empty for none).
+  const std::vector<cl_context_properties>& extra_properties() const { return extra_properties_; }
   cl::CommandQueue& queue() { return queue_; }
 
   // The program of `source`, built once per (source, options) and cached. Every build
@@ -74,6 +80,7 @@ class FINFLEX_API Context {
   cl::Device device_;
   cl::Context context_;
   cl::CommandQueue queue_;
+  std::vector<cl_context_properties> extra_properties_;
   std::mutex cache_mutex_;
   std::map<std::string, cl::Program> programs_;
 };

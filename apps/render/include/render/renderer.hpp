@@ -104,6 +104,11 @@ class Renderer {
   // Makes the context current on the calling thread.
   void make_current();
 
+  // The EGL display and context (EGLDisplay, EGLContext), e.g. for an OpenCL context
+  // that shares this context's buffers (finflex/gl_outputs.hpp).
+  void* egl_display() const;
+  void* egl_context() const;
+
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
