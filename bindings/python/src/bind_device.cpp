@@ -27,10 +27,6 @@ std::uintptr_t handle_of(const cl::Buffer& buffer) {
   return reinterpret_cast<std::uintptr_t>(buffer());
 }
 
-const char* const kParametersDoc =
-    "parameters: float32 (instances, model.values_per_instance) with contiguous rows (not "
-    "copied), or a finflex.Parameters";
-
 }  // namespace
 
 void bind_device(nb::module_& m) {
@@ -226,7 +222,6 @@ void bind_device(nb::module_& m) {
               "bool = False) -> Outputs"),
       "The CPU reference (double precision, the tests' oracle) of the same job: Outputs "
       "with float64 (instances, vertices, 3) arrays in mesh vertex order.");
-  (void)kParametersDoc;
 }
 
 }  // namespace finflex::python
