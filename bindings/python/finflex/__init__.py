@@ -17,3 +17,4 @@ Errors raise finflex.Error, with the library's message, its code ("out_of_range"
 
 from ._finflex import *  # noqa: F401,F403
 from ._finflex import __version__  # noqa: F401
+from ._pyopencl import PyOpenCLBatch, pyopencl_batch  # noqa: F401
