@@ -1,13 +1,14 @@
 """Python call overhead of one frame: Deformer.enqueue with 4,000 instances'
-parameters in (a float32 numpy array, not copied) and an Event out, timed around the
-call with the device idle, as bench_deform's BM_HostOverhead times ClDeformer::enqueue
-in C++ (the same mesh, bend and normals). The difference is the Python overhead.
+parameters in (a float32 numpy array, not copied, or a finflex.Parameters) and an
+Event out, timed around the call with the device idle, against the same loop in C++
+(bench/host_overhead.cpp: ClDeformer::enqueue, the same mesh, bend and normals, as
+bench_deform's BM_HostOverhead). The difference is the Python overhead.
 
     PYTHONPATH=build/bindings/python python3 bench/python_overhead.py \
-        [--frames 400] [--instances 4000] [--device NAME] [--cpp build/bench/bench_deform]
+        [--frames 400] [--instances 4000] [--device NAME] [--cpp build/bench/bench_host_overhead]
 
-With --cpp, also runs BM_HostOverhead (median of its repetitions) in a child process.
-Prints one JSON object.
+The two loops alternate (--rounds, default 3) and each reports its median; prints one
+JSON object.
 """
 
 import argparse
@@ -41,19 +42,15 @@ def python_enqueue_seconds(frames, instances, device, source):
         done = deformer.enqueue(parameters, batch)
         times.append(time.perf_counter() - start)
         done.wait()
+        del done  # released outside the timed call, as the C++ loop's event
     return times
 
 
-def cpp_enqueue_seconds(binary, repetitions):
-    out = subprocess.run(
-        [binary, "--benchmark_filter=BM_HostOverhead/4000", "--benchmark_format=json",
-         f"--benchmark_repetitions={repetitions}", "--benchmark_report_aggregates_only=true"],
-        check=True, capture_output=True, text=True).stdout
-    runs = json.loads(out)["benchmarks"]
-    median = next(b for b in runs if b.get("aggregate_name") == "median")
-    mean = next(b for b in runs if b.get("aggregate_name") == "mean")
-    scale = {"us": 1e-6, "ms": 1e-3, "ns": 1e-9, "s": 1.0}[median["time_unit"]]
-    return median["real_time"] * scale, mean["real_time"] * scale
+def cpp_enqueue_us(binary, frames, instances, device):
+    mesh = str(ROOT / "data" / "blub" / "fish.obj")
+    out = subprocess.run([binary, str(frames), str(instances), device, mesh],
+                         check=True, capture_output=True, text=True).stdout
+    return json.loads(out)["median_us"]
 
 
 def main():
@@ -61,21 +58,28 @@ def main():
     parser.add_argument("--frames", type=int, default=400)
     parser.add_argument("--instances", type=int, default=4000)
     parser.add_argument("--device", default="")
-    parser.add_argument("--cpp", help="bench_deform, to run BM_HostOverhead/4000 beside")
-    parser.add_argument("--repetitions", type=int, default=10)
+    parser.add_argument("--cpp", help="bench_host_overhead, to run the C++ loop beside")
+    parser.add_argument("--rounds", type=int, default=3)
     args = parser.parse_args()
 
     result = {"instances": args.instances, "frames": args.frames,
-              "device": finflex.Context(args.device).device.device_name}
-    for source in ("array", "Parameters"):
-        t = python_enqueue_seconds(args.frames, args.instances, args.device, source)
-        result[f"python_{source}_median_us"] = statistics.median(t) * 1e6
-        result[f"python_{source}_mean_us"] = statistics.fmean(t) * 1e6
+              "device": finflex.Context(args.device).device.device_name,
+              "python_array_median_us": [], "python_Parameters_median_us": []}
     if args.cpp:
-        median, mean = cpp_enqueue_seconds(args.cpp, args.repetitions)
-        result["cpp_median_us"] = median * 1e6
-        result["cpp_mean_us"] = mean * 1e6
-        result["python_overhead_median_us"] = result["python_array_median_us"] - median * 1e6
+        result["cpp_median_us"] = []
+    for _ in range(args.rounds):
+        if args.cpp:
+            result["cpp_median_us"].append(
+                cpp_enqueue_us(args.cpp, args.frames, args.instances, args.device))
+        for source in ("array", "Parameters"):
+            t = python_enqueue_seconds(args.frames, args.instances, args.device, source)
+            result[f"python_{source}_median_us"].append(statistics.median(t) * 1e6)
+    if args.cpp:
+        result["python_overhead_us"] = [
+            round(p - c, 2) for p, c in zip(result["python_array_median_us"], result["cpp_median_us"])]
+    for key, value in result.items():
+        if isinstance(value, list):
+            result[key] = [round(v, 2) for v in value]
     print(json.dumps(result, indent=1))
 
 

@@ -60,7 +60,7 @@ std::vector<T> copy_rows(nb::handle object, const char* name, std::size_t column
 
 }  // namespace
 
-ParameterView parameter_view(nb::handle parameters, const RiggedMesh& model) {
+ParameterArgument::ParameterArgument(nb::handle parameters, const RiggedMesh& model) {
   const std::size_t values = model.values_per_instance();
   if (nb::isinstance<PyParameters>(parameters)) {
     const PyParameters& p = nb::cast<const PyParameters&>(parameters);
@@ -69,35 +69,51 @@ ParameterView parameter_view(nb::handle parameters, const RiggedMesh& model) {
                                std::to_string(p.values.values_per_instance()) +
                                " values per instance, the model reads " + std::to_string(values));
     }
-    return p.values.view();
+    view_ = p.values.view();
+    return;
   }
   const std::string expected = "a float32 array of shape (instances, " + std::to_string(values) +
                                ") with contiguous rows, or a finflex.Parameters";
-  const AnyArray array = as_array(parameters, "parameters", expected);
-  if (array.dtype() != nb::dtype<float>()) {
+  // The buffer protocol: the cheapest way to a numpy array's memory (a frame's call).
+  if (PyObject_GetBuffer(parameters.ptr(), &buffer_, PyBUF_RECORDS_RO) != 0) {
+    PyErr_Clear();
+    reject("parameters", "parameters: expected " + expected + ", got " + describe(parameters));
+  }
+  held_ = true;
+  const std::string format = buffer_.format == nullptr ? "B" : buffer_.format;
+  const bool is_float32 = buffer_.itemsize == 4 &&
+                          (format == "f" || format == "<f" || format == "=f" || format == "@f");
+  if (!is_float32) {
     reject("parameters", "parameters: expected " + expected + ", got " + describe(parameters) +
                              " (convert with .astype(numpy.float32))");
   }
-  if (array.ndim() != 2 || array.shape(1) != values) {
+  if (buffer_.ndim != 2 || static_cast<std::size_t>(buffer_.shape[1]) != values) {
     reject("parameters", "parameters: expected " + expected + ", got " + describe(parameters) +
                              " (the model's parameters: " + std::to_string(values) +
                              " values per instance)");
   }
-  const std::size_t instances = array.shape(0);
-  const bool rows_contiguous = values <= 1 || array.stride(1) == 1;
-  const bool rows_apart = instances <= 1 || array.stride(0) >= static_cast<std::int64_t>(values);
+  const std::size_t instances = static_cast<std::size_t>(buffer_.shape[0]);
+  const Py_ssize_t row_bytes = static_cast<Py_ssize_t>(4 * values);
+  const bool rows_contiguous = values <= 1 || buffer_.strides[1] == 4;
+  const bool rows_apart =
+      instances <= 1 || (buffer_.strides[0] >= row_bytes && buffer_.strides[0] % 4 == 0);
   if (!rows_contiguous || !rows_apart) {
     reject("parameters", "parameters: expected " + expected + ", got " + describe(parameters) +
                              ": each row's values must be adjacent and rows must not overlap "
                              "(copy with numpy.ascontiguousarray)");
   }
-  if (reinterpret_cast<std::uintptr_t>(array.data()) % alignof(float) != 0) {
+  if (reinterpret_cast<std::uintptr_t>(buffer_.buf) % alignof(float) != 0) {
     reject("parameters",
            "parameters: the array's data is not aligned to 4 bytes (copy with "
            "numpy.ascontiguousarray)");
   }
-  const std::size_t stride = instances <= 1 ? values : static_cast<std::size_t>(array.stride(0));
-  return ParameterView{static_cast<const float*>(array.data()), instances, stride};
+  const std::size_t stride =
+      instances <= 1 ? values : static_cast<std::size_t>(buffer_.strides[0] / 4);
+  view_ = ParameterView{static_cast<const float*>(buffer_.buf), instances, stride};
+}
+
+ParameterArgument::~ParameterArgument() {
+  if (held_) PyBuffer_Release(&buffer_);
 }
 
 std::vector<float> float_rows(nb::handle array, const char* name, std::size_t columns) {

@@ -14,10 +14,10 @@ namespace finflex::python {
 namespace {
 
 template <typename Job>
-void describe_job(Job& job, const RiggedMesh& model, nb::handle parameters,
+void describe_job(Job& job, const RiggedMesh& model, const ParameterArgument& parameters,
                   const std::string& normals, bool clamp, const std::string& path) {
   job.model = &model;
-  job.parameters = parameter_view(parameters, model);
+  job.parameters = parameters.view();
   job.normals = parse_normal_mode(normals);
   job.clamp = clamp;
   job.path = parse_rig_path(path);
@@ -148,8 +148,9 @@ void bind_device(nb::module_& m) {
           "enqueue",
           [](PyDeformer& d, nb::handle parameters, PyBatch& batch, const std::string& normals,
              bool clamp, const std::string& path, const std::vector<const PyEvent*>& wait) {
+            const ParameterArgument rows(parameters, *d.model);
             ClJob job;
-            describe_job(job, *d.model, parameters, normals, clamp, path);
+            describe_job(job, *d.model, rows, normals, clamp, path);
             job.outputs = &batch.batch;
             std::vector<cl::Event> events;
             for (const PyEvent* e : wait) events.push_back(e->event);
@@ -205,9 +206,10 @@ void bind_device(nb::module_& m) {
   m.def(
       "deform_reference",
       [](const PyModel& model, nb::handle parameters, const std::string& normals, bool clamp) {
+        const ParameterArgument rows(parameters, *model.model);
         DeformedBatch<double> out;
         ReferenceJob job;
-        describe_job(job, *model.model, parameters, normals, clamp, "auto");
+        describe_job(job, *model.model, rows, normals, clamp, "auto");
         job.outputs = &out;
         {
           nb::gil_scoped_release release;
