@@ -11,7 +11,7 @@ packages=(
   pocl-opencl-icd ocl-icd-opencl-dev opencl-c-headers opencl-clhpp-headers clinfo
   libglm-dev libopenmesh-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev libstb-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  python3 python3-dev python3-pip python3-venv python3-numpy python3-pytest
+  python3 python3-dev python3-pip python3-venv python3-numpy python3-pytest python3-pyopencl
 )
 
 missing=()
