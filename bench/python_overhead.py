@@ -1,6 +1,6 @@
 """Python call overhead of one frame: Deformer.enqueue with 4,000 instances'
 parameters in (a float32 numpy array, not copied, or a finflex.Parameters) and an
-Event out, timed around the call with the device idle, against the same loop in C++
+Event out, through Deformer.enqueue and through a Job (Deformer.job, described once), timed around the call with the device idle, against the same loop in C++
 (bench/host_overhead.cpp: ClDeformer::enqueue, the same mesh, bend and normals, as
 bench_deform's BM_HostOverhead). The difference is the Python overhead.
 
@@ -25,7 +25,7 @@ import finflex
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 
 
-def python_enqueue_seconds(frames, instances, device, source):
+def python_enqueue_seconds(frames, instances, device, source, call):
     mesh = finflex.load_mesh(str(ROOT / "data" / "blub" / "fish.obj"))
     model = finflex.Model.single_bend(mesh, mode="paper")
     deformer = finflex.Deformer(finflex.Context(device), model)
@@ -36,11 +36,17 @@ def python_enqueue_seconds(frames, instances, device, source):
         parameters = finflex.Parameters(model, instances)
         parameters.values[:] = 0.1
     deformer.enqueue(parameters, batch).wait()
+    job = deformer.job(batch)
     times = []
     for _ in range(frames):
-        start = time.perf_counter()
-        done = deformer.enqueue(parameters, batch)
-        times.append(time.perf_counter() - start)
+        if call == "job":
+            start = time.perf_counter()
+            done = job.enqueue(parameters)
+            times.append(time.perf_counter() - start)
+        else:
+            start = time.perf_counter()
+            done = deformer.enqueue(parameters, batch)
+            times.append(time.perf_counter() - start)
         done.wait()
         del done  # released outside the timed call, as the C++ loop's event
     return times
@@ -64,19 +70,18 @@ def main():
 
     result = {"instances": args.instances, "frames": args.frames,
               "device": finflex.Context(args.device).device.device_name,
-              "python_array_median_us": [], "python_Parameters_median_us": []}
+              **{f"python_{call}_{source}_median_us": [] for call in ("enqueue", "job")
+                 for source in ("array", "Parameters")}}
     if args.cpp:
         result["cpp_median_us"] = []
     for _ in range(args.rounds):
         if args.cpp:
             result["cpp_median_us"].append(
                 cpp_enqueue_us(args.cpp, args.frames, args.instances, args.device))
-        for source in ("array", "Parameters"):
-            t = python_enqueue_seconds(args.frames, args.instances, args.device, source)
-            result[f"python_{source}_median_us"].append(statistics.median(t) * 1e6)
-    if args.cpp:
-        result["python_overhead_us"] = [
-            round(p - c, 2) for p, c in zip(result["python_array_median_us"], result["cpp_median_us"])]
+        for call in ("enqueue", "job"):
+            for source in ("array", "Parameters"):
+                t = python_enqueue_seconds(args.frames, args.instances, args.device, source, call)
+                result[f"python_{call}_{source}_median_us"].append(statistics.median(t) * 1e6)
     for key, value in result.items():
         if isinstance(value, list):
             result[key] = [round(v, 2) for v in value]

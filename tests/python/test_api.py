@@ -83,6 +83,13 @@ def test_deformer_frames_events_and_files(context, bend, rigged, tmp):
     second.wait()
     assert first.complete and second.complete
     out = deformer.read(batch)
+    # A job described once gives the same frames.
+    job = deformer.job(batch, normals="jacobian", path="fused")
+    assert job.batch is batch
+    job.enqueue(np.zeros_like(values)).wait()
+    assert not np.array_equal(deformer.read(batch).positions, out.positions)
+    job.enqueue(values, wait=[second]).wait()
+    np.testing.assert_array_equal(deformer.read(batch).positions, out.positions)
     assert out.instance_count == 4 and out.vertex_count == 945 and out.tangents is None
     slots = deformer.slot_of_vertex
     assert len(slots) == 945 and len(set(slots)) == 945

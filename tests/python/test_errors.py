@@ -72,6 +72,13 @@ def test_library_errors(context, mesh, bend, rigged, tmp):
     other = finflex.Deformer(context, rigged).allocate(3)
     with raises("invalid_argument", "job.outputs"):
         deformer.enqueue(np.zeros((3, 1), np.float32), other)
+    with raises("invalid_argument", "normals", "sideways"):
+        deformer.job(batch, normals="sideways")
+    job = deformer.job(batch)
+    with raises("out_of_range", "m[0]"):
+        job.enqueue(np.full((3, 1), 9.0, np.float32))
+    with raises("invalid_argument", "parameters", "float64"):
+        job.enqueue(np.zeros((3, 1)))
     with raises("invalid_argument", "attribute", "tangents"):
         batch.cl_buffer("tangents")
     with raises("invalid_argument", "instance"):

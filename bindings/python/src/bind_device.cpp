@@ -8,20 +8,11 @@
 #include <nanobind/stl/vector.h>
 
 #include "arrays.hpp"
+#include "job.hpp"
 #include "outputs.hpp"
 
 namespace finflex::python {
 namespace {
-
-template <typename Job>
-void describe_job(Job& job, const RiggedMesh& model, const ParameterArgument& parameters,
-                  const std::string& normals, bool clamp, const std::string& path) {
-  job.model = &model;
-  job.parameters = parameters.view();
-  job.normals = parse_normal_mode(normals);
-  job.clamp = clamp;
-  job.path = parse_rig_path(path);
-}
 
 std::uintptr_t handle_of(const cl::Buffer& buffer) {
   return reinterpret_cast<std::uintptr_t>(buffer());
@@ -146,33 +137,36 @@ void bind_device(nb::module_& m) {
           "'half'.")
       .def(
           "enqueue",
-          [](PyDeformer& d, nb::handle parameters, PyBatch& batch, const std::string& normals,
-             bool clamp, const std::string& path, const std::vector<const PyEvent*>& wait) {
-            const ParameterArgument rows(parameters, *d.model);
-            ClJob job;
-            describe_job(job, *d.model, rows, normals, clamp, path);
-            job.outputs = &batch.batch;
-            std::vector<cl::Event> events;
-            for (const PyEvent* e : wait) events.push_back(e->event);
-            if (!events.empty()) job.wait = &events;
-            PyEvent done;
-            {
-              nb::gil_scoped_release release;
-              done.event = d.deformer->enqueue(job);
-            }
-            return done;
+          [](nb::handle_t<PyDeformer> self, nb::handle parameters, nb::handle_t<PyBatch> batch,
+             const std::string& normals, bool clamp, const std::string& path, nb::handle wait) {
+            PyDeformer& d = nb::cast<PyDeformer&>(self);
+            ClJob job = describe_frames(d, nb::cast<PyBatch&>(batch), normals, clamp, path);
+            return enqueue_frame(d, job, parameters, wait);
           },
           nb::arg("parameters"), nb::arg("batch"), nb::arg("normals") = "rotate",
-          nb::arg("clamp") = false, nb::arg("path") = "auto",
-          nb::arg("wait") = std::vector<const PyEvent*>{},
+          nb::arg("clamp") = false, nb::arg("path") = "auto", nb::arg("wait") = nb::none(),
           nb::sig("def enqueue(self, parameters: numpy.typing.NDArray[numpy.float32] | "
                   "Parameters, batch: Batch, normals: str = 'rotate', clamp: bool = False, path: "
-                  "str = 'auto', wait: collections.abc.Sequence[Event] = []) -> Event"),
+                  "str = 'auto', wait: collections.abc.Sequence[Event] | None = None) -> Event"),
           "Checks the parameters against the rig's limits (finflex.Error naming e.g. 'm[3]' "
           "and the value; nothing is enqueued on error), uploads them and enqueues the "
           "kernels after the `wait` events. Returns without waiting: the frame's event.\n"
-          "normals: 'rotate' (the paper's (8)) or 'jacobian' (exact); clamp: clamp values "
-          "into their range instead of an error; path: 'auto', 'fused' or 'passes'.")
+          "parameters: float32 (instances, values_per_instance) with contiguous rows (not "
+          "copied), or a finflex.Parameters; normals: 'rotate' (the paper's (8)) or "
+          "'jacobian' (exact); clamp: clamp values into their range instead of an error; "
+          "path: 'auto', 'fused' or 'passes'.")
+      .def(
+          "job",
+          [](nb::handle_t<PyDeformer> self, nb::handle_t<PyBatch> batch, const std::string& normals,
+             bool clamp, const std::string& path) {
+            return PyJob{nb::borrow(self), nb::borrow(batch),
+                         describe_frames(nb::cast<const PyDeformer&>(self),
+                                         nb::cast<PyBatch&>(batch), normals, clamp, path)};
+          },
+          nb::arg("batch"), nb::arg("normals") = "rotate", nb::arg("clamp") = false,
+          nb::arg("path") = "auto",
+          "A Job into `batch` with these settings, for a frame loop: job.enqueue(parameters) "
+          "is enqueue() with the least work per call.")
       .def(
           "read",
           [](PyDeformer& d, const PyBatch& batch) {
@@ -209,7 +203,10 @@ void bind_device(nb::module_& m) {
         const ParameterArgument rows(parameters, *model.model);
         DeformedBatch<double> out;
         ReferenceJob job;
-        describe_job(job, *model.model, rows, normals, clamp, "auto");
+        job.model = model.model.get();
+        job.parameters = rows.view();
+        job.normals = parse_normal_mode(normals);
+        job.clamp = clamp;
         job.outputs = &out;
         {
           nb::gil_scoped_release release;

@@ -12,4 +12,5 @@ NB_MODULE(_finflex, m) {
   bind_model(m);
   bind_outputs(m);
   bind_device(m);
+  bind_job(m);
 }
