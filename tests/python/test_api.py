@@ -86,6 +86,7 @@ def test_deformer_frames_events_and_files(context, bend, rigged, tmp):
     # A job described once gives the same frames.
     job = deformer.job(batch, normals="jacobian", path="fused")
     assert job.batch is batch
+    assert first.enqueue_seconds > 0
     job.enqueue(np.zeros_like(values)).wait()
     assert not np.array_equal(deformer.read(batch).positions, out.positions)
     job.enqueue(values, wait=[second]).wait()

@@ -86,7 +86,10 @@ void bind_device(nb::module_& m) {
             if (status < 0) check_cl(status, "the event's command");
             return status == CL_COMPLETE;
           },
-          "True once the work is done (does not block).");
+          "True once the work is done (does not block).")
+      .def_ro("enqueue_seconds", &PyEvent::enqueue_seconds,
+              "Host time the library's enqueue took inside the call that made this event "
+              "(the call's own time minus this is the Python binding's overhead).");
 
   nb::class_<PyBatch>(m, "Batch",
                       "Device outputs of a number of instances: positions, normals (and "

@@ -1,6 +1,8 @@
 // finflex.Job: a deformer's job for one batch, described once (normals, clamp, path)
 // and enqueued every frame with new parameters: the frame loop's call, with the least
 // work per call (the C++ ClJob reused the same way).
+#include <chrono>
+
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/vector.h>
 
@@ -20,7 +22,10 @@ PyEvent enqueue_frame(PyDeformer& deformer, ClJob& job, nb::handle parameters, n
   PyEvent done;
   {
     nb::gil_scoped_release release;
+    const auto start = std::chrono::steady_clock::now();
     done.event = deformer.deformer->enqueue(job);
+    done.enqueue_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   job.wait = nullptr;
   return done;
@@ -50,7 +55,10 @@ void bind_job(nb::module_& m) {
           nb::sig("def enqueue(self, parameters: numpy.typing.NDArray[numpy.float32] | "
                   "Parameters, wait: collections.abc.Sequence[Event] | None = None) -> Event"),
           "Deformer.enqueue with this job's batch and settings.")
-      .def_prop_ro("batch", [](const PyJob& j) { return j.batch; });
+      .def_prop_ro(
+          "batch",
+          [](const PyJob& j) -> const PyBatch& { return nb::cast<const PyBatch&>(j.batch); },
+          nb::rv_policy::reference_internal, "The batch the job writes.");
 }
 
 }  // namespace finflex::python

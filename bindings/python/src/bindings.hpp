@@ -41,6 +41,9 @@ struct PyBatch {
 
 struct PyEvent {
   cl::Event event;
+  // Host time of the library's enqueue (ClDeformer::enqueue) inside the Python call
+  // that made the event: the call's time minus this is the binding's overhead.
+  double enqueue_seconds = 0.0;
 };
 
 // Throws finflex::Error (kInvalidArgument) naming `field`: raised in Python as
