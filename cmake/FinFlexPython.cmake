@@ -1,5 +1,5 @@
 # Finds what the Python module (bindings/python) needs: the Python interpreter with its
-# development files and numpy's headers, and nanobind. Sets FINFLEX_PYTHON_FOUND.
+# development files, and nanobind. Sets FINFLEX_PYTHON_FOUND.
 #
 # Without Python_EXECUTABLE given (scikit-build-core gives it), the interpreter is the
 # `python3` on PATH: the one scripts/install-deps.sh installs nanobind, numpy and
@@ -16,7 +16,7 @@ if(NOT DEFINED Python_EXECUTABLE)
 endif()
 
 set(FINFLEX_PYTHON_FOUND OFF)
-find_package(Python 3.8 COMPONENTS Interpreter Development.Module NumPy QUIET)
+find_package(Python 3.8 COMPONENTS Interpreter Development.Module QUIET)
 if(Python_FOUND)
   execute_process(COMMAND ${Python_EXECUTABLE} -m nanobind --cmake_dir
     OUTPUT_VARIABLE _nanobind_dir OUTPUT_STRIP_TRAILING_WHITESPACE

@@ -1,12 +1,6 @@
 // numpy arrays in: checks and views.
 #include "arrays.hpp"
 
-// numpy's C API, for the frame's parameter array (its fields are read directly: the
-// cheapest way in); this file imports it (import_numpy).
-#define NPY_NO_DEPRECATED_API NPY_1_7_API_VERSION
-#define PY_ARRAY_UNIQUE_SYMBOL finflex_numpy_api
-#include <numpy/arrayobject.h>
-
 #include <string>
 
 #include <nanobind/ndarray.h>
@@ -66,10 +60,6 @@ std::vector<T> copy_rows(nb::handle object, const char* name, std::size_t column
 
 }  // namespace
 
-void import_numpy() {
-  if (_import_array() < 0) throw nb::python_error();
-}
-
 ParameterArgument::ParameterArgument(nb::handle parameters, const RiggedMesh& model) {
   const std::size_t values = model.values_per_instance();
   if (nb::isinstance<PyParameters>(parameters)) {
@@ -84,17 +74,7 @@ ParameterArgument::ParameterArgument(nb::handle parameters, const RiggedMesh& mo
   }
   const std::string expected = "a float32 array of shape (instances, " + std::to_string(values) +
                                ") with contiguous rows, or a finflex.Parameters";
-  if (PyArray_Check(parameters.ptr())) {
-    // A numpy array: its fields as they are, nothing exported (the common case).
-    PyArrayObject* a = reinterpret_cast<PyArrayObject*>(parameters.ptr());
-    const bool ok = PyArray_TYPE(a) == NPY_FLOAT32 && PyArray_ISNOTSWAPPED(a) &&
-                    PyArray_NDIM(a) == 2 && static_cast<std::size_t>(PyArray_DIMS(a)[1]) == values;
-    if (ok) {
-      set_rows(parameters, expected, PyArray_DATA(a), PyArray_DIMS(a), PyArray_STRIDES(a), values);
-      return;
-    }
-  }
-  // Any other object with the buffer protocol.
+  // The buffer protocol: the cheapest way to a numpy array's memory (a frame's call).
   if (PyObject_GetBuffer(parameters.ptr(), &buffer_, PyBUF_RECORDS_RO) != 0) {
     PyErr_Clear();
     reject("parameters", "parameters: expected " + expected + ", got " + describe(parameters));
@@ -112,28 +92,24 @@ ParameterArgument::ParameterArgument(nb::handle parameters, const RiggedMesh& mo
                              " (the model's parameters: " + std::to_string(values) +
                              " values per instance)");
   }
-  set_rows(parameters, expected, buffer_.buf, buffer_.shape, buffer_.strides, values);
-}
-
-void ParameterArgument::set_rows(nb::handle parameters, const std::string& expected, void* data,
-                                 const Py_ssize_t* shape, const Py_ssize_t* strides,
-                                 std::size_t values) {
-  const std::size_t instances = static_cast<std::size_t>(shape[0]);
+  const std::size_t instances = static_cast<std::size_t>(buffer_.shape[0]);
   const Py_ssize_t row_bytes = static_cast<Py_ssize_t>(4 * values);
-  const bool rows_contiguous = values <= 1 || strides[1] == 4;
-  const bool rows_apart = instances <= 1 || (strides[0] >= row_bytes && strides[0] % 4 == 0);
+  const bool rows_contiguous = values <= 1 || buffer_.strides[1] == 4;
+  const bool rows_apart =
+      instances <= 1 || (buffer_.strides[0] >= row_bytes && buffer_.strides[0] % 4 == 0);
   if (!rows_contiguous || !rows_apart) {
     reject("parameters", "parameters: expected " + expected + ", got " + describe(parameters) +
                              ": each row's values must be adjacent and rows must not overlap "
                              "(copy with numpy.ascontiguousarray)");
   }
-  if (reinterpret_cast<std::uintptr_t>(data) % alignof(float) != 0) {
+  if (reinterpret_cast<std::uintptr_t>(buffer_.buf) % alignof(float) != 0) {
     reject("parameters",
            "parameters: the array's data is not aligned to 4 bytes (copy with "
            "numpy.ascontiguousarray)");
   }
-  const std::size_t stride = instances <= 1 ? values : static_cast<std::size_t>(strides[0] / 4);
-  view_ = ParameterView{static_cast<const float*>(data), instances, stride};
+  const std::size_t stride =
+      instances <= 1 ? values : static_cast<std::size_t>(buffer_.strides[0] / 4);
+  view_ = ParameterView{static_cast<const float*>(buffer_.buf), instances, stride};
 }
 
 ParameterArgument::~ParameterArgument() {

@@ -1,5 +1,5 @@
 // The extension module finflex._finflex: the package finflex re-exports it.
-#include "arrays.hpp"
+#include "bindings.hpp"
 
 NB_MODULE(_finflex, m) {
   using namespace finflex::python;
@@ -7,7 +7,6 @@ NB_MODULE(_finflex, m) {
       "FinFlex: secant-surface deformation of static meshes in OpenCL, for thousands of "
       "instances per frame (the package finflex re-exports this module).";
   m.attr("__version__") = FINFLEX_VERSION;
-  import_numpy();
   bind_errors(m);
   bind_mesh(m);
   bind_model(m);
