@@ -156,6 +156,9 @@ void ClDeformer::Impl::check_outputs(const ClJob& job) const {
   if (batch.serial == 0) {
     fail_outputs("the batch was not made by a deformer (ClDeformer::allocate, bind or bind_host)");
   }
+  if (batch.model_id != model.id()) {
+    fail_outputs("the batch was made for another model (make it from this deformer)");
+  }
   if (got.vertex_count != model.vertex_count() || got.tangents != tangents_) {
     fail_outputs("the batch is for " + std::to_string(got.vertex_count) + " vertices" +
                  (got.tangents ? " with" : " without") + " tangents; this model has " +
@@ -450,7 +453,9 @@ BatchLayout ClDeformer::layout(std::size_t instances, NormalFormat format) const
 }
 
 DeviceBatch ClDeformer::allocate(std::size_t instances, NormalFormat format) const {
-  return detail::allocate_batch(impl_->context, layout(instances, format));
+  DeviceBatch batch = detail::allocate_batch(impl_->context, layout(instances, format));
+  batch.model_id = impl_->model.id();
+  return batch;
 }
 
 std::size_t ClDeformer::output_vertices(VertexOrder order) const {
@@ -462,20 +467,29 @@ OutputLayout ClDeformer::planes_layout(std::size_t instances, NormalFormat forma
 }
 
 DeviceBatch ClDeformer::allocate(std::size_t instances, const OutputLayout& outputs) const {
-  return detail::allocate_outputs(impl_->context, layout(instances, NormalFormat::kFloat32),
-                                  outputs, output_vertices(outputs.order));
+  DeviceBatch batch =
+      detail::allocate_outputs(impl_->context, layout(instances, NormalFormat::kFloat32), outputs,
+                               output_vertices(outputs.order));
+  batch.model_id = impl_->model.id();
+  return batch;
 }
 
 DeviceBatch ClDeformer::bind(std::size_t instances, const OutputLayout& outputs,
                              const OutputBuffers& buffers) const {
-  return detail::bind_outputs(impl_->context, layout(instances, NormalFormat::kFloat32), outputs,
-                              buffers, output_vertices(outputs.order));
+  DeviceBatch batch =
+      detail::bind_outputs(impl_->context, layout(instances, NormalFormat::kFloat32), outputs,
+                           buffers, output_vertices(outputs.order));
+  batch.model_id = impl_->model.id();
+  return batch;
 }
 
 DeviceBatch ClDeformer::bind_host(std::size_t instances, const OutputLayout& outputs,
                                   const HostOutputs& host) const {
-  return detail::bind_host_outputs(impl_->context, layout(instances, NormalFormat::kFloat32),
-                                   outputs, host, output_vertices(outputs.order));
+  DeviceBatch batch =
+      detail::bind_host_outputs(impl_->context, layout(instances, NormalFormat::kFloat32), outputs,
+                                host, output_vertices(outputs.order));
+  batch.model_id = impl_->model.id();
+  return batch;
 }
 
 void ClDeformer::map_host(DeviceBatch& batch) { detail::map_host_outputs(impl_->context, batch); }

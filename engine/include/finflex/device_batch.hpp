@@ -37,6 +37,9 @@ struct DeviceBatch {
   // to another batch and checks a batch once. Replace a batch by making a new one,
   // never by assigning its buffers.
   std::uint64_t serial = 0;
+  // The model (RiggedMesh::id) whose deformer made it: its vertex slots are that
+  // deformer's, so only that model's jobs may write it.
+  std::uint64_t model_id = 0;
   // Frames written to the batch: from the second on, previous_positions holds the
   // frame before (the first frame writes its own positions there: no motion).
   std::uint64_t frames_written = 0;
