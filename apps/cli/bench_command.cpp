@@ -4,7 +4,9 @@
 //
 //   finflex bench --mesh PATH --instances N --frames F [--mode paper|exact]
 //                 [--normals rotate|jacobian] [--normal-format float32|half]
-//                 [--rig RIG.json [--path fused|passes] [--swim]] [--device NAME] [--json]
+//                 [--rig RIG.json [--path fused|passes] [--swim]]
+//                 [--layout planes|interleaved|compact|snorm] [--order slots|mesh] [--previous]
+//                 [--device NAME] [--json]
 //
 // --swim: a tank of N swimming fish (the swim rig given by --rig): per frame the swim
 // driver kernel, the rig's prepare kernel and the deformation with world placement,
@@ -20,6 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "arguments.hpp"
+#include "bench_layouts.hpp"
 #include "cli_errors.hpp"
 #include "commands.hpp"
 #include "finflex/finflex.hpp"
@@ -42,6 +45,9 @@ struct BenchOptions {
   std::string per_item = "0";
   std::string dispatch = "auto";
   bool swim = false;
+  std::string layout = "planes";
+  std::string order = "slots";
+  bool previous = false;
   std::string device;
   bool json = false;
 };
@@ -54,7 +60,9 @@ struct Measured {
   bench::FrameTimes times;
   DeviceBatch* batch = nullptr;
   std::size_t per_item = 1;
-  std::size_t vertices = 0;  // per instance
+  std::size_t vertices = 0;         // per instance
+  std::size_t output_vertices = 0;  // the outputs' (slots or mesh vertices)
+  std::size_t bytes_per_vertex = 0;  // written per output vertex and instance
 };
 
 // The write-only kernel over the batch's planes: the faster of the deformer's
@@ -123,7 +131,9 @@ Measured measure_deform(const BenchOptions& options, const Mesh& mesh, Context& 
   const RigPath path = parse_rig_path(options.path, "--path");
   bench.deformer = std::make_unique<ClDeformer>(context, model, cl_options(options));
   ClDeformer& deformer = *bench.deformer;
-  bench.batch = deformer.allocate(instances, format);
+  const BenchLayout layout =
+      bench_layout(deformer, format, options.layout, options.order, options.previous);
+  bench.batch = make_bench_batch(deformer, instances, layout);
   RigParameters values(model, instances);
   ClJob job;
   job.model = &model;
@@ -155,8 +165,10 @@ Measured measure_deform(const BenchOptions& options, const Mesh& mesh, Context& 
   measured.what = options.rig.empty() ? std::string("bend ") + options.mode
                                       : std::string("rig ") + to_string(chosen);
   measured.batch = &bench.batch;
-  measured.per_item = deformer.instances_per_item(format);
+  measured.per_item = deformer.instances_per_item(layout.layout);
   measured.vertices = mesh.vertex_count();
+  measured.output_vertices = layout.vertices;
+  measured.bytes_per_vertex = layout.bytes_per_vertex;
   return measured;
 }
 
@@ -167,6 +179,10 @@ Measured measure_swim(const BenchOptions& options, Context& context, std::size_t
                       std::unique_ptr<tank::SwimScene>& scene) {
   if (options.rig.empty()) {
     throw Error(ErrorCode::kInvalidArgument, "--swim", "--swim needs --rig (a swim rig)");
+  }
+  if (options.layout != "planes" || options.order != "slots" || options.previous) {
+    throw Error(ErrorCode::kInvalidArgument, "--swim",
+                "--swim writes the default planes (no --layout, --order or --previous)");
   }
   tank::TankSettings settings;
   const double scale = std::max(1.0, std::cbrt(double(instances) / 1000.0));
@@ -191,6 +207,8 @@ Measured measure_swim(const BenchOptions& options, Context& context, std::size_t
   measured.batch = &species.batch;
   measured.per_item = species.deformer->instances_per_item(format);
   measured.vertices = species.swim.model().vertex_count();
+  measured.output_vertices = species.batch.layout.plane_stride;
+  measured.bytes_per_vertex = species.batch.layout.bytes_per_vertex();
   return measured;
 }
 
@@ -211,11 +229,11 @@ int run_bench(const BenchOptions& options) {
             : measure_deform(options, mesh, context, instances, frames, normals, format, deform);
     const double seconds = bench::median(m.times.device);
     const double write_seconds =
-        write_only_median(context, *m.batch, m.batch->layout.plane_stride, m.per_item, frames);
+        write_only_median(context, *m.batch, m.output_vertices, m.per_item, frames);
     const double vertices = double(m.vertices) * double(instances);
     const BatchLayout& layout = m.batch->layout;
-    const double bytes_per_vertex = double(layout.bytes_per_vertex());
-    const double written = double(layout.plane_stride) * double(instances) * bytes_per_vertex;
+    const double bytes_per_vertex = double(m.bytes_per_vertex);
+    const double written = double(m.output_vertices) * double(instances) * bytes_per_vertex;
 
     nlohmann::ordered_json result;
     result["device"] = context.description().device_name;
@@ -223,6 +241,9 @@ int run_bench(const BenchOptions& options) {
     result["deformation"] = m.what;
     result["normals"] = to_string(normals);
     result["normal_format"] = to_string(format);
+    result["layout"] = options.layout;
+    result["order"] = options.order;
+    result["previous_positions"] = options.previous;
     result["vertices"] = m.vertices;
     result["instances"] = instances;
     result["frames"] = frames;
@@ -274,6 +295,12 @@ Command add_bench_command(CLI::App& app) {
       ->capture_default_str();
   bench->add_option("--dispatch", options->dispatch, "auto, per-component or by-path-shape")
       ->capture_default_str();
+  bench->add_option("--layout", options->layout,
+                    "Output layout: planes, interleaved, compact (octahedral normals) or snorm")
+      ->capture_default_str();
+  bench->add_option("--order", options->order, "Output vertex order: slots or mesh")
+      ->capture_default_str();
+  bench->add_flag("--previous", options->previous, "Also write previous-frame positions");
   bench->add_flag("--swim", options->swim,
                   "With a swim rig: a tank of swimming fish (driver, deformation, placement)");
   bench->add_option("--device", options->device, "OpenCL device: 'P:D' or a name substring");

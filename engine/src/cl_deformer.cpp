@@ -58,6 +58,8 @@ ClDeformer::Impl::Impl(Context& context_in, const RiggedMesh& model_in, const Cl
   for (std::size_t slot = 0; slot < slot_count_; ++slot) {
     const std::int64_t vertex = slots.vertex_of_slot[slot];
     vertex_of_slot[slot] = vertex < 0 ? 0xffffffffu : static_cast<std::uint32_t>(vertex);
+    slots_in_mesh_order_ = slots_in_mesh_order_ &&
+                           (slot < model.vertex_count() ? vertex == std::int64_t(slot) : vertex < 0);
   }
   vertex_of_slot_ = detail::make_buffer(cl_context, CL_MEM_READ_ONLY,
                                         slot_count_ * sizeof(std::uint32_t), vertex_of_slot.data());
@@ -185,7 +187,16 @@ void ClDeformer::Impl::check_buffer_sizes(const DeviceBatch& batch) {
   }
   detail::check_outputs(batch, output_vertices(batch.outputs.order), tangents_, "job.outputs");
   validated_ = {batch.serial, batch.outputs, buffers, batch.layout.instance_count};
-  batch_options_ = output_build_options(batch.outputs);
+  if (batch.outputs.order == VertexOrder::kMesh && slots_in_mesh_order_) {
+    // Slot s is mesh vertex s (a plain bend): mesh order is slot order without the
+    // padding, stored without the vertex_of_slot indirection.
+    OutputLayout slot_order = batch.outputs;
+    slot_order.order = VertexOrder::kSlots;
+    batch_options_ = output_build_options(slot_order) +
+                     " -DFF_OUTPUT_LIMIT=" + std::to_string(model.vertex_count());
+  } else {
+    batch_options_ = output_build_options(batch.outputs);
+  }
   ++generation_;  // kernels take the batch's arguments again
 }
 

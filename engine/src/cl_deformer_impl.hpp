@@ -62,6 +62,7 @@ class ClDeformer::Impl {
   const detail::ParameterChecker checker_;
   bool tangents_ = false;
   std::size_t slot_count_ = 0;
+  bool slots_in_mesh_order_ = true;  // slot s holds mesh vertex s, padding after
   cl::Buffer rest_positions_, rest_normals_, rest_tangents_;
   cl::Buffer stages_, group_paths_;
   ProgramSource program_;

@@ -168,10 +168,17 @@ FF_INLINE void store_outputs(__global float* out_positions, __global float* out_
 #else
 #define FF_REST_TANGENT_W(v) 1.0f
 #endif
+/* FF_OUTPUT_LIMIT: slots at or past it are padding and write nothing (mesh order of a
+ * model whose slots are its vertices in mesh order). */
+#ifdef FF_OUTPUT_LIMIT
+#define FF_WRITES_SLOT(v, out_v) ((v) < FF_OUTPUT_LIMIT)
+#else
+#define FF_WRITES_SLOT(v, out_v) (!FF_MESH_ORDER || (out_v) != FF_NO_VERTEX)
+#endif
 #define FF_STORE_OUTPUTS(instance, v)                                                         \
   {                                                                                           \
     const uint out_v = FF_OUTPUT_VERTEX(v);                                                   \
-    if (!FF_MESH_ORDER || out_v != FF_NO_VERTEX) {                                            \
+    if (FF_WRITES_SLOT(v, out_v)) {                                                           \
       store_outputs(out_positions, out_normals, out_tangents, out_previous, out_layout,       \
                     instance, out_v, p, n, t, FF_REST_TANGENT_W(v));                           \
     }                                                                                         \

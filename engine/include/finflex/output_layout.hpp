@@ -49,7 +49,7 @@ FINFLEX_API std::size_t scalar_bytes(AttributeFormat format);
 
 enum class Arrangement { kPlanes, kPacked };
 
-struct AttributeLayout {
+struct FINFLEX_API AttributeLayout {
   AttributeFormat format = AttributeFormat::kFloat32x3;
   Arrangement arrangement = Arrangement::kPlanes;
   std::size_t offset = 0;           // bytes
@@ -81,7 +81,7 @@ inline bool operator!=(const AttributeLayout& a, const AttributeLayout& b) { ret
 enum class VertexOrder { kSlots, kMesh };
 FINFLEX_API const char* to_string(VertexOrder order);
 
-struct OutputLayout {
+struct FINFLEX_API OutputLayout {
   VertexOrder order = VertexOrder::kSlots;
   AttributeLayout positions;  // kFloat32x3 or kFloat32x4
   AttributeLayout normals;
