@@ -8,14 +8,11 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <filesystem>
-#include <fstream>
 #include <initializer_list>
 #include <limits>
 #include <set>
 #include <sstream>
 #include <string>
-#include <system_error>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -24,6 +21,7 @@
 #include "finflex/deformer_type.hpp"
 #include "finflex/error.hpp"
 #include "finflex/rig.hpp"
+#include "regular_file.hpp"
 
 namespace finflex {
 namespace {
@@ -45,10 +43,62 @@ std::string element(const std::string& path, std::size_t index) {
   return path + "[" + std::to_string(index) + "]";
 }
 
+// The first `size` bytes of `text`, moved back to a UTF-8 character boundary.
+std::string utf8_prefix(const std::string& text, std::size_t size) {
+  if (size >= text.size()) return text;
+  while (size > 0 && (static_cast<unsigned char>(text[size]) & 0xC0u) == 0x80u) --size;
+  return text.substr(0, size);
+}
+
+std::string dump_scalar(const json& value) {
+  if (value.is_string()) {  // only the start of a long string is shown
+    const json start = utf8_prefix(value.get_ref<const std::string&>(), kMaxShownChars);
+    return start.dump(-1, ' ', false, json::error_handler_t::replace);
+  }
+  return value.dump(-1, ' ', false, json::error_handler_t::replace);
+}
+
+// The compact JSON text of `value` as json::dump() writes it, stopped once longer than
+// `limit`: a loop over an explicit stack, so neither the depth of the value nor its
+// size matters (dump() recurses, and would write all of it).
+std::string limited_dump(const json& value, std::size_t limit) {
+  struct Open {
+    const json* container;
+    json::const_iterator next;
+    bool first;
+  };
+  std::vector<Open> stack;
+  std::string out;
+  const json* current = &value;
+  for (;;) {
+    if (current->is_object() || current->is_array()) {
+      out += current->is_object() ? '{' : '[';
+      stack.push_back({current, current->cbegin(), true});
+    } else {
+      out += dump_scalar(*current);
+    }
+    for (;;) {
+      if (out.size() > limit || stack.empty()) return out;
+      Open& top = stack.back();
+      if (top.next == top.container->cend()) {
+        out += top.container->is_object() ? '}' : ']';
+        stack.pop_back();
+        continue;
+      }
+      if (!top.first) out += ',';
+      top.first = false;
+      if (top.container->is_object()) out += dump_scalar(json(top.next.key())) + ':';
+      current = &*top.next;
+      ++top.next;
+      break;
+    }
+  }
+}
+
 // The JSON text of `value`, shortened to kMaxShownChars.
 std::string shown(const json& value) {
-  std::string text = value.dump();
-  if (text.size() > kMaxShownChars) text = text.substr(0, kMaxShownChars - 3) + "...";
+  std::string text = limited_dump(value, kMaxShownChars);
+  if (text.size() > kMaxShownChars) text = utf8_prefix(text, kMaxShownChars - 3) + "...";
   return text;
 }
 
@@ -364,14 +414,23 @@ ComponentSpec parse_component(const json& value, std::size_t index) {
 // The document
 
 // nlohmann keeps the last of two equal keys without a word; this parser callback makes
-// that an error naming where. It tracks the path of the value being parsed.
-class DuplicateKeyCheck {
+// that an error naming where, and stops a document nested deeper than
+// kMaxRigJsonDepth before it is built (values nested that deep have no place in a rig,
+// and would cost stack in code that recurses over values). It tracks the path of the
+// value being parsed.
+class DocumentCheck {
  public:
   bool operator()(int /*depth*/, json::parse_event_t event, json& parsed) {
     switch (event) {
       case json::parse_event_t::object_start:
       case json::parse_event_t::array_start:
         count_array_element();
+        if (levels_.size() >= kMaxRigJsonDepth) {
+          const std::string path = current_path();
+          fail(path.empty() ? "rig" : path, "arrays and objects nested deeper than " +
+                                                std::to_string(kMaxRigJsonDepth) +
+                                                " levels (kMaxRigJsonDepth; a rig file needs 6)");
+        }
         levels_.push_back(Level{event == json::parse_event_t::object_start, {}, {}, 0});
         break;
       case json::parse_event_t::object_end:
@@ -400,15 +459,21 @@ class DuplicateKeyCheck {
     if (!levels_.empty() && !levels_.back().object) ++levels_.back().elements;
   }
 
-  void add_key(const std::string& key) {
-    Level& level = levels_.back();
-    level.key = key;
-    if (level.keys.insert(key).second) return;
+  // The path of the value being parsed, e.g. "components[1].select".
+  std::string current_path() const {
     std::string path;
     for (const Level& l : levels_) {
       path = l.object ? member(path, l.key) : element(path, l.elements - 1);
     }
-    fail(path, "duplicate key '" + key + "' (the later value would silently replace the earlier)");
+    return path;
+  }
+
+  void add_key(const std::string& key) {
+    Level& level = levels_.back();
+    level.key = key;
+    if (level.keys.insert(key).second) return;
+    fail(current_path(),
+         "duplicate key '" + key + "' (the later value would silently replace the earlier)");
   }
 
   std::vector<Level> levels_;
@@ -416,7 +481,7 @@ class DuplicateKeyCheck {
 
 json parse_document(const std::string& text) {
   try {
-    return json::parse(text, DuplicateKeyCheck());
+    return json::parse(text, DocumentCheck());
   } catch (const json::exception& e) {
     // "[json.exception.parse_error.101] parse error at line 3, column 5: ...", or
     // out_of_range.406 for a number beyond double ("number overflow parsing '1e999'").
@@ -451,19 +516,9 @@ RigSpec parse_rig_json(const std::string& text) {
 }
 
 RigSpec load_rig_file(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) {
-    throw Error(ErrorCode::kIo, "path", "'" + path + "': is a directory, not a rig file");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    throw Error(ErrorCode::kIo, "path", "'" + path + "': cannot open the rig file for reading");
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw Error(ErrorCode::kIo, "path", "'" + path + "': reading the rig file failed");
+  const std::string text = detail::read_regular_file(path, "path", "a rig file");
   try {
-    return parse_rig_json(text.str());
+    return parse_rig_json(text);
   } catch (const Error& e) {
     throw Error(e.code(), e.field(), "'" + path + "': " + e.what());
   }
