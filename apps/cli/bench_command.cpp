@@ -15,6 +15,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_errors.hpp"
+#include "cli_numbers.hpp"
+#include "cli_paths.hpp"
 #include "commands.hpp"
 #include "finflex/finflex.hpp"
 #include "reference_kernels.hpp"
@@ -25,8 +27,8 @@ namespace {
 
 struct BenchOptions {
   std::string mesh;
-  std::size_t instances = 1000;
-  std::size_t frames = 100;
+  std::string instances = "1000";
+  std::string frames = "100";
   std::string mode = "paper";
   std::string normals = "rotate";
   std::string normal_format = "float32";
@@ -58,27 +60,51 @@ float swing(double limit, std::size_t i, std::size_t p, std::size_t f) {
   return static_cast<float>(0.5 * limit * std::sin(0.05 * double(f) + 0.1 * double(i) + double(p)));
 }
 
+// Bench keeps every frame's times (host and device): a million frames take 16 MB.
+constexpr std::size_t kMaxFrames = 1000000;
+
+struct BenchCounts {
+  std::size_t instances = 0;
+  std::size_t frames = 0;
+};
+
+BenchCounts check_bench(const BenchOptions& options) {
+  BenchCounts counts;
+  counts.instances = parse_count(options.instances, "--instances", 1, kMaxDeviceInstances,
+                                 "the kernels count instances in 32 bits");
+  counts.frames =
+      parse_count(options.frames, "--frames", 1, kMaxFrames, "bench keeps every frame's time");
+  parse_normal_mode(options.normals, "--normals");
+  parse_normal_format(options.normal_format, "--normal-format");
+  parse_rig_path(options.path, "--path");
+  check_input_file("--mesh", options.mesh, mesh_extensions());
+  if (options.rig.empty()) {
+    parse_bend_mode(options.mode, "--mode");
+  } else {
+    check_input_file("--rig", options.rig);
+  }
+  return counts;
+}
+
+// After check_bench: the device, then the files.
 int run_bench(const BenchOptions& options) {
   try {
-    if (options.instances == 0)
-      throw Error(ErrorCode::kInvalidArgument, "--instances", "--instances must be > 0");
-    if (options.frames == 0)
-      throw Error(ErrorCode::kInvalidArgument, "--frames", "--frames must be > 0");
+    const BenchCounts counts = check_bench(options);
     const NormalMode normals = parse_normal_mode(options.normals, "--normals");
     const NormalFormat format = parse_normal_format(options.normal_format, "--normal-format");
-    const Mesh mesh = for_option("--mesh", [&] { return load_mesh(options.mesh); });
     Context context(options.device);
+    const Mesh mesh = for_option("--mesh", [&] { return load_mesh(options.mesh); });
     const RiggedMesh model =
         options.rig.empty()
             ? RiggedMesh::single_bend(mesh, find_body_frame(mesh),
                                       parse_bend_mode(options.mode, "--mode"))
-            : RiggedMesh(mesh, resolve_rig(for_option("--rig",
-                                                      [&] { return load_rig_file(options.rig); }),
-                                           mesh));
+            : RiggedMesh(
+                  mesh, resolve_rig(for_option("--rig", [&] { return load_rig_file(options.rig); }),
+                                    mesh));
     const RigPath path = parse_rig_path(options.path, "--path");
     ClDeformer deformer(context, model);
-    DeviceBatch batch = deformer.allocate(options.instances, format);
-    RigParameters values(model, options.instances);
+    DeviceBatch batch = deformer.allocate(counts.instances, format);
+    RigParameters values(model, counts.instances);
     const Rig& rig = model.rig();
     ClJob job;
     job.model = &model;
@@ -92,9 +118,9 @@ int run_bench(const BenchOptions& options) {
     // Float32 vertex records through scratch, per slot (multi-pass only).
     const double scratch_records = passes_path ? deformer.scratch_records_per_slot() : 0.0;
     const bench::FrameTimes times = bench::time_frames(
-        options.frames,
+        counts.frames,
         [&](std::size_t f) {
-          for (std::size_t i = 0; i < options.instances; ++i) {
+          for (std::size_t i = 0; i < counts.instances; ++i) {
             for (std::size_t p = 0; p < rig.parameters.size(); ++p) {
               const RigParameter& parameter = rig.parameters[p];
               for (std::size_t k = 0; k < parameter.count; ++k) {
@@ -105,17 +131,15 @@ int run_bench(const BenchOptions& options) {
           }
         },
         [&](std::vector<cl::Event>& events) { deformer.enqueue(job, &events); });
-    const std::string what =
-        options.rig.empty()
-            ? std::string("bend ") + options.mode
-            : std::string("rig ") + to_string(chosen);
+    const std::string what = options.rig.empty() ? std::string("bend ") + options.mode
+                                                 : std::string("rig ") + to_string(chosen);
     const double seconds = bench::median(times.device);
-    const double write_seconds = write_only_median(
-        context, batch, deformer.instances_per_item(format), options.frames);
-    const double vertices = double(mesh.vertex_count()) * double(options.instances);
+    const double write_seconds =
+        write_only_median(context, batch, deformer.instances_per_item(format), counts.frames);
+    const double vertices = double(mesh.vertex_count()) * double(counts.instances);
     const double bytes_per_vertex = double(batch.layout.bytes_per_vertex());
     const double written =
-        double(batch.layout.plane_stride) * double(options.instances) * bytes_per_vertex;
+        double(batch.layout.plane_stride) * double(counts.instances) * bytes_per_vertex;
 
     nlohmann::ordered_json result;
     result["device"] = context.description().device_name;
@@ -124,8 +148,8 @@ int run_bench(const BenchOptions& options) {
     result["normals"] = to_string(normals);
     result["normal_format"] = to_string(format);
     result["vertices"] = mesh.vertex_count();
-    result["instances"] = options.instances;
-    result["frames"] = options.frames;
+    result["instances"] = counts.instances;
+    result["frames"] = counts.frames;
     result["passes"] = passes;
     result["seconds_per_frame_median"] = seconds;
     result["seconds_per_frame_min"] = *std::min_element(times.device.begin(), times.device.end());
@@ -156,9 +180,9 @@ Command add_bench_command(CLI::App& app) {
   CLI::App* bench =
       app.add_subcommand("bench", "Time frames of a batch against the write bandwidth");
   bench->add_option("--mesh", options->mesh, "Mesh to deform")->required();
-  bench->add_option("--instances", options->instances, "Instances per frame")
+  bench->add_option("--instances", options->instances, "Instances per frame (1 to 2^32 - 1)")
       ->capture_default_str();
-  bench->add_option("--frames", options->frames, "Timed frames (after one warm-up)")
+  bench->add_option("--frames", options->frames, "Timed frames after one warm-up (1 to 10^6)")
       ->capture_default_str();
   bench->add_option("--mode", options->mode, "paper or exact (without --rig)")
       ->capture_default_str();
@@ -170,7 +194,7 @@ Command add_bench_command(CLI::App& app) {
       ->capture_default_str();
   bench->add_option("--device", options->device, "OpenCL device: 'P:D' or a name substring");
   bench->add_flag("--json", options->json, "One JSON object on one line");
-  return [options] { return run_bench(*options); };
+  return {[options] { check_bench(*options); }, [options] { return run_bench(*options); }};
 }
 
 }  // namespace finflex::cli

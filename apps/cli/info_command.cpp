@@ -1,9 +1,9 @@
 // finflex info: the OpenCL platforms and devices, and which one is the default.
 #include <iostream>
 
-#include "finflex/context.hpp"
 #include "cli_errors.hpp"
 #include "commands.hpp"
+#include "finflex/context.hpp"
 #include "finflex/error.hpp"
 
 namespace finflex::cli {
@@ -34,7 +34,7 @@ int run_info() {
 
 Command add_info_command(CLI::App& app) {
   app.add_subcommand("info", "List OpenCL platforms and devices, and the default one");
-  return [] { return run_info(); };
+  return {[] {}, [] { return run_info(); }};
 }
 
 }  // namespace finflex::cli

@@ -32,6 +32,12 @@ DeviceBatch allocate_batch(Context& context, const BatchLayout& layout) {
   if (layout.instance_count == 0) {
     throw Error(ErrorCode::kInvalidArgument, "instances", "instances = 0: at least one is needed");
   }
+  if (layout.instance_count > kMaxDeviceInstances) {
+    throw Error(ErrorCode::kOutOfRange, "instances",
+                "instances = " + std::to_string(layout.instance_count) + " is above the limit " +
+                    std::to_string(kMaxDeviceInstances) +
+                    " of one batch (the kernels count instances in 32 bits)");
+  }
   const DeviceDescription& device = context.description();
   const std::size_t instance_bytes = 3 * layout.plane_stride * sizeof(float);
   if (layout.instance_count > device.max_allocation_bytes / instance_bytes) {

@@ -87,7 +87,7 @@ class FINFLEX_API ClDeformer {
   BatchLayout layout(std::size_t instances, NormalFormat format = NormalFormat::kFloat32) const;
   // Allocates the outputs of `instances` instances, normals and tangents in `format`.
   // kInvalidArgument for 0, kOutOfRange naming "instances" when one attribute array
-  // would exceed the device's largest allocation.
+  // would exceed the device's largest allocation or above kMaxDeviceInstances.
   DeviceBatch allocate(std::size_t instances, NormalFormat format = NormalFormat::kFloat32) const;
 
   // Validates the job (ClJob::validate, then: the job's model is this deformer's,

@@ -8,6 +8,7 @@
 // 4,000 * 10,816 * 24 B = 1.04 GB.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
 #include <CL/opencl.hpp>
@@ -15,6 +16,10 @@
 #include "finflex/batch.hpp"
 
 namespace finflex {
+
+// Most instances in one batch: the kernels count instances in 32 bits
+// (ClDeformer::allocate refuses more, as it refuses more than the device can allocate).
+constexpr std::size_t kMaxDeviceInstances = 0xffffffffu;
 
 struct DeviceBatch {
   BatchLayout layout;
