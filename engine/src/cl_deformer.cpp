@@ -272,8 +272,9 @@ void ClDeformer::Impl::launch(BoundKernel& bound, const ClJob& job, std::size_t 
 
 cl::Event ClDeformer::Impl::enqueue(const ClJob& job, std::vector<cl::Event>* kernel_events,
                                     bool checked) {
-  if (kernel_events) kernel_events->clear();
   if (!checked) check_shape(job);
+  const std::lock_guard<std::mutex> lock(frame_mutex_);
+  if (kernel_events) kernel_events->clear();
   check_buffer_sizes(*job.outputs);
   const std::size_t per_instance = model.values_per_instance();
   const std::size_t instances = job.parameters.instance_count;

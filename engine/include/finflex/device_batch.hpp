@@ -6,6 +6,10 @@
 // (IEEE half, NormalFormat::kHalf); tangents the same again when the mesh has them.
 // 4,000 instances of the 10,786-vertex fish (10,816 slots) with float32 normals:
 // 4,000 * 10,816 * 24 B = 1.04 GB.
+//
+// Thread-safety: a batch is written by the frames enqueued into it; give each thread
+// its own batch (finflex/cl_deformer.hpp). Its buffers may be read on any thread once
+// the frame's event is complete.
 #pragma once
 
 #include <cstddef>

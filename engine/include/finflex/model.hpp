@@ -4,6 +4,9 @@
 //
 //   RiggedMesh fish(mesh, resolve_rig(load_rig_file("data/rigs/blub.rig.json"), mesh));
 //   RiggedMesh bent = RiggedMesh::single_bend(mesh, find_body_frame(mesh), BendMode::kExact);
+//
+// Thread-safety: a RiggedMesh does not change after construction; any number of
+// threads may read it (deformers and reference jobs on several threads).
 #pragma once
 
 #include <cstddef>
