@@ -8,6 +8,7 @@ packages=(
   pocl-opencl-icd ocl-icd-opencl-dev opencl-c-headers opencl-clhpp-headers clinfo
   libglm-dev libopenmesh-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev libstb-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  clang libclang-rt-14-dev  # libFuzzer and clang's sanitizers (CI's fuzzing step)
 )
 
 missing=()

@@ -10,7 +10,6 @@
 #include <cstdint>
 #include <initializer_list>
 #include <limits>
-#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -22,6 +21,7 @@
 #include "finflex/error.hpp"
 #include "finflex/rig.hpp"
 #include "regular_file.hpp"
+#include "rig_json_document.hpp"
 
 namespace finflex {
 namespace {
@@ -36,11 +36,11 @@ constexpr std::size_t kMaxShownChars = 80;
 // messages start with it and name the value found and what was expected.
 
 std::string member(const std::string& path, const std::string& key) {
-  return path.empty() ? key : path + "." + key;
+  return detail::json_member(path, key);
 }
 
 std::string element(const std::string& path, std::size_t index) {
-  return path + "[" + std::to_string(index) + "]";
+  return detail::json_element(path, index);
 }
 
 // The first `size` bytes of `text`, moved back to a UTF-8 character boundary.
@@ -413,91 +413,10 @@ ComponentSpec parse_component(const json& value, std::size_t index) {
 // ---------------------------------------------------------------------------------
 // The document
 
-// nlohmann keeps the last of two equal keys without a word; this parser callback makes
-// that an error naming where, and stops a document nested deeper than
-// kMaxRigJsonDepth before it is built (values nested that deep have no place in a rig,
-// and would cost stack in code that recurses over values). It tracks the path of the
-// value being parsed.
-class DocumentCheck {
- public:
-  bool operator()(int /*depth*/, json::parse_event_t event, json& parsed) {
-    switch (event) {
-      case json::parse_event_t::object_start:
-      case json::parse_event_t::array_start:
-        count_array_element();
-        if (levels_.size() >= kMaxRigJsonDepth) {
-          const std::string path = current_path();
-          fail(path.empty() ? "rig" : path, "arrays and objects nested deeper than " +
-                                                std::to_string(kMaxRigJsonDepth) +
-                                                " levels (kMaxRigJsonDepth; a rig file needs 6)");
-        }
-        levels_.push_back(Level{event == json::parse_event_t::object_start, {}, {}, 0});
-        break;
-      case json::parse_event_t::object_end:
-      case json::parse_event_t::array_end:
-        levels_.pop_back();
-        break;
-      case json::parse_event_t::key:
-        add_key(parsed.get<std::string>());
-        break;
-      case json::parse_event_t::value:
-        count_array_element();
-        break;
-    }
-    return true;
-  }
-
- private:
-  struct Level {
-    bool object = true;
-    std::set<std::string> keys;
-    std::string key;           // object: the key being parsed
-    std::size_t elements = 0;  // array: elements started so far
-  };
-
-  void count_array_element() {
-    if (!levels_.empty() && !levels_.back().object) ++levels_.back().elements;
-  }
-
-  // The path of the value being parsed, e.g. "components[1].select".
-  std::string current_path() const {
-    std::string path;
-    for (const Level& l : levels_) {
-      path = l.object ? member(path, l.key) : element(path, l.elements - 1);
-    }
-    return path;
-  }
-
-  void add_key(const std::string& key) {
-    Level& level = levels_.back();
-    level.key = key;
-    if (level.keys.insert(key).second) return;
-    fail(current_path(),
-         "duplicate key '" + key + "' (the later value would silently replace the earlier)");
-  }
-
-  std::vector<Level> levels_;
-};
-
-json parse_document(const std::string& text) {
-  try {
-    return json::parse(text, DocumentCheck());
-  } catch (const json::exception& e) {
-    // "[json.exception.parse_error.101] parse error at line 3, column 5: ...", or
-    // out_of_range.406 for a number beyond double ("number overflow parsing '1e999'").
-    std::string message = e.what();
-    if (const std::size_t end = message.find("] ");
-        message.rfind("[json.", 0) == 0 && end != std::string::npos) {
-      message.erase(0, end + 2);
-    }
-    throw Error(ErrorCode::kFormat, "rig", "rig: malformed JSON: " + message);
-  }
-}
-
 }  // namespace
 
 RigSpec parse_rig_json(const std::string& text) {
-  const json document = parse_document(text);
+  const json document = detail::parse_rig_document(text);
   expect_object(document, "rig", "an object {[\"frame\": ...,] \"components\": [...]}");
   check_keys(document, "", {"frame", "components"});
   RigSpec spec;
