@@ -3,6 +3,7 @@
 #pragma once
 
 #include "finflex/mesh.hpp"
+#include "finflex/rig.hpp"
 
 namespace finflex::fuzz {
 
