@@ -90,11 +90,10 @@ RigSpec any_spec(FuzzedDataProvider& in) {
     component.name = in.ConsumeIntegralInRange<int>(0, 30) == 0 ? "" : name_of(k);
     if (k > 0) {
       const int how = in.ConsumeIntegralInRange<int>(0, 9);
-      component.parent = how == 0   ? std::string()
-                         : how == 1 ? std::string("nobody")
-                         : chain && how > 3
-                             ? name_of(k - 1)
-                             : name_of(in.ConsumeIntegralInRange<std::size_t>(0, n));
+      component.parent = how == 0           ? std::string()
+                         : how == 1         ? std::string("nobody")
+                         : chain && how > 3 ? name_of(k - 1)
+                                            : name_of(in.ConsumeIntegralInRange<std::size_t>(0, n));
     }
     component.select = k == 0 && in.ConsumeBool() ? SelectorSpec{} : any_selector(in);
     if (in.ConsumeBool()) component.frame = any_frame(in);

@@ -40,7 +40,8 @@ std::size_t count(const std::string& text, const std::string& option) {
   std::size_t used = 0;
   const unsigned long long value = text.empty() || text[0] == '-' ? 0 : std::stoull(text, &used);
   if (used != text.size() || value == 0) {
-    throw Error(ErrorCode::kInvalidArgument, option, option + " '" + text + "': expected a count > 0");
+    throw Error(ErrorCode::kInvalidArgument, option,
+                option + " '" + text + "': expected a count > 0");
   }
   return static_cast<std::size_t>(value);
 }
@@ -82,7 +83,8 @@ Options parse(int argc, char** argv) {
     }
   }
   if (options.species.empty()) {
-    throw Error(ErrorCode::kInvalidArgument, "--species", "--species MESH RIG INSTANCES is required");
+    throw Error(ErrorCode::kInvalidArgument, "--species",
+                "--species MESH RIG INSTANCES is required");
   }
   return options;
 }
