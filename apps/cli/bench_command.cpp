@@ -21,9 +21,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "arguments.hpp"
 #include "bench_layouts.hpp"
 #include "cli_errors.hpp"
+#include "cli_numbers.hpp"
+#include "cli_paths.hpp"
 #include "commands.hpp"
 #include "finflex/finflex.hpp"
 #include "reference_kernels.hpp"
@@ -104,7 +105,8 @@ struct DeformBench {
 // --per-item and --dispatch: the backend's choices, for experiments.
 ClOptions cl_options(const BenchOptions& options) {
   ClOptions cl;
-  cl.instances_per_item = parse_count(options.per_item, "--per-item", 0, 64);
+  cl.instances_per_item =
+      parse_count(options.per_item, "--per-item", 0, 64, "instances per work-item");
   if (options.dispatch == "per-component") {
     cl.dispatch = RigDispatch::kPerComponent;
   } else if (options.dispatch == "by-path-shape") {
@@ -212,10 +214,44 @@ Measured measure_swim(const BenchOptions& options, Context& context, std::size_t
   return measured;
 }
 
+// Bench keeps every frame's times (host and device): a million frames take 16 MB.
+constexpr std::size_t kMaxFrames = 1000000;
+
+struct BenchCounts {
+  std::size_t instances = 0;
+  std::size_t frames = 0;
+};
+
+// Every option that can be checked before a file is read or the device opened.
+BenchCounts check_bench(const BenchOptions& options) {
+  BenchCounts counts;
+  counts.instances = parse_count(options.instances, "--instances", 1, kMaxDeviceInstances,
+                                 "the kernels count instances in 32 bits");
+  counts.frames =
+      parse_count(options.frames, "--frames", 1, kMaxFrames, "bench keeps every frame's time");
+  parse_normal_mode(options.normals, "--normals");
+  parse_normal_format(options.normal_format, "--normal-format");
+  parse_rig_path(options.path, "--path");
+  cl_options(options);  // --per-item, --dispatch
+  check_bench_layout(options.layout, options.order);
+  check_input_file("--mesh", options.mesh, mesh_extensions());
+  if (options.rig.empty()) {
+    parse_bend_mode(options.mode, "--mode");
+    if (options.swim) {
+      throw Error(ErrorCode::kInvalidArgument, "--swim", "--swim needs --rig (a swim rig)");
+    }
+  } else {
+    check_input_file("--rig", options.rig);
+  }
+  return counts;
+}
+
+// After check_bench: the files, then the device.
 int run_bench(const BenchOptions& options) {
   try {
-    const std::size_t instances = parse_count(options.instances, "--instances", 1, 100000000);
-    const std::size_t frames = parse_count(options.frames, "--frames", 1, 1000000);
+    const BenchCounts counts = check_bench(options);
+    const std::size_t instances = counts.instances;
+    const std::size_t frames = counts.frames;
     const NormalMode normals = parse_normal_mode(options.normals, "--normals");
     const NormalFormat format = parse_normal_format(options.normal_format, "--normal-format");
     const Mesh mesh = for_option("--mesh", [&] { return load_mesh(options.mesh); });
@@ -278,9 +314,9 @@ Command add_bench_command(CLI::App& app) {
   CLI::App* bench =
       app.add_subcommand("bench", "Time frames of a batch against the write bandwidth");
   bench->add_option("--mesh", options->mesh, "Mesh to deform")->required();
-  bench->add_option("--instances", options->instances, "Instances per frame")
+  bench->add_option("--instances", options->instances, "Instances per frame (1 to 2^32 - 1)")
       ->capture_default_str();
-  bench->add_option("--frames", options->frames, "Timed frames (after one warm-up)")
+  bench->add_option("--frames", options->frames, "Timed frames after one warm-up (1 to 10^6)")
       ->capture_default_str();
   bench->add_option("--mode", options->mode, "paper or exact (without --rig)")
       ->capture_default_str();
@@ -305,7 +341,7 @@ Command add_bench_command(CLI::App& app) {
                   "With a swim rig: a tank of swimming fish (driver, deformation, placement)");
   bench->add_option("--device", options->device, "OpenCL device: 'P:D' or a name substring");
   bench->add_flag("--json", options->json, "One JSON object on one line");
-  return [options] { return run_bench(*options); };
+  return {[options] { check_bench(*options); }, [options] { return run_bench(*options); }};
 }
 
 }  // namespace finflex::cli

@@ -25,12 +25,21 @@ std::size_t written_bytes(const OutputLayout& l) {
 
 }  // namespace
 
-BenchLayout bench_layout(const ClDeformer& deformer, NormalFormat format,
-                         const std::string& name, const std::string& order, bool previous) {
+void check_bench_layout(const std::string& name, const std::string& order) {
+  if (name != "planes" && name != "interleaved" && name != "compact" && name != "snorm") {
+    throw Error(ErrorCode::kInvalidArgument, "--layout",
+                "--layout '" + name +
+                    "' is not a layout (expected planes, interleaved, compact or snorm)");
+  }
   if (order != "slots" && order != "mesh") {
     throw Error(ErrorCode::kInvalidArgument, "--order",
                 "--order '" + order + "' is not an order (expected slots or mesh)");
   }
+}
+
+BenchLayout bench_layout(const ClDeformer& deformer, NormalFormat format,
+                         const std::string& name, const std::string& order, bool previous) {
+  check_bench_layout(name, order);
   BenchLayout out;
   const VertexOrder vertex_order = order == "mesh" ? VertexOrder::kMesh : VertexOrder::kSlots;
   out.vertices = deformer.output_vertices(vertex_order);
@@ -48,12 +57,8 @@ BenchLayout bench_layout(const ClDeformer& deformer, NormalFormat format,
                              tangents, out.vertices);
   } else if (name == "compact") {
     out.layout = interleaved(AttributeFormat::kOctahedral16x2, tangents, out.vertices);
-  } else if (name == "snorm") {
+  } else {  // snorm (check_bench_layout)
     out.layout = interleaved(AttributeFormat::kSnorm16x4, tangents, out.vertices);
-  } else {
-    throw Error(ErrorCode::kInvalidArgument, "--layout",
-                "--layout '" + name +
-                    "' is not a layout (expected planes, interleaved, compact or snorm)");
   }
   out.layout.order = vertex_order;
   if (previous) {

@@ -21,6 +21,8 @@ struct BenchLayout {
 };
 
 // kInvalidArgument naming "--layout" or "--order" for an unknown name.
+void check_bench_layout(const std::string& name, const std::string& order);
+
 BenchLayout bench_layout(const ClDeformer& deformer, NormalFormat format, const std::string& name,
                          const std::string& order, bool previous);
 

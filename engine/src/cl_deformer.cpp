@@ -397,8 +397,9 @@ ClDeformer::Impl::FrameInputs ClDeformer::Impl::upload_inputs(const ClJob& job, 
 
 cl::Event ClDeformer::Impl::enqueue(const ClJob& job, std::vector<cl::Event>* kernel_events,
                                     bool checked) {
-  if (kernel_events) kernel_events->clear();
   if (!checked) check_shape(job);
+  const std::lock_guard<std::mutex> lock(frame_mutex_);
+  if (kernel_events) kernel_events->clear();
   check_buffer_sizes(*job.outputs);
   if (job.outputs->host_mapped) detail::unmap_host_outputs(context, *job.outputs);
   const std::size_t instances = job.parameters.instance_count;

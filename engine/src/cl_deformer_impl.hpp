@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <map>
+#include <mutex>
 #include <string>
 #include <utility>
 #include <vector>
@@ -22,6 +23,8 @@ class ClDeformer::Impl {
 
   // enqueue() and check() of the public class. `checked`: the caller has run check()
   // on this job already (RigFrame), so unclamped values are copied, not checked again.
+  // enqueue() holds frame_mutex_ from its checks to its last launch; check() reads
+  // only what is fixed at construction.
   cl::Event enqueue(const ClJob& job, std::vector<cl::Event>* kernel_events, bool checked);
   void check(const ClJob& job) const;
 
@@ -73,6 +76,11 @@ class ClDeformer::Impl {
   std::vector<std::pair<std::size_t, std::size_t>> fused_launches_;
   std::size_t scratch_sets_ = 0;
 
+  // The per-frame state below (staging ring, device parameter buffer, scratch sets,
+  // kernels and the arguments they were set up with) belongs to one frame at a time:
+  // a frame sets kernel arguments and enqueues its upload and launches under this
+  // lock, so frames from several threads reach the in-order queue whole.
+  std::mutex frame_mutex_;
   detail::ParameterUpload upload_;
   detail::ParameterUpload placement_upload_;  // world placement records (16 floats each)
   cl::Buffer no_placements_;                  // the kernels' argument when nothing is placed

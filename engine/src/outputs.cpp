@@ -107,6 +107,15 @@ cl::Buffer placeholder(Context& context) {
 }
 
 DeviceBatch new_batch(Context& context, const BatchLayout& counts, const OutputLayout& outputs) {
+  if (counts.instance_count == 0) {
+    throw Error(ErrorCode::kInvalidArgument, "instances", "instances = 0: at least one is needed");
+  }
+  if (counts.instance_count > kMaxDeviceInstances) {
+    throw Error(ErrorCode::kOutOfRange, "instances",
+                "instances = " + std::to_string(counts.instance_count) + " is above the limit " +
+                    std::to_string(kMaxDeviceInstances) +
+                    " of one batch (the kernels count instances in 32 bits)");
+  }
   DeviceBatch batch;
   batch.layout = counts;
   batch.outputs = outputs;
@@ -244,12 +253,9 @@ void check_outputs(const DeviceBatch& batch, std::size_t vertices, bool mesh_tan
 
 DeviceBatch allocate_outputs(Context& context, const BatchLayout& counts,
                              const OutputLayout& outputs, std::size_t vertices) {
-  if (counts.instance_count == 0) {
-    throw Error(ErrorCode::kInvalidArgument, "instances", "instances = 0: at least one is needed");
-  }
   if (outputs.tangents && !counts.tangents) fail("outputs.tangents", "the mesh has no tangents");
-  validate_output_layout(outputs, counts.instance_count, vertices);
   DeviceBatch batch = new_batch(context, counts, outputs);
+  validate_output_layout(outputs, counts.instance_count, vertices);
   const DeviceDescription& device = context.description();
   for (const auto& a : attributes_of(batch)) {
     if (!a.used) continue;

@@ -279,14 +279,25 @@ PassPlan make_pass_plan(const RiggedMesh& model, const SlotLayout& slots, std::s
     steps.push_back(step);
   };
 
-  std::size_t max_depth = 0;
-  for (std::size_t c = 0; c < count; ++c) max_depth = std::max(max_depth, rig.depth(c));
-  for (std::size_t depth = max_depth + 1; depth-- > 0;) {
+  // The components at each depth (depths computed once, parents first): each pass
+  // visits only the components it has a stage of, so planning takes O(stages x their
+  // subtrees) <= O(components x kMaxRigPathStages).
+  std::vector<std::vector<std::size_t>> at_depth;
+  {
+    std::vector<std::size_t> depth(count, 0);
+    for (std::size_t c = 0; c < count; ++c) {
+      const int parent = rig.components[c].parent;
+      depth[c] = parent < 0 ? 0 : depth[static_cast<std::size_t>(parent)] + 1;
+      if (at_depth.size() <= depth[c]) at_depth.resize(depth[c] + 1);
+      at_depth[depth[c]].push_back(c);
+    }
+  }
+  for (std::size_t depth = at_depth.size(); depth-- > 0;) {
     for (std::size_t position = 0;; ++position) {
       std::vector<PassStep> steps;
       bool any_stage = false;
-      for (std::size_t c = 0; c < count; ++c) {
-        if (rig.depth(c) != depth || rig.components[c].chain.size() <= position) continue;
+      for (const std::size_t c : at_depth[depth]) {
+        if (rig.components[c].chain.size() <= position) continue;
         any_stage = true;
         for (std::size_t d = c; d < rig.subtree_end[c]; ++d) {
           const auto [first, end] = groups_of(d);

@@ -26,9 +26,23 @@
 // (RiggedMesh::is_single_bend) has its own kernel; other rigs run fused (one kernel,
 // each vertex's whole path in registers) or in passes (job.path).
 //
-// Thread-safety: a deformer records which batch its kernels were last set up for and
-// owns its parameter staging: use each deformer from one thread at a time. Deformers
-// on one Context may be used from different threads.
+// Thread-safety:
+// - Deformers on one Context may be used from different threads at once.
+// - One deformer may be shared by several threads: enqueue() holds the deformer's
+//   lock from its checks to its last launch (its staging ring, parameter buffer,
+//   scratch sets and kernel arguments are per frame), so each thread's frames come
+//   out whole and right. The cost: one uncontended lock per frame (about 25 ns,
+//   against tens of microseconds for the frame's enqueue); threads sharing a deformer
+//   take turns to enqueue (the kernels still run on the device's one in-order queue),
+//   and each frame on another batch than the deformer's last sets the kernel
+//   arguments again. check(), read(), allocate(), layout() and the accessors only
+//   read what is fixed at construction.
+// - A DeviceBatch, its RigParameters and a ClJob belong to one thread at a time; two
+//   threads enqueueing into one batch get whichever frame the queue runs last.
+// - A RigFrame belongs to one thread at a time; RigFrames on several threads may share
+//   deformers.
+// - read() blocks until every command queued on the context before it is done (all
+//   threads' frames, not only this batch's).
 #pragma once
 
 #include <cstddef>
@@ -87,7 +101,8 @@ class FINFLEX_API ClDeformer {
   BatchLayout layout(std::size_t instances, NormalFormat format = NormalFormat::kFloat32) const;
   // Allocates the outputs of `instances` instances in FinFlex's planes, normals and
   // tangents in `format`. kInvalidArgument for 0, kOutOfRange naming "instances" when
-  // one attribute array would exceed the device's largest allocation.
+  // one attribute array would exceed the device's largest allocation or above
+  // kMaxDeviceInstances.
   DeviceBatch allocate(std::size_t instances, NormalFormat format = NormalFormat::kFloat32) const;
 
   // ---- Hand-off (finflex/output_layout.hpp, docs/handoff.md) ----

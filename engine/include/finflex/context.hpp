@@ -1,5 +1,11 @@
 // OpenCL plumbing: picks a platform and device, owns the context and an in-order
 // profiling queue, and caches compiled programs by build options.
+//
+// Thread-safety: a Context may be shared by any number of threads (deformers on
+// several threads, program builds): the program cache is guarded by a lock, and the
+// queue is used only through OpenCL calls, which are thread-safe. Every thread's
+// commands go to the one in-order queue. Construction and destruction are not
+// concurrent with any use.
 #pragma once
 
 #include <map>

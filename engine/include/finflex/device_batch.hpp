@@ -9,6 +9,10 @@
 // normals 12 (float32) or 6 (IEEE half, NormalFormat::kHalf); tangents the same again
 // when the mesh has them. 4,000 instances of the 10,786-vertex fish (10,816 slots)
 // with float32 normals: 4,000 * 10,816 * 24 B = 1.04 GB.
+//
+// Thread-safety: a batch is written by the frames enqueued into it; give each thread
+// its own batch (finflex/cl_deformer.hpp). Its buffers may be read on any thread once
+// the frame's event is complete.
 #pragma once
 
 #include <array>
@@ -21,6 +25,10 @@
 #include "finflex/output_layout.hpp"
 
 namespace finflex {
+
+// Most instances in one batch: the kernels count instances in 32 bits
+// (ClDeformer::allocate refuses more, as it refuses more than the device can allocate).
+constexpr std::size_t kMaxDeviceInstances = 0xffffffffu;
 
 struct DeviceBatch {
   // The counts: instances, the mesh's vertices, whether the mesh has tangents; for the
