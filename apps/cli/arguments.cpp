@@ -50,4 +50,17 @@ std::pair<double, double> parse_positive_pair(const std::string& text, const std
           parse_positive(text.substr(comma + 1), option)};
 }
 
+std::pair<int, int> parse_size(const std::string& text, const std::string& option) {
+  const std::string expected = "WIDTHxHEIGHT, each a whole number in [1, 16384]";
+  const std::size_t x = text.find('x');
+  if (x == std::string::npos) fail(option, text, expected);
+  try {
+    const auto width = static_cast<int>(parse_count(text.substr(0, x), option, 1, 16384));
+    const auto height = static_cast<int>(parse_count(text.substr(x + 1), option, 1, 16384));
+    return {width, height};
+  } catch (const Error&) {
+    fail(option, text, expected);
+  }
+}
+
 }  // namespace finflex::cli

@@ -17,5 +17,6 @@ Command add_rig_info_command(CLI::App& app);
 Command add_bench_command(CLI::App& app);
 Command add_subdivide_command(CLI::App& app);
 Command add_swim_command(CLI::App& app);
+Command add_bake_command(CLI::App& app);
 
 }  // namespace finflex::cli

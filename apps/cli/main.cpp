@@ -7,6 +7,8 @@
 //   finflex bench --mesh PATH --instances N --frames F [--mode paper|exact]
 //                 [--rig RIG.json [--path fused|passes]] [--device NAME] [--json]
 //   finflex subdivide --in PATH --levels N --out PATH
+//   finflex swim [--fish N] [--seconds S] ... [--out DIR [--annotate]]
+//   finflex bake --out DIR [--species MESH:RIG] [--frames N] ...
 //   finflex info
 #include <iostream>
 
@@ -23,6 +25,7 @@ int main(int argc, char** argv) {
   const Command bench = add_bench_command(app);
   const Command subdivide = add_subdivide_command(app);
   const Command swim = add_swim_command(app);
+  const Command bake = add_bake_command(app);
   const Command info = add_info_command(app);
   try {
     app.parse(argc, argv);
@@ -41,5 +44,6 @@ int main(int argc, char** argv) {
   if (app.got_subcommand("bench")) return bench();
   if (app.got_subcommand("subdivide")) return subdivide();
   if (app.got_subcommand("swim")) return swim();
+  if (app.got_subcommand("bake")) return bake();
   return info();
 }

@@ -1,9 +1,12 @@
 // Videos from frames: MP4 (H.264) through the `ffmpeg` program when it is installed,
-// else an animated PNG (APNG) written here. Both take whole RGB8 frames in order.
+// else an animated PNG (APNG) written here; animated GIF through ffmpeg too. All take
+// whole RGB8 frames in order.
 //
 //   MP4: frames go raw through a pipe to ffmpeg (libx264, yuv420p, BT.709, sRGB
 //        transfer tagged); small files, the encoder runs in its own process. Needs
 //        `ffmpeg` on PATH.
+//   GIF:  one 256-colour palette for the whole clip, looping; small for short clips
+//        of a few hundred pixels (a README's animation), through ffmpeg.
 //   APNG: every frame a whole PNG image (filtered rows, zlib deflate) in one file;
 //        no dependency beyond zlib, lossless, but one to two orders of magnitude
 //        larger than the MP4 and encoded on the calling thread.
@@ -50,8 +53,8 @@ class VideoWriter {
 // Whether an executable `ffmpeg` is on PATH.
 bool ffmpeg_available();
 
-// A writer chosen by the extension of `path`: ".mp4" through ffmpeg (kIo when it is
-// not installed), ".png" or ".apng" an APNG; anything else is kInvalidArgument.
+// A writer chosen by the extension of `path`: ".mp4" or ".gif" through ffmpeg (kIo when
+// it is not installed), ".png" or ".apng" an APNG; anything else is kInvalidArgument.
 std::unique_ptr<VideoWriter> open_video(const std::string& path, const VideoOptions& options);
 
 // stem + ".mp4" when ffmpeg is available, else stem + ".png" (an APNG).
