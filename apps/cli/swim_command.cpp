@@ -16,6 +16,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -254,7 +255,15 @@ void progress(std::size_t done, std::size_t total) {
 struct FrameTimes {
   std::vector<double> simulation, enqueue, kernels, wait, hand_off, draw, read_back, files,
       annotation, total;
+  std::vector<double> cpu;  // CPU time of every thread of the process (not ffmpeg's)
 };
+
+// CPU seconds the process has used, all its threads (PoCL's and llvmpipe's included).
+double process_cpu_seconds() {
+  timespec now{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
+  return double(now.tv_sec) + 1e-9 * double(now.tv_nsec);
+}
 
 double sum(const std::vector<double>& values) {
   double total = 0.0;
@@ -290,6 +299,7 @@ nlohmann::ordered_json rendering_summary(const SwimPlan& plan, pictures::TankPic
                                    {"read_back", mean(t.read_back)},
                                    {"files", mean(t.files)},
                                    {"annotation", mean(t.annotation)}};
+  out["cpu_seconds_per_frame_mean"] = mean(t.cpu);
   out["share_of_frame"] = {{"deform", deform / frame},
                            {"hand_off", mean(t.hand_off) / frame},
                            {"draw", mean(t.draw) / frame},
@@ -341,6 +351,7 @@ int run_swim(const SwimOptions& options) {
     double first_frame = 0.0;
     for (std::size_t f = 0; f < plan.frames; ++f) {
       const auto frame_start = Clock::now();
+      const double cpu_start = process_cpu_seconds();
       const tank::FrameWork work = scene.enqueue_frame(dt, true);
       Clock::time_point step = Clock::now();
       context.queue().finish();
@@ -371,6 +382,7 @@ int run_swim(const SwimOptions& options) {
         t.files.push_back(file_times.files);
         t.annotation.push_back(file_times.annotation);
         t.total.push_back(seconds_since(frame_start));
+        t.cpu.push_back(process_cpu_seconds() - cpu_start);
       }
       if (f % track_every == 0) {
         const std::vector<tank::Fish>& fish = scene.tank().fish();
@@ -428,8 +440,10 @@ int run_swim(const SwimOptions& options) {
                   plan.pictures.width, plan.pictures.height, pictures->renderer().device().samples,
                   pictures::to_string(plan.pictures.view),
                   pictures->renderer().device().gl_renderer.c_str(), timed_fps);
-      std::printf("  a frame (mean of %zu): %.1f ms: %s, %s, %s, %s, %s, %s\n", t.total.size(),
-                  ms["frame"].get<double>() * 1e3, part("deform").c_str(),
+      std::printf("  a frame (mean of %zu): %.1f ms (CPU time %.1f ms): %s, %s, %s, %s, %s, %s\n",
+                  t.total.size(), ms["frame"].get<double>() * 1e3,
+                  rendering["cpu_seconds_per_frame_mean"].get<double>() * 1e3,
+                  part("deform").c_str(),
                   part("hand_off").c_str(), part("draw").c_str(), part("read_back").c_str(),
                   part("files").c_str(), part("annotation").c_str());
     }

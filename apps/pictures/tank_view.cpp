@@ -33,18 +33,17 @@ std::vector<glm::vec3> tank_outline(float radius, float rim) {
   return points;
 }
 
-// 40 degrees down from the tank's +z side, at the distance and height where the tank's
-// outline just fills the frame (its projection centred, kMargin to spare): a few
-// fixed-point steps, each scaling the distance by the outline's extent and moving the
-// point looked at to centre it.
-render::Camera fit_oblique(render::Camera camera, float radius, float rim, int width, int height) {
-  const float down = glm::radians(40.0f);
+// From the tank's +z side, `down` radians below the horizontal, at the distance and
+// height where `outline` just fills the frame (its projection centred vertically,
+// kMargin to spare): fixed-point steps, each scaling the distance by the outline's
+// extent and moving the point looked at up or down to centre it.
+render::Camera fit_view(render::Camera camera, float down, const std::vector<glm::vec3>& outline,
+                        glm::vec3 target, int width, int height) {
   const glm::vec3 back{0.0f, std::sin(down), std::cos(down)};  // from the target to the eye
-  const std::vector<glm::vec3> outline = tank_outline(radius, rim);
   const float tangent = std::tan(0.5f * glm::radians(camera.vertical_fov_degrees));
-  float distance = 2.5f * radius / tangent;
-  glm::vec3 target{0.0f, 0.3f * rim, 0.0f};
-  for (int step = 0; step < 12; ++step) {
+  float distance = 0.0f;
+  for (const glm::vec3& p : outline) distance = std::max(distance, 3.0f * glm::length(p - target));
+  for (int step = 0; step < 16; ++step) {
     camera.target = target;
     camera.position = target + distance * back;
     glm::vec2 low(1e9f), high(-1e9f);
@@ -56,7 +55,7 @@ render::Camera fit_oblique(render::Camera camera, float radius, float rim, int w
       high = glm::max(high, ndc);
     }
     const float extent = std::max(high.x - low.x, high.y - low.y) * 0.5f;
-    // Centre vertically: an image offset of c (NDC) is c d tan / cos(down) along y.
+    // An image offset of c (NDC, vertical) is about c d tan / cos(down) along y.
     target.y += 0.5f * (low.y + high.y) * distance * tangent / std::cos(down);
     distance *= extent * kMargin;
   }
@@ -115,19 +114,18 @@ render::Camera tank_camera(const tank::TankSettings& settings, CameraView view, 
       break;
     }
     case CameraView::kSide: {
-      // The tank's widest section (its axis, 2 radius across) fills the horizontal
-      // field: the eye stands radius / tan_h from the axis.
-      const float aspect = static_cast<float>(width) / static_cast<float>(height);
-      const float horizontal =
-          std::tan(0.5f * glm::radians(kVerticalFovDegrees)) * std::max(aspect, 1.0f);
-      const float from_axis =
-          std::max(kMargin * radius / horizontal, kMargin * 0.5f * rim / tangent + radius);
-      camera.position = {0.0f, 0.5f * depth, from_axis};
-      camera.target = {0.0f, 0.5f * depth, 0.0f};
+      // Level with the middle of the water; the near wall is not drawn, so the far
+      // half of the tank fills the frame.
+      std::vector<glm::vec3> far_half;
+      for (const glm::vec3& p : tank_outline(radius, rim)) {
+        if (p.z <= 0.0f) far_half.push_back(p);
+      }
+      camera = fit_view(camera, 0.0f, far_half, {0.0f, 0.5f * depth, 0.0f}, width, height);
       break;
     }
     case CameraView::kOblique:
-      camera = fit_oblique(camera, radius, rim, width, height);
+      camera = fit_view(camera, glm::radians(40.0f), tank_outline(radius, rim),
+                        {0.0f, depth / 3.0f, 0.0f}, width, height);
       break;
   }
   return camera;
