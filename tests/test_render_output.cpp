@@ -254,6 +254,17 @@ TEST(Gif, ThroughFfmpegWhenInstalled) {
   EXPECT_EQ(file[8] | (file[9] << 8), 48);
   EXPECT_NE(std::string(file.begin(), file.end()).find("NETSCAPE2.0"), std::string::npos);
   EXPECT_TRUE(folder_holds_only(fs::path(path).parent_path().string(), {"swim.gif"}));
+  // Wider frames are scaled down to gif_width, the aspect kept.
+  const std::string preview = test::temp_path("preview.gif");
+  options.width = 800;
+  options.height = 450;
+  writer = open_video(preview, options);
+  for (unsigned i = 0; i < 3; ++i) writer->add_frame(test_frame(800, 450, i));
+  writer->finish();
+  const std::vector<std::uint8_t> scaled = read_bytes(preview);
+  ASSERT_GT(scaled.size(), 10u);
+  EXPECT_EQ(scaled[6] | (scaled[7] << 8), 400);
+  EXPECT_EQ(scaled[8] | (scaled[9] << 8), 225);
 }
 
 // PATH led by a folder holding a stand-in `ffmpeg` script, for one scope.

@@ -41,10 +41,15 @@ std::vector<std::string> ffmpeg_arguments(const VideoOptions& options, FfmpegFor
       "rgb24",  "-s",           size,        "-framerate", std::to_string(options.fps),
       "-i",     "pipe:0"};
   if (format == FfmpegFormat::kGif) {
-    // one palette for the clip, from every frame; Floyd-Steinberg-like diffusion
-    arguments.insert(arguments.end(),
-                     {"-vf", "split[a][b];[a]palettegen=stats_mode=full[p];[b][p]paletteuse=dither=sierra2_4a",
-                      "-loop", "0", "-f", "gif", output});
+    // scaled down to gif_width; one palette for the clip, from every frame;
+    // error-diffusion dithering (Sierra-2-4A)
+    std::string filter;
+    if (options.gif_width > 0) {
+      filter = "scale=w='min(" + std::to_string(options.gif_width) + ",iw)':h=-1:flags=lanczos,";
+    }
+    filter += "split[a][b];[a]palettegen=max_colors=" + std::to_string(options.gif_colours) +
+              ":stats_mode=full[p];[b][p]paletteuse=dither=sierra2_4a";
+    arguments.insert(arguments.end(), {"-vf", filter, "-loop", "0", "-f", "gif", output});
     return arguments;
   }
   // even sizes for 4:2:0, BT.709 limited range, tagged as sRGB transfer

@@ -2,9 +2,10 @@
 // standard input (a socket rather than a pipe, so that a vanished ffmpeg is an error
 // from send(), not a SIGPIPE), and it encodes them into a temporary file that
 // finish() renames into place: H.264 (libx264, yuv420p, BT.709 matrix, sRGB transfer
-// tagged) for MP4; for GIF one 256-colour palette made from every frame (palettegen;
-// ffmpeg holds the whole clip until the end, so GIFs are for short clips), applied
-// with error diffusion, looping forever. Its standard error goes to a temporary log whose last line explains a failure.
+// tagged) for MP4; for GIF, scaled down to VideoOptions::gif_width, one palette made
+// from every frame (palettegen: ffmpeg holds the whole clip until the end, so GIFs are
+// for short clips), applied with error diffusion, looping forever. Its standard error
+// goes to a temporary log whose last line explains a failure.
 #pragma once
 
 #include <sys/types.h>

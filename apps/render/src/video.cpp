@@ -30,6 +30,8 @@ void VideoOptions::validate() const {
   detail::require_in_range("video.fps", fps, 1, 240);
   detail::require_in_range("video.crf", crf, 0, 51);
   detail::require_in_range("video.png_compression", png_compression, 1, 9);
+  detail::require_in_range("video.gif_width", gif_width, 0, 16384);
+  detail::require_in_range("video.gif_colours", gif_colours, 2, 256);
   const char* presets[] = {"ultrafast", "superfast", "veryfast", "faster",  "fast",
                            "medium",    "slow",      "slower",   "veryslow"};
   if (std::find(std::begin(presets), std::end(presets), preset) == std::end(presets)) {

@@ -5,8 +5,9 @@
 //   MP4: frames go raw through a pipe to ffmpeg (libx264, yuv420p, BT.709, sRGB
 //        transfer tagged); small files, the encoder runs in its own process. Needs
 //        `ffmpeg` on PATH.
-//   GIF:  one 256-colour palette for the whole clip, looping; small for short clips
-//        of a few hundred pixels (a README's animation), through ffmpeg.
+//   GIF:  a preview: one palette (128 colours) for the whole clip, at most 400 pixels
+//        wide, looping; a few hundred KB for a couple of seconds (a README's
+//        animation), through ffmpeg.
 //   APNG: every frame a whole PNG image (filtered rows, zlib deflate) in one file;
 //        no dependency beyond zlib, lossless, but one to two orders of magnitude
 //        larger than the MP4 and encoded on the calling thread.
@@ -33,6 +34,10 @@ struct VideoOptions {
   std::string preset = "veryfast";
   // APNG: zlib level, 1 (fast) .. 9 (small).
   int png_compression = 6;
+  // GIF, a preview: frames wider than this are scaled down to it (Lanczos, aspect
+  // kept); 0 keeps every frame's size. Colours: a palette of gif_colours (2 .. 256).
+  int gif_width = 400;
+  int gif_colours = 128;
 
   // Throws RenderError (kInvalidArgument) naming the field ("video.fps", ...).
   void validate() const;
