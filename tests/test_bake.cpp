@@ -9,8 +9,8 @@
 #include <fstream>
 
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
+#include <nlohmann/json.hpp>
 
 #include "finflex/finflex.hpp"
 #include "frame_meshes.hpp"
@@ -31,8 +31,8 @@ namespace fs = std::filesystem;
 const SwimModel& swim_model() {
   static const Mesh mesh = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
   static const SwimModel swim(RiggedMesh(
-      mesh, resolve_rig(load_rig_file(test::data_path("rigs/blub_low_resolution_swim.rig.json")),
-                        mesh)));
+      mesh,
+      resolve_rig(load_rig_file(test::data_path("rigs/blub_low_resolution_swim.rig.json")), mesh)));
   return swim;
 }
 
@@ -46,7 +46,8 @@ CycleSettings settings(std::size_t frames) {
 
 double largest_difference(const std::vector<float>& a, const std::vector<float>& b) {
   double largest = 0.0;
-  for (std::size_t i = 0; i < a.size(); ++i) largest = std::max(largest, double(std::fabs(a[i] - b[i])));
+  for (std::size_t i = 0; i < a.size(); ++i)
+    largest = std::max(largest, double(std::fabs(a[i] - b[i])));
   return largest;
 }
 
@@ -82,10 +83,23 @@ TEST(SwimCycle, TheTimeStepWrapsThePhaseExactly) {
   EXPECT_EQ(cycle.placements[0].position, glm::vec3(0.0f));
   EXPECT_FLOAT_EQ(cycle.placements[0].length, 0.35f);
   // Bad settings are named.
-  for (const auto& [bad, field] :
-       {std::pair{[] { auto s = settings(1); return s; }(), "frames"},
-        std::pair{[] { auto s = settings(8); s.length_m = 0.0; return s; }(), "length"},
-        std::pair{[] { auto s = settings(8); s.speed = -1.0; return s; }(), "speed"}}) {
+  for (const auto& [bad, field] : {std::pair{[] {
+                                               auto s = settings(1);
+                                               return s;
+                                             }(),
+                                             "frames"},
+                                   std::pair{[] {
+                                               auto s = settings(8);
+                                               s.length_m = 0.0;
+                                               return s;
+                                             }(),
+                                             "length"},
+                                   std::pair{[] {
+                                               auto s = settings(8);
+                                               s.speed = -1.0;
+                                               return s;
+                                             }(),
+                                             "speed"}}) {
     try {
       bad.validate();
       ADD_FAILURE() << field;
@@ -102,10 +116,12 @@ std::vector<glm::vec3> gltf_attribute(const tinygltf::Model& model, const std::s
   const auto read = [&](int accessor_index) {
     const tinygltf::Accessor& accessor = model.accessors[std::size_t(accessor_index)];
     const tinygltf::BufferView& view = model.bufferViews[std::size_t(accessor.bufferView)];
-    const auto* data = reinterpret_cast<const float*>(
-        model.buffers[std::size_t(view.buffer)].data.data() + view.byteOffset + accessor.byteOffset);
+    const auto* data =
+        reinterpret_cast<const float*>(model.buffers[std::size_t(view.buffer)].data.data() +
+                                       view.byteOffset + accessor.byteOffset);
     std::vector<glm::vec3> out(accessor.count);
-    for (std::size_t i = 0; i < out.size(); ++i) out[i] = {data[3 * i], data[3 * i + 1], data[3 * i + 2]};
+    for (std::size_t i = 0; i < out.size(); ++i)
+      out[i] = {data[3 * i], data[3 * i + 1], data[3 * i + 2]};
     return out;
   };
   std::vector<glm::vec3> values = read(primitive.attributes.at(name));
@@ -188,7 +204,8 @@ TEST(Bake, TheGltfAnimationLoadsBackAndIsTheEnginesCycle) {
   const std::size_t per = values.values_per_instance();
   for (std::size_t k = 1; k <= n; ++k) {
     fish.step({input}, baked.cycle.period_s / double(n));
-    std::copy_n(fish.parameters().values().begin(), per, values.values().begin() + std::ptrdiff_t((k % n) * per));
+    std::copy_n(fish.parameters().values().begin(), per,
+                values.values().begin() + std::ptrdiff_t((k % n) * per));
   }
   std::vector<Placement> placements(n + 1, fish.placements()[0]);
   ReferenceJob job;
@@ -199,9 +216,8 @@ TEST(Bake, TheGltfAnimationLoadsBackAndIsTheEnginesCycle) {
   DeformedBatch<double> exact;
   job.outputs = &exact;
   run_reference(job);
-  const AccuracyReport report = compare_to_reference(swim_model().model(), values.view(),
-                                                     NormalMode::kJacobian, loaded, exact,
-                                                     placements.data());
+  const AccuracyReport report = compare_to_reference(
+      swim_model().model(), values.view(), NormalMode::kJacobian, loaded, exact, placements.data());
   EXPECT_TRUE(report.within_tolerance())
       << report.max_position_ratio << " " << report.max_normal_ratio;
 
@@ -211,7 +227,7 @@ TEST(Bake, TheGltfAnimationLoadsBackAndIsTheEnginesCycle) {
     double step = 0.0;
     for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
       step = std::max(step, double(glm::length(baked.batch.position((k + 1) % n, v) -
-                                              baked.batch.position(k, v))));
+                                               baked.batch.position(k, v))));
     }
     if (k + 1 == n) {
       wrap = step;
@@ -256,10 +272,12 @@ TEST(Bake, VertexAnimationTexturesDecodeWithinTheirQuantisation) {
   ASSERT_EQ(json["frames"], n);
   EXPECT_NEAR(json["period_s"].get<double>(), baked.cycle.period_s, 1e-12);
   int width = 0, height = 0;
-  const std::vector<std::uint16_t> positions = read_png16(folder + "/blub_vat_positions.png", width, height);
+  const std::vector<std::uint16_t> positions =
+      read_png16(folder + "/blub_vat_positions.png", width, height);
   ASSERT_EQ(width, 400);
   ASSERT_EQ(height, int(3 * n));
-  const std::vector<std::uint16_t> normals = read_png16(folder + "/blub_vat_normals.png", width, height);
+  const std::vector<std::uint16_t> normals =
+      read_png16(folder + "/blub_vat_normals.png", width, height);
   const glm::dvec3 lo(json["bounds_min"][0], json["bounds_min"][1], json["bounds_min"][2]);
   const glm::dvec3 hi(json["bounds_max"][0], json["bounds_max"][1], json["bounds_max"][2]);
   const glm::dvec3 half_step = (hi - lo) / 131070.0;
@@ -277,15 +295,17 @@ TEST(Bake, VertexAnimationTexturesDecodeWithinTheirQuantisation) {
       for (int c = 0; c < 3; ++c) {
         worst_position = std::max(worst_position, std::fabs(p[c] - exact[c]) / half_step[c]);
       }
-      worst_normal = std::max(worst_normal,
-                              glm::length(glm::normalize(q) - glm::normalize(glm::dvec3(baked.batch.normal(k, v)))));
+      worst_normal = std::max(
+          worst_normal,
+          glm::length(glm::normalize(q) - glm::normalize(glm::dvec3(baked.batch.normal(k, v)))));
     }
   }
   EXPECT_LE(worst_position, 1.0 + 1e-3);  // within half a quantisation step
   EXPECT_LT(worst_normal, 3.0 / 65535.0);
   // The shader snippet carries the same numbers; the mesh has the lookup coordinates.
   std::ifstream glsl_file(folder + "/blub_vat.glsl");
-  const std::string glsl((std::istreambuf_iterator<char>(glsl_file)), std::istreambuf_iterator<char>());
+  const std::string glsl((std::istreambuf_iterator<char>(glsl_file)),
+                         std::istreambuf_iterator<char>());
   EXPECT_NE(glsl.find("const int VAT_WIDTH = 400;"), std::string::npos);
   EXPECT_NE(glsl.find("const int VAT_ROWS_PER_FRAME = 3;"), std::string::npos);
   tinygltf::Model model;
@@ -310,7 +330,8 @@ TEST(Bake, FrameMeshesHoldEveryFrame) {
     EXPECT_EQ(frame.indices, swim_model().model().mesh().indices);
     double largest = 0.0;
     for (std::size_t v = 0; v < frame.vertex_count(); ++v) {
-      largest = std::max(largest, double(glm::length(frame.positions[v] - baked.batch.position(k, v))));
+      largest =
+          std::max(largest, double(glm::length(frame.positions[v] - baked.batch.position(k, v))));
     }
     EXPECT_LT(largest, 1e-6);
   }

@@ -63,8 +63,9 @@ TEST(CliPictures, SwimWritesFramesAVideoAndTheCamera) {
   EXPECT_EQ(files_in(out + "/frames"), 3u);  // 0.1 s at 30 fps
   for (int frame = 0; frame < 3; ++frame) {
     int width = 0, height = 0, channels = 0;
-    unsigned char* pixels = stbi_load((out + "/frames/frame_00000" + std::to_string(frame) + ".png").c_str(),
-                                      &width, &height, &channels, 3);
+    unsigned char* pixels =
+        stbi_load((out + "/frames/frame_00000" + std::to_string(frame) + ".png").c_str(), &width,
+                  &height, &channels, 3);
     ASSERT_NE(pixels, nullptr);
     EXPECT_EQ(width, 160);
     EXPECT_EQ(height, 90);
@@ -111,14 +112,17 @@ struct Projection {
 // camera.json.
 TEST(CliPictures, MasksBoxesAndKeypointsAgreeWithTheProjectedVertices) {
   const std::string out = test::temp_path("dataset");
-  const RunResult r = run_cli(small_swim("16") + " --seed 7 --size 320x180 --camera above "
-                              "--annotate --video none --mesh-frames 0,2 --out '" + out + "'");
+  const RunResult r = run_cli(small_swim("16") +
+                              " --seed 7 --size 320x180 --camera above "
+                              "--annotate --video none --mesh-frames 0,2 --out '" +
+                              out + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json camera = read_json(out + "/camera.json");
   const nlohmann::json coco = read_json(out + "/coco.json");
   glm::dmat4 camera_from_world(1.0);
   for (int row = 0; row < 4; ++row) {
-    for (int col = 0; col < 4; ++col) camera_from_world[col][row] = camera["camera_from_world"][row][col];
+    for (int col = 0; col < 4; ++col)
+      camera_from_world[col][row] = camera["camera_from_world"][row][col];
   }
   const double fx = camera["fx"], fy = camera["fy"], cx = camera["cx"], cy = camera["cy"];
   const auto project = [&](const glm::vec3& world) {
@@ -126,9 +130,9 @@ TEST(CliPictures, MasksBoxesAndKeypointsAgreeWithTheProjectedVertices) {
     return glm::dvec3(fx * p.x / p.z + cx, fy * p.y / p.z + cy, p.z);
   };
   const Mesh rest = load_mesh(test::data_path(kLowResolutionBlub));
-  const RiggedMesh model(rest, resolve_rig(load_rig_file(test::data_path(
-                                               "rigs/blub_low_resolution_swim.rig.json")),
-                                           rest));
+  const RiggedMesh model(
+      rest,
+      resolve_rig(load_rig_file(test::data_path("rigs/blub_low_resolution_swim.rig.json")), rest));
   const pictures::FishLandmarks marks = pictures::find_landmarks(model);
   const std::size_t vertices = rest.vertex_count();
 
@@ -162,8 +166,8 @@ TEST(CliPictures, MasksBoxesAndKeypointsAgreeWithTheProjectedVertices) {
       SCOPED_TRACE("fish " + std::to_string(i));
       // Where the fish lies in the picture, and whether another fish's box overlaps it.
       const Projection& p = fish[i];
-      const bool in_view = p.in_front && p.high.x > 0.0 && p.low.x < width && p.high.y > 0.0 &&
-                           p.low.y < height;
+      const bool in_view =
+          p.in_front && p.high.x > 0.0 && p.low.x < width && p.high.y > 0.0 && p.low.y < height;
       bool alone = true;
       for (std::size_t j = 0; j < 16; ++j) {
         if (j != i && fish[j].low.x < p.high.x + 1 && p.low.x < fish[j].high.x + 1 &&
@@ -195,7 +199,7 @@ TEST(CliPictures, MasksBoxesAndKeypointsAgreeWithTheProjectedVertices) {
       if (a == nullptr) continue;
       EXPECT_EQ((*a)["area"], pixels);
       EXPECT_EQ((*a)["bbox"], nlohmann::json({box_low.x, box_low.y, box_high.x - box_low.x + 1,
-                                               box_high.y - box_low.y + 1}));
+                                              box_high.y - box_low.y + 1}));
       if (alone && p.low.x > 1 && p.low.y > 1 && p.high.x < width - 1 && p.high.y < height - 1) {
         // Nothing in front and inside the frame: the box is the projection's, to a pixel.
         EXPECT_NEAR(box_low.x + 0.5, p.low.x, 1.5);
@@ -242,14 +246,15 @@ TEST(CliPictures, TheDatasetLoadsWithPycocotools) {
   const std::string out = test::temp_path("coco");
   const RunResult r = run_cli(
       "swim --fish 40 --seconds 0.1 --fps 20 --seed 3 --size 320x180 --annotate --video none "
-      "--species " + low_resolution_species() + " --species " +
-      fish("barramundi/BarramundiFish.gltf") + ":" +
+      "--species " +
+      low_resolution_species() + " --species " + fish("barramundi/BarramundiFish.gltf") + ":" +
       test::data_path("rigs/barramundi_swim.rig.json") + " --out '" + out + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const RunResult check = [&] {
     const std::string log = test::temp_path("check.txt");
-    const int status = std::system(("'" + python + "' '" + FINFLEX_CHECK_COCO + "' '" + out +
-                                    "' >'" + log + "' 2>&1").c_str());
+    const int status = std::system(
+        ("'" + python + "' '" + FINFLEX_CHECK_COCO + "' '" + out + "' >'" + log + "' 2>&1")
+            .c_str());
     return RunResult{WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(log), ""};
   }();
   EXPECT_EQ(check.exit_code, 0) << check.out;
@@ -334,11 +339,10 @@ TEST(CliPictures, BakeWritesEveryFormatIntoTheFolder) {
                               " --frames 6 --length 0.3 --out '" + out + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("in 6 frames"), std::string::npos) << r.out;
-  for (const char* file :
-       {"blub_low_resolution_swim.glb", "blub_low_resolution_vat_positions.png",
-        "blub_low_resolution_vat_normals.png", "blub_low_resolution_vat.json",
-        "blub_low_resolution_vat.glsl", "blub_low_resolution_vat_mesh.glb", "bake.json",
-        "notes.txt"}) {
+  for (const char* file : {"blub_low_resolution_swim.glb", "blub_low_resolution_vat_positions.png",
+                           "blub_low_resolution_vat_normals.png", "blub_low_resolution_vat.json",
+                           "blub_low_resolution_vat.glsl", "blub_low_resolution_vat_mesh.glb",
+                           "bake.json", "notes.txt"}) {
     EXPECT_TRUE(fs::is_regular_file(out + "/" + file)) << file;
   }
   EXPECT_EQ(files_in(out + "/meshes"), 6u);

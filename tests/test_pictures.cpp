@@ -208,7 +208,8 @@ TEST(TankPictures, TheIdPassCoversTheFishWithTheirTankIds) {
     for (int dy = -1; dy <= 1; ++dy) {
       for (int dx = -1; dx <= 1; ++dx) {
         const int u = x + dx, v = y + dy;
-        if (u >= 0 && v >= 0 && u < ids.width && v < ids.height && mask[ids.index(u, v)]) return true;
+        if (u >= 0 && v >= 0 && u < ids.width && v < ids.height && mask[ids.index(u, v)])
+          return true;
       }
     }
     return false;

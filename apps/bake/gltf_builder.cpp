@@ -58,9 +58,9 @@ int GltfBuilder::add_accessor(const void* bytes, std::size_t count, std::size_t 
 }
 
 int GltfBuilder::add_vec3(const std::vector<glm::vec3>& values, bool bounds) {
-  const int index = add_accessor(values.data(), values.size(), sizeof(glm::vec3),
-                                 TINYGLTF_TYPE_VEC3, TINYGLTF_COMPONENT_TYPE_FLOAT,
-                                 TINYGLTF_TARGET_ARRAY_BUFFER);
+  const int index =
+      add_accessor(values.data(), values.size(), sizeof(glm::vec3), TINYGLTF_TYPE_VEC3,
+                   TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TARGET_ARRAY_BUFFER);
   if (bounds) set_bounds<3>(model_.accessors.back(), values);
   return index;
 }
@@ -82,9 +82,8 @@ int GltfBuilder::add_scalars(const std::vector<float>& values, bool bounds) {
 }
 
 int GltfBuilder::add_indices(const std::vector<std::uint32_t>& indices) {
-  return add_accessor(indices.data(), indices.size(), sizeof(std::uint32_t),
-                      TINYGLTF_TYPE_SCALAR, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
-                      TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+  return add_accessor(indices.data(), indices.size(), sizeof(std::uint32_t), TINYGLTF_TYPE_SCALAR,
+                      TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
 }
 
 void GltfBuilder::set_mesh(const std::string& name, const tinygltf::Primitive& primitive,
@@ -114,8 +113,9 @@ void GltfBuilder::write_glb(const std::string& path) const {
   {
     std::ofstream out(temporary, std::ios::binary);
     tinygltf::TinyGLTF writer;
-    if (!out || !writer.WriteGltfSceneToStream(&model_, out, /*prettyPrint=*/false,
-                                                /*writeBinary=*/true) ||
+    if (!out ||
+        !writer.WriteGltfSceneToStream(&model_, out, /*prettyPrint=*/false,
+                                       /*writeBinary=*/true) ||
         !out.flush()) {
       out.close();
       std::remove(temporary.c_str());

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include <glm/glm.hpp>
 #include <tiny_gltf.h>
+#include <glm/glm.hpp>
 
 namespace finflex::bake {
 

@@ -32,8 +32,8 @@ void CycleSettings::validate() const {
     invalid("length", "length = " + std::to_string(length_m) + " m (expected > 0)");
   }
   if (!std::isfinite(speed) || speed < 0.0 || speed > 20.0) {
-    invalid("speed", "speed = " + std::to_string(speed) +
-                         " body lengths per second (expected 0 to 20)");
+    invalid("speed",
+            "speed = " + std::to_string(speed) + " body lengths per second (expected 0 to 20)");
   }
 }
 
@@ -44,8 +44,7 @@ SwimCycle plan_cycle(const SwimModel& swim, const CycleSettings& settings) {
   SwimReference probe(swim, length);  // f depends on the length and speed alone
   probe.step(input, 1e-3);
   const std::size_t n = settings.frames;
-  SwimCycle cycle{probe.frequencies()[0], 0.0, 0.0, n,
-                  RigParameters(swim.model(), n + 1), {}};
+  SwimCycle cycle{probe.frequencies()[0], 0.0, 0.0, n, RigParameters(swim.model(), n + 1), {}};
   cycle.period_s = 1.0 / cycle.frequency_hz;
   cycle.dt_s = cycle.period_s / double(n);
 

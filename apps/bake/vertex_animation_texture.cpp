@@ -39,8 +39,8 @@ render::Image16 encode(const BakedCycle& baked, const VatLayout& layout, bool no
       const glm::dvec3 value =
           normals ? glm::dvec3(batch.normal(k, v)) : glm::dvec3(batch.position(k, v));
       for (int c = 0; c < 3; ++c) {
-        const double unit = normals ? 0.5 * value[c] + 0.5
-                                    : (range[c] > 0.0 ? (value[c] - lo[c]) / range[c] : 0.0);
+        const double unit =
+            normals ? 0.5 * value[c] + 0.5 : (range[c] > 0.0 ? (value[c] - lo[c]) / range[c] : 0.0);
         texel[c] = quantise(unit);
       }
     }
@@ -64,12 +64,24 @@ std::string glsl(const std::string& stem, const VatLayout& layout, const BakedCy
          "// Bind them as 16-bit unsigned normalised RGB, linear (not sRGB), nearest, no mipmaps.\n"
          "uniform sampler2D vat_positions;\n"
          "uniform sampler2D vat_normals;\n"
-         "const int VAT_WIDTH = " + std::to_string(layout.width) + ";\n"
-         "const int VAT_ROWS_PER_FRAME = " + std::to_string(layout.rows_per_frame) + ";\n"
-         "const int VAT_FRAMES = " + std::to_string(baked.cycle.frames) + ";\n"
-         "const float VAT_PERIOD = " + number(baked.cycle.period_s) + ";  // seconds: one tail beat\n"
-         "const vec3 VAT_BOUNDS_MIN = " + vec3(layout.bounds_min) + ";\n"
-         "const vec3 VAT_BOUNDS_MAX = " + vec3(layout.bounds_max) + ";\n"
+         "const int VAT_WIDTH = " +
+         std::to_string(layout.width) +
+         ";\n"
+         "const int VAT_ROWS_PER_FRAME = " +
+         std::to_string(layout.rows_per_frame) +
+         ";\n"
+         "const int VAT_FRAMES = " +
+         std::to_string(baked.cycle.frames) +
+         ";\n"
+         "const float VAT_PERIOD = " +
+         number(baked.cycle.period_s) +
+         ";  // seconds: one tail beat\n"
+         "const vec3 VAT_BOUNDS_MIN = " +
+         vec3(layout.bounds_min) +
+         ";\n"
+         "const vec3 VAT_BOUNDS_MAX = " +
+         vec3(layout.bounds_max) +
+         ";\n"
          "\n"
          "ivec2 vat_texel(int vertex, int frame) {\n"
          "  return ivec2(vertex % VAT_WIDTH, frame * VAT_ROWS_PER_FRAME + vertex / VAT_WIDTH);\n"
@@ -79,7 +91,8 @@ std::string glsl(const std::string& stem, const VatLayout& layout, const BakedCy
          "  return VAT_BOUNDS_MIN + q * (VAT_BOUNDS_MAX - VAT_BOUNDS_MIN);\n"
          "}\n"
          "vec3 vat_normal(int vertex, int frame) {\n"
-         "  return normalize(texelFetch(vat_normals, vat_texel(vertex, frame), 0).rgb * 2.0 - 1.0);\n"
+         "  return normalize(texelFetch(vat_normals, vat_texel(vertex, frame), 0).rgb * 2.0 - "
+         "1.0);\n"
          "}\n"
          "// The pose at time t (seconds), looping, blended between the two nearest frames.\n"
          "void vat_pose(int vertex, float t, out vec3 position, out vec3 normal) {\n"
@@ -115,8 +128,7 @@ void write_mesh(const fs::path& path, const std::string& name, const Mesh& mesh,
   for (std::size_t v = 0; v < positions.size(); ++v) {
     positions[v] = batch.position(rest, v);
     normals[v] = batch.normal(rest, v);
-    lookup[v] = {(double(v % layout.width) + 0.5) / double(layout.width),
-                 double(v / layout.width)};
+    lookup[v] = {(double(v % layout.width) + 0.5) / double(layout.width), double(v / layout.width)};
   }
   GltfBuilder gltf;
   tinygltf::Primitive primitive;
@@ -184,7 +196,8 @@ VatLayout write_vertex_animation_texture(const std::string& folder, const std::s
   json["normal_texture"] = stem + "_vat_normals.png";
   json["mesh"] = stem + "_vat_mesh.glb";
   json["glsl"] = stem + "_vat.glsl";
-  json["texel"] = "vertex v of frame k: (v mod texture_width, k rows_per_frame + floor(v / texture_width))";
+  json["texel"] =
+      "vertex v of frame k: (v mod texture_width, k rows_per_frame + floor(v / texture_width))";
   json["position"] = "bounds_min + (q / 65535) (bounds_max - bounds_min), q the 16-bit sample";
   json["normal"] = "normalize(2 q / 65535 - 1)";
   json["position_error_max"] = vec((layout.bounds_max - layout.bounds_min) / 131070.0f);

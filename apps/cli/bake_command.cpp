@@ -148,7 +148,8 @@ int run_bake(const BakeOptions& options) {
     {
       std::ofstream out(folder / "bake.json");
       out << summary.dump(1) << "\n";
-      if (!out) throw Error(ErrorCode::kIo, "--out", "'" + options.out + "/bake.json': write failed");
+      if (!out)
+        throw Error(ErrorCode::kIo, "--out", "'" + options.out + "/bake.json': write failed");
     }
     staging.commit();
     std::printf(
@@ -168,8 +169,9 @@ int run_bake(const BakeOptions& options) {
 Command add_bake_command(CLI::App& app) {
   auto options = std::make_shared<BakeOptions>();
   CLI::App* bake = app.add_subcommand(
-      "bake", "One swim cycle of one fish as glTF morph animation, vertex animation textures "
-              "and per-frame meshes");
+      "bake",
+      "One swim cycle of one fish as glTF morph animation, vertex animation textures "
+      "and per-frame meshes");
   bake->add_option("--out", options->out, "Folder to write (made; its parent must exist)");
   bake->add_option("--species", options->species,
                    "MESH:RIG, a mesh and its swim rig (default: the bundled Blub)");

@@ -19,8 +19,8 @@ namespace fs = std::filesystem;
 
 fs::path parent_of(const fs::path& path) {
   const fs::path absolute = fs::absolute(path).lexically_normal();
-  fs::path parent = absolute.has_filename() ? absolute.parent_path()
-                                            : absolute.parent_path().parent_path();
+  fs::path parent =
+      absolute.has_filename() ? absolute.parent_path() : absolute.parent_path().parent_path();
   return parent.empty() ? fs::path(".") : parent;
 }
 
@@ -48,14 +48,14 @@ void check_output_folder(const std::string& out, const std::string& option) {
   }
   const fs::path parent = parent_of(path);
   if (!fs::is_directory(parent, ec)) {
-    throw Error(ErrorCode::kIo, option,
-                option + " '" + out + "': its parent folder '" + parent.string() +
-                    "' does not exist");
+    throw Error(
+        ErrorCode::kIo, option,
+        option + " '" + out + "': its parent folder '" + parent.string() + "' does not exist");
   }
   if (access(parent.c_str(), W_OK) != 0) {
-    throw Error(ErrorCode::kIo, option,
-                option + " '" + out + "': cannot write in its parent folder '" + parent.string() +
-                    "'");
+    throw Error(
+        ErrorCode::kIo, option,
+        option + " '" + out + "': cannot write in its parent folder '" + parent.string() + "'");
   }
 }
 

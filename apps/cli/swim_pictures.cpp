@@ -38,7 +38,8 @@ SwimPictureFiles::SwimPictureFiles(const std::string& folder, pictures::TankPict
   options.height = size.height;
   options.fps = plan.fps;
   for (const std::string& extension : plan.videos) {
-    videos_.push_back(render::open_video((fs::path(folder) / ("swim." + extension)).string(), options));
+    videos_.push_back(
+        render::open_video((fs::path(folder) / ("swim." + extension)).string(), options));
   }
   if (plan.annotate) {
     dataset_ = std::make_unique<pictures::CocoDataset>(folder, scene, pictures.camera(), size.width,

@@ -40,10 +40,12 @@ nlohmann::ordered_json camera_json(const render::Camera& camera, int width, int 
   out["conventions"] = {
       {"world", "metres; y up; the tank's axis is the y axis, its floor the plane y = 0"},
       {"camera", "OpenCV axes: x right, y down, z forward (the view direction)"},
-      {"projection", "u = fx X / Z + cx, v = fy Y / Z + cy for (X, Y, Z) = camera_from_world (x, y, z, 1)"},
-      {"pixels", "(u, v) from the image's top-left corner; pixel (i, j) covers [i, i+1) x [j, j+1), "
-                 "its centre at (i + 0.5, j + 0.5); for tools whose pixel centres are integers, "
-                 "use cx - 0.5 and cy - 0.5"},
+      {"projection",
+       "u = fx X / Z + cx, v = fy Y / Z + cy for (X, Y, Z) = camera_from_world (x, y, z, 1)"},
+      {"pixels",
+       "(u, v) from the image's top-left corner; pixel (i, j) covers [i, i+1) x [j, j+1), "
+       "its centre at (i + 0.5, j + 0.5); for tools whose pixel centres are integers, "
+       "use cx - 0.5 and cy - 0.5"},
       {"optics", "an ideal pinhole: no lens distortion and no refraction at the water's surface"}};
   return out;
 }

@@ -123,8 +123,8 @@ void CocoDataset::add_frame(std::size_t frame, double time_s, const std::string&
         continue;
       }
       const std::size_t pixel = ids.index(static_cast<int>(u), static_cast<int>(v));
-      const bool hidden = ids.ids[pixel] != m.id &&
-                          double(ids.depth[pixel]) < p.z - kOcclusionTolerance;
+      const bool hidden =
+          ids.ids[pixel] != m.id && double(ids.depth[pixel]) < p.z - kOcclusionTolerance;
       keypoints.insert(keypoints.end(), {u, v, hidden ? 1 : 2});
       ++labelled;
     }

@@ -19,8 +19,8 @@ std::size_t normal_bytes(const BatchLayout& layout) {
 void copy_through_host(cl::CommandQueue& queue, const cl::Buffer& buffer, std::size_t bytes,
                        render::Renderer& renderer, render::BufferId target) {
   cl_int status = CL_SUCCESS;
-  void* mapped = queue.enqueueMapBuffer(buffer, CL_TRUE, CL_MAP_READ, 0, bytes, nullptr, nullptr,
-                                        &status);
+  void* mapped =
+      queue.enqueueMapBuffer(buffer, CL_TRUE, CL_MAP_READ, 0, bytes, nullptr, nullptr, &status);
   if (status != CL_SUCCESS || mapped == nullptr) {
     throw Error(ErrorCode::kOpenCL, "hand_off",
                 "mapping a deformed batch for the renderer failed (OpenCL error " +
@@ -47,10 +47,10 @@ SpeciesDrawing prepare_drawing(render::Renderer& renderer, const ClDeformer& def
   drawing.positions = renderer.create_buffer(position_bytes(layout));
   drawing.normals = renderer.create_buffer(normal_bytes(layout));
   drawing.position_layout = render::StreamLayout::planes(layout.plane_stride);
-  drawing.normal_layout = render::StreamLayout::planes(
-      layout.plane_stride, layout.normal_format == NormalFormat::kHalf
-                               ? render::ComponentType::kFloat16
-                               : render::ComponentType::kFloat32);
+  drawing.normal_layout =
+      render::StreamLayout::planes(layout.plane_stride, layout.normal_format == NormalFormat::kHalf
+                                                            ? render::ComponentType::kFloat16
+                                                            : render::ComponentType::kFloat32);
   drawing.instance_count = layout.instance_count;
   drawing.albedo = albedo;
   drawing.ids = std::move(ids);

@@ -16,9 +16,8 @@ std::vector<glm::vec3> read_slot_positions(cl::CommandQueue& queue, const Device
   const std::size_t rows = 3 * layout.instance_count;
   std::vector<float> values(rows);
   const cl_int status = queue.enqueueReadBufferRect(
-      batch.positions, CL_TRUE, {slot * sizeof(float), 0, 0}, {0, 0, 0},
-      {sizeof(float), rows, 1}, layout.plane_stride * sizeof(float), 0, sizeof(float), 0,
-      values.data());
+      batch.positions, CL_TRUE, {slot * sizeof(float), 0, 0}, {0, 0, 0}, {sizeof(float), rows, 1},
+      layout.plane_stride * sizeof(float), 0, sizeof(float), 0, values.data());
   if (status != CL_SUCCESS) {
     throw Error(ErrorCode::kOpenCL, "positions",
                 "reading vertex positions failed (OpenCL error " + std::to_string(status) + ")");

@@ -30,10 +30,9 @@ TankPictures::TankPictures(tank::SwimScene& scene, const PictureSettings& settin
     : scene_(scene),
       renderer_(render_settings(settings)),
       look_(tank_scene(scene.tank().settings())),
-      camera_(tank_camera(scene.tank().settings(), settings.view, settings.width,
-                          settings.height)) {
-  std::vector<std::vector<std::uint32_t>> ids =
-      instance_ids(scene.tank(), scene.species().size());
+      camera_(
+          tank_camera(scene.tank().settings(), settings.view, settings.width, settings.height)) {
+  std::vector<std::vector<std::uint32_t>> ids = instance_ids(scene.tank(), scene.species().size());
   for (std::size_t s = 0; s < scene.species().size(); ++s) {
     tank::Species& species = scene.species()[s];
     if (!species.deformer) continue;

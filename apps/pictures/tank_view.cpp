@@ -134,8 +134,8 @@ render::Camera tank_camera(const tank::TankSettings& settings, CameraView view, 
 glm::vec3 species_albedo(const std::string& species_name, std::size_t index) {
   if (species_name.rfind("blub", 0) == 0) return {0.80f, 0.36f, 0.10f};        // orange
   if (species_name.rfind("barramundi", 0) == 0) return {0.55f, 0.58f, 0.56f};  // silver
-  const glm::vec3 palette[] = {{0.75f, 0.62f, 0.20f}, {0.30f, 0.45f, 0.70f}, {0.70f, 0.30f, 0.35f},
-                               {0.35f, 0.60f, 0.35f}};
+  const glm::vec3 palette[] = {
+      {0.75f, 0.62f, 0.20f}, {0.30f, 0.45f, 0.70f}, {0.70f, 0.30f, 0.35f}, {0.35f, 0.60f, 0.35f}};
   return palette[index % (sizeof palette / sizeof palette[0])];
 }
 

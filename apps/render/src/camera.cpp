@@ -63,8 +63,8 @@ PinholeIntrinsics pinhole_intrinsics(const Camera& camera, int width, int height
 }
 
 glm::dmat4 camera_from_world(const Camera& camera) {
-  const glm::dmat4 view = glm::lookAt(glm::dvec3(camera.position), glm::dvec3(camera.target),
-                                      glm::dvec3(camera.up));
+  const glm::dmat4 view =
+      glm::lookAt(glm::dvec3(camera.position), glm::dvec3(camera.target), glm::dvec3(camera.up));
   const glm::dmat4 flip = glm::scale(glm::dmat4(1.0), glm::dvec3(1.0, -1.0, -1.0));
   return flip * view;
 }

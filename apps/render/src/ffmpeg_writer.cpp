@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <initializer_list>
 #include <sstream>
 #include <vector>
 
@@ -32,14 +33,17 @@ std::string last_line(const std::string& path) {
   return last;
 }
 
+void append(std::vector<std::string>& arguments, std::initializer_list<std::string> more) {
+  arguments.insert(arguments.end(), more);
+}
+
 std::vector<std::string> ffmpeg_arguments(const VideoOptions& options, FfmpegFormat format,
                                           const std::string& output) {
   const std::string size = std::to_string(options.width) + "x" + std::to_string(options.height);
+  std::vector<std::string> arguments = {"ffmpeg", "-hide_banner", "-loglevel", "error", "-y"};
   // input: raw frames on standard input
-  std::vector<std::string> arguments = {
-      "ffmpeg", "-hide_banner", "-loglevel", "error", "-y",  "-f", "rawvideo", "-pix_fmt",
-      "rgb24",  "-s",           size,        "-framerate", std::to_string(options.fps),
-      "-i",     "pipe:0"};
+  append(arguments, {"-f", "rawvideo", "-pix_fmt", "rgb24", "-s", size});
+  append(arguments, {"-framerate", std::to_string(options.fps), "-i", "pipe:0"});
   if (format == FfmpegFormat::kGif) {
     // scaled down to gif_width; one palette for the clip, from every frame;
     // error-diffusion dithering (Sierra-2-4A)
@@ -49,16 +53,18 @@ std::vector<std::string> ffmpeg_arguments(const VideoOptions& options, FfmpegFor
     }
     filter += "split[a][b];[a]palettegen=max_colors=" + std::to_string(options.gif_colours) +
               ":stats_mode=full[p];[b][p]paletteuse=dither=sierra2_4a";
-    arguments.insert(arguments.end(), {"-vf", filter, "-loop", "0", "-f", "gif", output});
+    append(arguments, {"-vf", filter, "-loop", "0", "-f", "gif", output});
     return arguments;
   }
   // even sizes for 4:2:0, BT.709 limited range, tagged as sRGB transfer
-  arguments.insert(
-      arguments.end(),
-      {"-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2,scale=out_color_matrix=bt709:out_range=tv,format=yuv420p",
-       "-colorspace", "bt709", "-color_primaries", "bt709", "-color_trc", "iec61966-2-1",
-       "-color_range", "tv", "-c:v", "libx264", "-preset", options.preset, "-crf",
-       std::to_string(options.crf), "-movflags", "+faststart", "-f", "mp4", output});
+  append(arguments, {"-vf",
+                     "pad=ceil(iw/2)*2:ceil(ih/2)*2,scale=out_color_matrix=bt709:"
+                     "out_range=tv,format=yuv420p"});
+  append(arguments, {"-colorspace", "bt709", "-color_primaries", "bt709"});
+  append(arguments, {"-color_trc", "iec61966-2-1", "-color_range", "tv"});
+  append(arguments, {"-c:v", "libx264", "-preset", options.preset});
+  append(arguments, {"-crf", std::to_string(options.crf), "-movflags", "+faststart"});
+  append(arguments, {"-f", "mp4", output});
   return arguments;
 }
 

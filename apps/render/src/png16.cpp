@@ -73,9 +73,9 @@ void Image16::validate(const char* field) const {
   const std::size_t expected = static_cast<std::size_t>(width) * static_cast<std::size_t>(height) *
                                static_cast<std::size_t>(channels);
   if (samples.size() != expected) {
-    detail::invalid(std::string(field) + ".samples",
-                    std::to_string(samples.size()) + " values, expected " +
-                        std::to_string(expected));
+    detail::invalid(
+        std::string(field) + ".samples",
+        std::to_string(samples.size()) + " values, expected " + std::to_string(expected));
   }
 }
 
@@ -86,7 +86,8 @@ std::vector<std::uint8_t> encode_png16(const Image16& image) {
   put_u32(header, static_cast<std::uint32_t>(image.width));
   put_u32(header, static_cast<std::uint32_t>(image.height));
   // 16 bits, grey (0) or RGB (2), deflate, adaptive filters, no interlace.
-  header.insert(header.end(), {16, static_cast<std::uint8_t>(image.channels == 1 ? 0 : 2), 0, 0, 0});
+  header.insert(header.end(),
+                {16, static_cast<std::uint8_t>(image.channels == 1 ? 0 : 2), 0, 0, 0});
   put_chunk(png, "IHDR", header);
   const std::vector<std::uint8_t> rows = filtered_rows(image);
   uLongf size = compressBound(static_cast<uLong>(rows.size()));
