@@ -1,7 +1,8 @@
 // 16-bit PNG files: instance masks (grey, one id per pixel) and vertex animation
 // textures (RGB, quantised positions and normals). Lossless; samples are stored
 // big-endian, as PNG requires, and read back exactly by any PNG reader that keeps
-// 16 bits (stb_image's stbi_load_16, Pillow's "I;16", OpenCV's IMREAD_UNCHANGED).
+// 16 bits: stb_image's stbi_load_16, OpenCV's IMREAD_UNCHANGED, imageio; Pillow keeps
+// them for grey ("I;16") but reduces RGB to 8 bits.
 #pragma once
 
 #include <cstdint>
