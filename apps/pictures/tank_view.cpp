@@ -114,13 +114,15 @@ render::Camera tank_camera(const tank::TankSettings& settings, CameraView view, 
       break;
     }
     case CameraView::kSide: {
-      // Level with the middle of the water; the near wall is not drawn, so the far
-      // half of the tank fills the frame.
-      std::vector<glm::vec3> far_half;
-      for (const glm::vec3& p : tank_outline(radius, rim)) {
-        if (p.z <= 0.0f) far_half.push_back(p);
-      }
-      camera = fit_view(camera, 0.0f, far_half, {0.0f, 0.5f * depth, 0.0f}, width, height);
+      // Level with the middle of the water, outside the near wall (not drawn): the
+      // tank's widest section, across its axis, fills the frame's width, and the
+      // near wall's rim stays above the frame's top edge.
+      const float aspect = static_cast<float>(width) / static_cast<float>(height);
+      const float vertical = std::tan(0.5f * glm::radians(kVerticalFovDegrees));
+      const float from_axis = std::max(kMargin * radius / (vertical * aspect),
+                                       kMargin * (rim - 0.5f * depth) / vertical + radius);
+      camera.position = {0.0f, 0.5f * depth, from_axis};
+      camera.target = {0.0f, 0.5f * depth, 0.0f};
       break;
     }
     case CameraView::kOblique:
