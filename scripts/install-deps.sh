@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
-# Installs FinFlex's build, test and run-time dependencies from Debian 12 packages,
-# then the Python build tools Debian 12 does not package (nanobind, scikit-build-core)
-# from PyPI with pip into the `python3` found on PATH (Debian's own on a fresh machine:
-# `pip install --break-system-packages`, as root or with sudo). Idempotent: packages
-# already present are left as they are.
+# Installs FinFlex's build, test and run-time dependencies from Debian 12 packages;
+# the Python build tools Debian 12 does not package (nanobind, scikit-build-core) from
+# PyPI with pip into the `python3` found on PATH (Debian's own on a fresh machine:
+# `pip install --break-system-packages`, as root or with sudo); and the Python packages
+# the dataset test reads COCO files with (pycocotools, Pillow, numpy:
+# tests/python/requirements.txt) into a virtual environment, .venv in the repository.
+# Idempotent: what is already present is left as it is.
 set -euo pipefail
 
 packages=(
@@ -48,4 +50,17 @@ else
   python3 -c 'import sys; sys.exit(sys.prefix.startswith("/usr"))' || pip_root=("${sudo_cmd[@]}")
   "${pip_root[@]}" python3 -m pip install -q --root-user-action=ignore --break-system-packages "${python_missing[@]}"
   echo "install-deps: pip installed ${python_missing[*]}"
+fi
+
+# PyPI packages of the dataset test, through pip, in the repository's own virtual
+# environment.
+root="$(cd "$(dirname "$0")/.." && pwd)"
+venv="$root/.venv"
+requirements="$root/tests/python/requirements.txt"
+if "$venv/bin/python" -c 'import pycocotools, PIL, numpy' 2>/dev/null; then
+  echo "install-deps: $venv has the Python packages"
+else
+  python3 -m venv "$venv"
+  "$venv/bin/python" -m pip install -q --disable-pip-version-check -r "$requirements"
+  echo "install-deps: installed the packages of $requirements into $venv"
 fi

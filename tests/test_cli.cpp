@@ -13,46 +13,18 @@
 
 #include "finflex/finflex.hpp"
 #include "support/deform.hpp"
+#include "support/run_cli.hpp"
 #include "support/synthetic_fish.hpp"
 #include "support/test_support.hpp"
 
 namespace finflex {
 namespace {
 
-struct RunResult {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
-
-std::string read_text(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  std::stringstream text;
-  text << file.rdbuf();
-  return text.str();
-}
-
-RunResult run_cli(const std::string& arguments) {
-  const std::string out_path = test::temp_path("stdout.txt");
-  const std::string err_path = test::temp_path("stderr.txt");
-  const std::string command = std::string("POCL_CACHE_DIR=") + FINFLEX_TEST_POCL_CACHE + " '" +
-                              FINFLEX_CLI_PATH + "' " + arguments + " >'" + out_path + "' 2>'" +
-                              err_path + "' </dev/null";
-  const int status = std::system(command.c_str());
-  RunResult result;
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  result.out = read_text(out_path);
-  result.err = read_text(err_path);
-  return result;
-}
-
-std::string fish(const char* relative) { return "'" + test::data_path(relative) + "'"; }
-
-int line_count(const std::string& text) {
-  int lines = 0;
-  for (char c : text) lines += c == '\n';
-  return lines;
-}
+using test::fish;
+using test::line_count;
+using test::read_text;
+using test::run_cli;
+using test::RunResult;
 
 TEST(Cli, DeformsABundledFish) {
   const std::string out = test::temp_path("bent.ply");

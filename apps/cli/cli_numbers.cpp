@@ -1,6 +1,7 @@
 #include "cli_numbers.hpp"
 
 #include <cctype>
+#include <cmath>
 #include <cstdlib>
 
 #include "finflex/error.hpp"
@@ -23,7 +24,8 @@ std::size_t parse_count(const std::string& text, const std::string& option, std:
     // value * 10 + digit > maximum, without overflow: value * 10 <= maximum first.
     if (value > maximum / 10 || digit > maximum - value * 10) {
       throw Error(ErrorCode::kOutOfRange, option,
-                  quoted + " is above the limit " + std::to_string(maximum) + " (" + why + ")");
+                  quoted + " is above the limit " + std::to_string(maximum) +
+                      (why.empty() ? std::string() : " (" + why + ")"));
     }
     value = value * 10 + digit;
   }
@@ -43,6 +45,26 @@ double parse_number(const std::string& text, const std::string& option) {
     throw Error(ErrorCode::kInvalidArgument, option, option + " '" + text + "' is not a number");
   }
   return value;
+}
+
+double parse_positive(const std::string& text, const std::string& option, bool zero_allowed) {
+  const double value = parse_number(text, option);
+  if (!std::isfinite(value) || value < 0.0 || (!zero_allowed && value == 0.0)) {
+    throw Error(ErrorCode::kInvalidArgument, option,
+                option + " '" + text + "' is not " +
+                    (zero_allowed ? "a finite number >= 0" : "a finite number > 0"));
+  }
+  return value;
+}
+
+std::pair<double, double> parse_positive_pair(const std::string& text, const std::string& option) {
+  const std::size_t comma = text.find(',');
+  if (comma == std::string::npos) {
+    throw Error(ErrorCode::kInvalidArgument, option,
+                option + " '" + text + "' is not two numbers A,B");
+  }
+  return {parse_positive(text.substr(0, comma), option),
+          parse_positive(text.substr(comma + 1), option)};
 }
 
 }  // namespace finflex::cli

@@ -25,6 +25,7 @@ Command add_rig_info_command(CLI::App& app);
 Command add_bench_command(CLI::App& app);
 Command add_subdivide_command(CLI::App& app);
 Command add_swim_command(CLI::App& app);
+Command add_bake_command(CLI::App& app);
 
 // Every subcommand, registered on `app` in the order of `finflex --help`, by name.
 std::vector<std::pair<std::string, Command>> add_commands(CLI::App& app);

@@ -7,6 +7,8 @@
 //   finflex bench --mesh PATH --instances N --frames F [--mode paper|exact]
 //                 [--rig RIG.json [--path fused|passes]] [--device NAME] [--json]
 //   finflex subdivide --in PATH --levels N --out PATH
+//   finflex swim [--fish N] [--seconds S] ... [--out DIR [--annotate]]
+//   finflex bake --out DIR [--species MESH:RIG] [--frames N] ...
 //   finflex info
 #include <exception>
 #include <string>
