@@ -16,6 +16,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "finflex/error.hpp"
@@ -552,13 +553,6 @@ bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, in
   return true;
 }
 
-bool has_glb_magic(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  char magic[4] = {};
-  in.read(magic, sizeof magic);
-  return in.gcount() == 4 && std::memcmp(magic, "glTF", 4) == 0;
-}
-
 std::string trimmed(std::string text) {
   while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
   for (char& c : text) {
@@ -567,14 +561,19 @@ std::string trimmed(std::string text) {
   return text;
 }
 
-tinygltf::Model load_model(const std::string& path) {
+tinygltf::Model load_model(std::string_view bytes, const std::string& base_dir) {
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(&skip_image, nullptr);
   tinygltf::Model model;
   std::string error, warning;
   // The content decides: a .gltf holding GLB bytes (or the reverse) still loads.
-  const bool ok = has_glb_magic(path) ? loader.LoadBinaryFromFile(&model, &error, &warning, path)
-                                      : loader.LoadASCIIFromFile(&model, &error, &warning, path);
+  const bool binary = bytes.substr(0, 4) == "glTF";
+  const auto size = static_cast<unsigned int>(bytes.size());
+  const bool ok =
+      binary ? loader.LoadBinaryFromMemory(&model, &error, &warning,
+                                           reinterpret_cast<const unsigned char*>(bytes.data()),
+                                           size, base_dir)
+             : loader.LoadASCIIFromString(&model, &error, &warning, bytes.data(), size, base_dir);
   if (!ok) {
     // A missing or unreadable external buffer is an I/O problem, the rest is content.
     const bool io = error.find("File not found") != std::string::npos ||
@@ -675,8 +674,8 @@ tinygltf::Model build_model(const Mesh& mesh) {
 
 }  // namespace
 
-Mesh read_gltf(const std::string& path, MeshFormat /*format*/) {
-  const tinygltf::Model model = load_model(path);
+Mesh read_gltf(std::string_view bytes, const std::string& base_dir) {
+  const tinygltf::Model model = load_model(bytes, base_dir);
   SceneFlattener flattener(model);
   for (const int root : root_nodes(model)) flattener.visit(root, glm::dmat4(1.0), "scene");
   if (flattener.parts().empty()) {
