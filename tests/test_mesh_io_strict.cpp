@@ -1,7 +1,8 @@
 // Hostile and malformed input to load_mesh: every file comes back with exactly the
 // vertices and faces it holds or fails with an error naming the line or element and
 // the reason; declared counts are checked against the bytes present before anything
-// is allocated; only regular files are read.
+// is allocated; only regular files are read, also through glTF URIs; glTF JSON and
+// GLB chunks are checked before tinygltf trusts them.
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -647,6 +648,129 @@ TEST(SpecialFiles, DeviceIsRefused) {
   const std::string folder = temp_path("folder.stl");
   fs::create_directory(folder);
   EXPECT_TRUE(LoadFails(folder, ErrorCode::kIo, "path", {"is a directory"}));
+}
+
+// ---------------------------------------------------------------------------------
+// glTF
+
+// A .gltf file `name` with an external buffer "mesh.bin" holding `vertex_count`
+// float positions (x = index), a POSITION accessor 0 over them, mesh 0 with one
+// primitive, and `members` (more top-level JSON members, each with a leading comma).
+std::string gltf_with_nodes(const std::string& name, const std::string& members,
+                            std::size_t vertex_count = 3) {
+  const std::string path = temp_path(name);
+  std::string bin;
+  for (std::size_t v = 0; v < vertex_count; ++v) {
+    append(bin, static_cast<float>(v));
+    append(bin, static_cast<float>(v % 2));
+    append(bin, static_cast<float>(v % 3));
+  }
+  write_file((fs::path(path).parent_path() / "mesh.bin").string(), bin);
+  const std::string size = std::to_string(bin.size());
+  write_file(path,
+             "{\"asset\":{\"version\":\"2.0\"},\"buffers\":[{\"uri\":\"mesh.bin\","
+             "\"byteLength\":" +
+                 size + "}],\"bufferViews\":[{\"buffer\":0,\"byteLength\":" + size +
+                 "}],\"accessors\":[{\"bufferView\":0,\"componentType\":5126,"
+                 "\"count\":" +
+                 std::to_string(vertex_count) +
+                 ",\"type\":\"VEC3\"}],\"meshes\":[{\"primitives\":[{\"attributes\":"
+                 "{\"POSITION\":0}}]}]" +
+                 members + "}");
+  return path;
+}
+
+TEST(GltfStrict, DeeplyNestedJsonIsRefusedBeforeParsing) {
+  const std::string deep(100000, '[');
+  const std::string path =
+      gltf_with_nodes("extras.gltf", ",\"nodes\":[{\"mesh\":0,\"extras\":" + deep +
+                                         std::string(100000, ']') + "}]");
+  EXPECT_TRUE(LoadFails(path, ErrorCode::kFormat, "path",
+                        {"JSON arrays and objects nest deeper than 64 levels (line 1, byte"}));
+  // 64 levels in all are fine, and brackets inside strings do not count.
+  const std::string nested = std::string(59, '[') + std::string(59, ']');
+  const Mesh mesh = load_mesh(gltf_with_nodes(
+      "fine.gltf",
+      ",\"nodes\":[{\"mesh\":0,\"name\":\"[[[[[[[[[[[[\\\"\",\"extras\":{\"a\":" + nested + "}}]"));
+  EXPECT_EQ(mesh.vertex_count(), 3u);
+}
+
+// A GLB file around `json` and `bin` (padded as the format requires).
+std::string glb(std::string json, std::string bin, std::uint32_t bin_length_delta = 0) {
+  while (json.size() % 4 != 0) json += ' ';
+  while (bin.size() % 4 != 0) bin += '\0';
+  std::string out = "glTF";
+  append(out, std::uint32_t{2});
+  const std::size_t total = 12 + 8 + json.size() + (bin.empty() ? 0 : 8 + bin.size());
+  append(out, static_cast<std::uint32_t>(total));
+  append(out, static_cast<std::uint32_t>(json.size()));
+  out += "JSON";
+  out += json;
+  if (!bin.empty()) {
+    append(out, static_cast<std::uint32_t>(bin.size() + bin_length_delta));
+    out += std::string("BIN\0", 4);
+    out += bin;
+  }
+  return out;
+}
+
+const std::string kGlbTriangleJson =
+    "{\"asset\":{\"version\":\"2.0\"},\"buffers\":[{\"byteLength\":36}],\"bufferViews\":["
+    "{\"buffer\":0,\"byteLength\":36}],\"accessors\":[{\"bufferView\":0,\"componentType\":5126,"
+    "\"count\":3,\"type\":\"VEC3\"}],\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}"
+    "}]}],\"nodes\":[{\"mesh\":0}]}";
+
+std::string triangle_bin() {
+  std::string bin;
+  for (const float c : {0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f}) append(bin, c);
+  return bin;
+}
+
+TEST(GltfStrict, GlbChunkLengthsAreCheckedAgainstTheFile) {
+  EXPECT_EQ(load_mesh(file_with("ok.glb", glb(kGlbTriangleJson, triangle_bin()))).vertex_count(),
+            3u);
+  // A BIN chunk 8 bytes longer than the file: tinygltf read past the end of the data.
+  EXPECT_TRUE(LoadFails(file_with("bin.glb", glb(kGlbTriangleJson, triangle_bin(), 8)),
+                        ErrorCode::kFormat, "path",
+                        {"GLB: the BIN chunk's length 44 exceeds the 36 bytes after its header"}));
+  std::string long_json = glb(kGlbTriangleJson, triangle_bin());
+  long_json[12] = '\x7f';
+  long_json[13] = '\x7f';
+  EXPECT_TRUE(LoadFails(file_with("json.glb", long_json), ErrorCode::kFormat, "path",
+                        {"GLB: the JSON chunk's length 32639 exceeds"}));
+  std::string length = glb(kGlbTriangleJson, triangle_bin());
+  length += "trailing";
+  EXPECT_TRUE(LoadFails(file_with("length.glb", length), ErrorCode::kFormat, "path",
+                        {"GLB: the header gives the length"}));
+  const std::string deep =
+      glb("{\"a\":" + std::string(1000, '[') + std::string(1000, ']') + "}", "");
+  EXPECT_TRUE(LoadFails(file_with("deep.glb", deep), ErrorCode::kFormat, "path",
+                        {"nest deeper than 64 levels"}));
+}
+
+TEST(GltfStrict, UrisNamingAFolderOrAFifo) {
+  // A buffer URI naming a folder was reported as "out of memory".
+  const std::string folder_buffer = gltf_with_nodes("folder.gltf", ",\"nodes\":[{\"mesh\":0}]");
+  const fs::path folder = fs::path(folder_buffer).parent_path();
+  std::string json;
+  {
+    std::ifstream in(folder_buffer);
+    json.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  fs::create_directory(folder / "sub");
+  const std::string to_folder = (folder / "to_folder.gltf").string();
+  write_file(to_folder, std::string(json).replace(json.find("mesh.bin"), 8, "sub"));
+  EXPECT_TRUE(LoadFails(to_folder, ErrorCode::kIo, "path", {"sub", "is a directory"}));
+
+  // An image URI naming a FIFO: images are not needed, the load must not wait for it.
+  const std::string fifo = (folder / "texture.png").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const std::string with_image = (folder / "image.gltf").string();
+  write_file(with_image,
+             json.substr(0, json.size() - 1) + ",\"images\":[{\"uri\":\"texture.png\"}]}");
+  EXPECT_TRUE(FinishesWithin(
+      10, [&] { EXPECT_EQ(load_mesh(with_image).vertex_count(), 3u); },
+      [&] { release_fifo_reader(fifo); }));
 }
 
 }  // namespace

@@ -4,8 +4,6 @@
 // TRIANGLES primitives of that mesh, in depth-first node order, transformed to world
 // space; each primitive becomes a FaceGroup named "<mesh name or index>/<primitive
 // index>". Writing produces one mesh, one primitive, one node without transform.
-#include <tiny_gltf.h>  // implementation compiled into libtinygltf (Debian package)
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -21,6 +19,7 @@
 
 #include "finflex/error.hpp"
 #include "mesh_io_formats.hpp"
+#include "mesh_io_gltf.hpp"
 
 namespace finflex::io {
 namespace {
@@ -546,45 +545,6 @@ Mesh concatenate(const std::vector<Part>& parts) {
   return out;
 }
 
-// Image loader that keeps no pixels: textures play no part in a mesh, and a
-// missing or undecodable image must not stop the load.
-bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int,
-                const unsigned char*, int, void*) {
-  return true;
-}
-
-std::string trimmed(std::string text) {
-  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
-  for (char& c : text) {
-    if (c == '\n') c = ';';
-  }
-  return text;
-}
-
-tinygltf::Model load_model(std::string_view bytes, const std::string& base_dir) {
-  tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(&skip_image, nullptr);
-  tinygltf::Model model;
-  std::string error, warning;
-  // The content decides: a .gltf holding GLB bytes (or the reverse) still loads.
-  const bool binary = bytes.substr(0, 4) == "glTF";
-  const auto size = static_cast<unsigned int>(bytes.size());
-  const bool ok =
-      binary ? loader.LoadBinaryFromMemory(&model, &error, &warning,
-                                           reinterpret_cast<const unsigned char*>(bytes.data()),
-                                           size, base_dir)
-             : loader.LoadASCIIFromString(&model, &error, &warning, bytes.data(), size, base_dir);
-  if (!ok) {
-    // A missing or unreadable external buffer is an I/O problem, the rest is content.
-    const bool io = error.find("File not found") != std::string::npos ||
-                    error.find("File read error") != std::string::npos ||
-                    error.find("Failed to load external") != std::string::npos;
-    throw Error(io ? ErrorCode::kIo : ErrorCode::kFormat, "path",
-                "not a readable glTF file: " + trimmed(error.empty() ? "unknown error" : error));
-  }
-  return model;
-}
-
 // ---------------------------------------------------------------------------------
 // Writing
 
@@ -675,7 +635,8 @@ tinygltf::Model build_model(const Mesh& mesh) {
 }  // namespace
 
 Mesh read_gltf(std::string_view bytes, const std::string& base_dir) {
-  const tinygltf::Model model = load_model(bytes, base_dir);
+  const LoadedGltf gltf = load_gltf_model(bytes, base_dir);
+  const tinygltf::Model& model = gltf.model;
   SceneFlattener flattener(model);
   for (const int root : root_nodes(model)) flattener.visit(root, glm::dmat4(1.0), "scene");
   if (flattener.parts().empty()) {

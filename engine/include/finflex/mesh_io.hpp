@@ -35,6 +35,9 @@ namespace finflex {
 //   dropped.
 // - STL: binary when the file size is exactly 84 + 50 * the triangle count, else
 //   ASCII ("solid" ... "endsolid", several solids allowed); facet normals dropped.
+// - glTF / GLB: GLB header and chunk lengths must match the file; JSON arrays and
+//   objects may nest at most 64 levels (extras included); URIs are read only when
+//   they name regular files (a buffer URI naming a folder is a kIo error saying so).
 // Every number must be all of its token (no hexadecimal, no trailing characters);
 // kept values must be finite and within the float range (underflow rounds to 0); a
 // polygon needs at least 3 distinct, existing vertices (STL triangles excepted);
