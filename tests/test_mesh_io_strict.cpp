@@ -1,8 +1,8 @@
 // Hostile and malformed input to load_mesh: every file comes back with exactly the
 // vertices and faces it holds or fails with an error naming the line or element and
 // the reason; declared counts are checked against the bytes present before anything
-// is allocated; only regular files are read, also through glTF URIs; glTF JSON and
-// GLB chunks are checked before tinygltf trusts them.
+// is allocated; glTF scene graphs are walked once, without recursion; only regular
+// files are read.
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -680,6 +680,78 @@ std::string gltf_with_nodes(const std::string& name, const std::string& members,
   return path;
 }
 
+TEST(GltfStrict, ANodeHasOnePlaceInTheScene) {
+  // Loaded twice (two copies of the triangle) before.
+  EXPECT_TRUE(LoadFails(
+      gltf_with_nodes("twice.gltf", ",\"nodes\":[{\"children\":[1,1]},{\"mesh\":0}]"),
+      ErrorCode::kFormat, "nodes[1]", {"nodes[1]: is listed twice in nodes[0].children"}));
+  EXPECT_TRUE(LoadFails(gltf_with_nodes("shared.gltf",
+                                        ",\"nodes\":[{\"children\":[2]},{\"children\":[2]},"
+                                        "{\"mesh\":0}],\"scenes\":[{\"nodes\":[0,1]}]"),
+                        ErrorCode::kFormat, "nodes[2]",
+                        {"nodes[2]: is a child of both nodes[0] and nodes[1]"}));
+  EXPECT_TRUE(LoadFails(gltf_with_nodes("root.gltf",
+                                        ",\"nodes\":[{\"children\":[1]},{\"mesh\":0}],"
+                                        "\"scenes\":[{\"nodes\":[0,1]}]"),
+                        ErrorCode::kFormat, "nodes[1]",
+                        {"is listed in scenes[0].nodes but is a child of nodes[0]"}));
+  EXPECT_TRUE(LoadFails(gltf_with_nodes("scene_twice.gltf",
+                                        ",\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0,0]}]"),
+                        ErrorCode::kFormat, "nodes[0]", {"is listed twice in scenes[0].nodes"}));
+  EXPECT_TRUE(LoadFails(gltf_with_nodes("missing.gltf", ",\"nodes\":[{\"children\":[5]}]"),
+                        ErrorCode::kFormat, "nodes[0].children[0]",
+                        {"node 5 does not exist (1 nodes)"}));
+}
+
+TEST(GltfStrict, SharedChildrenEndAtOnceInsteadOfAnExponentialWalk) {
+  // Node i lists node i + 1 twice: 2^40 paths down to the last node.
+  std::string nodes = ",\"nodes\":[";
+  for (int i = 0; i < 40; ++i)
+    nodes += "{\"children\":[" + std::to_string(i + 1) + "," + std::to_string(i + 1) + "]},";
+  nodes += "{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}]";
+  const std::string path = gltf_with_nodes("dag.gltf", nodes);
+  EXPECT_TRUE(FinishesWithin(
+      60,
+      [&] { EXPECT_TRUE(LoadFails(path, ErrorCode::kFormat, "nodes[1]", {"is listed twice"})); },
+      [] {}));
+}
+
+TEST(GltfStrict, CyclesAreErrorsEvenOutsideTheScene) {
+  EXPECT_TRUE(LoadFails(gltf_with_nodes("cycle.gltf",
+                                        ",\"nodes\":[{\"children\":[1]},{\"children\":[0],"
+                                        "\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}]"),
+                        ErrorCode::kFormat, "nodes[", {"is its own ancestor (cycle in children)"}));
+  // Without scenes the roots are the nodes without parents: a cycle has none, and its
+  // meshes were dropped silently before.
+  EXPECT_TRUE(LoadFails(gltf_with_nodes("hidden_cycle.gltf",
+                                        ",\"nodes\":[{\"mesh\":0},{\"children\":[2],\"mesh\":0},"
+                                        "{\"children\":[1]}]"),
+                        ErrorCode::kFormat, "nodes[1]", {"is its own ancestor"}));
+  EXPECT_TRUE(LoadFails(gltf_with_nodes("self.gltf", ",\"nodes\":[{\"children\":[0],\"mesh\":0}]"),
+                        ErrorCode::kFormat, "nodes[0]", {"is its own ancestor"}));
+}
+
+// A chain of `length` nodes, each the only child of the one before; the last holds
+// the mesh.
+std::string node_chain(std::size_t length) {
+  std::string nodes = ",\"nodes\":[";
+  for (std::size_t i = 0; i + 1 < length; ++i) {
+    nodes += "{\"children\":[" + std::to_string(i + 1) + "]},";
+  }
+  return nodes + "{\"mesh\":0,\"translation\":[1,0,0]}],\"scenes\":[{\"nodes\":[0]}]";
+}
+
+TEST(GltfStrict, NodeDepthIsLimitedAndWalkedWithoutRecursion) {
+  const Mesh deep = load_mesh(gltf_with_nodes("1024.gltf", node_chain(1024)));
+  EXPECT_EQ(deep.positions[0], glm::vec3(1, 0, 0));
+  EXPECT_TRUE(LoadFails(gltf_with_nodes("1025.gltf", node_chain(1025)), ErrorCode::kFormat,
+                        "nodes[1024]",
+                        {"nodes[1024]: is nested 1025 levels deep, more than the limit of 1024"}));
+  // Deep enough to overflow the stack of a recursive walk.
+  EXPECT_TRUE(LoadFails(gltf_with_nodes("200000.gltf", node_chain(200000)), ErrorCode::kFormat,
+                        "nodes[1024]", {"more than the limit of 1024"}));
+}
+
 TEST(GltfStrict, DeeplyNestedJsonIsRefusedBeforeParsing) {
   const std::string deep(100000, '[');
   const std::string path =
@@ -746,6 +818,54 @@ TEST(GltfStrict, GlbChunkLengthsAreCheckedAgainstTheFile) {
       glb("{\"a\":" + std::string(1000, '[') + std::string(1000, ']') + "}", "");
   EXPECT_TRUE(LoadFails(file_with("deep.glb", deep), ErrorCode::kFormat, "path",
                         {"nest deeper than 64 levels"}));
+}
+
+TEST(GltfStrict, AccessorsWithoutDataAreBoundedByTheInput) {
+  // An accessor without bufferView is all zeros: its count is not backed by any byte.
+  const std::string path = gltf_with_nodes(
+      "zeros.gltf",
+      ",\"nodes\":[{\"mesh\":1}],\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]},"
+      "{\"primitives\":[{\"attributes\":{\"POSITION\":1}}]}],\"accessors\":[{\"bufferView\":0,"
+      "\"componentType\":5126,\"count\":3,\"type\":\"VEC3\"},{\"componentType\":5126,\"count\":"
+      "4000000000,\"type\":\"VEC3\"}]");
+  EXPECT_TRUE(LoadFails(path, ErrorCode::kFormat, "meshes[1].primitives[0].POSITION",
+                        {"accessor 1 has no bufferView (all zeros) and count 4000000000, more than "
+                         "the"}));
+  EXPECT_LT(largest_allocation([&] { load_mesh(path); }), std::size_t{1} << 20);
+}
+
+TEST(GltfStrict, InstancingIsBoundedByTheInputSize) {
+  // 3000 nodes place a 3000-vertex mesh each: 9 million vertices from a 70 kB input.
+  std::string nodes = ",\"nodes\":[";
+  for (int i = 0; i < 3000; ++i) nodes += std::string(i == 0 ? "" : ",") + "{\"mesh\":0}";
+  const std::string path = gltf_with_nodes("instances.gltf", nodes + "]", 3000);
+  EXPECT_TRUE(LoadFails(path, ErrorCode::kFormat, "nodes[",
+                        {"placing meshes[0] here brings the scene to more than",
+                         "too many instances of its meshes"}));
+  // A few instances are fine.
+  EXPECT_EQ(load_mesh(gltf_with_nodes("three.gltf",
+                                      ",\"nodes\":[{\"mesh\":0},{\"mesh\":0},"
+                                      "{\"mesh\":0}]",
+                                      3000))
+                .vertex_count(),
+            9000u);
+}
+
+TEST(GltfStrict, NodeTransformsMustBeFiniteAndInvertible) {
+  EXPECT_TRUE(
+      LoadFails(gltf_with_nodes("singular.gltf", ",\"nodes\":[{\"mesh\":0,\"scale\":[1,0,1]}]"),
+                ErrorCode::kFormat, "nodes[0]", {"is singular (determinant 0)"}));
+  EXPECT_TRUE(LoadFails(
+      gltf_with_nodes("rotation.gltf", ",\"nodes\":[{\"mesh\":0,\"rotation\":[0,0,0,0]}]"),
+      ErrorCode::kFormat, "nodes[0].rotation", {"a quaternion of zero length"}));
+  EXPECT_TRUE(LoadFails(gltf_with_nodes("infinite.gltf",
+                                        ",\"nodes\":[{\"children\":[1],\"scale\":[1e200,1,1]},"
+                                        "{\"mesh\":0,\"scale\":[1e200,1,1]}]"),
+                        ErrorCode::kFormat, "nodes[1]", {"is not finite"}));
+  EXPECT_TRUE(
+      LoadFails(gltf_with_nodes("huge.gltf", ",\"nodes\":[{\"mesh\":0,\"scale\":[1e300,1,1]}]"),
+                ErrorCode::kInvalidMesh, "POSITION",
+                {"POSITION[1]: the node's transform takes it outside the float range"}));
 }
 
 TEST(GltfStrict, UrisNamingAFolderOrAFifo) {

@@ -63,7 +63,7 @@ Mesh read_gltf(std::string_view bytes, const std::string& base_dir);
 // OBJ, PLY, OFF, STL through OpenMesh's writers (mesh_io_openmesh.cpp).
 void write_openmesh(std::ostream& out, MeshFormat format, const Mesh& mesh);
 
-// glTF / GLB through tinygltf (mesh_io_gltf.cpp).
+// glTF / GLB through tinygltf (mesh_io_gltf_write.cpp).
 void write_gltf(std::ostream& out, MeshFormat format, const Mesh& mesh);
 
 }  // namespace finflex::io

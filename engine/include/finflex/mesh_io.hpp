@@ -38,6 +38,13 @@ namespace finflex {
 // - glTF / GLB: GLB header and chunk lengths must match the file; JSON arrays and
 //   objects may nest at most 64 levels (extras included); URIs are read only when
 //   they name regular files (a buffer URI naming a folder is a kIo error saying so).
+//   The node hierarchy must be a forest (a node listed twice, a node with two
+//   parents, a cycle, or a scene node that is not a root is a kFormat error naming
+//   the node), at most 1024 levels deep; a node placing a mesh needs a finite,
+//   invertible transform. An accessor without bufferView (zeros) may not have more
+//   elements than the input has bytes, and the flattened scene may hold at most 4
+//   vertices, indices and group-name bytes per byte of input (the file and its
+//   buffers), however often nodes instance a mesh.
 // Every number must be all of its token (no hexadecimal, no trailing characters);
 // kept values must be finite and within the float range (underflow rounds to 0); a
 // polygon needs at least 3 distinct, existing vertices (STL triangles excepted);
