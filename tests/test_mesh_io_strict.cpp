@@ -133,6 +133,11 @@ void write_file(const std::string& path, const std::string& bytes) {
   ASSERT_TRUE(out.good()) << path;
 }
 
+std::string write_and_return(const std::string& path, const std::string& bytes) {
+  write_file(path, bytes);
+  return path;
+}
+
 // `bytes` written to a fresh file named `name`; returns its path.
 std::string file_with(const std::string& name, const std::string& bytes) {
   const std::string path = temp_path(name);
@@ -881,6 +886,24 @@ TEST(GltfStrict, UrisNamingAFolderOrAFifo) {
   const std::string to_folder = (folder / "to_folder.gltf").string();
   write_file(to_folder, std::string(json).replace(json.find("mesh.bin"), 8, "sub"));
   EXPECT_TRUE(LoadFails(to_folder, ErrorCode::kIo, "path", {"sub", "is a directory"}));
+
+  // A buffer URI naming a file larger than the buffer: refused before it is read.
+  const std::string big = (folder / "big.bin").string();
+  fs::resize_file(fs::path(write_and_return(big, "")), std::uintmax_t{64} << 20);  // sparse
+  const std::string to_big = (folder / "to_big.gltf").string();
+  write_file(to_big, std::string(json).replace(json.find("mesh.bin"), 8, "big.bin"));
+  EXPECT_TRUE(LoadFails(to_big, ErrorCode::kIo, "path",
+                        {"big.bin",
+                         "has 67108864 bytes, more than the 36 bytes that the glTF "
+                         "buffers' byteLength leave to read"}));
+  EXPECT_LT(largest_allocation([&] { load_mesh(to_big); }), std::size_t{1} << 20);
+
+  // Images are not decoded, and a huge one is not read either.
+  const std::string with_big_image = (folder / "big_image.gltf").string();
+  write_file(with_big_image,
+             json.substr(0, json.size() - 1) + ",\"images\":[{\"uri\":\"big.bin\"}]}");
+  EXPECT_EQ(load_mesh(with_big_image).vertex_count(), 3u);
+  EXPECT_LT(largest_allocation([&] { load_mesh(with_big_image); }), std::size_t{1} << 20);
 
   // An image URI naming a FIFO: images are not needed, the load must not wait for it.
   const std::string fifo = (folder / "texture.png").string();

@@ -4,7 +4,9 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdint>
 #include <cstring>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -57,9 +59,15 @@ void require_regular_file(const std::string& path) {
 
 namespace {
 
-// Reads the regular file `path` into `bytes` (a string or a byte vector).
+std::string size_refusal(std::uint64_t size, std::uint64_t max_bytes, const char* limit) {
+  return "has " + std::to_string(size) + " bytes, more than the " + std::to_string(max_bytes) +
+         " " + limit;
+}
+
+// Reads the regular file `path`, at most `max_bytes` of it, into `bytes` (a string or
+// a byte vector).
 template <typename Bytes>
-void read_into(const std::string& path, Bytes& bytes) {
+void read_into(const std::string& path, std::uint64_t max_bytes, const char* limit, Bytes& bytes) {
   // The type is checked before opening: opening a FIFO blocks until a writer comes,
   // and opening some devices has effects of its own.
   require_regular_file(path);
@@ -73,9 +81,11 @@ void read_into(const std::string& path, Bytes& bytes) {
     throw_io(std::string("cannot access the file: ") + std::strerror(errno));
   }
   if (const std::string why = refusal(status.st_mode); !why.empty()) throw_io(why);
+  const auto size = static_cast<std::uint64_t>(status.st_size);
+  if (size > max_bytes) throw_io(size_refusal(size, max_bytes, limit));
 
   // The size is a hint: the file may change while it is read; what is read counts.
-  bytes.assign(static_cast<std::size_t>(status.st_size), 0);
+  bytes.assign(static_cast<std::size_t>(size), 0);
   std::size_t filled = 0;
   char chunk[65536];
   for (;;) {
@@ -90,6 +100,7 @@ void read_into(const std::string& path, Bytes& bytes) {
     if (n == 0) break;
     if (!into_bytes) bytes.insert(bytes.end(), chunk, chunk + n);
     filled += static_cast<std::size_t>(n);
+    if (filled > max_bytes) throw_io(size_refusal(filled, max_bytes, limit));
   }
   bytes.resize(filled);
 }
@@ -98,13 +109,14 @@ void read_into(const std::string& path, Bytes& bytes) {
 
 std::string read_regular_file(const std::string& path) {
   std::string bytes;
-  read_into(path, bytes);
+  read_into(path, std::numeric_limits<std::uint64_t>::max(), "", bytes);
   return bytes;
 }
 
-std::vector<unsigned char> read_regular_file_bytes(const std::string& path) {
+std::vector<unsigned char> read_regular_file_bytes(const std::string& path, std::uint64_t max_bytes,
+                                                   const char* limit) {
   std::vector<unsigned char> bytes;
-  read_into(path, bytes);
+  read_into(path, max_bytes, limit, bytes);
   return bytes;
 }
 

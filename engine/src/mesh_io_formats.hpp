@@ -41,7 +41,11 @@ void require_regular_file(const std::string& path);
 // so nothing blocks and nothing endless is read. Throws kIo with the reason only
 // (no path): "does not exist", "is a directory, not a regular file", ...
 std::string read_regular_file(const std::string& path);
-std::vector<unsigned char> read_regular_file_bytes(const std::string& path);
+
+// read_regular_file for a file that may have at most `max_bytes` bytes: beyond, kIo
+// "has N bytes, more than the <max_bytes> <limit>", before reading.
+std::vector<unsigned char> read_regular_file_bytes(const std::string& path, std::uint64_t max_bytes,
+                                                   const char* limit);
 
 // The mesh in `bytes` (the content of a `format` file), with normals (computed when
 // the file has none) and validated (validate_mesh). `base_dir` is the folder that

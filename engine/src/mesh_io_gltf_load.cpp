@@ -6,12 +6,18 @@
 //   "extras" recursively, one stack frame per level).
 // - URIs: tinygltf reads buffers and images through file-system callbacks; ours read
 //   regular files only (mesh_io_file.cpp), so a URI naming a folder, a FIFO or a
-//   device fails at once with the reason instead of blocking or reading forever.
+//   device fails at once with the reason instead of blocking or reading forever. They
+//   read at most as many bytes in all as the "buffers" entries declare (byteLength):
+//   tinygltf reads external buffers first and needs each to have exactly its declared
+//   size, so images, which are not decoded, get only what data URI and GLB buffers
+//   leave, and a URI naming a huge file is refused before it is read.
 #include <sys/stat.h>
 
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -109,7 +115,81 @@ void check_json_depth(std::string_view json) {
   }
 }
 
-// tinygltf's file-system callbacks.
+// The sum of the byteLength members of the top-level "buffers" entries, found by the
+// JSON parser's event interface without building a document. (Invalid JSON gives what
+// was found before the error; tinygltf then reports the error.)
+class BufferLengths {
+ public:
+  std::uint64_t total() const { return total_; }
+
+  bool null() { return value(std::nullopt); }
+  bool boolean(bool) { return value(std::nullopt); }
+  bool number_integer(std::int64_t v) {
+    return value(v >= 0 ? std::optional<std::uint64_t>(static_cast<std::uint64_t>(v))
+                        : std::nullopt);
+  }
+  bool number_unsigned(std::uint64_t v) { return value(v); }
+  bool number_float(double v, const std::string&) {
+    constexpr double kMax = 1.8e19;  // above: the most a sum can hold
+    if (!(v >= 0.0)) return value(std::nullopt);
+    return value(v < kMax ? static_cast<std::uint64_t>(v) : kNoLimit);
+  }
+  bool string(std::string&) { return value(std::nullopt); }
+  bool binary(nlohmann::json::binary_t&) { return value(std::nullopt); }
+  bool start_object(std::size_t) { return open(); }
+  bool start_array(std::size_t) {
+    if (depth_ == 1 && buffers_key_) in_buffers_ = true;
+    return open();
+  }
+  bool end_object() { return close(); }
+  bool end_array() {
+    close();
+    if (depth_ == 1) in_buffers_ = false;
+    return true;
+  }
+  bool key(std::string& name) {
+    if (depth_ == 1) buffers_key_ = name == "buffers";
+    if (depth_ == 3) length_key_ = in_buffers_ && name == "byteLength";
+    return true;
+  }
+  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) {
+    return false;
+  }
+
+ private:
+  static constexpr std::uint64_t kNoLimit = std::numeric_limits<std::uint64_t>::max();
+
+  bool value(std::optional<std::uint64_t> number) {
+    if (length_key_ && number) total_ = *number > kNoLimit - total_ ? kNoLimit : total_ + *number;
+    buffers_key_ = false;
+    length_key_ = false;
+    return true;
+  }
+  bool open() {
+    buffers_key_ = false;
+    length_key_ = false;
+    ++depth_;
+    return true;
+  }
+  bool close() {
+    --depth_;
+    return true;
+  }
+
+  std::uint64_t total_ = 0;
+  std::size_t depth_ = 0;     // open objects and arrays; the root object is 1
+  bool buffers_key_ = false;  // the last key at depth 1 was "buffers"
+  bool in_buffers_ = false;   // inside the top-level "buffers" array
+  bool length_key_ = false;   // the last key of a buffer object was "byteLength"
+};
+
+std::uint64_t declared_buffer_bytes(std::string_view json) {
+  BufferLengths lengths;
+  nlohmann::json::sax_parse(json.begin(), json.end(), &lengths);
+  return lengths.total();
+}
+
+// tinygltf's file-system callbacks; user data: the bytes they may still read.
 bool file_exists(const std::string& path, void*) {
   struct stat status {};
   return ::stat(path.c_str(), &status) == 0;  // read_whole_file says what is wrong with it
@@ -118,9 +198,12 @@ bool file_exists(const std::string& path, void*) {
 std::string expand_file_path(const std::string& path, void*) { return path; }
 
 bool read_whole_file(std::vector<unsigned char>* out, std::string* error, const std::string& path,
-                     void*) {
+                     void* user_data) {
+  std::uint64_t& budget = *static_cast<std::uint64_t*>(user_data);
   try {
-    *out = read_regular_file_bytes(path);
+    *out = read_regular_file_bytes(path, budget,
+                                   "bytes that the glTF buffers' byteLength leave to read");
+    budget -= out->size();
     return true;
   } catch (const Error& e) {
     if (error != nullptr) *error += e.what();
@@ -156,12 +239,14 @@ LoadedGltf load_gltf_model(std::string_view bytes, const std::string& base_dir) 
     throw_format("larger than 4 GiB, the most a glTF or GLB file may hold");
   }
   const bool binary = bytes.size() >= 4 && bytes.substr(0, 4) == "glTF";
-  check_json_depth(binary ? glb_json(bytes) : bytes);
+  const std::string_view json = binary ? glb_json(bytes) : bytes;
+  check_json_depth(json);
+  std::uint64_t read_budget = declared_buffer_bytes(json);
 
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(&skip_image, nullptr);
   loader.SetFsCallbacks(tinygltf::FsCallbacks{&file_exists, &expand_file_path, &read_whole_file,
-                                              &write_whole_file, nullptr});
+                                              &write_whole_file, &read_budget});
   LoadedGltf loaded;
   std::string error, warning;
   const auto size = static_cast<unsigned int>(bytes.size());
