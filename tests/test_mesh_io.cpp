@@ -749,8 +749,9 @@ TEST(GltfScene, UnsupportedContentIsAFormatErrorNamingTheField) {
         "\"meshes\":[{\"name\":\"fin\",\"primitives\":[{\"attributes\":{\"POSITION\":0},"
         "\"indices\":3},"
         "{\"attributes\":{\"POSITION\":0},\"mode\":1}]}],\"nodes\":[{\"mesh\":0}]");
-    EXPECT_TRUE(ThrowsError([&] { load_mesh(path); }, ErrorCode::kFormat, "meshes[0].primitives[1]",
-                            "meshes[0] ('fin').primitives[1]: mode 1 (LINES) is not supported"));
+    EXPECT_TRUE(ThrowsError(
+        [&] { load_mesh(path); }, ErrorCode::kFormat, "meshes[0].primitives[1]",
+        "meshes[0].primitives[1]: mode 1 (LINES) is not supported (only TRIANGLES); mesh 'fin'"));
   }
   {  // NORMAL with fewer elements than POSITION
     GltfBuilder b = triangle_builder();

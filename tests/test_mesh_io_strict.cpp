@@ -330,6 +330,22 @@ TEST(ObjStrict, AllowedStatementsCommentsAndLineEnds) {
   EXPECT_EQ(mesh.groups[0].name, "fish");
 }
 
+TEST(ObjStrict, ManyGroupsAreReadInLinearTime) {
+  // 200,000 distinct group names: looking each up among all before it took minutes.
+  std::string text = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  for (int i = 0; i < 200000; ++i) text += "g group" + std::to_string(i) + "\nf 1 2 3\n";
+  const std::string path = file_with("groups.obj", text);
+  EXPECT_TRUE(FinishesWithin(
+      10,
+      [&] {
+        const Mesh mesh = load_mesh(path);
+        ASSERT_EQ(mesh.groups.size(), 200000u);
+        EXPECT_EQ(mesh.groups.back().name, "group199999");
+        EXPECT_EQ(mesh.groups.back().first_triangle, 199999u);
+      },
+      [] {}));
+}
+
 TEST(ObjStrict, NegativeAndForwardIndices) {
   // Faces may come before the vertices they name (positive indices); negative ones
   // count back from the statements before the face.
@@ -599,6 +615,39 @@ TEST(PlyStrict, HeaderErrorsNameTheLine) {
                                                          "float x\nproperty float y\n") +
                                                   "0 0\n"),
                         ErrorCode::kFormat, "line 4", {"element 'vertex' has no property 'z'"}));
+}
+
+// Found by fuzz_ply: an element name with a NUL byte went into the field and the
+// message as it was, and what() ended at the NUL.
+TEST(PlyStrict, NamesFromTheFileAreMadePrintableInErrors) {
+  std::string elements = "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n";
+  elements += std::string("element fa\0c 1\n", 15);
+  elements += "property list ushort uint vertex_index\n";
+  const std::string path =
+      file_with("names.ply", ply_header("ascii", elements) + "0 0 0\n1 0 0\n0 1 0\n3 2 1 x\n");
+  EXPECT_TRUE(LoadFails(path, ErrorCode::kFormat, "fa?c[0].vertex_index[2]",
+                        {"fa?c[0].vertex_index[2] (line 14): 'x' is not an integer"}));
+}
+
+TEST(PlyStrict, NamesAreUniqueAndCheckedInLinearTime) {
+  EXPECT_TRUE(LoadFails(file_with("elements.ply", ply_header("ascii",
+                                                             "element vertex 0\nelement "
+                                                             "vertex 0\n")),
+                        ErrorCode::kFormat, "line 5", {"a second element 'vertex'"}));
+  EXPECT_TRUE(LoadFails(
+      file_with("properties.ply",
+                ply_header("ascii", kAsciiVertexFace + "property int vertex_indices\n")),
+      ErrorCode::kFormat, "line 10", {"element 'face' has a second property 'vertex_indices'"}));
+  // 200,000 elements: comparing each with all before it took minutes.
+  std::string elements;
+  for (int i = 0; i < 200000; ++i) elements += "element e" + std::to_string(i) + " 0\n";
+  const std::string path = file_with("many.ply", ply_header("ascii", elements));
+  EXPECT_TRUE(FinishesWithin(
+      10,
+      [&] {
+        EXPECT_TRUE(LoadFails(path, ErrorCode::kFormat, "positions", {"declares no vertices"}));
+      },
+      [] {}));
 }
 
 TEST(PlyStrict, BigEndianDoublesFacesFirstAndDroppedProperties) {
@@ -871,6 +920,18 @@ TEST(GltfStrict, NodeTransformsMustBeFiniteAndInvertible) {
       LoadFails(gltf_with_nodes("huge.gltf", ",\"nodes\":[{\"mesh\":0,\"scale\":[1e300,1,1]}]"),
                 ErrorCode::kInvalidMesh, "POSITION",
                 {"POSITION[1]: the node's transform takes it outside the float range"}));
+}
+
+// Found by fuzz_gltf: the mesh's name was put inside the field's text in the message
+// ("meshes[0] ('tri').primitives[0]..."), which then no longer named the field.
+TEST(GltfStrict, MessagesNameTheFieldLiterallyAndTheMeshAfterIt) {
+  const std::string path =
+      gltf_with_nodes("named.gltf",
+                      ",\"nodes\":[{\"mesh\":0}],\"meshes\":[{\"name\":\"fin\\u0001\","
+                      "\"primitives\":[{\"attributes\":{\"POSITION\":0,\"NORMAL\":5}}]}]");
+  EXPECT_TRUE(LoadFails(path, ErrorCode::kFormat, "meshes[0].primitives[0].NORMAL",
+                        {"meshes[0].primitives[0].NORMAL: accessor 5 does not exist (1 accessors); "
+                         "mesh 'fin?'"}));
 }
 
 TEST(GltfStrict, UrisNamingAFolderOrAFifo) {

@@ -18,6 +18,7 @@
 #include "finflex/error.hpp"
 #include "mesh_io_formats.hpp"
 #include "mesh_io_gltf.hpp"
+#include "mesh_io_text.hpp"
 
 namespace finflex::io {
 namespace {
@@ -264,13 +265,9 @@ class SceneFlattener {
       try {
         parts_.push_back(read_primitive(gltf_, mesh.primitives[p], transform, field));
       } catch (const Error& e) {
-        // Messages start with the field ("meshes[0].primitives[1]..."): add the
-        // mesh's name after "meshes[0]"; the field itself stays as it is.
-        std::string message = e.what();
-        if (!mesh.name.empty() && message.rfind(mesh_field, 0) == 0) {
-          message.insert(mesh_field.size(), " ('" + mesh.name + "')");
-        }
-        throw Error(e.code(), e.field(), message);
+        if (mesh.name.empty()) throw;
+        // The mesh's name helps find it: "meshes[0].primitives[1]: ...; mesh 'fin'".
+        throw Error(e.code(), e.field(), std::string(e.what()) + "; mesh " + shown(mesh.name));
       }
       Part& part = parts_.back();
       part.group =

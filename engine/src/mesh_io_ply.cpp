@@ -19,6 +19,7 @@
 #include <limits>
 #include <string>
 #include <string_view>
+#include <unordered_set>
 #include <vector>
 
 #include "finflex/error.hpp"
@@ -61,6 +62,7 @@ enum class Role { kNone, kX, kY, kZ, kNx, kNy, kNz, kU, kV, kFaceIndices };
 
 struct Property {
   std::string name;
+  std::size_t line = 0;  // of its header line
   PlyType type = PlyType::kFloat32;
   bool is_list = false;
   PlyType count_type = PlyType::kUint8;
@@ -100,9 +102,11 @@ PlyType read_type(std::string_view name, const std::string& where) {
   return type;
 }
 
-void read_property(const std::vector<std::string_view>& words, const std::string& where,
+void read_property(const std::vector<std::string_view>& words, const TextLine& line,
                    Element& element) {
+  const std::string where = line_field(line.number);
   Property property;
+  property.line = line.number;
   if (words.size() == 5 && words[1] == "list") {
     property.is_list = true;
     property.count_type = read_type(words[2], where);
@@ -119,13 +123,27 @@ void read_property(const std::vector<std::string_view>& words, const std::string
              "expected 'property <type> <name>' or 'property list <count type> <item type> "
              "<name>'");
   }
-  for (const Property& other : element.properties) {
-    if (other.name == property.name) {
-      throw_at(ErrorCode::kFormat, where,
-               "element '" + element.name + "' has two properties named " + shown(property.name));
+  element.properties.push_back(property);
+}
+
+// Throws for a second element of a name, or a second property of a name in an
+// element. Linear in the header's size.
+void check_unique_names(const Header& header) {
+  std::unordered_set<std::string_view> elements;
+  for (const Element& element : header.elements) {
+    if (!elements.insert(element.name).second) {
+      throw_at(ErrorCode::kFormat, line_field(element.line),
+               "a second element " + shown(element.name));
+    }
+    std::unordered_set<std::string_view> properties;
+    for (const Property& property : element.properties) {
+      if (!properties.insert(property.name).second) {
+        throw_at(
+            ErrorCode::kFormat, line_field(property.line),
+            "element " + shown(element.name) + " has a second property " + shown(property.name));
+      }
     }
   }
-  element.properties.push_back(property);
 }
 
 Header read_header(std::string_view bytes) {
@@ -168,22 +186,18 @@ Header read_header(std::string_view bytes) {
         throw_at(ErrorCode::kFormat, where,
                  "element count " + std::to_string(count) + " is negative");
       }
-      for (const Element& other : header.elements) {
-        if (other.name == words[1]) {
-          throw_at(ErrorCode::kFormat, where, "a second element " + shown(words[1]));
-        }
-      }
       header.elements.push_back(
           Element{std::string(words[1]), static_cast<std::uint64_t>(count), line.number, {}});
     } else if (words[0] == "property") {
       if (header.elements.empty())
         throw_at(ErrorCode::kFormat, where, "a property before any element");
-      read_property(words, where, header.elements.back());
+      read_property(words, line, header.elements.back());
     } else {
       throw_at(ErrorCode::kFormat, where, "unknown header line " + shown(line.text));
     }
   }
   if (!has_format) throw Error(ErrorCode::kFormat, "path", "the PLY header has no 'format' line");
+  check_unique_names(header);
   header.data_offset = bytes.size() - lines.remaining();
   header.data_line = lines.line_number() + 1;
   return header;
@@ -262,7 +276,8 @@ struct ValueName {
   std::int64_t item = -1;  // list item, -1 for the list's count or a scalar
 
   std::string field() const {
-    std::string name = element->name + "[" + std::to_string(entry) + "]." + property->name;
+    std::string name =
+        printable(element->name) + "[" + std::to_string(entry) + "]." + printable(property->name);
     if (item >= 0) name += "[" + std::to_string(item) + "]";
     return name;
   }
@@ -452,12 +467,12 @@ void PlyReader::check_counts() const {
     const std::uint64_t entry_bytes = min_entry_bytes(element, ascii);
     if (entry_bytes == 0) {
       throw_at(ErrorCode::kFormat, where,
-               "element '" + element.name + "' has " + std::to_string(element.count) +
+               "element " + shown(element.name) + " has " + std::to_string(element.count) +
                    " entries but no properties");
     }
     if (element.count > left / entry_bytes) {
       throw_at(ErrorCode::kFormat, where,
-               "element '" + element.name + "' declares " + std::to_string(element.count) +
+               "element " + shown(element.name) + " declares " + std::to_string(element.count) +
                    " entries of at least " + std::to_string(entry_bytes) + " bytes, but only " +
                    std::to_string(left) +
                    " bytes of data are left for it (truncated file or "

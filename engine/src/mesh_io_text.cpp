@@ -46,16 +46,18 @@ void split_words(std::string_view line, std::vector<std::string_view>& words) {
   }
 }
 
-std::string shown(std::string_view token) {
+std::string printable(std::string_view text) {
   constexpr std::size_t kMaxShown = 40;
-  std::string out = "'";
-  for (std::size_t i = 0; i < token.size() && i < kMaxShown; ++i) {
-    const unsigned char c = static_cast<unsigned char>(token[i]);
+  std::string out;
+  for (std::size_t i = 0; i < text.size() && i < kMaxShown; ++i) {
+    const unsigned char c = static_cast<unsigned char>(text[i]);
     out += c >= 0x20 && c < 0x7f ? static_cast<char>(c) : '?';
   }
-  out += token.size() > kMaxShown ? "...'" : "'";
+  if (text.size() > kMaxShown) out += "...";
   return out;
 }
+
+std::string shown(std::string_view token) { return "'" + printable(token) + "'"; }
 
 std::string line_field(std::size_t number) { return "line " + std::to_string(number); }
 

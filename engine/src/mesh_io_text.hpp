@@ -51,8 +51,11 @@ std::string_view strip_comment(std::string_view line);
 // The blank-separated words of `line`, into `words` (cleared first).
 void split_words(std::string_view line, std::vector<std::string_view>& words);
 
-// `token` quoted for a message: at most 40 characters (then "..."), bytes that are
-// not printable ASCII as '?'.
+// `text` from a file made fit for a message or a field: at most 40 characters (then
+// "..."), bytes that are not printable ASCII as '?'.
+std::string printable(std::string_view text);
+
+// printable(token) in quotes.
 std::string shown(std::string_view token);
 
 // "line 12".
