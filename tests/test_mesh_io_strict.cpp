@@ -905,6 +905,26 @@ TEST(GltfStrict, InstancingIsBoundedByTheInputSize) {
             9000u);
 }
 
+TEST(GltfStrict, NormalsAreNamedByTheirAccessorElement) {
+  // A zero NORMAL was reported under the flattened mesh's index ("normals[1]").
+  const std::string base = gltf_with_nodes("zero_normal.gltf", "");
+  const fs::path folder = fs::path(base).parent_path();
+  std::string bin;
+  for (const float c : {0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f}) append(bin, c);
+  for (const float c : {0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 1.0f}) append(bin, c);
+  write_file((folder / "normals.bin").string(), bin);
+  const std::string path = (folder / "normals.gltf").string();
+  write_file(path,
+             "{\"asset\":{\"version\":\"2.0\"},\"buffers\":[{\"uri\":\"normals.bin\","
+             "\"byteLength\":72}],\"bufferViews\":[{\"buffer\":0,\"byteLength\":72}],"
+             "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":"
+             "\"VEC3\"},{\"bufferView\":0,\"byteOffset\":36,\"componentType\":5126,\"count\":"
+             "3,\"type\":\"VEC3\"}],\"meshes\":[{\"primitives\":[{\"attributes\":{"
+             "\"POSITION\":0,\"NORMAL\":1}}]}],\"nodes\":[{\"mesh\":0}]}");
+  EXPECT_TRUE(LoadFails(path, ErrorCode::kInvalidMesh, "meshes[0].primitives[0].NORMAL[1]",
+                        {"meshes[0].primitives[0].NORMAL[1] has zero length"}));
+}
+
 TEST(GltfStrict, NodeTransformsMustBeFiniteAndInvertible) {
   EXPECT_TRUE(
       LoadFails(gltf_with_nodes("singular.gltf", ",\"nodes\":[{\"mesh\":0,\"scale\":[1,0,1]}]"),

@@ -52,7 +52,11 @@ const char* mode_name(int mode) {
   }
 }
 
-// Unit vector along v, or v itself if it has zero length (validation reports it).
+bool is_finite(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+// Unit vector along v, or v itself if it has zero length.
 glm::dvec3 normalized_or_same(const glm::dvec3& v) {
   const double length = glm::length(v);
   return length > 0.0 ? v / length : v;
@@ -112,7 +116,7 @@ Part read_primitive(const LoadedGltf& gltf, const tinygltf::Primitive& primitive
   for (std::size_t i = 0; i < n; ++i) {
     const glm::dvec4 p(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2], 1.0);
     const glm::vec3 placed(glm::dvec3(transform.world * p));
-    if (!std::isfinite(placed.x) || !std::isfinite(placed.y) || !std::isfinite(placed.z)) {
+    if (!is_finite(placed)) {
       throw Error(ErrorCode::kInvalidMesh, field + ".POSITION",
                   indexed(field + ".POSITION", i) +
                       ": the node's transform takes it outside the float range");
@@ -127,7 +131,15 @@ Part read_primitive(const LoadedGltf& gltf, const tinygltf::Primitive& primitive
     mesh.normals.reserve(n);
     for (std::size_t i = 0; i < n; ++i) {
       const glm::dvec3 v(normals[3 * i], normals[3 * i + 1], normals[3 * i + 2]);
-      mesh.normals.emplace_back(normalized_or_same(transform.normal_matrix * v));
+      const glm::vec3 unit(normalized_or_same(transform.normal_matrix * v));
+      if (!is_finite(unit) || unit == glm::vec3(0.0f)) {
+        const std::string element = indexed(field + ".NORMAL", i);
+        throw Error(
+            ErrorCode::kInvalidMesh, element,
+            element + (unit == glm::vec3(0.0f) ? " has zero length"
+                                               : ": the node's transform makes it non-finite"));
+      }
+      mesh.normals.push_back(unit);
     }
   }
   if (const int a = find_attribute(primitive, "TANGENT"); a >= 0) {
@@ -139,6 +151,11 @@ Part read_primitive(const LoadedGltf& gltf, const tinygltf::Primitive& primitive
     for (std::size_t i = 0; i < n; ++i) {
       const glm::dvec3 t(tangents[4 * i], tangents[4 * i + 1], tangents[4 * i + 2]);
       const glm::vec3 xyz(normalized_or_same(transform.linear * t));
+      if (!is_finite(xyz)) {
+        const std::string element = indexed(field + ".TANGENT", i);
+        throw Error(ErrorCode::kInvalidMesh, element,
+                    element + ": the node's transform makes it non-finite");
+      }
       mesh.tangents.emplace_back(xyz, sign * tangents[4 * i + 3]);
     }
     part.has_tangents = true;
