@@ -610,6 +610,11 @@ TEST(PlyStrict, HeaderErrorsNameTheLine) {
                         ErrorCode::kFormat, "line 2", {"unknown format 'binary_middle_endian'"}));
   EXPECT_TRUE(LoadFails(file_with("no_end.ply", "ply\nformat ascii 1.0\nelement vertex 1\n"),
                         ErrorCode::kFormat, "line", {"no 'end_header'"}));
+  EXPECT_TRUE(LoadFails(
+      file_with("strips.ply", ply_header("ascii", kAsciiVertexFace + "element tristrips 1\n"
+                                                                     "property list int int "
+                                                                     "vertex_indices\n")),
+      ErrorCode::kFormat, "line 10", {"element 'tristrips' (triangle strips)"}));
   EXPECT_TRUE(LoadFails(file_with("no_z.ply", ply_header("ascii",
                                                          "element vertex 1\nproperty "
                                                          "float x\nproperty float y\n") +

@@ -8,11 +8,12 @@
 // texcoord pair (the first of u v, s t, texture_u texture_v, texture_s texture_t);
 // element "face" with the list "vertex_indices" (or "vertex_index") of integers, from
 // 0. Everything else (colors, other elements) is read, checked against its type and
-// dropped. Element counts are checked against the bytes after the header before
-// anything is allocated, lists against the bytes left; values must fit their type,
-// kept floats must be finite; a face needs 3 distinct existing vertices; nothing may
-// follow the last element. Errors name the element and entry ("vertex[12]"), with the
-// line (ASCII) or byte offset (binary).
+// dropped, except faces in another form: an element "tristrips" is an error. Element
+// counts are checked against the bytes after the header before anything is
+// allocated, lists against the bytes left; values must fit their type, kept floats
+// must be finite; a face needs 3 distinct existing vertices; nothing may follow the
+// last element. Errors name the element and entry ("vertex[12]"), with the line
+// (ASCII) or byte offset (binary).
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -618,6 +619,10 @@ Mesh PlyReader::read() {
     } else if (element.name == "face") {
       assign_face_roles(element);
       face_ = &element;
+    } else if (element.name == "tristrips" && element.count > 0) {
+      // Faces in another form: dropping them would lose part of the surface.
+      throw_at(ErrorCode::kFormat, line_field(element.line),
+               "element 'tristrips' (triangle strips) is not supported, only 'face'");
     }
   }
   if (vertex_ == nullptr || vertex_->count == 0) {

@@ -32,7 +32,7 @@ namespace finflex {
 // - PLY: ascii, binary_little_endian, binary_big_endian 1.0; vertex x y z, nx ny nz,
 //   a texcoord pair (u v, s t, texture_u texture_v, texture_s texture_t); face
 //   vertex_indices (or vertex_index); other properties and elements are checked and
-//   dropped.
+//   dropped (triangle strips, element "tristrips", are a kFormat error).
 // - STL: binary when the file size is exactly 84 + 50 * the triangle count, else
 //   ASCII ("solid" ... "endsolid", several solids allowed); facet normals dropped.
 // - glTF / GLB: GLB header and chunk lengths must match the file; JSON arrays and
