@@ -17,6 +17,7 @@
 #include <new>
 #include <random>
 #include <string>
+#include <string_view>
 #include <system_error>
 
 #include "finflex/error.hpp"

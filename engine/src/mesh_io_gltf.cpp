@@ -13,6 +13,7 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "finflex/error.hpp"

@@ -8,20 +8,11 @@
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/BaseKernel.hh>
 #include <OpenMesh/Core/System/omstream.hh>
-#include <algorithm>
-#include <cctype>
-#include <cerrno>
-#include <cmath>
-#include <cstdint>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
+#include <cstddef>
 #include <limits>
 #include <mutex>
-#include <optional>
-#include <sstream>
+#include <ostream>
 #include <string>
-#include <system_error>
 #include <vector>
 
 #include "finflex/error.hpp"

@@ -23,7 +23,7 @@ namespace finflex {
 // vertices without a file normal get area-weighted normals. A vertex with several
 // texcoords (OBJ texture seams) keeps the first one in file order.
 //
-// What the text and binary formats accept:
+// What the formats accept (docs/reliability.md: the tests, fuzzing and limits):
 // - OBJ: v (x y z, optionally w or r g b, checked and dropped), vt, vn, f with v,
 //   v/vt, v//vn, v/vt/vn corners and negative (relative) indices, g and o (groups);
 //   s, usemtl, mtllib, l, p, vp and display attributes are ignored; any other
@@ -37,7 +37,8 @@ namespace finflex {
 //   ASCII ("solid" ... "endsolid", several solids allowed); facet normals dropped.
 // - glTF / GLB: GLB header and chunk lengths must match the file; JSON arrays and
 //   objects may nest at most 64 levels (extras included); URIs are read only when
-//   they name regular files (a buffer URI naming a folder is a kIo error saying so).
+//   they name regular files (a buffer URI naming a folder is a kIo error saying so),
+//   and no more bytes than the buffers declare (byteLength) in all.
 //   The node hierarchy must be a forest (a node listed twice, a node with two
 //   parents, a cycle, or a scene node that is not a root is a kFormat error naming
 //   the node), at most 1024 levels deep; a node placing a mesh needs a finite,
