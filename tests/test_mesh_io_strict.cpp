@@ -959,6 +959,27 @@ TEST(GltfStrict, MessagesNameTheFieldLiterallyAndTheMeshAfterIt) {
                          "mesh 'fin?'"}));
 }
 
+// tinygltf's messages quote URIs and JSON from the file: an escape sequence reached
+// the message (and a terminal) raw, and a data URI made it as long as the file.
+TEST(GltfStrict, TinygltfMessagesArePrintableAndShort) {
+  const std::string path =
+      file_with("escape.gltf",
+                "{\"asset\":{\"version\":\"2.0\"},\"buffers\":[{\"byteLength\":3,\"uri\":"
+                "\"data:application/octet-stream;base64,\\u001b[2J" +
+                    std::string(100000, 'A') + "\"}]}");
+  try {
+    load_mesh(path);
+    FAIL() << "loaded";
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("Failed to decode 'uri' : data:application/octet-stream;base64,?[2JAA"),
+              std::string::npos)
+        << message;
+    EXPECT_LT(message.size(), 1200u);
+    for (const char c : message) EXPECT_TRUE(c >= 0x20 && c < 0x7f) << message;
+  }
+}
+
 TEST(GltfStrict, UrisNamingAFolderOrAFifo) {
   // A buffer URI naming a folder was reported as "out of memory".
   const std::string folder_buffer = gltf_with_nodes("folder.gltf", ",\"nodes\":[{\"mesh\":0}]");

@@ -225,12 +225,34 @@ bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, in
   return true;
 }
 
-std::string one_line(std::string text) {
-  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
-  for (char& c : text) {
-    if (c == '\n') c = ';';
+// tinygltf's error text made fit for one message line: lines joined with "; ", bytes
+// that are not printable ASCII as '?' (the text quotes URIs and JSON from the file),
+// words longer than 60 characters (a data URI) cut, at most 1000 characters.
+std::string one_line(std::string_view text) {
+  constexpr std::size_t kMaxWord = 60;
+  constexpr std::size_t kMaxText = 1000;
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.remove_suffix(1);
+  std::string out;
+  std::size_t word = 0;  // length of the current word so far
+  for (const char raw : text) {
+    if (out.size() >= kMaxText) {
+      out += "...";
+      break;
+    }
+    const unsigned char c = static_cast<unsigned char>(raw);
+    if (c == '\n') {
+      out += "; ";
+      word = 0;
+      continue;
+    }
+    word = c == ' ' ? 0 : word + 1;
+    if (word > kMaxWord) {
+      if (word == kMaxWord + 1) out += "...";
+      continue;
+    }
+    out += c >= 0x20 && c < 0x7f ? static_cast<char>(c) : '?';
   }
-  return text;
+  return out;
 }
 
 }  // namespace

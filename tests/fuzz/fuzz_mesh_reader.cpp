@@ -6,7 +6,8 @@
 // -rss_limit_mb or -malloc_limit_mb, and broken contracts, which abort with a line
 // on stderr:
 // - the only exception is finflex::Error, with code kIo, kFormat or kInvalidMesh, a
-//   field, and a message that names the field (or, for field "path", the file);
+//   field, and a message of printable ASCII (text from the file cannot reach a
+//   terminal raw) that names the field (or, for field "path", the file);
 // - a mesh that loads has vertices, passes validate_mesh, has unit normals for every
 //   vertex, and face groups that lie in order within its triangles.
 #include <cmath>
@@ -62,6 +63,10 @@ void check_error(const finflex::Error& error) {
   }
   const std::string message = error.what();
   if (error.field().empty() || message.empty()) broken("an error without field or message");
+  for (const char c : message) {
+    if (c < 0x20 || c > 0x7e)
+      broken("a byte that is not printable ASCII in the message: " + message);
+  }
   if (error.field() != "path" && message.find(error.field()) == std::string::npos) {
     broken("the message does not name the field '" + error.field() + "': " + message);
   }
