@@ -131,6 +131,9 @@ void expect_bench_json(const std::string& arguments, const RiggedMesh& model, Ri
                                                   "deformation",
                                                   "normals",
                                                   "normal_format",
+                                                  "layout",
+                                                  "order",
+                                                  "previous_positions",
                                                   "vertices",
                                                   "instances",
                                                   "frames",
@@ -252,7 +255,7 @@ TEST(Cli, BadInputsExitTwoWithOneLineAndWriteNothing) {
       {"--in " + in + " --m 0.1 --normals smooth", "--normals", "smooth"},
       {"--in " + in + " --m 0.1 --frame body", "--frame", "body"},
       {"--in " + in + " --m 0.1 --device no-such-device", "device", "no-such-device"},
-      {"--in '/nonexistent/fish.obj' --m 0.1", "/nonexistent/fish.obj", "does not exist"},
+      {"--in '/nonexistent/fish.obj' --m 0.1", "/nonexistent/fish.obj", "No such file or directory"},
       {"--in " + fish("blub/README.md") + " --m 0.1", "README.md", "unsupported extension '.md'"},
       {"--in " + in + " --m 0.1 --head 1,2", "--head", "X,Y,Z"},
       {"--in " + in + " --m 0.1 --pivot 0,0,nan", "--pivot", "not finite"},
@@ -608,9 +611,9 @@ TEST(Cli, SubdivideWritesWhatTheLibraryComputes) {
 TEST(Cli, SubdivideBadInputsExitTwoAndWriteNothing) {
   const std::string in = "'" + test::data_path("blub/fish_control_mesh.obj") + "'";
   const std::pair<std::string, std::pair<std::string, std::string>> cases[] = {
-      {"--in " + in + " --levels 9", {"levels", "[0, 8]"}},
+      {"--in " + in + " --levels 9", {"levels", "above the limit 8"}},
       {"--in " + in + " --levels -1", {"levels", "[0, 8]"}},
-      {"--in '/nonexistent/cage.obj' --levels 1", {"/nonexistent/cage.obj", "does not exist"}},
+      {"--in '/nonexistent/cage.obj' --levels 1", {"/nonexistent/cage.obj", "No such file or directory"}},
   };
   for (const auto& [arguments, expected] : cases) {
     const std::string out = test::temp_path("never.obj");

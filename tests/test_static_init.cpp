@@ -15,7 +15,7 @@ const std::string kNamesAtStartUp = deformer_type_names();
 const StageSpec kStageAtStartUp = make_stage("hinge", "fin_angle");
 
 TEST(StaticInitialisation, TheDeformerRegistryIsReadyForOtherGlobals) {
-  EXPECT_EQ(kNamesAtStartUp, "\"bend\" or \"hinge\"");
+  EXPECT_EQ(kNamesAtStartUp, "\"bend\", \"hinge\" or \"spine\"");
   ASSERT_NE(kStageAtStartUp.deformer, nullptr);
   EXPECT_EQ(std::string(kStageAtStartUp.deformer->name), "hinge");
   EXPECT_EQ(kStageAtStartUp.deformer->options.size(), 1u);

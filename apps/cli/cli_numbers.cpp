@@ -67,4 +67,17 @@ std::pair<double, double> parse_positive_pair(const std::string& text, const std
           parse_positive(text.substr(comma + 1), option)};
 }
 
+std::pair<int, int> parse_size(const std::string& text, const std::string& option) {
+  const std::size_t x = text.find('x');
+  try {
+    if (x == std::string::npos) throw Error(ErrorCode::kInvalidArgument, option, "no x");
+    const auto width = static_cast<int>(parse_count(text.substr(0, x), option, 1, 16384));
+    const auto height = static_cast<int>(parse_count(text.substr(x + 1), option, 1, 16384));
+    return {width, height};
+  } catch (const Error&) {
+    throw Error(ErrorCode::kInvalidArgument, option,
+                option + " '" + text + "' is not WIDTHxHEIGHT, each a whole number in [1, 16384]");
+  }
+}
+
 }  // namespace finflex::cli

@@ -29,4 +29,7 @@ double parse_positive(const std::string& text, const std::string& option,
 // "A,B": two finite numbers > 0.
 std::pair<double, double> parse_positive_pair(const std::string& text, const std::string& option);
 
+// "WIDTHxHEIGHT": an image size, each a whole number in [1, 16384] ("640x360").
+std::pair<int, int> parse_size(const std::string& text, const std::string& option);
+
 }  // namespace finflex::cli
