@@ -146,6 +146,7 @@ void expect_bench_json(const std::string& arguments, const RiggedMesh& model, Ri
                                                   "write_bandwidth_bytes_per_second",
                                                   "write_fraction",
                                                   "host_enqueue_seconds_median",
+                                                  "host_outputs",
                                                   "kernel_seconds_median",
                                                   "instances_per_item"};
   EXPECT_EQ(keys, expected_keys);  // in this order, none missing, none extra
@@ -216,10 +217,37 @@ TEST(Cli, BenchJsonKeysAndValues) {
   EXPECT_NE(zero.err.find("--instances"), std::string::npos) << zero.err;
 }
 
+// bench --layout/--order/--previous/--host: the layout is echoed, the bytes written per
+// vertex follow its formats (float32x3 position, octahedral normal and tangent, float32x3
+// previous position), the host map is timed; unknown names are refused by name.
+TEST(Cli, BenchMeasuresOutputLayouts) {
+  const std::string mesh = fish("blub/fish_low_resolution.obj");
+  const RunResult r = run_cli("bench --mesh " + mesh +
+                              " --instances 8 --frames 3 --json --layout compact --order mesh"
+                              " --previous --host");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::ordered_json j = nlohmann::ordered_json::parse(r.out);
+  EXPECT_EQ(j.at("layout"), "compact");
+  EXPECT_EQ(j.at("order"), "mesh");
+  EXPECT_EQ(j.at("previous_positions"), true);
+  EXPECT_EQ(j.at("host_outputs"), true);
+  const bool tangents = load_mesh(test::data_path("blub/fish_low_resolution.obj")).has_tangents();
+  EXPECT_EQ(j.at("moved_bytes_per_vertex").get<double>(), 12.0 + 4.0 + (tangents ? 4.0 : 0.0) + 12.0);
+  EXPECT_GT(j.at("host_map_seconds_median").get<double>(), 0.0);
+  for (const auto& [option, value] : {std::pair<std::string, std::string>{"--layout", "soa"},
+                                      {"--order", "random"}}) {
+    const RunResult bad = run_cli("bench --mesh " + mesh + " " + option + " " + value);
+    EXPECT_EQ(bad.exit_code, 2);
+    EXPECT_EQ(line_count(bad.err), 1) << bad.err;
+    EXPECT_NE(bad.err.find(option + " '" + value + "'"), std::string::npos) << bad.err;
+  }
+}
+
 TEST(Cli, InfoListsTheDefaultDevice) {
   const RunResult r = run_cli("info");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find(" * "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("      graphics interop: "), std::string::npos) << r.out;
 }
 
 struct BadCase {

@@ -6,13 +6,18 @@
 //                 [--normals rotate|jacobian] [--normal-format float32|half]
 //                 [--rig RIG.json [--path fused|passes] [--swim]]
 //                 [--layout planes|interleaved|compact|snorm] [--order slots|mesh] [--previous]
-//                 [--device NAME] [--json]
+//                 [--host] [--device NAME] [--json]
+//
+// --layout, --order, --previous: the outputs in that layout (docs/handoff.md), the
+// write-only kernel writing the same layout. --host: the outputs in host memory
+// (ClDeformer::bind_host), and the time to map each finished frame for the host.
 //
 // --swim: a tank of N swimming fish (the swim rig given by --rig): per frame the swim
 // driver kernel, the rig's prepare kernel and the deformation with world placement,
 // timed from the driver's start to the deformation's end; the host time is the
 // enqueue (inputs gathered and uploaded, launches), the tank's simulation excluded.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -49,6 +54,7 @@ struct BenchOptions {
   std::string layout = "planes";
   std::string order = "slots";
   bool previous = false;
+  bool host = false;
   std::string device;
   bool json = false;
 };
@@ -64,7 +70,28 @@ struct Measured {
   std::size_t vertices = 0;         // per instance
   std::size_t output_vertices = 0;  // the outputs' (slots or mesh vertices)
   std::size_t bytes_per_vertex = 0;  // written per output vertex and instance
+  // --host: the map that hands each frame to the host (ClDeformer::map_host) after the
+  // kernels completed, host wall time per frame.
+  std::vector<double> host_map_seconds;
 };
+
+// --host: frames whose kernels are waited for, then mapped for the host and timed:
+// on CPU devices the kernels wrote the caller's memory (no copy), on GPUs the driver
+// copies the frame into it.
+std::vector<double> time_host_maps(ClDeformer& deformer, ClJob& job, std::size_t frames) {
+  std::vector<double> seconds;
+  for (std::size_t f = 0; f <= frames; ++f) {
+    std::vector<cl::Event> events;
+    deformer.enqueue(job, &events);
+    check_cl(cl::Event::waitForEvents(events), "clWaitForEvents");
+    const auto start = std::chrono::steady_clock::now();
+    deformer.map_host(*job.outputs);
+    const auto end = std::chrono::steady_clock::now();
+    if (f > 0) seconds.push_back(std::chrono::duration<double>(end - start).count());
+  }
+  deformer.unmap_host(*job.outputs);
+  return seconds;
+}
 
 // The write-only kernel over the batch's planes: the faster of the deformer's
 // instances per work-item and 4 (the rig kernels' on GPUs).
@@ -99,6 +126,7 @@ float swing(double limit, std::size_t i, std::size_t p, std::size_t f) {
 struct DeformBench {
   std::unique_ptr<RiggedMesh> model;
   std::unique_ptr<ClDeformer> deformer;
+  HostMemory host;
   DeviceBatch batch;
 };
 
@@ -133,9 +161,10 @@ Measured measure_deform(const BenchOptions& options, const Mesh& mesh, Context& 
   const RigPath path = parse_rig_path(options.path, "--path");
   bench.deformer = std::make_unique<ClDeformer>(context, model, cl_options(options));
   ClDeformer& deformer = *bench.deformer;
-  const BenchLayout layout =
+  BenchLayout layout =
       bench_layout(deformer, format, options.layout, options.order, options.previous);
-  bench.batch = make_bench_batch(deformer, instances, layout);
+  layout.host = options.host;
+  bench.batch = make_bench_batch(deformer, instances, layout, bench.host);
   RigParameters values(model, instances);
   ClJob job;
   job.model = &model;
@@ -164,6 +193,7 @@ Measured measure_deform(const BenchOptions& options, const Mesh& mesh, Context& 
         }
       },
       [&](std::vector<cl::Event>& events) { deformer.enqueue(job, &events); });
+  if (options.host) measured.host_map_seconds = time_host_maps(deformer, job, frames);
   measured.what = options.rig.empty() ? std::string("bend ") + options.mode
                                       : std::string("rig ") + to_string(chosen);
   measured.batch = &bench.batch;
@@ -182,9 +212,10 @@ Measured measure_swim(const BenchOptions& options, Context& context, std::size_t
   if (options.rig.empty()) {
     throw Error(ErrorCode::kInvalidArgument, "--swim", "--swim needs --rig (a swim rig)");
   }
-  if (options.layout != "planes" || options.order != "slots" || options.previous) {
+  if (options.layout != "planes" || options.order != "slots" || options.previous ||
+      options.host) {
     throw Error(ErrorCode::kInvalidArgument, "--swim",
-                "--swim writes the default planes (no --layout, --order or --previous)");
+                "--swim writes the default planes (no --layout, --order, --previous or --host)");
   }
   tank::TankSettings settings;
   const double scale = std::max(1.0, std::cbrt(double(instances) / 1000.0));
@@ -296,6 +327,12 @@ int run_bench(const BenchOptions& options) {
     result["write_bandwidth_bytes_per_second"] = written / write_seconds;
     result["write_fraction"] = write_seconds / seconds;
     result["host_enqueue_seconds_median"] = bench::median(m.times.host);
+    result["host_outputs"] = options.host;
+    if (options.host) {
+      const double map_seconds = bench::median(m.host_map_seconds);
+      result["host_map_seconds_median"] = map_seconds;
+      result["host_map_bytes_per_second"] = written / map_seconds;
+    }
     // Each kernel of a frame, in launch order (swim: the driver, rig_prepare, then the
     // deformation's).
     result["kernel_seconds_median"] = m.times.kernel_medians();
@@ -337,6 +374,8 @@ Command add_bench_command(CLI::App& app) {
   bench->add_option("--order", options->order, "Output vertex order: slots or mesh")
       ->capture_default_str();
   bench->add_flag("--previous", options->previous, "Also write previous-frame positions");
+  bench->add_flag("--host", options->host,
+                  "Outputs in host memory (bind_host); also time mapping each frame for the host");
   bench->add_flag("--swim", options->swim,
                   "With a swim rig: a tank of swimming fish (driver, deformation, placement)");
   bench->add_option("--device", options->device, "OpenCL device: 'P:D' or a name substring");

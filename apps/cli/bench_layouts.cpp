@@ -1,6 +1,7 @@
 #include "bench_layouts.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 
 namespace finflex::cli {
 namespace {
@@ -70,9 +71,58 @@ BenchLayout bench_layout(const ClDeformer& deformer, NormalFormat format,
   return out;
 }
 
-DeviceBatch make_bench_batch(ClDeformer& deformer, std::size_t instances,
-                             const BenchLayout& layout) {
+namespace {
+
+void* host_block(HostMemory& memory, std::size_t bytes) {
+  const std::size_t rounded = (bytes + 63) / 64 * 64;
+  void* block = std::aligned_alloc(64, rounded);
+  if (block == nullptr) throw Error(ErrorCode::kOutOfRange, "--host", "out of host memory");
+  memory.blocks.emplace_back(static_cast<unsigned char*>(block), std::free);
+  return block;
+}
+
+// Every attribute in its own host block (planes), or one block for the vertex struct.
+DeviceBatch bind_host_batch(ClDeformer& deformer, std::size_t instances,
+                            const BenchLayout& layout, HostMemory& memory) {
   const OutputLayout& l = layout.layout;
+  const std::size_t n = layout.vertices;
+  HostOutputs host;
+  auto bytes_of = [&](const AttributeLayout& a) {
+    return OutputLayout::required_bytes(a, instances, n);
+  };
+  if (l.positions.arrangement == Arrangement::kPlanes) {
+    host.positions_bytes = bytes_of(l.positions);
+    host.positions = host_block(memory, host.positions_bytes);
+    host.normals_bytes = bytes_of(l.normals);
+    host.normals = host_block(memory, host.normals_bytes);
+    if (l.tangents) {
+      host.tangents_bytes = bytes_of(l.tangent_layout);
+      host.tangents = host_block(memory, host.tangents_bytes);
+    }
+  } else {
+    std::size_t bytes = std::max(bytes_of(l.positions), bytes_of(l.normals));
+    if (l.tangents) bytes = std::max(bytes, bytes_of(l.tangent_layout));
+    void* block = host_block(memory, bytes);
+    host.positions = host.normals = block;
+    host.positions_bytes = host.normals_bytes = bytes;
+    if (l.tangents) {
+      host.tangents = block;
+      host.tangents_bytes = bytes;
+    }
+  }
+  if (l.previous_positions) {
+    host.previous_positions_bytes = bytes_of(l.previous_layout);
+    host.previous_positions = host_block(memory, host.previous_positions_bytes);
+  }
+  return deformer.bind_host(instances, l, host);
+}
+
+}  // namespace
+
+DeviceBatch make_bench_batch(ClDeformer& deformer, std::size_t instances,
+                             const BenchLayout& layout, HostMemory& memory) {
+  const OutputLayout& l = layout.layout;
+  if (layout.host) return bind_host_batch(deformer, instances, layout, memory);
   if (l.positions.arrangement == Arrangement::kPlanes) return deformer.allocate(instances, l);
   // One buffer for the vertex struct, up to its last attribute's end.
   std::size_t bytes = OutputLayout::required_bytes(l.normals, instances, layout.vertices);

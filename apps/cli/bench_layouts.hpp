@@ -8,7 +8,9 @@
 #pragma once
 
 #include <cstddef>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "finflex/finflex.hpp"
 
@@ -16,6 +18,7 @@ namespace finflex::cli {
 
 struct BenchLayout {
   OutputLayout layout;
+  bool host = false;                 // in the caller's host memory (bind_host)
   std::size_t vertices = 0;         // the outputs' vertex count (slots or mesh vertices)
   std::size_t bytes_per_vertex = 0;  // written per vertex and instance
 };
@@ -26,9 +29,15 @@ void check_bench_layout(const std::string& name, const std::string& order);
 BenchLayout bench_layout(const ClDeformer& deformer, NormalFormat format, const std::string& name,
                          const std::string& order, bool previous);
 
+// The caller's host memory of a --host batch: 64-byte aligned, one block per buffer.
+struct HostMemory {
+  std::vector<std::unique_ptr<unsigned char[], void (*)(void*)>> blocks;
+};
+
 // A batch in `layout`: interleaved layouts in one buffer, others one buffer per
-// attribute.
+// attribute; with layout.host over `memory` (ClDeformer::bind_host), else device
+// buffers.
 DeviceBatch make_bench_batch(ClDeformer& deformer, std::size_t instances,
-                             const BenchLayout& layout);
+                             const BenchLayout& layout, HostMemory& memory);
 
 }  // namespace finflex::cli

@@ -81,6 +81,7 @@ std::vector<FoundDevice> enumerate_devices() {
       desc.version = devices[d].getInfo<CL_DEVICE_VERSION>();
       desc.global_memory_bytes = devices[d].getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
       desc.max_allocation_bytes = devices[d].getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
+      desc.extensions = devices[d].getInfo<CL_DEVICE_EXTENSIONS>();
       found.push_back(f);
     }
   }

@@ -29,9 +29,15 @@ struct DeviceDescription {
   std::string version;
   std::size_t global_memory_bytes = 0;
   std::size_t max_allocation_bytes = 0;
+  std::string extensions;  // CL_DEVICE_EXTENSIONS, separated by spaces
   bool is_default = false;
 
   bool is_gpu() const { return type == "GPU"; }
+  // Whether `name` (e.g. "cl_khr_gl_sharing") is one of the device's extensions.
+  bool has_extension(const std::string& name) const {
+    const std::string padded = " " + extensions + " ";
+    return padded.find(" " + name + " ") != std::string::npos;
+  }
 };
 
 // Every OpenCL device of every platform. The default is the first GPU found, else the
