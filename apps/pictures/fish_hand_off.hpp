@@ -11,8 +11,8 @@
 //  - shared (cl_khr_gl_sharing, NVIDIA): the kernels write the GL buffers between an
 //    acquire and a release; nothing goes through the host;
 //  - copy (PoCL, or a platform that refused the EGL context): the kernels write a
-//    device mirror of each GL buffer, read back and uploaded with glBufferSubData
-//    every frame (the batch's positions and normals, once each way through the host).
+//    device mirror of each GL buffer, mapped for reading and uploaded with
+//    glBufferSubData every frame (the positions and normals once through the host).
 #pragma once
 
 #include <cstdint>
