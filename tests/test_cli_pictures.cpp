@@ -84,6 +84,13 @@ TEST(CliPictures, SwimWritesFramesAVideoAndTheCamera) {
     EXPECT_GE(summary["rendering"]["share_of_frame"][share].get<double>(), 0.0) << share;
   }
   EXPECT_GT(summary["rendering"]["frames_per_second"].get<double>(), 0.0);
+  // The hand-off's path (PoCL has no GL sharing: the copy path) and its time.
+  const nlohmann::json& hand_off = summary["rendering"]["hand_off"];
+  const std::string path = hand_off["path"].get<std::string>();
+  EXPECT_TRUE(path == "shared" || path == "copy") << path;
+  EXPECT_EQ(hand_off.contains("why_not_shared"), path == "copy");
+  EXPECT_GE(hand_off["seconds_per_frame_mean"].get<double>(), 0.0);
+  EXPECT_NE(r.out.find("hand-off: " + path), std::string::npos) << r.out;
   // Nothing else is left next to the output folder (the staging folder is gone).
   std::size_t beside = 0;
   for (const auto& entry : fs::directory_iterator(fs::path(out).parent_path())) {

@@ -1,13 +1,16 @@
-// Pictures of the swim (apps/pictures): the hand-off draws exactly what the engine
-// computed; the id pass covers the fish's silhouette in the colour image with the
+// Pictures of the swim (apps/pictures): the deformation writes the renderer's GL
+// buffers through GlOutputs (shared with OpenCL, or copied on PoCL), which hold and
+// draw exactly what the engine computes without GL; the id pass covers the fish's silhouette in the colour image with the
 // tank's fish ids; masks become COCO's run lengths (checked by hand here and against
 // pycocotools by tests/python/check_coco.py); the landmarks are the snout's tip and
 // the tail's fork; every camera view frames the whole tank.
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <cstdio>
 #include <set>
 
+#include <epoxy/gl.h>
 #include <gtest/gtest.h>
 
 #include "instance_masks.hpp"
@@ -125,16 +128,32 @@ TEST(TankView, EveryViewFramesTheWholeTank) {
 }
 
 // A small tank of low-resolution Blubs seen from above, a few frames in.
+constexpr int kFrames = 3;
+const PictureSettings kAbove{200, 150, 4, CameraView::kAbove};
+
+tank::SwimScene small_scene(Context& context, const tank::OutputsFactory& outputs = {}) {
+  return tank::SwimScene(context,
+                         {{test::data_path("blub/fish_low_resolution.obj"),
+                           test::data_path("rigs/blub_low_resolution_swim.rig.json")}},
+                         8, tank::TankSettings{}, 3, NormalMode::kJacobian, NormalFormat::kFloat32,
+                         {}, outputs);
+}
+
+// As `finflex swim` draws it: the renderer first, an OpenCL context sharing its GL
+// context where the platform can (on PoCL it cannot: the copy path), and the species'
+// deformations writing the renderer's GL buffers.
 struct SmallTank {
+  render::Renderer renderer;
+  GlSharingContext opencl;
   tank::SwimScene scene;
   TankPictures pictures;
   SmallTank()
-      : scene(test::shared_context(),
-              {{test::data_path("blub/fish_low_resolution.obj"),
-                test::data_path("rigs/blub_low_resolution_swim.rig.json")}},
-              8, tank::TankSettings{}, 3, NormalMode::kJacobian),
-        pictures(scene, {200, 150, 4, CameraView::kAbove}) {
-    for (int frame = 0; frame < 3; ++frame) scene.enqueue_frame(1.0 / 30.0);
+      : renderer(render_settings(kAbove)),
+        opencl(make_gl_sharing_context(test::shared_context().description().device_name,
+                                       renderer.egl_display(), renderer.egl_context())),
+        scene(small_scene(*opencl.context, gl_outputs(renderer))),
+        pictures(renderer, scene, kAbove) {
+    for (int frame = 0; frame < kFrames; ++frame) scene.enqueue_frame(1.0 / 30.0);
   }
 };
 
@@ -143,22 +162,74 @@ render::Image empty_tank(TankPictures& pictures) {
   return pictures.renderer().read_image();
 }
 
+// The GL buffer `buffer` of `renderer`, as floats.
+std::vector<float> gl_floats(render::Renderer& renderer, render::BufferId buffer) {
+  renderer.make_current();
+  std::vector<float> out(renderer.buffer_bytes(buffer) / sizeof(float));
+  glBindBuffer(GL_ARRAY_BUFFER, renderer.gl_buffer(buffer));
+  glGetBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(out.size() * sizeof(float)),
+                     out.data());
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  return out;
+}
+
+TEST(TankPictures, TheDeformationWritesTheRenderersBuffersThroughGlOutputs) {
+  SmallTank tank;
+  EXPECT_EQ(tank.pictures.hand_off_path(), tank.opencl.sharing ? GlPath::kShared : GlPath::kCopy);
+  std::printf("hand-off path: %s%s%s\n", to_string(tank.pictures.hand_off_path()),
+              tank.opencl.sharing ? "" : ": ", tank.opencl.why_not.c_str());
+  // A scene whose outputs are the engine's own device buffers cannot be drawn.
+  tank::SwimScene plain = small_scene(test::shared_context());
+  try {
+    TankPictures refused(tank.renderer, plain, kAbove);
+    ADD_FAILURE() << "a scene without GL outputs was accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.field(), "scene");
+  }
+}
+
 TEST(TankPictures, TheHandOffDrawsWhatTheEngineComputed) {
   SmallTank tank;
-  tank.pictures.hand_off();
   tank.pictures.draw();
   const render::Image handed = tank.pictures.read_image();
-  // The same frame from the batch read back to the host (ClDeformer::read: mesh order),
-  // drawn with the mesh's own triangles.
-  tank::Species& species = tank.scene.species()[0];
-  const DeformedBatch<float> host = species.deformer->read(species.batch);
-  std::vector<float> positions(host.layout.instance_count * 3 * host.layout.vertex_count);
-  std::vector<float> normals(positions.size());
-  for (std::size_t i = 0; i < host.layout.instance_count; ++i) {
-    for (std::size_t v = 0; v < host.layout.vertex_count; ++v) {
+  // The oracle: the same tank, the same frames, deformed into the engine's own device
+  // buffers (no GL anywhere) and read back to the host (ClDeformer::read: mesh order).
+  tank::SwimScene plain = small_scene(test::shared_context());
+  for (int frame = 0; frame < kFrames; ++frame) plain.enqueue_frame(1.0 / 30.0);
+  tank::Species& species = plain.species()[0];
+  const DeformedBatch<float> host = species.deformer->read(species.batch());
+  const std::size_t instances = host.layout.instance_count;
+  const std::size_t vertices = host.layout.vertex_count;
+
+  // The GL buffers the picture was drawn from hold exactly the engine's vertices, in
+  // FinFlex's planes over the deformer's slots.
+  auto* outputs = dynamic_cast<GlSpeciesOutputs*>(tank.scene.species()[0].outputs.get());
+  ASSERT_NE(outputs, nullptr);
+  const std::size_t plane = outputs->layout().positions.plane_stride;
+  const std::vector<std::uint32_t>& slot_of = tank.scene.species()[0].deformer->slot_of_vertex();
+  const std::vector<float> gl_positions = gl_floats(tank.renderer, outputs->positions());
+  const std::vector<float> gl_normals = gl_floats(tank.renderer, outputs->normals());
+  ASSERT_GE(gl_positions.size(), instances * 3 * plane);
+  ASSERT_GE(gl_normals.size(), instances * 3 * plane);
+  for (std::size_t i = 0; i < instances; ++i) {
+    for (std::size_t v = 0; v < vertices; ++v) {
       for (int c = 0; c < 3; ++c) {
-        positions[(i * host.layout.vertex_count + v) * 3 + std::size_t(c)] = host.position(i, v)[c];
-        normals[(i * host.layout.vertex_count + v) * 3 + std::size_t(c)] = host.normal(i, v)[c];
+        const std::size_t at = (3 * i + std::size_t(c)) * plane + slot_of[v];
+        ASSERT_EQ(gl_positions[at], host.position(i, v)[c]) << "instance " << i << " vertex " << v;
+        ASSERT_EQ(gl_normals[at], host.normal(i, v)[c]) << "instance " << i << " vertex " << v;
+      }
+    }
+  }
+
+  // And the picture is the engine's vertices drawn from the host with the mesh's own
+  // triangles, pixel for pixel.
+  std::vector<float> positions(instances * 3 * vertices);
+  std::vector<float> normals(positions.size());
+  for (std::size_t i = 0; i < instances; ++i) {
+    for (std::size_t v = 0; v < vertices; ++v) {
+      for (int c = 0; c < 3; ++c) {
+        positions[(i * vertices + v) * 3 + std::size_t(c)] = host.position(i, v)[c];
+        normals[(i * vertices + v) * 3 + std::size_t(c)] = host.normal(i, v)[c];
       }
     }
   }
@@ -167,8 +238,8 @@ TEST(TankPictures, TheHandOffDrawsWhatTheEngineComputed) {
   render::FishDraw draw;
   draw.mesh = renderer.add_mesh(rest.indices, rest.vertex_count());
   draw.albedo = species_albedo(species.name, 0);
-  draw.instance_count = host.layout.instance_count;
-  const auto layout = render::StreamLayout::interleaved(host.layout.vertex_count);
+  draw.instance_count = instances;
+  const auto layout = render::StreamLayout::interleaved(vertices);
   draw.positions = render::VertexStream::from_host(positions.data(), positions.size() * 4, layout);
   draw.normals = render::VertexStream::from_host(normals.data(), normals.size() * 4, layout);
   renderer.render(tank.pictures.look(), tank.pictures.camera(), {draw});
@@ -179,7 +250,6 @@ TEST(TankPictures, TheHandOffDrawsWhatTheEngineComputed) {
 
 TEST(TankPictures, TheIdPassCoversTheFishWithTheirTankIds) {
   SmallTank tank;
-  tank.pictures.hand_off();
   tank.pictures.draw();
   const render::Image colour = tank.pictures.read_image();
   const render::IdImage ids = tank.pictures.draw_ids();
@@ -237,7 +307,6 @@ TEST(TankPictures, TheIdPassCoversTheFishWithTheirTankIds) {
 
 TEST(TankPictures, TheIdPassNeedsAnIdPerInstance) {
   SmallTank tank;
-  tank.pictures.hand_off();
   render::Renderer& renderer = tank.pictures.renderer();
   const Mesh& rest = tank.scene.species()[0].swim.model().mesh();
   const std::vector<float> one(rest.vertex_count() * 3, 0.5f);

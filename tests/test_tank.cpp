@@ -97,7 +97,7 @@ TEST(SwimScene, DeformedFishAreWhereTheTankPutsThem) {
   std::size_t index = 0;
   for (std::size_t s = 0; s < 2; ++s) {
     Species& species = scene.species()[s];
-    const DeformedBatch<float> batch = species.deformer->read(species.batch);
+    const DeformedBatch<float> batch = species.deformer->read(species.batch());
     for (std::size_t i = 0; i < batch.layout.instance_count; ++i, ++index) {
       // The fish (in tank order, species by species) is within a body length of where
       // the tank says its pivot is.

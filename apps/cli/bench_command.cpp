@@ -237,11 +237,11 @@ Measured measure_swim(const BenchOptions& options, Context& context, std::size_t
   // time_frames timed the whole call on the host: keep the timed frames' enqueues.
   measured.times.host.assign(enqueue.begin() + 1, enqueue.end());
   measured.what = std::string("swim ") + to_string(species.deformer->automatic_path());
-  measured.batch = &species.batch;
+  measured.batch = &species.batch();
   measured.per_item = species.deformer->instances_per_item(format);
   measured.vertices = species.swim.model().vertex_count();
-  measured.output_vertices = species.batch.layout.plane_stride;
-  measured.bytes_per_vertex = species.batch.layout.bytes_per_vertex();
+  measured.output_vertices = species.batch().layout.plane_stride;
+  measured.bytes_per_vertex = species.batch().layout.bytes_per_vertex();
   return measured;
 }
 

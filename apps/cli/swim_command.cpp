@@ -28,6 +28,7 @@
 #include "cli_errors.hpp"
 #include "commands.hpp"
 #include "finflex/finflex.hpp"
+#include "finflex/gl_outputs.hpp"
 #include "staging_folder.hpp"
 #include "swim_pictures.hpp"
 #include "swim_plan.hpp"
@@ -45,7 +46,8 @@ Mesh tank_mesh(tank::SwimScene& scene) {
   Mesh all;
   for (tank::Species& species : scene.species()) {
     if (!species.driver) continue;
-    const DeformedBatch<float> batch = species.deformer->read(species.batch);
+    const tank::BatchReading reading(species);
+    const DeformedBatch<float> batch = species.deformer->read(species.batch());
     Mesh rest = species.swim.model().mesh();
     rest.tangents.clear();
     rest.texcoords.clear();
@@ -104,8 +106,15 @@ double mean(const std::vector<double>& values) {
   return values.empty() ? 0.0 : sum(values) / double(values.size());
 }
 
+// How the deformed fish reach the renderer (fish_hand_off.hpp), and why not shared.
+struct HandOff {
+  GlPath path = GlPath::kCopy;
+  std::string why_not_shared;  // empty when shared
+};
+
 nlohmann::ordered_json rendering_summary(const SwimPlan& plan, pictures::TankPictures& pictures,
-                                         const FrameTimes& t, double frames_per_second) {
+                                         const HandOff& hand_off, const FrameTimes& t,
+                                         double frames_per_second) {
   const render::DeviceInfo& device = pictures.renderer().device();
   const double frame = mean(t.total);
   const double deform = mean(t.simulation) + mean(t.enqueue) + mean(t.wait);
@@ -117,6 +126,9 @@ nlohmann::ordered_json rendering_summary(const SwimPlan& plan, pictures::TankPic
   out["gl_renderer"] = device.gl_renderer;
   out["egl_display"] = device.egl_display;
   out["frames_per_second"] = frames_per_second;
+  out["hand_off"] = {{"path", to_string(hand_off.path)},
+                     {"seconds_per_frame_mean", mean(t.hand_off)}};
+  if (!hand_off.why_not_shared.empty()) out["hand_off"]["why_not_shared"] = hand_off.why_not_shared;
   out["seconds_per_frame_mean"] = {{"frame", frame},
                                    {"deform", deform},
                                    {"simulation", mean(t.simulation)},
@@ -143,11 +155,34 @@ int run_swim(const SwimOptions& options) {
   };
   try {
     const SwimPlan plan = plan_of(options);
-    Context context(options.device);
-    tank::SwimScene scene(context, plan.species, plan.fish, plan.tank, plan.seed, plan.normals);
-    // The renderer before any file: without EGL the command stops here.
+    // With rendering, the renderer first (before any file: without EGL the command
+    // stops here), then an OpenCL context sharing its GL context where the platform
+    // can, so each species' deformation writes the GL buffers that are drawn.
+    std::unique_ptr<render::Renderer> renderer;
+    std::unique_ptr<Context> opencl;
+    HandOff hand_off;
+    if (plan.render) {
+      renderer = std::make_unique<render::Renderer>(pictures::render_settings(plan.pictures));
+      GlSharingContext shared = make_gl_sharing_context(
+          options.device, renderer->egl_display(), renderer->egl_context());
+      opencl = std::move(shared.context);
+      hand_off.why_not_shared = shared.why_not;
+    } else {
+      opencl = std::make_unique<Context>(options.device);
+    }
+    Context& context = *opencl;
+    tank::SwimScene scene(context, plan.species, plan.fish, plan.tank, plan.seed, plan.normals,
+                          NormalFormat::kFloat32, {},
+                          renderer ? pictures::gl_outputs(*renderer) : tank::OutputsFactory());
     std::unique_ptr<pictures::TankPictures> pictures;
-    if (plan.render) pictures = std::make_unique<pictures::TankPictures>(scene, plan.pictures);
+    if (renderer) {
+      pictures = std::make_unique<pictures::TankPictures>(*renderer, scene, plan.pictures);
+      hand_off.path = pictures->hand_off_path();
+      if (hand_off.path == GlPath::kShared) hand_off.why_not_shared.clear();
+      else if (hand_off.why_not_shared.empty()) {
+        hand_off.why_not_shared = "the OpenCL context does not share the renderer's";
+      }
+    }
     std::unique_ptr<StagingFolder> staging;
     if (!options.out.empty()) staging = std::make_unique<StagingFolder>(options.out, "--out");
     const fs::path folder = staging ? fs::path(staging->path()) : fs::path();
@@ -183,12 +218,9 @@ int run_swim(const SwimOptions& options) {
       Clock::time_point step = Clock::now();
       context.queue().finish();
       const double wait = seconds_since(step);
-      double hand_off = 0.0, draw = 0.0;
+      double draw = 0.0;
       PictureFileTimes file_times;
       if (pictures) {
-        step = Clock::now();
-        pictures->hand_off();
-        hand_off = seconds_since(step);
         step = Clock::now();
         pictures->draw();
         draw = seconds_since(step);
@@ -203,7 +235,7 @@ int run_swim(const SwimOptions& options) {
         t.enqueue.push_back(work.enqueue_seconds);
         t.kernels.push_back(bench::span_seconds(work.kernels.front(), work.kernels.back()));
         t.wait.push_back(wait);
-        t.hand_off.push_back(hand_off);
+        t.hand_off.push_back(work.handoff_seconds);
         t.draw.push_back(draw);
         t.read_back.push_back(file_times.read_back);
         t.files.push_back(file_times.files);
@@ -254,7 +286,7 @@ int run_swim(const SwimOptions& options) {
     }
     nlohmann::ordered_json rendering;
     if (pictures && !t.total.empty()) {
-      rendering = rendering_summary(plan, *pictures, t, timed_fps);
+      rendering = rendering_summary(plan, *pictures, hand_off, t, timed_fps);
       const auto& ms = rendering["seconds_per_frame_mean"];
       const auto& share = rendering["share_of_frame"];
       const auto part = [&](const char* name) {
@@ -272,6 +304,11 @@ int run_swim(const SwimOptions& options) {
                   rendering["cpu_seconds_per_frame_mean"].get<double>() * 1e3,
                   part("deform").c_str(), part("hand_off").c_str(), part("draw").c_str(),
                   part("read_back").c_str(), part("files").c_str(), part("annotation").c_str());
+      std::printf("  hand-off: %s (%s), %.2f ms a frame\n", to_string(hand_off.path),
+                  hand_off.path == GlPath::kShared
+                      ? "OpenCL writes the GL buffers: acquire, kernels, release"
+                      : ("read back and glBufferSubData: " + hand_off.why_not_shared).c_str(),
+                  mean(t.hand_off) * 1e3);
     }
     if (files) {
       std::printf("  wrote %zu frame images, %zu videos%s\n", files->images_written(),

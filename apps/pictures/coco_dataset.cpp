@@ -97,8 +97,9 @@ void CocoDataset::add_frame(std::size_t frame, double time_s, const std::string&
     tank::Species& species = scene_.species()[s];
     if (!species.deformer) continue;
     cl::CommandQueue& queue = species.deformer->context().queue();
-    snouts[s] = read_slot_positions(queue, species.batch, species_[s].snout_slot);
-    forks[s] = read_slot_positions(queue, species.batch, species_[s].fork_slot);
+    const tank::BatchReading reading(species);
+    snouts[s] = read_slot_positions(queue, species.batch(), species_[s].snout_slot);
+    forks[s] = read_slot_positions(queue, species.batch(), species_[s].fork_slot);
   }
 
   const std::vector<tank::Fish>& fish = scene_.tank().fish();

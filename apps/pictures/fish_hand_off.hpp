@@ -1,50 +1,94 @@
-// Where the renderer gets the engine's deformed fish: one species' DeviceBatch handed
-// to render::Renderer as a FishDraw. This is the one point of hand-off between the
-// engine and the renderer.
+// Where the renderer gets the engine's deformed fish: each species' deformation writes
+// GL buffers of the renderer (finflex/gl_outputs.hpp, GlOutputs) and the renderer
+// draws them as they are. This is the one point of hand-off between the engine and the
+// renderer.
 //
-// Today the batch goes through the host: each attribute array is mapped for reading
-// (the device copies it to the host; a CPU device maps its memory as it is), copied
-// into a GL buffer the renderer owns, and unmapped. The engine's output planes
-// (finflex/batch.hpp) are drawn as they are, over the deformer's slots
-// (remapped_indices()), in world space (the tank's placements are the deformation's
-// last stage), so no transform is needed. With OpenCL-GL sharing the engine would
-// write into these GL buffers itself and hand_off() would only acquire and release
-// them; nothing else would change.
+// The buffers hold FinFlex's planes (ClDeformer::planes_layout: positions, normals;
+// no tangents, which the renderer does not draw) over the deformer's slots, in world
+// space (the tank's placements are the deformation's last stage), so they are drawn
+// with StreamLayout::planes over remapped_indices() and no transform. Two paths, as
+// GlOutputs chooses from the OpenCL context (make_gl_sharing_context):
+//  - shared (cl_khr_gl_sharing, NVIDIA): the kernels write the GL buffers between an
+//    acquire and a release; nothing goes through the host;
+//  - copy (PoCL, or a platform that refused the EGL context): the kernels write a
+//    device mirror of each GL buffer, mapped for reading and uploaded with
+//    glBufferSubData every frame (the positions and normals once through the host).
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "finflex/finflex.hpp"
+#include "finflex/gl_outputs.hpp"
 #include "render/renderer.hpp"
+#include "swim_scene.hpp"
 
 namespace finflex::pictures {
 
-// The renderer's side of one species: its triangles over slots and the GL buffers the
-// batch is copied into, sized once for the batch.
+// One species' outputs: GL buffers of `renderer` holding `instances` instances of the
+// deformer's model in FinFlex's planes (normals in `format`), written through
+// GlOutputs. The deformer's context must share the renderer's GL context for the
+// shared path (else the copy path runs). Errors: as GlOutputs and
+// Renderer::create_buffer.
+class GlSpeciesOutputs : public tank::SpeciesOutputs {
+ public:
+  GlSpeciesOutputs(render::Renderer& renderer, ClDeformer& deformer, std::size_t instances,
+                   NormalFormat format);
+
+  DeviceBatch& batch() override { return outputs_.batch(); }
+  // GlOutputs::enqueue with the renderer's context current; keeps the event after
+  // which GL may draw (wait_until_drawable).
+  cl::Event enqueue(ClDeformer& deformer, const ClJob& job,
+                    std::vector<cl::Event>* kernel_events) override;
+  double handoff_seconds() const override { return outputs_.last_handoff_seconds(); }
+  void begin_reading() override;
+  void end_reading() override;
+
+  GlPath path() const { return outputs_.path(); }
+  // Blocks until GL may draw the last frame enqueued (its release, on the shared path).
+  void wait_until_drawable();
+
+  const OutputLayout& layout() const { return layout_; }
+  render::BufferId positions() const { return positions_; }
+  render::BufferId normals() const { return normals_; }
+  const render::StreamLayout& position_layout() const { return position_layout_; }
+  const render::StreamLayout& normal_layout() const { return normal_layout_; }
+  std::size_t instance_count() const { return instances_; }
+
+ private:
+  render::Renderer& renderer_;
+  OutputLayout layout_;
+  render::BufferId positions_ = render::kNoBuffer;
+  render::BufferId normals_ = render::kNoBuffer;
+  render::StreamLayout position_layout_;
+  render::StreamLayout normal_layout_;
+  std::size_t instances_ = 0;
+  GlOutputs outputs_;
+  cl::Event drawable_;
+};
+
+// A SwimScene's outputs factory making GlSpeciesOutputs in `renderer` (which must
+// outlive the scene).
+tank::OutputsFactory gl_outputs(render::Renderer& renderer);
+
+// The renderer's side of one species: its triangles over slots, its outputs' buffers.
 struct SpeciesDrawing {
   render::MeshId mesh = 0;
-  render::BufferId positions = render::kNoBuffer;
-  render::BufferId normals = render::kNoBuffer;
-  render::StreamLayout position_layout;
-  render::StreamLayout normal_layout;
-  std::size_t instance_count = 0;
+  GlSpeciesOutputs* outputs = nullptr;  // the scene's
   glm::vec3 albedo{0.8f};
   std::vector<std::uint32_t> ids;  // per instance, for the id pass (> 0)
 };
 
-// Registers `deformer`'s triangles and makes the buffers for `batch` (float32 or half
-// normals). `ids`: one per instance of the batch.
+// Registers `deformer`'s triangles (over its slots, padding included) for `outputs`.
+// `ids`: one per instance.
 SpeciesDrawing prepare_drawing(render::Renderer& renderer, const ClDeformer& deformer,
-                               const DeviceBatch& batch, const glm::vec3& albedo,
+                               GlSpeciesOutputs& outputs, const glm::vec3& albedo,
                                std::vector<std::uint32_t> ids);
 
-// The hand-off: waits for the work queued before it on `queue` (the deformation),
-// copies the batch's positions and normals into the drawing's buffers and returns the
-// draw. Bytes moved: the batch's positions and normals, once each way through the host.
-render::FishDraw hand_off(cl::CommandQueue& queue, const DeviceBatch& batch,
-                          render::Renderer& renderer, const SpeciesDrawing& drawing);
+// The draw of a species' last frame, straight from its outputs' GL buffers.
+render::FishDraw fish_draw(const SpeciesDrawing& drawing);
 
 }  // namespace finflex::pictures

@@ -1,16 +1,10 @@
 #include "tank_pictures.hpp"
 
+#include <string>
+
 namespace finflex::pictures {
 
 namespace {
-
-render::RenderSettings render_settings(const PictureSettings& settings) {
-  render::RenderSettings out;
-  out.width = settings.width;
-  out.height = settings.height;
-  out.samples = settings.samples;
-  return out;
-}
 
 // Per species, the id of each of its instances: 1 + the fish's index in the tank (the
 // tank lists every species' fish; species s's instances are its fish in that order).
@@ -26,9 +20,17 @@ std::vector<std::vector<std::uint32_t>> instance_ids(const tank::Tank& tank,
 
 }  // namespace
 
-TankPictures::TankPictures(tank::SwimScene& scene, const PictureSettings& settings)
-    : scene_(scene),
-      renderer_(render_settings(settings)),
+render::RenderSettings render_settings(const PictureSettings& settings) {
+  render::RenderSettings out;
+  out.width = settings.width;
+  out.height = settings.height;
+  out.samples = settings.samples;
+  return out;
+}
+
+TankPictures::TankPictures(render::Renderer& renderer, tank::SwimScene& scene,
+                           const PictureSettings& settings)
+    : renderer_(renderer),
       look_(tank_scene(scene.tank().settings())),
       camera_(
           tank_camera(scene.tank().settings(), settings.view, settings.width, settings.height)) {
@@ -36,22 +38,22 @@ TankPictures::TankPictures(tank::SwimScene& scene, const PictureSettings& settin
   for (std::size_t s = 0; s < scene.species().size(); ++s) {
     tank::Species& species = scene.species()[s];
     if (!species.deformer) continue;
-    drawings_.push_back(prepare_drawing(renderer_, *species.deformer, species.batch,
+    auto* outputs = dynamic_cast<GlSpeciesOutputs*>(species.outputs.get());
+    if (outputs == nullptr) {
+      throw Error(ErrorCode::kInvalidArgument, "scene",
+                  "scene: species " + std::to_string(s) +
+                      " does not write GL buffers of the renderer (make the scene with "
+                      "gl_outputs(renderer))");
+    }
+    path_ = outputs->path();
+    drawings_.push_back(prepare_drawing(renderer_, *species.deformer, *outputs,
                                         species_albedo(species.name, s), std::move(ids[s])));
-    species_of_drawing_.push_back(s);
   }
-}
-
-void TankPictures::hand_off() {
-  draws_.clear();
-  for (std::size_t d = 0; d < drawings_.size(); ++d) {
-    tank::Species& species = scene_.species()[species_of_drawing_[d]];
-    draws_.push_back(pictures::hand_off(species.deformer->context().queue(), species.batch,
-                                        renderer_, drawings_[d]));
-  }
+  for (const SpeciesDrawing& drawing : drawings_) draws_.push_back(fish_draw(drawing));
 }
 
 void TankPictures::draw() {
+  for (SpeciesDrawing& drawing : drawings_) drawing.outputs->wait_until_drawable();
   renderer_.render(look_, camera_, draws_);
   renderer_.finish();
 }

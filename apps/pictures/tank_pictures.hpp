@@ -1,11 +1,15 @@
-// Pictures of a SwimScene: the renderer, the tank as it draws it, a camera, and the
-// hand-off of every species' deformed batch each frame (fish_hand_off.hpp).
+// Pictures of a SwimScene whose species' deformations write GL buffers of the renderer
+// (fish_hand_off.hpp): the renderer, the tank as it draws it, a camera. The renderer
+// comes first, so that the OpenCL context can share its GL context:
 //
-//   TankPictures pictures(scene, settings);       // kNoDevice (RenderError) without EGL
-//   each frame: scene.enqueue_frame(dt);
-//               pictures.hand_off();              // waits for the deformation
+//   render::Renderer renderer(render_settings(settings));  // kNoDevice without EGL
+//   GlSharingContext opencl = make_gl_sharing_context(device, renderer.egl_display(),
+//                                                     renderer.egl_context());
+//   tank::SwimScene scene(*opencl.context, species, ..., gl_outputs(renderer));
+//   TankPictures pictures(renderer, scene, settings);
+//   each frame: scene.enqueue_frame(dt);    // the deformation writes the GL buffers
 //               pictures.draw();  pictures.read_image();
-//               pictures.draw_ids();              // the instance ids, for datasets
+//               pictures.draw_ids();        // the instance ids, for datasets
 #pragma once
 
 #include <cstdint>
@@ -25,33 +29,39 @@ struct PictureSettings {
   CameraView view = CameraView::kOblique;
 };
 
+// The renderer's settings for pictures of `settings`.
+render::RenderSettings render_settings(const PictureSettings& settings);
+
 class TankPictures {
  public:
-  // A renderer of settings' size, and per species with fish a drawing whose id pass
-  // writes 1 + the fish's index in the tank (tank().fish()). Errors: RenderError
-  // (kInvalidArgument for a bad size, kNoDevice without EGL).
-  TankPictures(tank::SwimScene& scene, const PictureSettings& settings);
+  // Per species with fish a drawing of its outputs (which must be GlSpeciesOutputs of
+  // `renderer`: kInvalidArgument naming "scene" otherwise) whose id pass writes 1 + the
+  // fish's index in the tank (tank().fish()). `renderer` (made with
+  // render_settings(settings)) and `scene` must outlive the pictures.
+  TankPictures(render::Renderer& renderer, tank::SwimScene& scene,
+               const PictureSettings& settings);
 
-  // The hand-off: every species' batch as the scene's last enqueued frame left it.
-  void hand_off();
-  // The colour pass of the batches last handed off, and its image.
+  // The colour pass of every species' last frame (waiting until GL may read it), and
+  // its image.
   void draw();
   const render::Image& read_image();
   // The id pass of the same, read back.
   const render::IdImage& draw_ids();
+
+  // How the deformations reach the renderer: shared (no copy) or copy (GlOutputs).
+  GlPath hand_off_path() const { return path_; }
 
   const render::Camera& camera() const { return camera_; }
   const render::Scene& look() const { return look_; }
   render::Renderer& renderer() { return renderer_; }
 
  private:
-  tank::SwimScene& scene_;
-  render::Renderer renderer_;
+  render::Renderer& renderer_;
   render::Scene look_;
   render::Camera camera_;
   std::vector<SpeciesDrawing> drawings_;  // per species with fish, in order
-  std::vector<std::size_t> species_of_drawing_;
   std::vector<render::FishDraw> draws_;
+  GlPath path_ = GlPath::kCopy;
   render::Image image_;
   render::IdImage ids_;
 };

@@ -1,5 +1,6 @@
 #include "swim_scene.hpp"
 
+#include <algorithm>
 #include <filesystem>
 
 namespace finflex::tank {
@@ -10,6 +11,23 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 }
 
 }  // namespace
+
+DeviceOutputs::DeviceOutputs(const ClDeformer& deformer, std::size_t instances,
+                             NormalFormat format)
+    : batch_(deformer.allocate(instances, format)) {}
+
+cl::Event DeviceOutputs::enqueue(ClDeformer& deformer, const ClJob& job,
+                                 std::vector<cl::Event>* kernel_events) {
+  return deformer.enqueue(job, kernel_events);
+}
+
+BatchReading::BatchReading(Species& species) : outputs_(species.outputs.get()) {
+  if (outputs_ != nullptr) outputs_->begin_reading();
+}
+
+BatchReading::~BatchReading() {
+  if (outputs_ != nullptr) outputs_->end_reading();
+}
 
 std::string species_name(const SpeciesFiles& files) {
   // "data/rigs/blub_swim.rig.json" -> "blub".
@@ -39,7 +57,8 @@ std::vector<SpeciesFiles> bundled_species(const std::string& data_dir) {
 
 SwimScene::SwimScene(Context& context, const std::vector<SpeciesFiles>& files, std::size_t fish,
                      const TankSettings& settings, std::uint64_t seed, NormalMode normals,
-                     NormalFormat format, const ClOptions& options)
+                     NormalFormat format, const ClOptions& options,
+                     const OutputsFactory& outputs)
     : context_(context) {
   if (files.empty()) {
     throw Error(ErrorCode::kInvalidArgument, "species", "species: at least one is needed");
@@ -53,7 +72,7 @@ SwimScene::SwimScene(Context& context, const std::vector<SpeciesFiles>& files, s
       const Mesh mesh = load_mesh(files[s].mesh);
       SwimModel swim(RiggedMesh(mesh, resolve_rig(load_rig_file(files[s].rig), mesh)));
       species_.push_back(
-          Species{species_name(files[s]), std::move(swim), nullptr, nullptr, {}, {}, {}});
+          Species{species_name(files[s]), std::move(swim), nullptr, nullptr, nullptr, {}, {}});
     } catch (const Error& e) {
       throw Error(e.code(), at, at + ": " + e.what());
     }
@@ -65,13 +84,18 @@ SwimScene::SwimScene(Context& context, const std::vector<SpeciesFiles>& files, s
     if (counts[s] == 0) continue;
     sp.deformer = std::make_unique<ClDeformer>(context_, sp.swim.model(), options);
     sp.driver = std::make_unique<ClSwimDriver>(context_, sp.swim, tank_->lengths(s));
-    sp.batch = sp.deformer->allocate(counts[s], format);
+    sp.outputs = outputs ? outputs(s, *sp.deformer, counts[s], format)
+                         : std::make_unique<DeviceOutputs>(*sp.deformer, counts[s], format);
+    if (!sp.outputs) {
+      throw Error(ErrorCode::kInvalidArgument, "outputs",
+                  "outputs: the factory made none for species " + std::to_string(s));
+    }
     sp.job.model = &sp.swim.model();
     sp.job.parameters.instance_count = counts[s];
     sp.job.parameter_buffer = &sp.driver->parameter_buffer();
     sp.job.placement_buffer = &sp.driver->placement_buffer();
     sp.job.normals = normals;
-    sp.job.outputs = &sp.batch;
+    sp.job.outputs = &sp.outputs->batch();
   }
 }
 
@@ -89,13 +113,15 @@ FrameWork SwimScene::enqueue_frame(double dt, bool profile) {
     Species& sp = species_[s];
     if (!sp.driver) continue;
     const cl::Event driven = sp.driver->enqueue(sp.inputs, static_cast<float>(dt));
-    sp.deformer->enqueue(sp.job, profile ? &events : nullptr);
+    sp.outputs->enqueue(*sp.deformer, sp.job, profile ? &events : nullptr);
+    work.handoff_seconds += sp.outputs->handoff_seconds();
     if (profile) {
       work.kernels.push_back(driven);
       work.kernels.insert(work.kernels.end(), events.begin(), events.end());
     }
   }
-  work.enqueue_seconds = seconds_since(enqueue_start);
+  work.enqueue_seconds =
+      std::max(0.0, seconds_since(enqueue_start) - work.handoff_seconds);
   return work;
 }
 

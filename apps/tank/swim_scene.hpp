@@ -1,11 +1,16 @@
 // A tank of swimming fish on an OpenCL device: per species a model (mesh + swim rig),
-// its swim driver and deformer and a batch of outputs in world space; every frame the
-// tank steps on the host and each species' driver and deformation are enqueued.
+// its swim driver and deformer and its outputs in world space; every frame the tank
+// steps on the host and each species' driver and deformation are enqueued.
 // Shared by `finflex swim`, `finflex bench --swim` and the renderer.
+//
+// The outputs are FinFlex's planes in device buffers (ClDeformer::allocate) unless the
+// caller gives a factory of its own: the renderer's (apps/pictures/fish_hand_off.hpp)
+// has the deformation write GL buffers that it draws from.
 #pragma once
 
 #include <chrono>
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -30,33 +35,89 @@ std::string species_name(const SpeciesFiles& files);
 // The bundled species under `data_dir`: Blub and the Barramundi with their swim rigs.
 std::vector<SpeciesFiles> bundled_species(const std::string& data_dir);
 
+// Where one species' deformation goes every frame: its batch, and how a frame is
+// enqueued into it.
+class SpeciesOutputs {
+ public:
+  virtual ~SpeciesOutputs() = default;
+  virtual DeviceBatch& batch() = 0;
+  // Enqueues `job` (job.outputs is batch()) with `deformer`, as ClDeformer::enqueue.
+  virtual cl::Event enqueue(ClDeformer& deformer, const ClJob& job,
+                            std::vector<cl::Event>* kernel_events) = 0;
+  // Host seconds the last enqueue spent handing the frame over to its consumer
+  // (0: the batch is where the deformation wrote it).
+  virtual double handoff_seconds() const { return 0.0; }
+  // Blocking OpenCL reads of batch() between frames go between these (BatchReading):
+  // outputs that another API owns between frames (GL buffers shared with OpenCL) are
+  // lent to OpenCL meanwhile. Nothing by default.
+  virtual void begin_reading() {}
+  virtual void end_reading() {}
+};
+
+// FinFlex's planes in device buffers (ClDeformer::allocate): the scene's default.
+class DeviceOutputs : public SpeciesOutputs {
+ public:
+  DeviceOutputs(const ClDeformer& deformer, std::size_t instances, NormalFormat format);
+  DeviceBatch& batch() override { return batch_; }
+  cl::Event enqueue(ClDeformer& deformer, const ClJob& job,
+                    std::vector<cl::Event>* kernel_events) override;
+
+ private:
+  DeviceBatch batch_;
+};
+
+// Makes the outputs of species `species` (its deformer, its fish count, the normals'
+// format), in world space, positions and normals at least.
+using OutputsFactory = std::function<std::unique_ptr<SpeciesOutputs>(
+    std::size_t species, ClDeformer& deformer, std::size_t instances, NormalFormat format)>;
+
 struct Species {
   std::string name;  // the mesh file's stem
   SwimModel swim;    // its model: swim.model()
-  std::unique_ptr<ClDeformer> deformer;
+  std::unique_ptr<ClDeformer> deformer;  // these three: only a species with fish
   std::unique_ptr<ClSwimDriver> driver;
-  DeviceBatch batch;
+  std::unique_ptr<SpeciesOutputs> outputs;
   ClJob job;
   std::vector<SwimInput> inputs;  // this frame's, in the tank's order of its fish
+
+  DeviceBatch& batch() { return outputs->batch(); }
+};
+
+// Reads of a species' batch with OpenCL between frames (ClDeformer::read, ...) happen
+// while one of these lives (SpeciesOutputs::begin_reading, end_reading).
+class BatchReading {
+ public:
+  explicit BatchReading(Species& species);
+  ~BatchReading();
+  BatchReading(const BatchReading&) = delete;
+  BatchReading& operator=(const BatchReading&) = delete;
+
+ private:
+  SpeciesOutputs* outputs_;
 };
 
 // Host time of one frame's steps, and its kernels' events.
 struct FrameWork {
   double simulation_seconds = 0.0;  // the tank's step and its swim inputs
-  double enqueue_seconds = 0.0;     // the drivers' uploads and every launch
+  double enqueue_seconds = 0.0;     // the drivers' uploads and every launch (and what
+                                    // the hand-off waits for, when it waits)
+  double handoff_seconds = 0.0;     // the outputs' hand-off (SpeciesOutputs)
   std::vector<cl::Event> kernels;   // every kernel, in order (profiling)
 };
 
 class SwimScene {
  public:
   // Loads every species (errors name the species option and the file), splits `fish`
-  // fish among them as evenly as possible, builds the tank, the drivers and the batches.
+  // fish among them as evenly as possible, builds the tank, the drivers and the
+  // outputs (`outputs`, or DeviceOutputs when it is empty).
   SwimScene(Context& context, const std::vector<SpeciesFiles>& species, std::size_t fish,
             const TankSettings& settings, std::uint64_t seed, NormalMode normals,
-            NormalFormat format = NormalFormat::kFloat32, const ClOptions& options = {});
+            NormalFormat format = NormalFormat::kFloat32, const ClOptions& options = {},
+            const OutputsFactory& outputs = {});
 
   // One frame: the tank steps by dt, then each species' driver and deformation are
-  // enqueued (nothing waits). With `profile`, every kernel's event goes to the result.
+  // enqueued (nothing waits, unless the outputs' hand-off does). With `profile`, every
+  // kernel's event goes to the result.
   FrameWork enqueue_frame(double dt, bool profile = false);
 
   Tank& tank() { return *tank_; }

@@ -3,8 +3,10 @@
 # GL loader packages (GLVND's libEGL, libGL, libOpenGL; libepoxy) unpacked into /:
 # the tank of `finflex swim` with rendering, 1,000 fish of the bundled species, on the
 # NVIDIA GPU for both OpenCL and OpenGL (EGL device, no display): frames per second and
-# each frame's shares (deform, hand-off, draw, read-back, files, annotation), drawn
-# only, with every frame written as a PNG, and as a dataset (--annotate). Writes
+# each frame's shares (deform, hand-off, draw, read-back, files, annotation) and the
+# hand-off's path (shared: OpenCL writes the GL buffers; copy: through the host, with
+# why), drawn only, with every frame written as a PNG, and as a dataset (--annotate),
+# then the path and hand-off time of each run's summary. Writes
 # OUT_DIR/swim_render.txt and each run's summary.json (tracks removed).
 #
 #   scripts/device/swim_render_speed.sh BUNDLE_DIR OUT_DIR
@@ -49,4 +51,7 @@ summary() {  # the run's summary without the tracks
   "$bundle/bin/finflex" swim --fish 1000 --seconds 0.5 --fps 30 "${species[@]}" --out /tmp/dataset \
       --video none --annotate --size 1280x720 --device NVIDIA && summary /tmp/dataset/summary.json "$out/summary_dataset.json"
   cp /tmp/tank/frames/frame_000029.png "$out/gpu_frame.png" 2>/dev/null
+  for s in "$out/summary_png.json" "$out/summary_dataset.json"; do
+    [ -e "$s" ] && python3 -c 'import json,sys; h=json.load(open(sys.argv[1]))["rendering"]["hand_off"]; print(sys.argv[1], "hand-off:", h["path"], "%.3f ms a frame" % (1e3 * h["seconds_per_frame_mean"]), h.get("why_not_shared", ""))' "$s"
+  done
 } 2>&1 | tee "$out/swim_render.txt"

@@ -125,6 +125,10 @@ cl::Event GlOutputs::enqueue(const ClJob& job, std::vector<cl::Event>* kernel_ev
     throw Error(ErrorCode::kInvalidArgument, "job.outputs",
                 "job.outputs: a GlOutputs frame writes its own batch() (set job.outputs to it)");
   }
+  if (reading_) {
+    throw Error(ErrorCode::kInvalidArgument, "enqueue",
+                "enqueue: the batch is being read (begin_reading without end_reading)");
+  }
   Context& context = deformer_.context();
   if (path_ == GlPath::kShared) {
     const auto start = std::chrono::steady_clock::now();
@@ -146,6 +150,7 @@ cl::Event GlOutputs::enqueue(const ClJob& job, std::vector<cl::Event>* kernel_ev
     return released;
   }
   const cl::Event done = deformer_.enqueue(job, kernel_events);
+  check_cl(done.wait(), "clWaitForEvents");  // the kernels' time is not the hand-off's
   const auto start = std::chrono::steady_clock::now();
   const cl::Buffer* buffers[4] = {&batch_.positions, &batch_.normals, &batch_.tangents,
                                   &batch_.previous_positions};
@@ -156,15 +161,42 @@ cl::Event GlOutputs::enqueue(const ClJob& job, std::vector<cl::Event>* kernel_ev
     if (names[k] == 0 || std::find(names, names + k, names[k]) != names + k) continue;
     std::size_t bytes = 0;
     buffers[k]->getInfo(CL_MEM_SIZE, &bytes);
-    staging_.resize(bytes);
-    check_cl(context.queue().enqueueReadBuffer(*buffers[k], CL_TRUE, 0, bytes, staging_.data()),
-             "clEnqueueReadBuffer (GL copy)");
+    // Mapped rather than read into a staging copy: on a CPU device (PoCL) the map is
+    // the buffer itself, so glBufferSubData is the only copy; a GPU driver copies it
+    // to the host once either way.
+    cl_int status = CL_SUCCESS;
+    void* mapped = context.queue().enqueueMapBuffer(*buffers[k], CL_TRUE, CL_MAP_READ, 0, bytes,
+                                                    nullptr, nullptr, &status);
+    check_cl(status, "clEnqueueMapBuffer (GL copy)");
     glBindBuffer(GL_ARRAY_BUFFER, names[k]);
-    glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(bytes), staging_.data());
+    glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(bytes), mapped);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
+    check_cl(context.queue().enqueueUnmapMemObject(*buffers[k], mapped),
+             "clEnqueueUnmapMemObject (GL copy)");
   }
   handoff_seconds_ = seconds_since(start);
   return done;
+}
+
+void GlOutputs::begin_reading() {
+  if (reading_) return;
+  if (path_ == GlPath::kShared) {
+    glFinish();
+    check_cl(deformer_.context().queue().enqueueAcquireGLObjects(&shared_),
+             "clEnqueueAcquireGLObjects");
+  }
+  reading_ = true;
+}
+
+void GlOutputs::end_reading() {
+  if (!reading_) return;
+  reading_ = false;
+  if (path_ == GlPath::kShared) {
+    cl::Event released;
+    check_cl(deformer_.context().queue().enqueueReleaseGLObjects(&shared_, nullptr, &released),
+             "clEnqueueReleaseGLObjects");
+    check_cl(released.wait(), "clWaitForEvents");
+  }
 }
 
 }  // namespace finflex

@@ -11,8 +11,8 @@
 //    caller's choosing). No clFinish.
 //  - kCopy: anything else (PoCL has no GL sharing): the kernels write a device mirror
 //    of each GL buffer (made from its contents, so bytes FinFlex does not write keep
-//    the values they had then), then the frame is read back (blocking) and uploaded
-//    whole with glBufferSubData.
+//    the values they had then), then the frame is mapped for reading (blocking; on a
+//    CPU device the buffer itself) and uploaded whole with glBufferSubData.
 //
 //   finflex::render::Renderer renderer;                                 // EGL, current
 //   auto context = finflex::make_gl_sharing_context("", renderer.egl_display(),
@@ -73,9 +73,16 @@ class GlOutputs {
   // `kernel_events` as ClDeformer::enqueue.
   cl::Event enqueue(const ClJob& job, std::vector<cl::Event>* kernel_events = nullptr);
 
-  // Host time of the last enqueue's hand-off: acquire and release (kShared), or the
-  // read-back and glBufferSubData (kCopy), in seconds.
+  // Host time of the last enqueue's hand-off: glFinish, acquire and release (kShared),
+  // or the map, glBufferSubData and unmap once the kernels are done (kCopy), seconds.
   double last_handoff_seconds() const { return handoff_seconds_; }
+
+  // Reading batch() with OpenCL between frames (ClDeformer::read, clEnqueueReadBuffer):
+  // on the shared path OpenCL may touch the GL buffers only while it has acquired them,
+  // so begin_reading() acquires them (after glFinish) and end_reading() releases them
+  // and waits for the release. Nothing on the copy path (the mirror holds the frame).
+  void begin_reading();
+  void end_reading();
 
  private:
   ClDeformer& deformer_;
@@ -83,7 +90,7 @@ class GlOutputs {
   GlBuffers names_;
   DeviceBatch batch_;
   std::vector<cl::Memory> shared_;  // kShared: the GL buffers as OpenCL memory objects
-  std::vector<unsigned char> staging_;
+  bool reading_ = false;
   double handoff_seconds_ = 0.0;
 };
 
