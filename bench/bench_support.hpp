@@ -81,12 +81,15 @@ double time_iterations(benchmark::State& state, Launch launch) {
 
 // Benchmark bodies (bench_bend.cpp, bench_rig.cpp, bench_baselines.cpp); registered in
 // bench_main.cpp.
+// per_item, lanes: 0 for the bend deformer's own (ClDeformer::instances_per_item, lanes);
+// streaming: with more than one lane, streaming stores (ClOptions::streaming_stores).
 void BM_WriteOnly(benchmark::State& state, NormalFormat format, std::size_t per_item,
-                  WriteValues values);
+                  WriteValues values, std::size_t lanes, bool streaming);
 void BM_CopyRest(benchmark::State& state);
 void BM_Bend(benchmark::State& state, BendMode mode, NormalMode normals, NormalFormat format);
 void BM_Rig(benchmark::State& state, RigPath path);
 void BM_OpenMPBaseline(benchmark::State& state);
+void BM_OpenMPSimdBaseline(benchmark::State& state);
 void BM_HostOverhead(benchmark::State& state);
 void BM_DoubleReference(benchmark::State& state);
 

@@ -25,7 +25,8 @@
  *
  * Build options: FF_NORMALS_JACOBIAN (common/secant.cl), FF_HALF_NORMALS,
  * FF_TANGENTS and FF_INSTANCES_PER_ITEM (common/planes.cl; half normals in the
- * outputs only: scratch sets stay float32). Generated before the files:
+ * outputs only: scratch sets stay float32), FF_LANES (common/lanes.cl: a work-item
+ * deforms FF_LANES consecutive slots, a work-group still 64). Generated before the files:
  * FF_STAGE_COUNT (the stage table's rows), FF_ROOT_FRAME (the root frame's row, when
  * the root has no stage), FF_RIG_GROUP_COUNT and the macros above. */
 /* The path table (group_path_table in engine/src/rig_program.cpp): the stage at
@@ -52,7 +53,7 @@
       __global const float* restrict placements,                                        \
       __global float* restrict out_positions, __global float* restrict out_normals,     \
       __global float* restrict out_tangents, const uint stride, const uint instances) {  \
-    const size_t v = get_global_id(0);                                                  \
+    const size_t v = FF_FIRST_SLOT;                                                     \
     const size_t first_instance = get_global_id(1) * FF_INSTANCES_PER_ITEM;            \
     const uint group = FF_GROUP;                                                        \
     const Vec3 rest_p = load_plane3(rest_positions, 0, stride, v);                      \
@@ -124,7 +125,7 @@ FF_RIG_FUSED_KERNELS
       __global const float* restrict placements,                                        \
       __global float* restrict out_positions, __global float* restrict out_normals,     \
       __global float* restrict out_tangents, const uint stride, const uint instances) {  \
-    const size_t v = get_global_id(0);                                                  \
+    const size_t v = FF_FIRST_SLOT;                                                     \
     const size_t first_instance = get_global_id(1) * FF_INSTANCES_PER_ITEM;            \
     const uint group = FF_GROUP;                                                        \
     for (uint k = 0; k < FF_INSTANCES_PER_ITEM; ++k) {                                  \
@@ -143,7 +144,9 @@ FF_RIG_PASS_KERNELS
  * kernel rig_prepare writes them from every instance's values before the deformation
  * kernels run, one work-item per instance, the stages that have them listed in the
  * generated FF_RIG_PREPARE (calls "<prepare function>(values + <offset>, derived +
- * <offset>, stages + <k>);"). Launched only when the rig has such stages. */
+ * <offset>, stages + <k>);"). Launched only when the rig has such stages, always from
+ * the one-lane build of the program (it works on an instance, not on vertices). */
+#if FF_LANES == 1
 __kernel void rig_prepare(__global const float* restrict params, const uint param_count,
                           __constant const float* stages, __global float* restrict derived_values,
                           const uint derived_count, const uint instances) {
@@ -153,3 +156,4 @@ __kernel void rig_prepare(__global const float* restrict params, const uint para
   __global float* derived = derived_values + instance * derived_count;
   FF_RIG_PREPARE
 }
+#endif

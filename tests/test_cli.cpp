@@ -172,7 +172,9 @@ void expect_bench_json(const std::string& arguments, const RiggedMesh& model, Ri
                                                   "write_fraction",
                                                   "host_enqueue_seconds_median",
                                                   "kernel_seconds_median",
-                                                  "instances_per_item"};
+                                                  "instances_per_item",
+                                                  "lanes",
+                                                  "streaming_stores"};
   EXPECT_EQ(keys, expected_keys);  // in this order, none missing, none extra
 
   ClDeformer deformer(test::shared_context(), model);
@@ -223,6 +225,8 @@ void expect_bench_json(const std::string& arguments, const RiggedMesh& model, Ri
   }
   for (double seconds : kernels) EXPECT_GT(seconds, 0.0);
   EXPECT_EQ(j.at("instances_per_item").get<std::size_t>(), deformer.instances_per_item(format));
+  EXPECT_EQ(j.at("lanes").get<std::size_t>(), deformer.lanes(format));
+  EXPECT_EQ(j.at("streaming_stores").get<bool>(), deformer.lanes(format) > 1);
 }
 
 TEST(Cli, BenchJsonKeysAndValues) {

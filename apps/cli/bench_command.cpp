@@ -1,6 +1,6 @@
 // finflex bench: frames of a batch on one device, timed by OpenCL profiling events,
-// next to a write-only kernel of the same NDRange and output planes (the device's
-// write bandwidth, measured in the same run).
+// next to a write-only kernel of the same output planes (the device's write bandwidth,
+// measured in the same run: the fastest of its shapes).
 //
 //   finflex bench --mesh PATH --instances N --frames F [--mode paper|exact]
 //                 [--normals rotate|jacobian] [--normal-format float32|half]
@@ -40,6 +40,8 @@ struct BenchOptions {
   std::string rig;
   std::string path = "auto";
   std::string per_item = "0";
+  std::string lanes = "0";
+  std::string stores = "streaming";
   std::string dispatch = "auto";
   bool swim = false;
   std::string device;
@@ -54,22 +56,36 @@ struct Measured {
   bench::FrameTimes times;
   DeviceBatch* batch = nullptr;
   std::size_t per_item = 1;
+  std::size_t lanes = 1;
+  bool streaming = false;    // streaming stores (with lanes)
   std::size_t vertices = 0;  // per instance
 };
 
-// The write-only kernel over the batch's planes: the faster of the deformer's
-// instances per work-item and 4 (the rig kernels' on GPUs).
+// The write-only kernel over the batch's planes: the fastest of the deformer's
+// instances per work-item and 4 (the rig kernels' on GPUs), each with one lane and,
+// when the deformer has more, with its lanes (vector stores, kernels/cpu/
+// lane_planes.cl), streaming and plain.
 double write_only_median(Context& context, DeviceBatch& batch, std::size_t per_item,
-                         std::size_t frames) {
+                         std::size_t lanes, std::size_t frames) {
+  struct Shape {
+    std::size_t lanes;
+    bool streaming;
+  };
+  std::vector<Shape> shapes = {{1, false}};
+  if (lanes > 1) shapes.insert(shapes.end(), {{lanes, true}, {lanes, false}});
   double fastest = 0.0;
   for (std::size_t per : {per_item, std::size_t{4}}) {
-    const bench::FrameTimes times = bench::time_frames(
-        frames, [](std::size_t) {},
-        [&](std::vector<cl::Event>& events) {
-          events.assign(1, bench::enqueue_write_only(context, batch, per));
-        });
-    const double seconds = bench::median(times.device);
-    fastest = fastest == 0.0 ? seconds : std::min(fastest, seconds);
+    for (const Shape& shape : shapes) {
+      const bench::FrameTimes times = bench::time_frames(
+          frames, [](std::size_t) {},
+          [&](std::vector<cl::Event>& events) {
+            events.assign(1, bench::enqueue_write_only(context, batch, per,
+                                                       bench::WriteValues::kDeviceDefault,
+                                                       shape.lanes, shape.streaming));
+          });
+      const double seconds = bench::median(times.device);
+      fastest = fastest == 0.0 ? seconds : std::min(fastest, seconds);
+    }
   }
   return fastest;
 }
@@ -93,10 +109,17 @@ struct DeformBench {
   DeviceBatch batch;
 };
 
-// --per-item and --dispatch: the backend's choices, for experiments.
+// --per-item, --lanes and --dispatch: the backend's choices, for experiments.
 ClOptions cl_options(const BenchOptions& options) {
   ClOptions cl;
   cl.instances_per_item = parse_count(options.per_item, "--per-item", 0, 64);
+  cl.lanes = parse_count(options.lanes, "--lanes", 0, 16);
+  if (options.stores != "streaming" && options.stores != "plain") {
+    throw Error(
+        ErrorCode::kInvalidArgument, "--stores",
+        "--stores '" + options.stores + "' is not a kind of store (expected streaming or plain)");
+  }
+  cl.streaming_stores = options.stores == "streaming";
   if (options.dispatch == "per-component") {
     cl.dispatch = RigDispatch::kPerComponent;
   } else if (options.dispatch == "by-path-shape") {
@@ -156,6 +179,8 @@ Measured measure_deform(const BenchOptions& options, const Mesh& mesh, Context& 
                                       : std::string("rig ") + to_string(chosen);
   measured.batch = &bench.batch;
   measured.per_item = deformer.instances_per_item(format);
+  measured.lanes = deformer.lanes(format);
+  measured.streaming = measured.lanes > 1 && cl_options(options).streaming_stores;
   measured.vertices = mesh.vertex_count();
   return measured;
 }
@@ -190,6 +215,8 @@ Measured measure_swim(const BenchOptions& options, Context& context, std::size_t
   measured.what = std::string("swim ") + to_string(species.deformer->automatic_path());
   measured.batch = &species.batch;
   measured.per_item = species.deformer->instances_per_item(format);
+  measured.lanes = species.deformer->lanes(format);
+  measured.streaming = measured.lanes > 1 && cl_options(options).streaming_stores;
   measured.vertices = species.swim.model().vertex_count();
   return measured;
 }
@@ -210,7 +237,7 @@ int run_bench(const BenchOptions& options) {
             ? measure_swim(options, context, instances, frames, normals, format, scene)
             : measure_deform(options, mesh, context, instances, frames, normals, format, deform);
     const double seconds = bench::median(m.times.device);
-    const double write_seconds = write_only_median(context, *m.batch, m.per_item, frames);
+    const double write_seconds = write_only_median(context, *m.batch, m.per_item, m.lanes, frames);
     const double vertices = double(m.vertices) * double(instances);
     const BatchLayout& layout = m.batch->layout;
     const double bytes_per_vertex = double(layout.bytes_per_vertex());
@@ -242,6 +269,8 @@ int run_bench(const BenchOptions& options) {
     // deformation's).
     result["kernel_seconds_median"] = m.times.kernel_medians();
     result["instances_per_item"] = m.per_item;
+    result["lanes"] = m.lanes;
+    result["streaming_stores"] = m.streaming;
     std::printf("%s\n", options.json ? result.dump().c_str() : result.dump(2).c_str());
     return kExitSuccess;
   } catch (const std::exception& error) {
@@ -270,6 +299,10 @@ Command add_bench_command(CLI::App& app) {
       ->capture_default_str();
   bench->add_option("--per-item", options->per_item,
                     "Instances per work-item (0: the device's choice)")
+      ->capture_default_str();
+  bench->add_option("--lanes", options->lanes, "Slots per work-item: 1, 8, 16 (0: the device's)")
+      ->capture_default_str();
+  bench->add_option("--stores", options->stores, "With lanes: streaming or plain stores")
       ->capture_default_str();
   bench->add_option("--dispatch", options->dispatch, "auto, per-component or by-path-shape")
       ->capture_default_str();

@@ -3,9 +3,10 @@
  * kernels/single_bend.cl, kernels/rig.cl), with no arithmetic. write_planes gives the
  * device's write bandwidth; copy_rest reads rest planes and writes them out per
  * instance. Written with scalar stores only, like the deformation kernels, so PoCL
- * vectorises them alike; write_planes honours FF_HALF_NORMALS, FF_TANGENTS and
- * FF_INSTANCES_PER_ITEM (kernels/common/planes.cl) as they do
- * (NDRange (plane_stride, ceil(instances / FF_INSTANCES_PER_ITEM))).
+ * vectorises them alike; write_planes honours FF_HALF_NORMALS, FF_TANGENTS,
+ * FF_INSTANCES_PER_ITEM (kernels/common/planes.cl) and FF_LANES (kernels/common/lanes.cl:
+ * vector stores of FF_LANES slots, kernels/cpu/lane_planes.cl) as they do
+ * (NDRange (plane_stride / FF_LANES, ceil(instances / FF_INSTANCES_PER_ITEM))).
  * Built after the library's common kernel files.
  *
  * FF_VARYING_WRITES (0/1): write_planes writes `value` everywhere (0), or values that
@@ -20,7 +21,7 @@ __kernel void write_planes(__global float* restrict out_positions,
                            __global float* restrict out_normals,
                            __global float* restrict out_tangents, const uint stride,
                            const uint instances, const float value) {
-  const size_t v = get_global_id(0);
+  const size_t v = FF_FIRST_SLOT;
   const size_t first_instance = get_global_id(1) * FF_INSTANCES_PER_ITEM;
   for (uint k = 0; k < FF_INSTANCES_PER_ITEM; ++k) {
     const size_t instance = first_instance + k;

@@ -18,13 +18,16 @@ ProgramSource bandwidth_program() {
   return {common_kernel_files(), "", found->text};
 }
 
+// The deformation kernels' NDRange: work-groups of kGroupSize slots, `lanes` slots per
+// work-item.
 cl::Event launch(Context& context, cl::Kernel& kernel, const BatchLayout& layout,
-                 std::size_t per_item) {
+                 std::size_t per_item, std::size_t lanes) {
   cl::Event done;
   check_cl(context.queue().enqueueNDRangeKernel(
                kernel, cl::NullRange,
-               cl::NDRange(layout.plane_stride, (layout.instance_count + per_item - 1) / per_item),
-               cl::NDRange(ClDeformer::kGroupSize, 1), nullptr, &done),
+               cl::NDRange(layout.plane_stride / lanes,
+                           (layout.instance_count + per_item - 1) / per_item),
+               cl::NDRange(ClDeformer::kGroupSize / lanes, 1), nullptr, &done),
            "clEnqueueNDRangeKernel");
   return done;
 }
@@ -32,7 +35,7 @@ cl::Event launch(Context& context, cl::Kernel& kernel, const BatchLayout& layout
 }  // namespace
 
 cl::Event enqueue_write_only(Context& context, DeviceBatch& batch, std::size_t instances_per_item,
-                             WriteValues values) {
+                             WriteValues values, std::size_t lanes, bool streaming) {
   if (values == WriteValues::kDeviceDefault) {
     values = context.description().is_gpu() ? WriteValues::kVarying : WriteValues::kConstant;
   }
@@ -40,7 +43,9 @@ cl::Event enqueue_write_only(Context& context, DeviceBatch& batch, std::size_t i
       std::string("-DFF_INSTANCES_PER_ITEM=") + std::to_string(instances_per_item) +
       (batch.layout.normal_format == NormalFormat::kHalf ? " -DFF_HALF_NORMALS=1" : "") +
       (values == WriteValues::kVarying ? " -DFF_VARYING_WRITES=1" : "") +
-      (batch.layout.tangents ? " -DFF_TANGENTS=1" : "");
+      (batch.layout.tangents ? " -DFF_TANGENTS=1" : "") +
+      (lanes > 1 ? " -DFF_LANES=" + std::to_string(lanes) : std::string()) +
+      (lanes > 1 && !streaming ? " -DFF_STREAMING_STORES=0" : "");
   cl::Kernel kernel = context.kernel("write_planes", bandwidth_program(), options);
   cl_uint arg = 0;
   auto set = [&](const auto& value) { check_cl(kernel.setArg(arg++, value), "clSetKernelArg"); };
@@ -50,7 +55,7 @@ cl::Event enqueue_write_only(Context& context, DeviceBatch& batch, std::size_t i
   set(static_cast<cl_uint>(batch.layout.plane_stride));
   set(static_cast<cl_uint>(batch.layout.instance_count));
   set(1.0f);
-  return launch(context, kernel, batch.layout, instances_per_item);
+  return launch(context, kernel, batch.layout, instances_per_item, lanes);
 }
 
 cl::Event enqueue_copy_rest(Context& context, const cl::Buffer& source, DeviceBatch& batch) {
@@ -61,7 +66,7 @@ cl::Event enqueue_copy_rest(Context& context, const cl::Buffer& source, DeviceBa
   set(batch.positions);
   set(batch.normals);
   set(static_cast<cl_uint>(batch.layout.plane_stride));
-  return launch(context, kernel, batch.layout, 1);
+  return launch(context, kernel, batch.layout, 1, 1);
 }
 
 }  // namespace finflex::bench

@@ -22,10 +22,13 @@ enum class WriteValues {
 };
 
 // Writes positions, normals (in the batch's format) and tangents when the batch has
-// them, `instances_per_item` instances per work-item (the deformer's:
-// ClDeformer::instances_per_item). Returns the kernel's event.
+// them, `instances_per_item` instances and `lanes` slots per work-item (the deformer's:
+// ClDeformer::instances_per_item, ClDeformer::lanes; more than one lane: float32
+// planes only, with streaming stores or ordinary ones: ClOptions::streaming_stores).
+// Returns the kernel's event.
 cl::Event enqueue_write_only(Context& context, DeviceBatch& batch, std::size_t instances_per_item,
-                             WriteValues values = WriteValues::kDeviceDefault);
+                             WriteValues values = WriteValues::kDeviceDefault,
+                             std::size_t lanes = 1, bool streaming = true);
 
 // Copies 6 planes of `source` (positions and normals of plane_stride slots) into every
 // instance of the batch's float32 outputs. Returns the kernel's event.

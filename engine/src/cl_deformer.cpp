@@ -44,6 +44,11 @@ ClDeformer::Impl::Impl(Context& context_in, const RiggedMesh& model_in, const Cl
     : context(context_in), model(model_in), options(options_in), checker_(model_in.rig()) {
   const DeviceDescription& device = context.description();
   options.dispatch = detail::device_dispatch(device, options.dispatch);
+  if (options.lanes != 0 && options.lanes != 1 && options.lanes != 8 && options.lanes != 16) {
+    throw Error(ErrorCode::kInvalidArgument, "options.lanes",
+                "options.lanes: " + std::to_string(options.lanes) +
+                    " is not a number of lanes (expected 0: the device's, 1, 8 or 16)");
+  }
   single_bend = options.single_bend_kernel && model.is_single_bend();
   const bool share_code = options.dispatch == RigDispatch::kByPathShape;
   const Rig& rig = model.rig();
@@ -132,6 +137,11 @@ std::size_t ClDeformer::Impl::per_item(NormalFormat format) const {
              : detail::device_instances_per_item(context.description(), single_bend, format);
 }
 
+std::size_t ClDeformer::Impl::lanes(NormalFormat format) const {
+  if (format == NormalFormat::kHalf) return 1;
+  return options.lanes ? options.lanes : detail::device_lanes(context.description(), format);
+}
+
 // ----------------------------------------------------------------------------------
 // Checks
 
@@ -194,8 +204,14 @@ void ClDeformer::Impl::check(const ClJob& job) const {
 ClDeformer::Impl::BoundKernel& ClDeformer::Impl::kernel(std::size_t index, const ClJob& job) {
   const NormalFormat format = job.outputs->layout.normal_format;
   const bool placed = job.placements != nullptr || job.placement_buffer != nullptr;
-  const detail::KernelVariant variant{index,     job.normals,      format,
-                                      tangents_, per_item(format), placed};
+  const detail::KernelVariant variant{index,
+                                      job.normals,
+                                      format,
+                                      tangents_,
+                                      per_item(format),
+                                      placed,
+                                      lanes(format),
+                                      options.streaming_stores};
   auto found = kernels_.find(variant);
   if (found == kernels_.end()) {
     const std::size_t fused = fused_launches_.size();
@@ -236,11 +252,12 @@ void ClDeformer::Impl::prepare_derived(const ClJob& job, const FrameInputs& inpu
                                        std::vector<cl::Event>* kernel_events) {
   const std::size_t instances = job.parameters.instance_count;
   if (!prepare_()) {
-    // From a program the frame's kernels come from: no build of its own.
+    // From a one-lane build of the program the frame's kernels come from (the same
+    // build when they have one lane): it works on instances, not on vertex slots.
     const NormalFormat format = job.outputs->layout.normal_format;
     const bool placed = job.placements != nullptr || job.placement_buffer != nullptr;
-    const detail::KernelVariant variant{0,         job.normals,      format,
-                                        tangents_, per_item(format), placed};
+    const detail::KernelVariant variant{0, job.normals, format, tangents_, per_item(format), placed,
+                                        1};
     prepare_ = context.kernel("rig_prepare", program_, variant.options());
   }
   cl_uint arg = 0;
@@ -303,12 +320,16 @@ void ClDeformer::Impl::launch(BoundKernel& bound, const ClJob& job, std::size_t 
   // profiling (creating events costs host time on some drivers).
   cl::Event own;
   cl::Event* event = done ? done : kernel_events ? &own : nullptr;
-  const std::size_t per = per_item(job.outputs->layout.normal_format);
-  const cl::NDRange offset(first_group * kWorkGroupSize, 0);
-  const cl::NDRange global((end_group - first_group) * kWorkGroupSize,
+  const NormalFormat format = job.outputs->layout.normal_format;
+  const std::size_t per = per_item(format);
+  // A work-group covers kWorkGroupSize slots whatever the lanes: the rig kernels tell
+  // components apart by work-group (kernels/rig.cl).
+  const std::size_t items_per_group = kWorkGroupSize / lanes(format);
+  const cl::NDRange offset(first_group * items_per_group, 0);
+  const cl::NDRange global((end_group - first_group) * items_per_group,
                            (job.parameters.instance_count + per - 1) / per);
   check_cl(context.queue().enqueueNDRangeKernel(bound.kernel, offset, global,
-                                                cl::NDRange(kWorkGroupSize, 1), nullptr, event),
+                                                cl::NDRange(items_per_group, 1), nullptr, event),
            "clEnqueueNDRangeKernel");
   if (kernel_events) kernel_events->push_back(*event);
 }
@@ -455,5 +476,6 @@ RigPath ClDeformer::automatic_path() const { return impl_->automatic_path; }
 std::size_t ClDeformer::instances_per_item(NormalFormat format) const {
   return impl_->per_item(format);
 }
+std::size_t ClDeformer::lanes(NormalFormat format) const { return impl_->lanes(format); }
 
 }  // namespace finflex

@@ -81,6 +81,7 @@ std::vector<FoundDevice> enumerate_devices() {
       desc.version = devices[d].getInfo<CL_DEVICE_VERSION>();
       desc.global_memory_bytes = devices[d].getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
       desc.max_allocation_bytes = devices[d].getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
+      desc.native_float_vector_width = devices[d].getInfo<CL_DEVICE_NATIVE_VECTOR_WIDTH_FLOAT>();
       found.push_back(f);
     }
   }
@@ -148,9 +149,9 @@ Context::Context(const std::string& device) {
 }
 
 const std::vector<std::string>& common_kernel_files() {
-  static const std::vector<std::string> files = {"common/vec3.cl", "common/trig.cl", "common/secant.cl",
-                                                 "common/planes.cl", "common/stage_frame.cl",
-                                                 "common/placement.cl"};
+  static const std::vector<std::string> files = {
+      "common/lanes.cl",  "common/vec3.cl",     "common/trig.cl",        "common/secant.cl",
+      "common/planes.cl", "cpu/lane_planes.cl", "common/stage_frame.cl", "common/placement.cl"};
   return files;
 }
 

@@ -18,20 +18,27 @@ struct KernelVariant {
   bool tangents = false;
   std::size_t instances_per_item = 1;
   bool placement = false;  // world placement as the last stage
+  std::size_t lanes = 1;   // vertex slots per work-item (kernels/common/lanes.cl)
+  bool streaming_stores = true;  // with lanes: kernels/cpu/lane_planes.cl
 
   bool operator<(const KernelVariant& other) const {
-    return std::tie(kernel, normals, format, tangents, instances_per_item, placement) <
+    return std::tie(kernel, normals, format, tangents, instances_per_item, placement, lanes,
+                    streaming_stores) <
            std::tie(other.kernel, other.normals, other.format, other.tangents,
-                    other.instances_per_item, other.placement);
+                    other.instances_per_item, other.placement, other.lanes, other.streaming_stores);
   }
 
-  // -D options of kernels/common/secant.cl, planes.cl and placement.cl.
+  // -D options of kernels/common/secant.cl, planes.cl, placement.cl, lanes.cl and
+  // cpu/lane_planes.cl (one lane is the default: one-lane builds keep the options they
+  // always had).
   std::string options() const {
     return std::string("-DFF_NORMALS_JACOBIAN=") + (normals == NormalMode::kJacobian ? "1" : "0") +
            " -DFF_TANGENTS=" + (tangents ? "1" : "0") +
            " -DFF_HALF_NORMALS=" + (format == NormalFormat::kHalf ? "1" : "0") +
            " -DFF_INSTANCES_PER_ITEM=" + std::to_string(instances_per_item) +
-           " -DFF_PLACEMENT=" + (placement ? "1" : "0");
+           " -DFF_PLACEMENT=" + (placement ? "1" : "0") +
+           (lanes > 1 ? " -DFF_LANES=" + std::to_string(lanes) : std::string()) +
+           (lanes > 1 && !streaming_stores ? " -DFF_STREAMING_STORES=0" : "");
   }
 };
 

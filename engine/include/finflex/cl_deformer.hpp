@@ -69,6 +69,16 @@ struct ClOptions {
   // The whole-body bend runs on its own kernel (faster); false runs it as a rig like
   // any other (for comparing the two).
   bool single_bend_kernel = true;
+  // Vertex slots one work-item deforms, one per lane of OpenCL vectors over the output
+  // planes (kernels/common/lanes.cl): 1, 8 or 16; 0: the device's choice (GPUs 1;
+  // CPUs 16 where their native float vectors have 16 lanes, else 8: vector code by
+  // construction, whatever the OpenCL compiler vectorises). Outputs with half
+  // normals take 1.
+  std::size_t lanes = 0;
+  // With more than one lane, outputs are written with streaming (non-temporal) stores:
+  // whole cache lines to memory, none read first (the outputs of thousands of fish are
+  // far larger than the caches); false: ordinary stores (for comparison).
+  bool streaming_stores = true;
 };
 
 class FINFLEX_API ClDeformer {
@@ -118,6 +128,8 @@ class FINFLEX_API ClDeformer {
   RigPath automatic_path() const;
   // Instances one work-item deforms for outputs in `format` (ClOptions).
   std::size_t instances_per_item(NormalFormat format) const;
+  // Vertex slots one work-item deforms for outputs in `format` (ClOptions::lanes).
+  std::size_t lanes(NormalFormat format) const;
 
   // The work-group size along the slots (every plane stride is a multiple of it).
   static constexpr std::size_t kGroupSize = 64;
