@@ -2,10 +2,6 @@
 //  - what a user would write without FinFlex: the paper's bend, (7), (8) and the way
 //    back to mesh coordinates as a plain C++ loop over float3 arrays (array of
 //    structures), OpenMP over instances, compiled -O3 -march=native;
-//  - the same loop as a careful user would write it for the CPU's vector units:
-//    structure of arrays (the output planes FinFlex writes, finflex/batch.hpp), the
-//    vertex loop `#pragma omp simd` over restrict pointers, the division by |df/dx|
-//    done once as a multiplication by its inverse;
 //  - the double-precision CPU reference (the tests' oracle).
 #include <algorithm>
 #include <chrono>
@@ -89,102 +85,12 @@ void bend_all(const Baseline& b, const std::vector<float>& m, std::vector<Float3
   }
 }
 
-// The rest mesh as planes (x, y, z of positions, then of normals), in the body frame.
-struct RestPlanes {
-  std::size_t vertices = 0;
-  std::size_t stride = 0;  // padded like FinFlex's planes
-  std::vector<float> planes;
-
-  static const RestPlanes& get() {
-    static const RestPlanes rest = [] {
-      const Baseline& b = Baseline::get();
-      RestPlanes r;
-      r.vertices = b.positions.size();
-      r.stride = padded_plane_stride(r.vertices);
-      r.planes.assign(6 * r.stride, 0.0f);
-      for (std::size_t v = 0; v < r.vertices; ++v) {
-        const Float3 p = b.positions[v], n = b.normals[v];
-        const float values[6] = {p.x, p.y, p.z, n.x, n.y, n.z};
-        for (std::size_t c = 0; c < 6; ++c) r.planes[c * r.stride + v] = values[c];
-      }
-      return r;
-    }();
-    return rest;
-  }
-};
-
-// The paper's bend of every vertex of every instance, (15)-(17), (7), (8), into planes:
-// component c of instance i at [(i * 3 + c) * stride + v].
-void bend_all_simd(const Baseline& b, const RestPlanes& rest, const std::vector<float>& m,
-                   float* out_positions, float* out_normals) {
-  const long instances = static_cast<long>(m.size());
-  const std::size_t vertices = rest.vertices, stride = rest.stride;
-  const float* __restrict rx = rest.planes.data();
-  const float* __restrict ry = rx + stride;
-  const float* __restrict rz = ry + stride;
-  const float* __restrict nx = rz + stride;
-  const float* __restrict ny = nx + stride;
-  const float* __restrict nz = ny + stride;
-  // The way back to mesh coordinates: origin + s (x e_x + y e_y + z e_z).
-  const float s = b.length;
-  const float ox = b.origin.x, oy = b.origin.y, oz = b.origin.z;
-  const float ax = b.axis_x.x, ay = b.axis_x.y, az = b.axis_x.z;
-  const float bx = b.axis_y.x, by = b.axis_y.y, bz = b.axis_y.z;
-  const float cx = b.axis_z.x, cy = b.axis_z.y, cz = b.axis_z.z;
-#pragma omp parallel for schedule(static)
-  for (long i = 0; i < instances; ++i) {
-    const float mi = m[static_cast<std::size_t>(i)];
-    const std::size_t first = static_cast<std::size_t>(i) * 3 * stride;
-    float* __restrict px = out_positions + first;
-    float* __restrict py = px + stride;
-    float* __restrict pz = py + stride;
-    float* __restrict qx = out_normals + first;
-    float* __restrict qy = qx + stride;
-    float* __restrict qz = qy + stride;
-#pragma omp simd
-    for (std::size_t v = 0; v < vertices; ++v) {
-      const float x = rx[v], y = ry[v], z = rz[v];
-      const float u = 2.0f * mi * x, u2 = u * u;
-      const float a = 1.0f - u2 * (0.5f + 0.125f * u2);
-      const float inverse_g = 1.0f / std::sqrt(a * a + u2);
-      const float sin_t = u * inverse_g, cos_t = a * inverse_g;
-      const float bent_x = x * (1.0f - u2 * (1.0f / 6.0f + u2 * (1.0f / 40.0f)));
-      const float bent_z = 0.5f * u * x;
-      const float lx = s * (bent_x - z * sin_t), ly = s * y, lz = s * (bent_z + z * cos_t);
-      px[v] = ox + lx * ax + ly * bx + lz * cx;
-      py[v] = oy + lx * ay + ly * by + lz * cy;
-      pz[v] = oz + lx * az + ly * bz + lz * cz;
-      const float mx = cos_t * nx[v] - sin_t * nz[v], my = ny[v],
-                  mz = sin_t * nx[v] + cos_t * nz[v];
-      qx[v] = mx * ax + my * bx + mz * cx;
-      qy[v] = mx * ay + my * by + mz * cy;
-      qz[v] = mx * az + my * bz + mz * cz;
-    }
-  }
-}
-
-std::vector<float> parameters(std::size_t instances, double x_max) {
-  std::vector<float> m(instances);
-  for (std::size_t i = 0; i < instances; ++i) {
-    m[i] = static_cast<float>(max_abs_m(x_max) * (static_cast<double>(i % 17) / 8.0 - 1.0));
-  }
-  return m;
-}
-
-void report(benchmark::State& state, std::size_t instances, double seconds) {
-  BatchLayout layout;
-  layout.vertex_count = Setup::get().mesh.vertex_count();
-  layout.instance_count = instances;
-  layout.plane_stride = layout.vertex_count;
-  set_counters(state, layout, seconds);
-}
-
 }  // namespace
 
 void BM_OpenMPBaseline(benchmark::State& state) {
   const Baseline& b = Baseline::get();
   const std::size_t instances = static_cast<std::size_t>(state.range(0));
-  const std::vector<float> m = parameters(instances, b.x_max);
+  const std::vector<float> m = baseline_bend_values(instances, b.x_max);
   std::vector<Float3> positions(instances * b.positions.size()), normals(positions.size());
   bend_all(b, m, positions, normals);  // warm-up: pages touched, threads started
   double total = 0.0;
@@ -197,34 +103,15 @@ void BM_OpenMPBaseline(benchmark::State& state) {
     total += seconds;
   }
   benchmark::DoNotOptimize(positions.data());
-  report(state, instances, total);
-}
-
-void BM_OpenMPSimdBaseline(benchmark::State& state) {
-  const Baseline& b = Baseline::get();
-  const RestPlanes& rest = RestPlanes::get();
-  const std::size_t instances = static_cast<std::size_t>(state.range(0));
-  const std::vector<float> m = parameters(instances, b.x_max);
-  std::vector<float> positions(instances * 3 * rest.stride), normals(positions.size());
-  bend_all_simd(b, rest, m, positions.data(), normals.data());  // warm-up
-  double total = 0.0;
-  for (auto _ : state) {
-    const auto start = std::chrono::steady_clock::now();
-    bend_all_simd(b, rest, m, positions.data(), normals.data());
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    state.SetIterationTime(seconds);
-    total += seconds;
-  }
-  benchmark::DoNotOptimize(positions.data());
-  report(state, instances, total);
+  set_baseline_counters(state, instances, total);
 }
 
 void BM_DoubleReference(benchmark::State& state) {
   DeviceModel& bend = Setup::get().bend(BendMode::kPaper);
   const std::size_t instances = static_cast<std::size_t>(state.range(0));
   RigParameters m(bend.model, instances);
-  m.values() = parameters(instances, bend.model.rig().components[0].chain[0].geometry.x_max);
+  m.values() =
+      baseline_bend_values(instances, bend.model.rig().components[0].chain[0].geometry.x_max);
   double total = 0.0;
   for (auto _ : state) {
     const auto start = std::chrono::steady_clock::now();
@@ -235,7 +122,7 @@ void BM_DoubleReference(benchmark::State& state) {
     state.SetIterationTime(seconds);
     total += seconds;
   }
-  report(state, instances, total);
+  set_baseline_counters(state, instances, total);
 }
 
 }  // namespace finflex::bench

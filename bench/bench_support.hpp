@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <benchmark/benchmark.h>
 
@@ -64,6 +65,13 @@ double written_bytes(const BatchLayout& layout);
 // vertices/s, bytes/s (written), instances, vertices; and write_fraction when the
 // write-only kernel was measured for this instance count.
 void set_counters(benchmark::State& state, const BatchLayout& layout, double seconds);
+
+// The baselines' values of m for `instances` instances: fractions of the limit for
+// x_max, both signs (the same for every baseline).
+std::vector<float> baseline_bend_values(std::size_t instances, double x_max);
+// The counters of set_counters for a baseline's `instances` instances of the mesh
+// (outputs over unpadded arrays) deformed in `seconds`.
+void set_baseline_counters(benchmark::State& state, std::size_t instances, double seconds);
 
 // Runs `launch` (returning the device seconds of one frame) once to warm up (PoCL
 // compiles per work-group shape), then times it; returns the total seconds.
