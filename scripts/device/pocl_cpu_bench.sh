@@ -99,7 +99,7 @@ remark() {
   remark "swim rig (spine) fused, 1 lane" --rig "$swim" --lanes 1
   remark "swim rig (spine) fused, device lanes" --rig "$swim" --lanes 0
 } > "$out/remarks_raw.txt" 2>&1
-python3 docs/tools/vectorizer_remarks.py "$out/remarks_raw.txt" > "$out/remarks.txt" 2>&1
+python3 "$(dirname "$0")/../../docs/tools/vectorizer_remarks.py" "$out/remarks_raw.txt" > "$out/remarks.txt" 2>&1
 
 # Every case at the largest thread count.
 progress "cases"
