@@ -108,7 +108,6 @@ for instances in $instance_counts; do
   bench "bend paper" "$largest" $n
   bench "bend paper, plain stores" "$largest" $n --stores plain
   bench "bend paper, 8 lanes" "$largest" $n --lanes 8
-  bench "bend paper, 4 instances per item" "$largest" $n --per-item 4
   bench "bend paper, 1 lane" "$largest" $n --lanes 1
   bench "bend exact" "$largest" $n --mode exact
   bench "rig fused" "$largest" $n --rig "$rig"
