@@ -90,7 +90,7 @@ double time_iterations(benchmark::State& state, Launch launch) {
 // Benchmark bodies (bench_bend.cpp, bench_rig.cpp, bench_baselines.cpp); registered in
 // bench_main.cpp.
 // per_item, lanes: 0 for the bend deformer's own (ClDeformer::instances_per_item, lanes);
-// streaming: with more than one lane, streaming stores (ClOptions::streaming_stores).
+// streaming: with more than one lane, streaming stores (ClOptions::stores).
 void BM_WriteOnly(benchmark::State& state, NormalFormat format, std::size_t per_item,
                   WriteValues values, std::size_t lanes, bool streaming);
 void BM_CopyRest(benchmark::State& state);

@@ -12,6 +12,7 @@
 // (vector and scalar code are selected apart): 1e-6 (|origin| + s_x) for positions, 1e-5
 // for normals and tangents, as between the fused and multi-pass paths
 // (test_rig_deformer.cpp).
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -273,8 +274,10 @@ TEST(Lanes, StreamingPlainAndUnalignedStoresWriteTheSameBits) {
       mesh, resolve_rig(load_rig_file(test::data_path("rigs/barramundi_swim.rig.json")), mesh));
   const RigParameters values = swimming_values(model, 3);
   ClOptions plain_options = with_lanes(16);
-  plain_options.streaming_stores = false;
-  ClDeformer streaming(test::shared_context(), model, with_lanes(16));
+  plain_options.stores = OutputStores::kPlain;
+  ClOptions streaming_options = with_lanes(16);
+  streaming_options.stores = OutputStores::kStreaming;
+  ClDeformer streaming(test::shared_context(), model, streaming_options);
   ClDeformer plain(test::shared_context(), model, plain_options);
   for (RigPath path : {RigPath::kFused, RigPath::kPasses}) {
     SCOPED_TRACE(to_string(path));
@@ -302,6 +305,30 @@ TEST(Lanes, StreamingPlainAndUnalignedStoresWriteTheSameBits) {
     EXPECT_EQ(a.normals, c.normals);
     EXPECT_EQ(a.tangents, c.tangents);
   }
+}
+
+// OutputStores::kAuto streams a frame's outputs only when they are larger than the
+// device's global memory cache (CL_DEVICE_GLOBAL_MEM_CACHE_SIZE); kPlain and
+// kStreaming are what they say; one lane never streams.
+TEST(Lanes, AutomaticStoresStreamOutputsLargerThanTheCache) {
+  const Mesh mesh = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
+  const RiggedMesh model = RiggedMesh::single_bend(mesh, find_body_frame(mesh), BendMode::kPaper);
+  const std::size_t cache = test::shared_context().description().global_memory_cache_bytes;
+  ClDeformer automatic(test::shared_context(), model, with_lanes(16));
+  const BatchLayout one = automatic.layout(1);
+  const std::size_t per_instance = one.plane_stride * one.bytes_per_vertex();
+  const std::size_t fitting = std::max<std::size_t>(1, cache / per_instance);
+  if (fitting * per_instance <= cache) {
+    EXPECT_FALSE(automatic.streams_outputs(automatic.layout(fitting)));
+  }
+  EXPECT_TRUE(automatic.streams_outputs(automatic.layout(cache / per_instance + 1)));
+  ClOptions plain = with_lanes(16), streaming = with_lanes(16);
+  plain.stores = OutputStores::kPlain;
+  streaming.stores = OutputStores::kStreaming;
+  EXPECT_FALSE(ClDeformer(test::shared_context(), model, plain).streams_outputs(one));
+  EXPECT_TRUE(ClDeformer(test::shared_context(), model, streaming).streams_outputs(one));
+  streaming.lanes = 1;
+  EXPECT_FALSE(ClDeformer(test::shared_context(), model, streaming).streams_outputs(one));
 }
 
 // Half normals are stored by the one-lane kernels whatever ClOptions::lanes asks: the

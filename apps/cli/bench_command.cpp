@@ -41,7 +41,7 @@ struct BenchOptions {
   std::string path = "auto";
   std::string per_item = "0";
   std::string lanes = "0";
-  std::string stores = "streaming";
+  std::string stores = "auto";
   std::string dispatch = "auto";
   bool swim = false;
   std::string device;
@@ -114,12 +114,15 @@ ClOptions cl_options(const BenchOptions& options) {
   ClOptions cl;
   cl.instances_per_item = parse_count(options.per_item, "--per-item", 0, 64);
   cl.lanes = parse_count(options.lanes, "--lanes", 0, 16);
-  if (options.stores != "streaming" && options.stores != "plain") {
-    throw Error(
-        ErrorCode::kInvalidArgument, "--stores",
-        "--stores '" + options.stores + "' is not a kind of store (expected streaming or plain)");
+  if (options.stores == "plain") {
+    cl.stores = OutputStores::kPlain;
+  } else if (options.stores == "streaming") {
+    cl.stores = OutputStores::kStreaming;
+  } else if (options.stores != "auto") {
+    throw Error(ErrorCode::kInvalidArgument, "--stores",
+                "--stores '" + options.stores +
+                    "' is not a kind of store (expected auto, plain or streaming)");
   }
-  cl.streaming_stores = options.stores == "streaming";
   if (options.dispatch == "per-component") {
     cl.dispatch = RigDispatch::kPerComponent;
   } else if (options.dispatch == "by-path-shape") {
@@ -180,7 +183,7 @@ Measured measure_deform(const BenchOptions& options, const Mesh& mesh, Context& 
   measured.batch = &bench.batch;
   measured.per_item = deformer.instances_per_item(format);
   measured.lanes = deformer.lanes(format);
-  measured.streaming = measured.lanes > 1 && cl_options(options).streaming_stores;
+  measured.streaming = deformer.streams_outputs(bench.batch.layout);
   measured.vertices = mesh.vertex_count();
   return measured;
 }
@@ -216,7 +219,7 @@ Measured measure_swim(const BenchOptions& options, Context& context, std::size_t
   measured.batch = &species.batch;
   measured.per_item = species.deformer->instances_per_item(format);
   measured.lanes = species.deformer->lanes(format);
-  measured.streaming = measured.lanes > 1 && cl_options(options).streaming_stores;
+  measured.streaming = species.deformer->streams_outputs(species.batch.layout);
   measured.vertices = species.swim.model().vertex_count();
   return measured;
 }
@@ -302,7 +305,7 @@ Command add_bench_command(CLI::App& app) {
       ->capture_default_str();
   bench->add_option("--lanes", options->lanes, "Slots per work-item: 1, 8, 16 (0: the device's)")
       ->capture_default_str();
-  bench->add_option("--stores", options->stores, "With lanes: streaming or plain stores")
+  bench->add_option("--stores", options->stores, "With lanes: auto, plain or streaming stores")
       ->capture_default_str();
   bench->add_option("--dispatch", options->dispatch, "auto, per-component or by-path-shape")
       ->capture_default_str();

@@ -44,8 +44,9 @@ cl::Event enqueue_write_only(Context& context, DeviceBatch& batch, std::size_t i
       (batch.layout.normal_format == NormalFormat::kHalf ? " -DFF_HALF_NORMALS=1" : "") +
       (values == WriteValues::kVarying ? " -DFF_VARYING_WRITES=1" : "") +
       (batch.layout.tangents ? " -DFF_TANGENTS=1" : "") +
-      (lanes > 1 ? " -DFF_LANES=" + std::to_string(lanes) : std::string()) +
-      (lanes > 1 && !streaming ? " -DFF_STREAMING_STORES=0" : "");
+      (lanes > 1 ? " -DFF_LANES=" + std::to_string(lanes) +
+                       " -DFF_STREAMING_STORES=" + (streaming ? "1" : "0")
+                 : std::string());
   cl::Kernel kernel = context.kernel("write_planes", bandwidth_program(), options);
   cl_uint arg = 0;
   auto set = [&](const auto& value) { check_cl(kernel.setArg(arg++, value), "clSetKernelArg"); };

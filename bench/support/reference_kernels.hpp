@@ -24,7 +24,7 @@ enum class WriteValues {
 // Writes positions, normals (in the batch's format) and tangents when the batch has
 // them, `instances_per_item` instances and `lanes` slots per work-item (the deformer's:
 // ClDeformer::instances_per_item, ClDeformer::lanes; more than one lane: float32
-// planes only, with streaming stores or ordinary ones: ClOptions::streaming_stores).
+// planes only, with streaming stores or ordinary ones: ClOptions::stores).
 // Returns the kernel's event.
 cl::Event enqueue_write_only(Context& context, DeviceBatch& batch, std::size_t instances_per_item,
                              WriteValues values = WriteValues::kDeviceDefault,

@@ -142,6 +142,12 @@ std::size_t ClDeformer::Impl::lanes(NormalFormat format) const {
   return options.lanes ? options.lanes : detail::device_lanes(context.description(), format);
 }
 
+bool ClDeformer::Impl::streams_outputs(const BatchLayout& layout) const {
+  if (lanes(layout.normal_format) == 1) return false;
+  const std::size_t bytes = layout.plane_stride * layout.instance_count * layout.bytes_per_vertex();
+  return detail::device_streaming_stores(context.description(), options.stores, bytes);
+}
+
 // ----------------------------------------------------------------------------------
 // Checks
 
@@ -211,7 +217,7 @@ ClDeformer::Impl::BoundKernel& ClDeformer::Impl::kernel(std::size_t index, const
                                       per_item(format),
                                       placed,
                                       lanes(format),
-                                      options.streaming_stores};
+                                      streams_outputs(job.outputs->layout)};
   auto found = kernels_.find(variant);
   if (found == kernels_.end()) {
     const std::size_t fused = fused_launches_.size();
@@ -477,5 +483,8 @@ std::size_t ClDeformer::instances_per_item(NormalFormat format) const {
   return impl_->per_item(format);
 }
 std::size_t ClDeformer::lanes(NormalFormat format) const { return impl_->lanes(format); }
+bool ClDeformer::streams_outputs(const BatchLayout& layout) const {
+  return impl_->streams_outputs(layout);
+}
 
 }  // namespace finflex

@@ -27,6 +27,7 @@ class ClDeformer::Impl {
   BatchLayout layout(std::size_t instances, NormalFormat format) const;
   std::size_t per_item(NormalFormat format) const;
   std::size_t lanes(NormalFormat format) const;
+  bool streams_outputs(const BatchLayout& layout) const;
 
   Context& context;
   const RiggedMesh model;

@@ -82,6 +82,7 @@ std::vector<FoundDevice> enumerate_devices() {
       desc.global_memory_bytes = devices[d].getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
       desc.max_allocation_bytes = devices[d].getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
       desc.native_float_vector_width = devices[d].getInfo<CL_DEVICE_NATIVE_VECTOR_WIDTH_FLOAT>();
+      desc.global_memory_cache_bytes = devices[d].getInfo<CL_DEVICE_GLOBAL_MEM_CACHE_SIZE>();
       found.push_back(f);
     }
   }

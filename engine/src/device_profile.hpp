@@ -36,6 +36,16 @@ inline std::size_t device_lanes(const DeviceDescription& device, NormalFormat fo
   return device.native_float_vector_width >= 16 ? 16 : 8;
 }
 
+// Streaming stores (kernels of more than one lane) for a frame writing `output_bytes`:
+// kAuto streams outputs larger than the device's global memory cache, which would go
+// to memory anyway (reading each line before writing it doubles their traffic), and
+// keeps smaller ones in the caches.
+inline bool device_streaming_stores(const DeviceDescription& device, OutputStores asked,
+                                    std::size_t output_bytes) {
+  if (asked != OutputStores::kAuto) return asked == OutputStores::kStreaming;
+  return output_bytes > device.global_memory_cache_bytes;
+}
+
 // kPerComponent on GPUs (fewest instructions), kByPathShape on CPUs (straight-line
 // kernels, which PoCL's work-group vectoriser needs).
 inline RigDispatch device_dispatch(const DeviceDescription& device, RigDispatch asked) {

@@ -19,7 +19,7 @@ struct KernelVariant {
   std::size_t instances_per_item = 1;
   bool placement = false;  // world placement as the last stage
   std::size_t lanes = 1;   // vertex slots per work-item (kernels/common/lanes.cl)
-  bool streaming_stores = true;  // with lanes: kernels/cpu/lane_planes.cl
+  bool streaming_stores = false;  // with lanes: kernels/cpu/lane_planes.cl
 
   bool operator<(const KernelVariant& other) const {
     return std::tie(kernel, normals, format, tangents, instances_per_item, placement, lanes,
@@ -38,7 +38,8 @@ struct KernelVariant {
            " -DFF_INSTANCES_PER_ITEM=" + std::to_string(instances_per_item) +
            " -DFF_PLACEMENT=" + (placement ? "1" : "0") +
            (lanes > 1 ? " -DFF_LANES=" + std::to_string(lanes) : std::string()) +
-           (lanes > 1 && !streaming_stores ? " -DFF_STREAMING_STORES=0" : "");
+           (lanes > 1 ? std::string(" -DFF_STREAMING_STORES=") + (streaming_stores ? "1" : "0")
+                      : std::string());
   }
 };
 

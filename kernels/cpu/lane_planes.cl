@@ -13,17 +13,17 @@
  * uses a CL_MEM_USE_HOST_PTR buffer's memory as it is): each store checks, and an
  * unaligned plane is stored with vstoren.
  *
- * Build option FF_STREAMING_STORES (1 by default): aligned outputs are written with
- * streaming (non-temporal) stores, which send whole cache lines to memory without
- * first reading them into the caches: an output of thousands of fish (hundreds of MB)
- * is far larger than any cache, and reading its lines before writing them would
- * double its memory traffic. 0: ordinary stores (ClOptions::streaming_stores). */
+ * Build option FF_STREAMING_STORES (0/1, the host's choice: ClOptions::stores): 1,
+ * aligned outputs are written with streaming (non-temporal) stores, which send whole
+ * cache lines to memory without first reading them into the caches: an output of
+ * thousands of fish larger than the caches would otherwise cost twice its bytes in
+ * memory traffic; 0, ordinary stores (outputs that fit stay in the caches). */
 #if FF_LANES > 1
 #if FF_HALF_NORMALS
 #error "kernels of more than one lane store float32 planes only"
 #endif
 #ifndef FF_STREAMING_STORES
-#define FF_STREAMING_STORES 1
+#define FF_STREAMING_STORES 0
 #endif
 
 FF_INLINE LaneFloat load_lanes(__global const float* first) {

@@ -60,6 +60,16 @@ enum class RigDispatch {
                   // PoCL's work-group vectoriser needs
 };
 
+// How kernels of more than one lane (ClOptions::lanes) write the outputs.
+enum class OutputStores {
+  kAuto,       // kStreaming where a frame's outputs are larger than the device's global
+               // memory cache (CL_DEVICE_GLOBAL_MEM_CACHE_SIZE), else kPlain
+  kPlain,      // ordinary stores: the outputs pass through the caches (and stay there
+               // for whoever reads them next, when they fit)
+  kStreaming,  // streaming (non-temporal) stores: whole cache lines to memory, none read
+               // first, which halves the memory traffic of outputs larger than the caches
+};
+
 struct ClOptions {
   // Instances one work-item deforms (reading its rest vertex once); 0: the device's
   // choice (GPUs: 2 for the single bend with float32 normals, 4 with half normals
@@ -75,10 +85,8 @@ struct ClOptions {
   // construction, whatever the OpenCL compiler vectorises). Outputs with half
   // normals take 1.
   std::size_t lanes = 0;
-  // With more than one lane, outputs are written with streaming (non-temporal) stores:
-  // whole cache lines to memory, none read first (the outputs of thousands of fish are
-  // far larger than the caches); false: ordinary stores (for comparison).
-  bool streaming_stores = true;
+  // With more than one lane: how the outputs are stored.
+  OutputStores stores = OutputStores::kAuto;
 };
 
 class FINFLEX_API ClDeformer {
@@ -130,6 +138,9 @@ class FINFLEX_API ClDeformer {
   std::size_t instances_per_item(NormalFormat format) const;
   // Vertex slots one work-item deforms for outputs in `format` (ClOptions::lanes).
   std::size_t lanes(NormalFormat format) const;
+  // True when a frame on a batch of `layout` writes it with streaming stores
+  // (ClOptions::stores; only kernels of more than one lane have them).
+  bool streams_outputs(const BatchLayout& layout) const;
 
   // The work-group size along the slots (every plane stride is a multiple of it).
   static constexpr std::size_t kGroupSize = 64;

@@ -26,6 +26,8 @@ struct DeviceDescription {
   // Floats in the device's native vector (CL_DEVICE_NATIVE_VECTOR_WIDTH_FLOAT): e.g. 16
   // on a CPU with AVX-512, 8 with AVX2.
   std::size_t native_float_vector_width = 1;
+  // CL_DEVICE_GLOBAL_MEM_CACHE_SIZE: on CPUs, PoCL reports the last-level cache.
+  std::size_t global_memory_cache_bytes = 0;
   bool is_default = false;
 
   bool is_gpu() const { return type == "GPU"; }
