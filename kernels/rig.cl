@@ -23,10 +23,12 @@
  * costs no extra transform (FF_PLACE_FROM_MESH does it only for a root without
  * stages).
  *
- * Build options: FF_NORMALS_JACOBIAN (common/secant.cl), FF_HALF_NORMALS,
- * FF_TANGENTS and FF_INSTANCES_PER_ITEM (common/planes.cl; half normals in the
- * outputs only: scratch sets stay float32), FF_LANES (common/lanes.cl: a work-item
- * deforms FF_LANES consecutive slots, a work-group still 64). Generated before the files:
+ * Build options: FF_NORMALS_JACOBIAN (common/secant.cl), FF_TANGENTS and
+ * FF_INSTANCES_PER_ITEM (common/planes.cl), the outputs' formats and arrangement
+ * (common/outputs.cl; scratch sets stay float32 planes), FF_LANES (common/lanes.cl: a
+ * work-item deforms FF_LANES consecutive slots, a work-group still 64; more than one
+ * lane for FinFlex's float32 planes only, kernels/cpu/lane_outputs.cl). Generated
+ * before the files:
  * FF_STAGE_COUNT (the stage table's rows), FF_ROOT_FRAME (the root frame's row, when
  * the root has no stage), FF_RIG_GROUP_COUNT and the macros above. */
 /* The path table (group_path_table in engine/src/rig_program.cpp): the stage at
@@ -50,9 +52,8 @@
       const uint param_count, __constant const float* stages,                           \
       __global const uint* restrict group_paths,                                        \
       __global const float* restrict derived_values, const uint derived_count,          \
-      __global const float* restrict placements,                                        \
-      __global float* restrict out_positions, __global float* restrict out_normals,     \
-      __global float* restrict out_tangents, const uint stride, const uint instances) {  \
+      __global const float* restrict placements, FF_OUTPUT_ARGUMENTS,                   \
+      const uint stride, const uint instances) {                                        \
     const size_t v = FF_FIRST_SLOT;                                                     \
     const size_t first_instance = get_global_id(1) * FF_INSTANCES_PER_ITEM;            \
     const uint group = FF_GROUP;                                                        \
@@ -67,9 +68,7 @@
       Vec3 p = rest_p, n = rest_n, t = rest_t;                                          \
       FF_RIG_FUSED_##r                                                                  \
       FF_PLACE_FROM_MESH                                                                \
-      store_plane3(out_positions, instance * 3, stride, v, p);                          \
-      store_direction3(out_normals, instance * 3, stride, v, n);                        \
-      FF_STORE_TANGENT(out_tangents, instance * 3, stride, v, t);                       \
+      FF_STORE_OUTPUTS(instance, v)                                                     \
     }                                                                                   \
   }
 
@@ -105,11 +104,9 @@ FF_RIG_FUSED_KERNELS
   FF_STORE_SCRATCH_TANGENT(prefix##_tangents, instance * 3, v, t);
 #define FF_STORE_SCRATCH_A FF_STORE_SCRATCH(a)
 #define FF_STORE_SCRATCH_B FF_STORE_SCRATCH(b)
-#define FF_STORE_OUTPUT                                                 \
-  FF_PLACE_FROM_MESH                                                    \
-  store_plane3(out_positions, instance * 3, stride, v, p);              \
-  store_direction3(out_normals, instance * 3, stride, v, n);            \
-  FF_STORE_TANGENT(out_tangents, instance * 3, stride, v, t);
+#define FF_STORE_OUTPUT \
+  FF_PLACE_FROM_MESH    \
+  FF_STORE_OUTPUTS(instance, v)
 
 #define FF_DEFINE_RIG_PASS(q)                                                           \
   __kernel void rig_pass_##q(                                                           \
@@ -122,9 +119,8 @@ FF_RIG_FUSED_KERNELS
       const uint param_count, __constant const float* stages,                           \
       __global const uint* restrict group_paths,                                        \
       __global const float* restrict derived_values, const uint derived_count,          \
-      __global const float* restrict placements,                                        \
-      __global float* restrict out_positions, __global float* restrict out_normals,     \
-      __global float* restrict out_tangents, const uint stride, const uint instances) {  \
+      __global const float* restrict placements, FF_OUTPUT_ARGUMENTS,                   \
+      const uint stride, const uint instances) {                                        \
     const size_t v = FF_FIRST_SLOT;                                                     \
     const size_t first_instance = get_global_id(1) * FF_INSTANCES_PER_ITEM;            \
     const uint group = FF_GROUP;                                                        \

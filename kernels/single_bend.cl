@@ -12,14 +12,16 @@
  * m:      one bend parameter per instance, checked on the host.
  * placements: per instance a world placement record (common/placement.cl), read
  *         when FF_PLACEMENT is 1 instead of the back transform.
- * out_*:  planes as finflex/batch.hpp describes: (instance * 3 + component) * stride + v.
+ * out_*:  the outputs as their layout says (common/outputs.cl).
  * back_*: the way back to mesh coordinates, M^-1 of (2):
  *         p_b = origin + s (x e_x + y e_y + z e_z), n_b = x e_x + y e_y + z e_z;
  *         scaled_axis_* = s e_*, axis_* = e_* (all in mesh coordinates).
  *
  * Build options: FF_BEND_EXACT (deformers/bend.cl), FF_NORMALS_JACOBIAN, those of
- * common/planes.cl, and FF_LANES (common/lanes.cl: FF_LANES consecutive slots per
- * work-item, NDRange (plane_stride / FF_LANES, ...)). No branch depends on the vertex: the planes are padded to the
+ * common/planes.cl and common/outputs.cl, and FF_LANES (common/lanes.cl: FF_LANES
+ * consecutive slots per work-item, NDRange (plane_stride / FF_LANES, ...); more than
+ * one lane for FinFlex's float32 planes only, kernels/cpu/lane_outputs.cl). No branch
+ * depends on the vertex: the planes are padded to the
  * work-group size, and the instance bound is the same for a whole work-group. */
 
 /* x a_x + y a_y + z a_z (+ origin): the way back to mesh coordinates, M^-1 of (2). */
@@ -33,10 +35,7 @@ __kernel void single_bend(__global const float* restrict rest_positions,
                           __global const float* restrict rest_normals,
                           __global const float* restrict rest_tangents,
                           __global const float* restrict m,
-                          __global const float* restrict placements,
-                          __global float* restrict out_positions,
-                          __global float* restrict out_normals,
-                          __global float* restrict out_tangents,
+                          __global const float* restrict placements, FF_OUTPUT_ARGUMENTS,
                           const uint stride, const uint instances,
                           const float4 origin,
                           const float4 scaled_axis_x, const float4 scaled_axis_y,
@@ -52,7 +51,6 @@ __kernel void single_bend(__global const float* restrict rest_positions,
     const size_t instance = first_instance + k;
     if (instance >= instances) break;
     const SecantSample s = bend_sample(rest_p.x, rest_p.z, m[instance]);
-    const size_t out_plane = instance * 3;
 #if FF_PLACEMENT /* from the body frame straight to the world */
     __global const float* record = placements + instance * 16;
     const Vec3 p = world_point(secant_position(rest_p, s), record);
@@ -64,8 +62,6 @@ __kernel void single_bend(__global const float* restrict rest_positions,
     const Vec3 n = to_mesh(secant_normal(rest_n, s), axis_x, axis_y, axis_z, no_offset);
     const Vec3 t = to_mesh(secant_tangent(rest_t, s), axis_x, axis_y, axis_z, no_offset);
 #endif
-    store_plane3(out_positions, out_plane, stride, v, p);
-    store_direction3(out_normals, out_plane, stride, v, n);
-    FF_STORE_TANGENT(out_tangents, out_plane, stride, v, t);
+    FF_STORE_OUTPUTS(instance, v)
   }
 }

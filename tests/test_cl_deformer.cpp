@@ -547,7 +547,7 @@ TEST(ClDeformer, OutputsOfAnotherModelAreRefused) {
   forged.positions = small_batch.positions;
   forged.serial = small_batch.serial + 1000000;
   job.outputs = &forged;
-  EXPECT_EQ(field_of(job), "job.outputs");
+  EXPECT_EQ(field_of(job), "job.outputs.positions");  // the buffer too small
   // Another model in the job.
   DeviceBatch right = large_deformer.allocate(2);
   job.outputs = &right;

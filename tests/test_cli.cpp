@@ -13,46 +13,18 @@
 
 #include "finflex/finflex.hpp"
 #include "support/deform.hpp"
+#include "support/run_cli.hpp"
 #include "support/synthetic_fish.hpp"
 #include "support/test_support.hpp"
 
 namespace finflex {
 namespace {
 
-struct RunResult {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
-
-std::string read_text(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  std::stringstream text;
-  text << file.rdbuf();
-  return text.str();
-}
-
-RunResult run_cli(const std::string& arguments) {
-  const std::string out_path = test::temp_path("stdout.txt");
-  const std::string err_path = test::temp_path("stderr.txt");
-  const std::string command = std::string("POCL_CACHE_DIR=") + FINFLEX_TEST_POCL_CACHE + " '" +
-                              FINFLEX_CLI_PATH + "' " + arguments + " >'" + out_path + "' 2>'" +
-                              err_path + "' </dev/null";
-  const int status = std::system(command.c_str());
-  RunResult result;
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  result.out = read_text(out_path);
-  result.err = read_text(err_path);
-  return result;
-}
-
-std::string fish(const char* relative) { return "'" + test::data_path(relative) + "'"; }
-
-int line_count(const std::string& text) {
-  int lines = 0;
-  for (char c : text) lines += c == '\n';
-  return lines;
-}
+using test::fish;
+using test::line_count;
+using test::read_text;
+using test::run_cli;
+using test::RunResult;
 
 TEST(Cli, DeformsABundledFish) {
   const std::string out = test::temp_path("bent.ply");
@@ -159,6 +131,9 @@ void expect_bench_json(const std::string& arguments, const RiggedMesh& model, Ri
                                                   "deformation",
                                                   "normals",
                                                   "normal_format",
+                                                  "layout",
+                                                  "order",
+                                                  "previous_positions",
                                                   "vertices",
                                                   "instances",
                                                   "frames",
@@ -227,7 +202,7 @@ void expect_bench_json(const std::string& arguments, const RiggedMesh& model, Ri
   EXPECT_EQ(j.at("instances_per_item").get<std::size_t>(), deformer.instances_per_item(format));
   EXPECT_EQ(j.at("lanes").get<std::size_t>(), deformer.lanes(format));
   EXPECT_EQ(j.at("streaming_stores").get<bool>(),
-            deformer.streams_outputs(deformer.layout(8, format)));
+            deformer.streams_outputs(deformer.allocate(8, format)));
 }
 
 TEST(Cli, BenchJsonKeysAndValues) {
@@ -244,6 +219,23 @@ TEST(Cli, BenchJsonKeysAndValues) {
   EXPECT_EQ(zero.exit_code, 2);
   EXPECT_EQ(line_count(zero.err), 1) << zero.err;
   EXPECT_NE(zero.err.find("--instances"), std::string::npos) << zero.err;
+}
+
+// --lanes applies to FinFlex's float32 planes only: another --layout reports the one
+// lane it ran with, and no streaming stores.
+TEST(Cli, BenchLanesApplyToThePlanesOnly) {
+  const std::string mesh = fish("blub/fish_low_resolution.obj");
+  for (const char* layout : {"planes", "compact"}) {
+    SCOPED_TRACE(layout);
+    const RunResult r = run_cli("bench --mesh " + mesh +
+                                " --instances 8 --frames 2 --json --lanes 16 --stores streaming"
+                                " --layout " + layout);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    const bool planes = std::string(layout) == "planes";
+    EXPECT_EQ(j.at("lanes").get<std::size_t>(), planes ? 16u : 1u);
+    EXPECT_EQ(j.at("streaming_stores").get<bool>(), planes);
+  }
 }
 
 TEST(Cli, InfoListsTheDefaultDevice) {
@@ -285,7 +277,7 @@ TEST(Cli, BadInputsExitTwoWithOneLineAndWriteNothing) {
       {"--in " + in + " --m 0.1 --normals smooth", "--normals", "smooth"},
       {"--in " + in + " --m 0.1 --frame body", "--frame", "body"},
       {"--in " + in + " --m 0.1 --device no-such-device", "device", "no-such-device"},
-      {"--in '/nonexistent/fish.obj' --m 0.1", "/nonexistent/fish.obj", "does not exist"},
+      {"--in '/nonexistent/fish.obj' --m 0.1", "/nonexistent/fish.obj", "No such file or directory"},
       {"--in " + fish("blub/README.md") + " --m 0.1", "README.md", "unsupported extension '.md'"},
       {"--in " + in + " --m 0.1 --head 1,2", "--head", "X,Y,Z"},
       {"--in " + in + " --m 0.1 --pivot 0,0,nan", "--pivot", "not finite"},
@@ -641,9 +633,9 @@ TEST(Cli, SubdivideWritesWhatTheLibraryComputes) {
 TEST(Cli, SubdivideBadInputsExitTwoAndWriteNothing) {
   const std::string in = "'" + test::data_path("blub/fish_control_mesh.obj") + "'";
   const std::pair<std::string, std::pair<std::string, std::string>> cases[] = {
-      {"--in " + in + " --levels 9", {"levels", "[0, 8]"}},
+      {"--in " + in + " --levels 9", {"levels", "above the limit 8"}},
       {"--in " + in + " --levels -1", {"levels", "[0, 8]"}},
-      {"--in '/nonexistent/cage.obj' --levels 1", {"/nonexistent/cage.obj", "does not exist"}},
+      {"--in '/nonexistent/cage.obj' --levels 1", {"/nonexistent/cage.obj", "No such file or directory"}},
   };
   for (const auto& [arguments, expected] : cases) {
     const std::string out = test::temp_path("never.obj");

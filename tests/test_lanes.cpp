@@ -307,6 +307,69 @@ TEST(Lanes, StreamingPlainAndUnalignedStoresWriteTheSameBits) {
   }
 }
 
+// Lanes apply per batch, only to FinFlex's float32 planes in slot order: any other
+// output layout on a deformer asked for 16 lanes runs the one-lane kernels with the
+// store epilogue (kernels/common/outputs.cl), so it matches the reference and a
+// one-lane deformer's outputs in that layout bit for bit; the default planes on the
+// same deformer still take 16 lanes.
+TEST(Lanes, OtherOutputLayoutsRunOnOneLaneAndMatchTheReference) {
+  const Mesh mesh = load_mesh(test::data_path("barramundi/BarramundiFish.gltf"));
+  const RiggedMesh model(
+      mesh, resolve_rig(load_rig_file(test::data_path("rigs/barramundi_swim.rig.json")), mesh));
+  const RigParameters values = swimming_values(model, 3);
+  const std::size_t instances = values.instance_count();
+  ClDeformer sixteen(test::shared_context(), model, with_lanes(16));
+  ClDeformer one_lane(test::shared_context(), model, with_lanes(1));
+  const OutputLayout planes = sixteen.planes_layout(instances);
+  EXPECT_EQ(sixteen.lanes(planes), 16u);
+
+  struct Case {
+    const char* name;
+    OutputLayout layout;
+  };
+  std::vector<Case> cases;
+  const std::size_t slots = sixteen.output_vertices(VertexOrder::kSlots);
+  OutputLayout packed = planes;
+  packed.positions = AttributeLayout::packed(AttributeFormat::kFloat32x3, slots);
+  packed.normals = AttributeLayout::packed(AttributeFormat::kFloat32x3, slots);
+  packed.tangent_layout = AttributeLayout::packed(AttributeFormat::kFloat32x4, slots);
+  cases.push_back({"packed float32", packed});
+  cases.push_back({"half normals", sixteen.planes_layout(instances, NormalFormat::kHalf)});
+  OutputLayout mesh_order = planes;
+  mesh_order.order = VertexOrder::kMesh;
+  const std::size_t vertices = sixteen.output_vertices(VertexOrder::kMesh);
+  mesh_order.positions = AttributeLayout::planes(AttributeFormat::kFloat32x3, vertices);
+  mesh_order.normals = mesh_order.positions;
+  mesh_order.tangent_layout = mesh_order.positions;
+  cases.push_back({"mesh order", mesh_order});
+  OutputLayout previous = planes;
+  previous.previous_positions = true;
+  cases.push_back({"previous positions", previous});
+  OutputLayout offset = planes;
+  offset.positions.offset = 64;
+  cases.push_back({"positions at an offset", offset});
+
+  for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {
+    const DeformedBatch<double> reference = run_reference(model, values, normals);
+    for (const Case& c : cases) {
+      SCOPED_TRACE(std::string(c.name) + " " + to_string(normals));
+      EXPECT_EQ(sixteen.lanes(c.layout), 1u);
+      DeviceBatch vector_batch = sixteen.allocate(instances, c.layout);
+      DeviceBatch scalar_batch = one_lane.allocate(instances, c.layout);
+      EXPECT_FALSE(sixteen.streams_outputs(vector_batch));
+      const DeformedBatch<float> got = test::run_on_device(sixteen, vector_batch, values, normals);
+      const DeformedBatch<float> want =
+          test::run_on_device(one_lane, scalar_batch, values, normals);
+      if (c.layout.normals.format == AttributeFormat::kFloat32x3) {
+        expect_within_reference_bounds(model, values, normals, got, reference);
+      }
+      EXPECT_EQ(got.positions, want.positions);
+      EXPECT_EQ(got.normals, want.normals);
+      EXPECT_EQ(got.tangents, want.tangents);
+    }
+  }
+}
+
 // OutputStores::kAuto streams a frame's outputs only when they are larger than the
 // device's global memory cache (CL_DEVICE_GLOBAL_MEM_CACHE_SIZE); kPlain and
 // kStreaming are what they say; one lane never streams.
@@ -318,17 +381,23 @@ TEST(Lanes, AutomaticStoresStreamOutputsLargerThanTheCache) {
   const BatchLayout one = automatic.layout(1);
   const std::size_t per_instance = one.plane_stride * one.bytes_per_vertex();
   const std::size_t fitting = std::max<std::size_t>(1, cache / per_instance);
+  // A batch's size as its layout says (streams_outputs allocates nothing; a batch that
+  // large would be the cache's size).
+  DeviceBatch batch = automatic.allocate(1);
+  batch.layout.instance_count = fitting;
   if (fitting * per_instance <= cache) {
-    EXPECT_FALSE(automatic.streams_outputs(automatic.layout(fitting)));
+    EXPECT_FALSE(automatic.streams_outputs(batch));
   }
-  EXPECT_TRUE(automatic.streams_outputs(automatic.layout(cache / per_instance + 1)));
+  batch.layout.instance_count = cache / per_instance + 1;
+  EXPECT_TRUE(automatic.streams_outputs(batch));
   ClOptions plain = with_lanes(16), streaming = with_lanes(16);
   plain.stores = OutputStores::kPlain;
   streaming.stores = OutputStores::kStreaming;
-  EXPECT_FALSE(ClDeformer(test::shared_context(), model, plain).streams_outputs(one));
-  EXPECT_TRUE(ClDeformer(test::shared_context(), model, streaming).streams_outputs(one));
+  const DeviceBatch small = automatic.allocate(1);
+  EXPECT_FALSE(ClDeformer(test::shared_context(), model, plain).streams_outputs(small));
+  EXPECT_TRUE(ClDeformer(test::shared_context(), model, streaming).streams_outputs(small));
   streaming.lanes = 1;
-  EXPECT_FALSE(ClDeformer(test::shared_context(), model, streaming).streams_outputs(one));
+  EXPECT_FALSE(ClDeformer(test::shared_context(), model, streaming).streams_outputs(small));
 }
 
 // Half normals are stored by the one-lane kernels whatever ClOptions::lanes asks: the

@@ -749,8 +749,9 @@ TEST(GltfScene, UnsupportedContentIsAFormatErrorNamingTheField) {
         "\"meshes\":[{\"name\":\"fin\",\"primitives\":[{\"attributes\":{\"POSITION\":0},"
         "\"indices\":3},"
         "{\"attributes\":{\"POSITION\":0},\"mode\":1}]}],\"nodes\":[{\"mesh\":0}]");
-    EXPECT_TRUE(ThrowsError([&] { load_mesh(path); }, ErrorCode::kFormat, "meshes[0].primitives[1]",
-                            "meshes[0] ('fin').primitives[1]: mode 1 (LINES) is not supported"));
+    EXPECT_TRUE(ThrowsError(
+        [&] { load_mesh(path); }, ErrorCode::kFormat, "meshes[0].primitives[1]",
+        "meshes[0].primitives[1]: mode 1 (LINES) is not supported (only TRIANGLES); mesh 'fin'"));
   }
   {  // NORMAL with fewer elements than POSITION
     GltfBuilder b = triangle_builder();
@@ -866,26 +867,27 @@ TEST(LoadErrors, NanPositionInAFileIsAnInvalidMesh) {
   for (const std::int32_t index : {0, 1, 2}) append_bytes(ply, index);
   const std::string path = temp_path("nan.ply");
   write_file(path, ply);
-  EXPECT_TRUE(ThrowsError([&] { load_mesh(path); }, ErrorCode::kInvalidMesh, "positions[1].y",
-                          "positions[1].y is NaN"));
+  EXPECT_TRUE(ThrowsError([&] { load_mesh(path); }, ErrorCode::kInvalidMesh, "vertex[1].y",
+                          "vertex[1].y (byte 189): is NaN"));
 }
 
 TEST(LoadErrors, IndexOutOfRangeInAFileIsAnInvalidMesh) {
   const std::string path = temp_path("bad_index.obj");
   write_file(path, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 99999\n");
-  EXPECT_TRUE(ThrowsError([&] { load_mesh(path); }, ErrorCode::kInvalidMesh, "indices[5]",
-                          "indices[5] = 99998 is out of range (vertex count 3"));
+  EXPECT_TRUE(ThrowsError([&] { load_mesh(path); }, ErrorCode::kInvalidMesh, "line 5",
+                          "line 5: face corner 3: v index 99999 is out of range (3 'v' lines"));
   const std::string off = temp_path("bad_index.off");
   write_file(off, "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n");
-  EXPECT_TRUE(ThrowsError([&] { load_mesh(off); }, ErrorCode::kInvalidMesh, "indices[2]",
-                          "= 3 is out of range"));
+  EXPECT_TRUE(ThrowsError([&] { load_mesh(off); }, ErrorCode::kInvalidMesh, "line 6",
+                          "face 0 corner 3: vertex index 3 is out of range (3 vertices)"));
 }
 
 TEST(LoadErrors, HeaderCountsBeyondTheFileAreAFormatError) {
   // OpenMesh's OFF reader would repeat the last face a billion times.
   const std::string path = temp_path("truncated.off");
   write_file(path, "OFF\n3 1000000000 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
-  EXPECT_TRUE(ThrowsError([&] { load_mesh(path); }, ErrorCode::kFormat, "path", "truncated"));
+  EXPECT_TRUE(ThrowsError([&] { load_mesh(path); }, ErrorCode::kFormat, "line 2",
+                          "1000000000 faces, but the 26 bytes after it cannot hold them"));
 }
 
 TEST(LoadErrors, MissingNormalsAreComputedAndAgreeWithFaceNormals) {
@@ -1006,19 +1008,18 @@ TEST(SaveErrorsOther, FormatLimitFailsAfterTheTemporaryFileAndStillLeavesNoTrace
 
 TEST(FaceGroups, ObjGroupLinesCoverTheTrianglesOfTheFacesAfterThem) {
   // Faces: an ungrouped triangle, a quad and a pentagon in "fin" (2 + 3 triangles),
-  // a degenerate face the reader skips, a bare "g" (no group), "body" with a
-  // negative-index triangle, then "fin" again (a second run of the same name). The
-  // "o" line is ignored because the file has "g" lines.
+  // a bare "g" (no group), "body" with a negative-index triangle, then "fin" again (a
+  // second run of the same name). The "o" line is ignored because the file has "g"
+  // lines.
   const std::string path = temp_path("groups.obj");
   write_file(path,
              "# groups\n"
              "o fish\n"
-             "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 1.5 0\nv 2 0 0\n"
+             "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 1.5 0\nv 2 0 0\nvt 0 0\n"
              "f 1 2 3\n"
              "g fin\n"
              "f 1 2 3 4\n"
              "f 1/1 2/1 3/1 5/1 4/1\n"
-             "f 1 1 2\n"
              "g\n"
              "f 2 6 3\n"
              "  g   body  \r\n"

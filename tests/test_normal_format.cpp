@@ -130,7 +130,7 @@ std::uint16_t nearest_half(float value) {
 }
 
 TEST(NormalFormat, BothHalfStoresWriteTheNearestHalf) {
-  // kernels/common/planes.cl's store_direction3 in a kernel of the test's own, built
+  // kernels/common/outputs.cl's store of float16x3 planes in a kernel of the test's own, built
   // once with the GPUs' branch (vstore_half) and once with the CPUs' (half_bits),
   // whatever the device: values across [-1, 1] with ties between two halves, values
   // that become subnormal halves, zeros of both signs.
@@ -156,7 +156,8 @@ TEST(NormalFormat, BothHalfStoresWriteTheNearestHalf) {
   source.appended = R"(
 __kernel void store_halves(__global const float* in, __global float* out, const uint stride) {
   const size_t v = get_global_id(0);
-  store_direction3(out, 3, stride, v, load_plane3(in, 0, stride, v));
+  /* Instance 1 of float16x3 planes of `stride` halves. */
+  store_attribute(out, FF_F16X3, 0, 0, stride, 3 * stride, 1, v, load_plane3(in, 0, stride, v), 0.0f);
 }
 )";
   Context& context = test::shared_context();
@@ -165,7 +166,7 @@ __kernel void store_halves(__global const float* in, __global float* out, const 
     // The device's FF_GPU comes as a build option; the source replaces it before
     // planes.cl reads it.
     source.generated = "#undef FF_GPU\n#define FF_GPU " + std::to_string(gpu) + "\n";
-    cl::Kernel kernel = context.kernel("store_halves", source, "-DFF_HALF_NORMALS=1");
+    cl::Kernel kernel = context.kernel("store_halves", source, "");
     cl_int status = CL_SUCCESS;
     cl::Buffer in(context.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
                   planes.size() * sizeof(float), planes.data(), &status);

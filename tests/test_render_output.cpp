@@ -215,7 +215,7 @@ TEST(Apng, UnfinishedOrWrongFramesLeaveNoFile) {
     }
   }
   EXPECT_TRUE(folder_holds_only(fs::path(path).parent_path().string(), {}));
-  EXPECT_THROW(open_video(test::temp_path("swim.gif"), options), RenderError);
+  EXPECT_THROW(open_video(test::temp_path("swim.avi"), options), RenderError);
   options.fps = 0;
   EXPECT_THROW(open_video(test::temp_path("swim.png"), options), RenderError);
 }
@@ -234,6 +234,37 @@ TEST(Mp4, ThroughFfmpegWhenInstalled) {
   ASSERT_GT(file.size(), 100u);
   EXPECT_EQ(std::string(file.begin() + 4, file.begin() + 8), "ftyp");
   EXPECT_TRUE(folder_holds_only(fs::path(path).parent_path().string(), {"swim.mp4"}));
+}
+
+TEST(Gif, ThroughFfmpegWhenInstalled) {
+  if (!ffmpeg_available()) GTEST_SKIP() << "ffmpeg is not installed";
+  const std::string path = test::temp_path("swim.gif");
+  VideoOptions options;
+  options.width = 64;
+  options.height = 48;
+  options.fps = 10;
+  std::unique_ptr<VideoWriter> writer = open_video(path, options);
+  for (unsigned i = 0; i < 6; ++i) writer->add_frame(test_frame(64, 48, i));
+  writer->finish();
+  const std::vector<std::uint8_t> file = read_bytes(path);
+  ASSERT_GT(file.size(), 100u);
+  EXPECT_EQ(std::string(file.begin(), file.begin() + 6), "GIF89a");
+  // The logical screen is the frames' size (little-endian), and it loops (NETSCAPE2.0).
+  EXPECT_EQ(file[6] | (file[7] << 8), 64);
+  EXPECT_EQ(file[8] | (file[9] << 8), 48);
+  EXPECT_NE(std::string(file.begin(), file.end()).find("NETSCAPE2.0"), std::string::npos);
+  EXPECT_TRUE(folder_holds_only(fs::path(path).parent_path().string(), {"swim.gif"}));
+  // Wider frames are scaled down to gif_width, the aspect kept.
+  const std::string preview = test::temp_path("preview.gif");
+  options.width = 800;
+  options.height = 450;
+  writer = open_video(preview, options);
+  for (unsigned i = 0; i < 3; ++i) writer->add_frame(test_frame(800, 450, i));
+  writer->finish();
+  const std::vector<std::uint8_t> scaled = read_bytes(preview);
+  ASSERT_GT(scaled.size(), 10u);
+  EXPECT_EQ(scaled[6] | (scaled[7] << 8), 400);
+  EXPECT_EQ(scaled[8] | (scaled[9] << 8), 225);
 }
 
 // PATH led by a folder holding a stand-in `ffmpeg` script, for one scope.

@@ -1,10 +1,13 @@
 // finflex bench: frames of a batch on one device, timed by OpenCL profiling events,
-// next to a write-only kernel of the same output planes (the device's write bandwidth,
+// next to a write-only kernel of the same outputs (the device's write bandwidth,
 // measured in the same run: the fastest of its shapes).
 //
 //   finflex bench --mesh PATH --instances N --frames F [--mode paper|exact]
 //                 [--normals rotate|jacobian] [--normal-format float32|half]
-//                 [--rig RIG.json [--path fused|passes] [--swim]] [--device NAME] [--json]
+//                 [--rig RIG.json [--path fused|passes] [--swim]]
+//                 [--layout planes|interleaved|compact|snorm] [--order slots|mesh] [--previous]
+//                 [--per-item N] [--lanes 0|1|8|16] [--stores auto|plain|streaming]
+//                 [--device NAME] [--json]
 //
 // --swim: a tank of N swimming fish (the swim rig given by --rig): per frame the swim
 // driver kernel, the rig's prepare kernel and the deformation with world placement,
@@ -19,8 +22,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "arguments.hpp"
+#include "bench_layouts.hpp"
 #include "cli_errors.hpp"
+#include "cli_numbers.hpp"
+#include "cli_paths.hpp"
 #include "commands.hpp"
 #include "finflex/finflex.hpp"
 #include "reference_kernels.hpp"
@@ -44,6 +49,9 @@ struct BenchOptions {
   std::string stores = "auto";
   std::string dispatch = "auto";
   bool swim = false;
+  std::string layout = "planes";
+  std::string order = "slots";
+  bool previous = false;
   std::string device;
   bool json = false;
 };
@@ -57,16 +65,18 @@ struct Measured {
   DeviceBatch* batch = nullptr;
   std::size_t per_item = 1;
   std::size_t lanes = 1;
-  bool streaming = false;    // streaming stores (with lanes)
-  std::size_t vertices = 0;  // per instance
+  bool streaming = false;           // streaming stores (with lanes)
+  std::size_t vertices = 0;         // per instance
+  std::size_t output_vertices = 0;  // the outputs' (slots or mesh vertices)
+  std::size_t bytes_per_vertex = 0;  // written per output vertex and instance
 };
 
-// The write-only kernel over the batch's planes: the fastest of the deformer's
+// The write-only kernel through the batch's layout: the fastest of the deformer's
 // instances per work-item and 4 (the rig kernels' on GPUs), each with one lane and,
-// when the deformer has more, with its lanes (vector stores, kernels/cpu/
-// lane_planes.cl), streaming and plain.
-double write_only_median(Context& context, DeviceBatch& batch, std::size_t per_item,
-                         std::size_t lanes, std::size_t frames) {
+// when the deformer has more for this batch (FinFlex's float32 planes), with its lanes
+// (vector stores, kernels/cpu/lane_outputs.cl), streaming and plain.
+double write_only_median(Context& context, DeviceBatch& batch, std::size_t vertices,
+                         std::size_t per_item, std::size_t lanes, std::size_t frames) {
   struct Shape {
     std::size_t lanes;
     bool streaming;
@@ -79,7 +89,7 @@ double write_only_median(Context& context, DeviceBatch& batch, std::size_t per_i
       const bench::FrameTimes times = bench::time_frames(
           frames, [](std::size_t) {},
           [&](std::vector<cl::Event>& events) {
-            events.assign(1, bench::enqueue_write_only(context, batch, per,
+            events.assign(1, bench::enqueue_write_only(context, batch, vertices, per,
                                                        bench::WriteValues::kDeviceDefault,
                                                        shape.lanes, shape.streaming));
           });
@@ -109,11 +119,17 @@ struct DeformBench {
   DeviceBatch batch;
 };
 
-// --per-item, --lanes and --dispatch: the backend's choices, for experiments.
+// --per-item, --lanes, --stores and --dispatch: the backend's choices, for experiments.
 ClOptions cl_options(const BenchOptions& options) {
   ClOptions cl;
-  cl.instances_per_item = parse_count(options.per_item, "--per-item", 0, 64);
-  cl.lanes = parse_count(options.lanes, "--lanes", 0, 16);
+  cl.instances_per_item =
+      parse_count(options.per_item, "--per-item", 0, 64, "instances per work-item");
+  cl.lanes = parse_count(options.lanes, "--lanes", 0, 16, "vertex slots per work-item");
+  if (cl.lanes != 0 && cl.lanes != 1 && cl.lanes != 8 && cl.lanes != 16) {
+    throw Error(ErrorCode::kInvalidArgument, "--lanes",
+                "--lanes '" + options.lanes +
+                    "' is not a number of lanes (expected 0: the device's, 1, 8 or 16)");
+  }
   if (options.stores == "plain") {
     cl.stores = OutputStores::kPlain;
   } else if (options.stores == "streaming") {
@@ -149,7 +165,9 @@ Measured measure_deform(const BenchOptions& options, const Mesh& mesh, Context& 
   const RigPath path = parse_rig_path(options.path, "--path");
   bench.deformer = std::make_unique<ClDeformer>(context, model, cl_options(options));
   ClDeformer& deformer = *bench.deformer;
-  bench.batch = deformer.allocate(instances, format);
+  const BenchLayout layout =
+      bench_layout(deformer, format, options.layout, options.order, options.previous);
+  bench.batch = make_bench_batch(deformer, instances, layout);
   RigParameters values(model, instances);
   ClJob job;
   job.model = &model;
@@ -181,10 +199,12 @@ Measured measure_deform(const BenchOptions& options, const Mesh& mesh, Context& 
   measured.what = options.rig.empty() ? std::string("bend ") + options.mode
                                       : std::string("rig ") + to_string(chosen);
   measured.batch = &bench.batch;
-  measured.per_item = deformer.instances_per_item(format);
-  measured.lanes = deformer.lanes(format);
-  measured.streaming = deformer.streams_outputs(bench.batch.layout);
+  measured.per_item = deformer.instances_per_item(layout.layout);
+  measured.lanes = deformer.lanes(layout.layout);
+  measured.streaming = deformer.streams_outputs(bench.batch);
   measured.vertices = mesh.vertex_count();
+  measured.output_vertices = layout.vertices;
+  measured.bytes_per_vertex = layout.bytes_per_vertex;
   return measured;
 }
 
@@ -195,6 +215,10 @@ Measured measure_swim(const BenchOptions& options, Context& context, std::size_t
                       std::unique_ptr<tank::SwimScene>& scene) {
   if (options.rig.empty()) {
     throw Error(ErrorCode::kInvalidArgument, "--swim", "--swim needs --rig (a swim rig)");
+  }
+  if (options.layout != "planes" || options.order != "slots" || options.previous) {
+    throw Error(ErrorCode::kInvalidArgument, "--swim",
+                "--swim writes the default planes (no --layout, --order or --previous)");
   }
   tank::TankSettings settings;
   const double scale = std::max(1.0, std::cbrt(double(instances) / 1000.0));
@@ -218,16 +242,52 @@ Measured measure_swim(const BenchOptions& options, Context& context, std::size_t
   measured.what = std::string("swim ") + to_string(species.deformer->automatic_path());
   measured.batch = &species.batch;
   measured.per_item = species.deformer->instances_per_item(format);
-  measured.lanes = species.deformer->lanes(format);
-  measured.streaming = species.deformer->streams_outputs(species.batch.layout);
+  measured.lanes = species.deformer->lanes(species.batch.outputs);
+  measured.streaming = species.deformer->streams_outputs(species.batch);
   measured.vertices = species.swim.model().vertex_count();
+  measured.output_vertices = species.batch.layout.plane_stride;
+  measured.bytes_per_vertex = species.batch.layout.bytes_per_vertex();
   return measured;
 }
 
+// Bench keeps every frame's times (host and device): a million frames take 16 MB.
+constexpr std::size_t kMaxFrames = 1000000;
+
+struct BenchCounts {
+  std::size_t instances = 0;
+  std::size_t frames = 0;
+};
+
+// Every option that can be checked before a file is read or the device opened.
+BenchCounts check_bench(const BenchOptions& options) {
+  BenchCounts counts;
+  counts.instances = parse_count(options.instances, "--instances", 1, kMaxDeviceInstances,
+                                 "the kernels count instances in 32 bits");
+  counts.frames =
+      parse_count(options.frames, "--frames", 1, kMaxFrames, "bench keeps every frame's time");
+  parse_normal_mode(options.normals, "--normals");
+  parse_normal_format(options.normal_format, "--normal-format");
+  parse_rig_path(options.path, "--path");
+  cl_options(options);  // --per-item, --lanes, --stores, --dispatch
+  check_bench_layout(options.layout, options.order);
+  check_input_file("--mesh", options.mesh, mesh_extensions());
+  if (options.rig.empty()) {
+    parse_bend_mode(options.mode, "--mode");
+    if (options.swim) {
+      throw Error(ErrorCode::kInvalidArgument, "--swim", "--swim needs --rig (a swim rig)");
+    }
+  } else {
+    check_input_file("--rig", options.rig);
+  }
+  return counts;
+}
+
+// After check_bench: the files, then the device.
 int run_bench(const BenchOptions& options) {
   try {
-    const std::size_t instances = parse_count(options.instances, "--instances", 1, 100000000);
-    const std::size_t frames = parse_count(options.frames, "--frames", 1, 1000000);
+    const BenchCounts counts = check_bench(options);
+    const std::size_t instances = counts.instances;
+    const std::size_t frames = counts.frames;
     const NormalMode normals = parse_normal_mode(options.normals, "--normals");
     const NormalFormat format = parse_normal_format(options.normal_format, "--normal-format");
     const Mesh mesh = for_option("--mesh", [&] { return load_mesh(options.mesh); });
@@ -240,11 +300,12 @@ int run_bench(const BenchOptions& options) {
             ? measure_swim(options, context, instances, frames, normals, format, scene)
             : measure_deform(options, mesh, context, instances, frames, normals, format, deform);
     const double seconds = bench::median(m.times.device);
-    const double write_seconds = write_only_median(context, *m.batch, m.per_item, m.lanes, frames);
+    const double write_seconds =
+        write_only_median(context, *m.batch, m.output_vertices, m.per_item, m.lanes, frames);
     const double vertices = double(m.vertices) * double(instances);
     const BatchLayout& layout = m.batch->layout;
-    const double bytes_per_vertex = double(layout.bytes_per_vertex());
-    const double written = double(layout.plane_stride) * double(instances) * bytes_per_vertex;
+    const double bytes_per_vertex = double(m.bytes_per_vertex);
+    const double written = double(m.output_vertices) * double(instances) * bytes_per_vertex;
 
     nlohmann::ordered_json result;
     result["device"] = context.description().device_name;
@@ -252,6 +313,9 @@ int run_bench(const BenchOptions& options) {
     result["deformation"] = m.what;
     result["normals"] = to_string(normals);
     result["normal_format"] = to_string(format);
+    result["layout"] = options.layout;
+    result["order"] = options.order;
+    result["previous_positions"] = options.previous;
     result["vertices"] = m.vertices;
     result["instances"] = instances;
     result["frames"] = frames;
@@ -288,9 +352,9 @@ Command add_bench_command(CLI::App& app) {
   CLI::App* bench =
       app.add_subcommand("bench", "Time frames of a batch against the write bandwidth");
   bench->add_option("--mesh", options->mesh, "Mesh to deform")->required();
-  bench->add_option("--instances", options->instances, "Instances per frame")
+  bench->add_option("--instances", options->instances, "Instances per frame (1 to 2^32 - 1)")
       ->capture_default_str();
-  bench->add_option("--frames", options->frames, "Timed frames (after one warm-up)")
+  bench->add_option("--frames", options->frames, "Timed frames after one warm-up (1 to 10^6)")
       ->capture_default_str();
   bench->add_option("--mode", options->mode, "paper or exact (without --rig)")
       ->capture_default_str();
@@ -303,17 +367,27 @@ Command add_bench_command(CLI::App& app) {
   bench->add_option("--per-item", options->per_item,
                     "Instances per work-item (0: the device's choice)")
       ->capture_default_str();
-  bench->add_option("--lanes", options->lanes, "Slots per work-item: 1, 8, 16 (0: the device's)")
+  bench->add_option("--lanes", options->lanes,
+                    "Vertex slots per work-item: 1, 8, 16 (0: the device's; FinFlex's float32 "
+                    "planes only, other layouts run with 1)")
       ->capture_default_str();
-  bench->add_option("--stores", options->stores, "With lanes: auto, plain or streaming stores")
+  bench->add_option("--stores", options->stores,
+                    "With lanes: auto (streaming when the outputs exceed the cache), plain or "
+                    "streaming")
       ->capture_default_str();
   bench->add_option("--dispatch", options->dispatch, "auto, per-component or by-path-shape")
       ->capture_default_str();
+  bench->add_option("--layout", options->layout,
+                    "Output layout: planes, interleaved, compact (octahedral normals) or snorm")
+      ->capture_default_str();
+  bench->add_option("--order", options->order, "Output vertex order: slots or mesh")
+      ->capture_default_str();
+  bench->add_flag("--previous", options->previous, "Also write previous-frame positions");
   bench->add_flag("--swim", options->swim,
                   "With a swim rig: a tank of swimming fish (driver, deformation, placement)");
   bench->add_option("--device", options->device, "OpenCL device: 'P:D' or a name substring");
   bench->add_flag("--json", options->json, "One JSON object on one line");
-  return [options] { return run_bench(*options); };
+  return {[options] { check_bench(*options); }, [options] { return run_bench(*options); }};
 }
 
 }  // namespace finflex::cli

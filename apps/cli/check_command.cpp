@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cli_errors.hpp"
+#include "cli_paths.hpp"
 #include "commands.hpp"
 #include "finflex/finflex.hpp"
 
@@ -78,11 +79,17 @@ bool check_model(Context& context, const RiggedMesh& model, const std::string& l
   return all_within;
 }
 
+void check_check(const CheckOptions& options) {
+  check_input_file("--in", options.in, mesh_extensions());
+  if (!options.rig.empty()) check_input_file("--rig", options.rig);
+}
+
+// After check_check: the device, then the files.
 int run_check(const CheckOptions& options) {
   try {
+    Context context(options.device);
     Mesh rest = for_option("--in", [&] { return load_mesh(options.in); });
     compute_vertex_normals(rest);
-    Context context(options.device);
     std::printf("device: %s\nmesh: %s (%zu vertices)\n", context.description().device_name.c_str(),
                 options.in.c_str(), rest.vertex_count());
     std::printf("%-14s %-9s %14s %14s %10s %12s %s\n", "deformation", "normals", "position/s_x",
@@ -123,7 +130,7 @@ Command add_check_command(CLI::App& app) {
                     "Rig file: check the rig instead of the whole-body bend");
   check->add_option("--device", options->device,
                     "OpenCL device: 'P:D' indices or a name substring (see finflex info)");
-  return [options] { return run_check(*options); };
+  return {[options] { check_check(*options); }, [options] { return run_check(*options); }};
 }
 
 }  // namespace finflex::cli

@@ -1,6 +1,5 @@
 #include "cli_errors.hpp"
 
-#include <cstdlib>
 #include <iostream>
 
 #include "finflex/error.hpp"
@@ -15,16 +14,6 @@ int fail(const std::string& command, const std::string& message) {
   std::cerr << "finflex" << (command.empty() ? "" : " " + command) << ": error: " << line
             << std::endl;
   return kExitFailure;
-}
-
-double parse_number(const std::string& text, const std::string& option) {
-  const char* begin = text.c_str();
-  char* end = nullptr;
-  const double value = std::strtod(begin, &end);
-  if (text.empty() || end != begin + text.size()) {
-    throw Error(ErrorCode::kInvalidArgument, option, option + " '" + text + "' is not a number");
-  }
-  return value;
 }
 
 }  // namespace finflex::cli

@@ -15,10 +15,6 @@ constexpr int kExitFailure = 2;
 // e.g. from an OpenCL build log, become spaces) and returns kExitFailure.
 int fail(const std::string& command, const std::string& message);
 
-// Parses a whole string as a finite or non-finite double; throws finflex::Error
-// (kInvalidArgument) naming `option` when the text is not a number.
-double parse_number(const std::string& text, const std::string& option);
-
 // Runs `operation`; a finflex::Error it throws comes out with `option` as its field
 // and "<option>: " in front of its message, so the user sees which option gave the
 // value the library refused.

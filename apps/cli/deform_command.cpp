@@ -1,6 +1,7 @@
 // finflex deform: bend one mesh file and write the result.
+#include <cmath>
 #include <cstdio>
-#include <filesystem>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -8,6 +9,8 @@
 #include <vector>
 
 #include "cli_errors.hpp"
+#include "cli_numbers.hpp"
+#include "cli_paths.hpp"
 #include "commands.hpp"
 #include "finflex/finflex.hpp"
 
@@ -122,19 +125,40 @@ std::string bend_whole_body(const DeformOptions& options, const Mesh& rest, Norm
   return summary;
 }
 
-// Parses "NAME=VALUE".
+// Parses "NAME=VALUE"; VALUE must fit a float (parameters are float32).
 std::pair<std::string, float> parse_assignment(const std::string& text) {
   const std::size_t equals = text.find('=');
   if (equals == std::string::npos || equals == 0) {
     throw Error(ErrorCode::kInvalidArgument, "--set", "--set '" + text + "' is not NAME=VALUE");
   }
   const std::string name = text.substr(0, equals);
-  return {name, static_cast<float>(parse_number(text.substr(equals + 1), "--set " + name))};
+  const std::string value = text.substr(equals + 1);
+  const double number = parse_number(value, "--set " + name);
+  if (std::isfinite(number) && std::abs(number) > std::numeric_limits<float>::max()) {
+    throw Error(ErrorCode::kOutOfRange, "--set " + name,
+                "--set " + name + " '" + value + "' is beyond the range of a float");
+  }
+  return {name, static_cast<float>(number)};
 }
 
-// A rigged deformation: --rig, --set, --path.
-std::string deform_rig(const DeformOptions& options, const Mesh& rest, NormalMode normals,
-                       Context& context, Mesh& bent) {
+// The options that go with --rig, or with the whole-body bend (--m): everything but the
+// files' contents.
+void check_deform(const DeformOptions& options) {
+  parse_normal_mode(options.normals, "--normals");
+  check_input_file("--in", options.in, mesh_extensions());
+  check_output_file("--out", options.out, mesh_extensions());
+  if (options.rig.empty()) {
+    if (!options.set.empty()) {
+      throw Error(ErrorCode::kInvalidArgument, "--set", "--set needs --rig");
+    }
+    if (options.m.empty()) {
+      throw Error(ErrorCode::kInvalidArgument, "--m", "--m is required (or --rig)");
+    }
+    parse_number(options.m, "--m");
+    parse_bend_mode(options.mode.empty() ? "paper" : options.mode, "--mode");
+    frame_options(options);
+    return;
+  }
   const std::pair<const char*, const std::string*> plain_bend_only[] = {
       {"--m", &options.m},       {"--mode", &options.mode},     {"--frame", &options.frame},
       {"--head", &options.head}, {"--dorsal", &options.dorsal}, {"--pivot", &options.pivot}};
@@ -144,6 +168,14 @@ std::string deform_rig(const DeformOptions& options, const Mesh& rest, NormalMod
                   std::string(option) + " does not go with --rig: the rig file says it");
     }
   }
+  parse_rig_path(options.path, "--path");
+  check_input_file("--rig", options.rig);
+  for (const std::string& assignment : options.set) parse_assignment(assignment);
+}
+
+// A rigged deformation: --rig, --set, --path.
+std::string deform_rig(const DeformOptions& options, const Mesh& rest, NormalMode normals,
+                       Context& context, Mesh& bent) {
   const RigPath path = parse_rig_path(options.path, "--path");
   const RiggedMesh model(
       rest, resolve_rig(for_option("--rig", [&] { return load_rig_file(options.rig); }), rest));
@@ -165,23 +197,12 @@ std::string deform_rig(const DeformOptions& options, const Mesh& rest, NormalMod
   return summary;
 }
 
+// After check_deform: the device, then the files.
 int run_deform(const DeformOptions& options) {
   try {
-    // Everything that can be checked before reading a file is checked first.
     const NormalMode normals = parse_normal_mode(options.normals, "--normals");
-    if (options.out.empty()) {
-      throw Error(ErrorCode::kInvalidArgument, "--out", "--out is empty");
-    }
-    if (std::filesystem::is_directory(options.out)) {
-      throw Error(ErrorCode::kInvalidArgument, "--out",
-                  "--out '" + options.out + "' is a directory");
-    }
-    if (options.rig.empty() && !options.set.empty()) {
-      throw Error(ErrorCode::kInvalidArgument, "--set", "--set needs --rig");
-    }
-
-    const Mesh rest = for_option("--in", [&] { return load_mesh(options.in); });
     Context context(options.device);
+    const Mesh rest = for_option("--in", [&] { return load_mesh(options.in); });
     Mesh bent;
     const std::string what = options.rig.empty()
                                  ? bend_whole_body(options, rest, normals, context, bent)
@@ -227,7 +248,7 @@ Command add_deform_command(CLI::App& app) {
       ->capture_default_str();
   deform->add_option("--device", options->device,
                      "OpenCL device: 'P:D' indices or a name substring (see finflex info)");
-  return [options] { return run_deform(*options); };
+  return {[options] { check_deform(*options); }, [options] { return run_deform(*options); }};
 }
 
 }  // namespace finflex::cli

@@ -34,7 +34,7 @@ int run_info() {
 
 Command add_info_command(CLI::App& app) {
   app.add_subcommand("info", "List OpenCL platforms and devices, and the default one");
-  return [] { return run_info(); };
+  return {[] {}, [] { return run_info(); }};
 }
 
 }  // namespace finflex::cli

@@ -3,11 +3,13 @@
 // valid ranges); --labels writes one line per mesh vertex: its component and its
 // position in the root's body frame.
 #include <cstdio>
-#include <fstream>
 #include <memory>
+#include <ostream>
 #include <string>
 
+#include "atomic_file.hpp"
 #include "cli_errors.hpp"
+#include "cli_paths.hpp"
 #include "commands.hpp"
 #include "finflex/finflex.hpp"
 
@@ -28,29 +30,36 @@ void print_frame(const BodyFrame& f) {
       f.axis_y.y, f.axis_y.z, f.length);
 }
 
+// Written to a temporary file and renamed into place: on any error an existing labels
+// file is left as it was and no temporary file remains.
 void write_labels(const std::string& path, const Mesh& mesh, const Rig& rig) {
   std::vector<std::size_t> component_of(mesh.vertex_count(), 0);
   for (std::size_t c = 0; c < rig.components.size(); ++c) {
     for (std::uint32_t v : rig.components[c].vertices) component_of[v] = c;
   }
-  std::ofstream out(path);
-  if (!out) throw Error(ErrorCode::kIo, "--labels", "--labels '" + path + "': cannot write");
-  out << "# component x y z  (one line per mesh vertex; x y z in the root's body frame)\n";
-  const BodyFrame& root = rig.components.front().frame;
-  char line[256];
-  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
-    const glm::dvec3 p = root.point_to_local(glm::dvec3(mesh.positions[v]));
-    std::snprintf(line, sizeof line, "%s %.6f %.6f %.6f\n",
-                  rig.components[component_of[v]].name.c_str(), p.x, p.y, p.z);
-    out << line;
-  }
-  if (!out) throw Error(ErrorCode::kIo, "--labels", "--labels '" + path + "': write failed");
+  write_file_atomically("--labels", path, [&](std::ostream& out) {
+    out << "# component x y z  (one line per mesh vertex; x y z in the root's body frame)\n";
+    const BodyFrame& root = rig.components.front().frame;
+    char line[1024];  // three %.6f of any double (at most 317 characters each)
+    for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+      const glm::dvec3 p = root.point_to_local(glm::dvec3(mesh.positions[v]));
+      std::snprintf(line, sizeof line, " %.6f %.6f %.6f\n", p.x, p.y, p.z);
+      out << rig.components[component_of[v]].name << line;
+    }
+  });
+}
+
+void check_rig_info(const RigInfoOptions& options) {
+  check_input_file("--in", options.in, mesh_extensions());
+  check_input_file("--rig", options.rig);
+  if (!options.labels.empty()) check_output_file("--labels", options.labels);
 }
 
 int run_rig_info(const RigInfoOptions& options) {
   try {
-    const Mesh mesh = load_mesh(options.in);
-    const Rig rig = resolve_rig(load_rig_file(options.rig), mesh);
+    const Mesh mesh = for_option("--in", [&] { return load_mesh(options.in); });
+    const Rig rig =
+        resolve_rig(for_option("--rig", [&] { return load_rig_file(options.rig); }), mesh);
     std::printf("rig %s on %s (%zu vertices): %zu components, %zu parameters\n",
                 options.rig.c_str(), options.in.c_str(), mesh.vertex_count(), rig.components.size(),
                 rig.parameters.size());
@@ -89,7 +98,7 @@ Command add_rig_info_command(CLI::App& app) {
   command->add_option("--rig", options->rig, "Rig file (JSON)")->required();
   command->add_option("--labels", options->labels,
                       "Write each vertex's component and body-frame position to this file");
-  return [options] { return run_rig_info(*options); };
+  return {[options] { check_rig_info(*options); }, [options] { return run_rig_info(*options); }};
 }
 
 }  // namespace finflex::cli

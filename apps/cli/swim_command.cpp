@@ -1,133 +1,44 @@
 // finflex swim: a virtual RAS tank of swimming fish (apps/tank/), deformed every frame
 // on an OpenCL device: the tank steps on the host, each species' swim driver and
-// deformation run on the device, outputs in world space.
+// deformation run on the device, outputs in world space. With --out (or --render) every
+// frame is also drawn (apps/pictures/, apps/render/) and written as PNG frames and a
+// video, and with --annotate as a machine-vision dataset.
 //
 //   finflex swim [--fish N] [--seconds S] [--fps F] [--species MESH:RIG ...]
 //                [--tank DIAMETER,DEPTH] [--seed N] [--normals rotate|jacobian]
 //                [--device NAME] [--out DIR [--mesh-frames LIST]]
+//                [--size WxH] [--camera above|oblique|side] [--samples N]
+//                [--image-frames all|none|LIST] [--video auto|none|mp4,gif,apng]
+//                [--annotate] [--render | --no-render]
 #include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <memory>
-#include <set>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
-#include "arguments.hpp"
 #include "cli_errors.hpp"
 #include "commands.hpp"
 #include "finflex/finflex.hpp"
+#include "staging_folder.hpp"
+#include "swim_pictures.hpp"
+#include "swim_plan.hpp"
 #include "swim_scene.hpp"
+#include "tank_pictures.hpp"
 #include "timing.hpp"
 
 namespace finflex::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct SwimOptions {
-  std::string fish = "1000";
-  std::string seconds = "10";
-  std::string fps = "30";
-  std::vector<std::string> species;
-  std::string tank;
-  std::string seed = "1";
-  std::string normals = "jacobian";
-  std::string device;
-  std::string out;
-  std::string mesh_frames;
-};
-
-// What the command runs, every value checked.
-struct SwimPlan {
-  std::size_t fish = 0;
-  std::size_t frames = 0;
-  double fps = 0.0;
-  std::vector<tank::SpeciesFiles> species;
-  tank::TankSettings tank;
-  std::uint64_t seed = 0;
-  NormalMode normals = NormalMode::kJacobian;
-  std::set<std::size_t> mesh_frames;
-};
-
-// "0,150,last": frame indices below `frames` ("last": the final frame).
-std::set<std::size_t> parse_frames(const std::string& text, std::size_t frames) {
-  std::set<std::size_t> chosen;
-  std::size_t begin = 0;
-  while (begin <= text.size() && !text.empty()) {
-    const std::size_t comma = std::min(text.find(',', begin), text.size());
-    const std::string item = text.substr(begin, comma - begin);
-    chosen.insert(item == "last" ? frames - 1 : parse_count(item, "--mesh-frames", 0, frames - 1));
-    begin = comma + 1;
-  }
-  return chosen;
-}
-
-// The output folder: an existing folder, or one whose parent exists (created later).
-void check_out_folder(const std::string& out) {
-  if (out.empty()) return;
-  std::error_code ec;
-  const fs::path path(out);
-  if (fs::exists(path, ec)) {
-    if (!fs::is_directory(path, ec)) {
-      throw Error(ErrorCode::kInvalidArgument, "--out", "--out '" + out + "' is not a folder");
-    }
-    if (access(out.c_str(), W_OK) != 0) {
-      throw Error(ErrorCode::kIo, "--out", "--out '" + out + "': cannot write there");
-    }
-    return;
-  }
-  const fs::path parent = path.has_parent_path() ? path.parent_path() : fs::path(".");
-  if (!fs::is_directory(parent, ec)) {
-    throw Error(ErrorCode::kIo, "--out",
-                "--out '" + out + "': its parent folder '" + parent.string() + "' does not exist");
-  }
-}
-
-SwimPlan plan_of(const SwimOptions& options) {
-  SwimPlan plan;
-  plan.fish = parse_count(options.fish, "--fish", 1, 1000000);
-  const double seconds = parse_positive(options.seconds, "--seconds");
-  plan.fps = parse_positive(options.fps, "--fps");
-  const double frames = std::round(seconds * plan.fps);
-  if (frames < 1.0 || frames > 1e7) {
-    throw Error(ErrorCode::kInvalidArgument, "--seconds",
-                "--seconds " + options.seconds + " at --fps " + options.fps + " gives " +
-                    std::to_string(frames) + " frames (expected 1 to 10,000,000)");
-  }
-  plan.frames = static_cast<std::size_t>(frames);
-  for (const std::string& text : options.species)
-    plan.species.push_back(tank::parse_species(text, "--species"));
-  if (plan.species.empty()) plan.species = tank::bundled_species(FINFLEX_DATA_DIR);
-  for (const tank::SpeciesFiles& files : plan.species) {
-    for (const std::string& path : {files.mesh, files.rig}) {
-      std::error_code ec;
-      if (!fs::is_regular_file(path, ec)) {
-        throw Error(ErrorCode::kIo, "--species", "--species: '" + path + "' is not a file");
-      }
-    }
-  }
-  if (!options.tank.empty()) {
-    const auto [diameter, depth] = parse_positive_pair(options.tank, "--tank");
-    plan.tank.diameter = diameter;
-    plan.tank.depth = depth;
-  }
-  plan.seed = parse_count(options.seed, "--seed", 0, UINT64_MAX);
-  plan.normals = parse_normal_mode(options.normals, "--normals");
-  if (!options.mesh_frames.empty() && options.out.empty()) {
-    throw Error(ErrorCode::kInvalidArgument, "--mesh-frames", "--mesh-frames needs --out");
-  }
-  plan.mesh_frames = parse_frames(options.mesh_frames, plan.frames);
-  check_out_folder(options.out);
-  return plan;
-}
 
 // The whole tank of one frame as one mesh (world space; positions and normals).
 Mesh tank_mesh(tank::SwimScene& scene) {
@@ -150,15 +61,11 @@ Mesh tank_mesh(tank::SwimScene& scene) {
   return all;
 }
 
-// Writes `text` to `path` through a temporary name in the same folder.
-void write_atomically(const fs::path& path, const std::string& text) {
-  const fs::path temporary = path.string() + ".partial";
-  {
-    std::ofstream out(temporary, std::ios::binary);
-    out << text;
-    if (!out) throw Error(ErrorCode::kIo, "--out", "'" + temporary.string() + "': write failed");
-  }
-  fs::rename(temporary, path);
+void write_text(const fs::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  out.close();
+  if (!out) throw Error(ErrorCode::kIo, "--out", "'" + path.string() + "': write failed");
 }
 
 void progress(std::size_t done, std::size_t total) {
@@ -172,15 +79,93 @@ void progress(std::size_t done, std::size_t total) {
   if (done == total) std::fprintf(stderr, "\n");
 }
 
+// Per frame, seconds of each step (frames after the first, whose kernels and shaders
+// are built on first use).
+struct FrameTimes {
+  std::vector<double> simulation, enqueue, kernels, wait, hand_off, draw, read_back, files,
+      annotation, total;
+  std::vector<double> cpu;  // CPU time of every thread of the process (not ffmpeg's)
+};
+
+// CPU seconds the process has used, all its threads (PoCL's and llvmpipe's included).
+double process_cpu_seconds() {
+  timespec now{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
+  return double(now.tv_sec) + 1e-9 * double(now.tv_nsec);
+}
+
+double sum(const std::vector<double>& values) {
+  double total = 0.0;
+  for (double v : values) total += v;
+  return total;
+}
+
+double mean(const std::vector<double>& values) {
+  return values.empty() ? 0.0 : sum(values) / double(values.size());
+}
+
+nlohmann::ordered_json rendering_summary(const SwimPlan& plan, pictures::TankPictures& pictures,
+                                         const FrameTimes& t, double frames_per_second) {
+  const render::DeviceInfo& device = pictures.renderer().device();
+  const double frame = mean(t.total);
+  const double deform = mean(t.simulation) + mean(t.enqueue) + mean(t.wait);
+  nlohmann::ordered_json out;
+  out["width"] = plan.pictures.width;
+  out["height"] = plan.pictures.height;
+  out["samples"] = device.samples;
+  out["camera"] = pictures::to_string(plan.pictures.view);
+  out["gl_renderer"] = device.gl_renderer;
+  out["egl_display"] = device.egl_display;
+  out["frames_per_second"] = frames_per_second;
+  out["seconds_per_frame_mean"] = {{"frame", frame},
+                                   {"deform", deform},
+                                   {"simulation", mean(t.simulation)},
+                                   {"upload_and_launch", mean(t.enqueue)},
+                                   {"waiting_for_the_device", mean(t.wait)},
+                                   {"kernels_on_the_device", mean(t.kernels)},
+                                   {"hand_off", mean(t.hand_off)},
+                                   {"draw", mean(t.draw)},
+                                   {"read_back", mean(t.read_back)},
+                                   {"files", mean(t.files)},
+                                   {"annotation", mean(t.annotation)}};
+  out["cpu_seconds_per_frame_mean"] = mean(t.cpu);
+  out["share_of_frame"] = {
+      {"deform", deform / frame},       {"hand_off", mean(t.hand_off) / frame},
+      {"draw", mean(t.draw) / frame},   {"read_back", mean(t.read_back) / frame},
+      {"files", mean(t.files) / frame}, {"annotation", mean(t.annotation) / frame}};
+  return out;
+}
+
 int run_swim(const SwimOptions& options) {
+  using Clock = std::chrono::steady_clock;
+  const auto seconds_since = [](Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+  };
   try {
     const SwimPlan plan = plan_of(options);
     Context context(options.device);
     tank::SwimScene scene(context, plan.species, plan.fish, plan.tank, plan.seed, plan.normals);
-    if (!options.out.empty()) fs::create_directories(options.out);
+    // The renderer before any file: without EGL the command stops here.
+    std::unique_ptr<pictures::TankPictures> pictures;
+    if (plan.render) pictures = std::make_unique<pictures::TankPictures>(scene, plan.pictures);
+    std::unique_ptr<StagingFolder> staging;
+    if (!options.out.empty()) staging = std::make_unique<StagingFolder>(options.out, "--out");
+    const fs::path folder = staging ? fs::path(staging->path()) : fs::path();
+
+    nlohmann::ordered_json info = {
+        {"description", "FinFlex virtual RAS tank (finflex swim)"},
+        {"fish", plan.fish},
+        {"seed", plan.seed},
+        {"fps", plan.fps},
+        {"tank", {{"diameter_m", plan.tank.diameter}, {"depth_m", plan.tank.depth}}}};
+    std::unique_ptr<SwimPictureFiles> files;
+    if (pictures && staging) {
+      files =
+          std::make_unique<SwimPictureFiles>(folder.string(), *pictures, scene, plan.files, info);
+    }
 
     const double dt = 1.0 / plan.fps;
-    std::vector<double> simulation, enqueue, kernels;
+    FrameTimes t;
     nlohmann::ordered_json tracks = nlohmann::ordered_json::array();
     for (const tank::Fish& fish : scene.tank().fish()) {
       tracks.push_back({{"species", scene.species()[fish.species].name},
@@ -188,20 +173,43 @@ int run_swim(const SwimOptions& options) {
                         {"samples", nlohmann::ordered_json::array()}});
     }
     const std::size_t track_every = std::max<std::size_t>(1, std::size_t(std::lround(plan.fps)));
-    const auto start = std::chrono::steady_clock::now();
+    const auto start = Clock::now();
+    Clock::time_point timed_start = start;
     double first_frame = 0.0;
     for (std::size_t f = 0; f < plan.frames; ++f) {
-      const auto frame_start = std::chrono::steady_clock::now();
+      const auto frame_start = Clock::now();
+      const double cpu_start = process_cpu_seconds();
       const tank::FrameWork work = scene.enqueue_frame(dt, true);
-      const double device = bench::span_seconds(work.kernels.front(), work.kernels.back());
+      Clock::time_point step = Clock::now();
+      context.queue().finish();
+      const double wait = seconds_since(step);
+      double hand_off = 0.0, draw = 0.0;
+      PictureFileTimes file_times;
+      if (pictures) {
+        step = Clock::now();
+        pictures->hand_off();
+        hand_off = seconds_since(step);
+        step = Clock::now();
+        pictures->draw();
+        draw = seconds_since(step);
+        if (files) file_times = files->add_frame(f, scene.tank().time());
+      }
       if (f == 0) {
-        // Kernels are built on the first frame (PoCL per work-group shape): apart.
-        first_frame =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - frame_start).count();
+        // Kernels (PoCL per work-group shape) and shaders are built on the first frame.
+        first_frame = seconds_since(frame_start);
+        timed_start = Clock::now();
       } else {
-        simulation.push_back(work.simulation_seconds);
-        enqueue.push_back(work.enqueue_seconds);
-        kernels.push_back(device);
+        t.simulation.push_back(work.simulation_seconds);
+        t.enqueue.push_back(work.enqueue_seconds);
+        t.kernels.push_back(bench::span_seconds(work.kernels.front(), work.kernels.back()));
+        t.wait.push_back(wait);
+        t.hand_off.push_back(hand_off);
+        t.draw.push_back(draw);
+        t.read_back.push_back(file_times.read_back);
+        t.files.push_back(file_times.files);
+        t.annotation.push_back(file_times.annotation);
+        t.total.push_back(seconds_since(frame_start));
+        t.cpu.push_back(process_cpu_seconds() - cpu_start);
       }
       if (f % track_every == 0) {
         const std::vector<tank::Fish>& fish = scene.tank().fish();
@@ -214,14 +222,15 @@ int run_swim(const SwimOptions& options) {
       if (plan.mesh_frames.count(f)) {
         char name[64];
         std::snprintf(name, sizeof name, "tank_frame_%06zu.glb", f);
-        save_mesh((fs::path(options.out) / name).string(), tank_mesh(scene));
+        save_mesh((folder / name).string(), tank_mesh(scene));
       }
       progress(f + 1, plan.frames);
     }
-    const double wall =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double wall = seconds_since(start);
+    const double timed_fps = t.total.empty() ? 0.0 : double(t.total.size()) / sum(t.total);
+    if (files) files->finish();
     const double vertices = double(scene.vertices_per_frame());
-    const double kernel_median = kernels.empty() ? 0.0 : bench::median(kernels);
+    const double kernel_median = t.kernels.empty() ? 0.0 : bench::median(t.kernels);
     std::string census;
     for (const tank::Species& species : scene.species()) {
       census += (census.empty() ? "" : ", ") +
@@ -236,16 +245,44 @@ int run_swim(const SwimOptions& options) {
         "  %.3g M vertices per frame; %.1f frames/s overall (first frame %.2f s with kernel "
         "builds)\n",
         vertices * 1e-6, double(plan.frames) / wall, first_frame);
-    if (!kernels.empty()) {
+    if (!t.kernels.empty()) {
       std::printf(
           "  per frame (median): simulation %.3f ms, upload and launch %.3f ms (host), kernels "
           "%.3f ms (device): %.3g G vertices/s\n",
-          bench::median(simulation) * 1e3, bench::median(enqueue) * 1e3, kernel_median * 1e3,
+          bench::median(t.simulation) * 1e3, bench::median(t.enqueue) * 1e3, kernel_median * 1e3,
           vertices / kernel_median * 1e-9);
+    }
+    nlohmann::ordered_json rendering;
+    if (pictures && !t.total.empty()) {
+      rendering = rendering_summary(plan, *pictures, t, timed_fps);
+      const auto& ms = rendering["seconds_per_frame_mean"];
+      const auto& share = rendering["share_of_frame"];
+      const auto part = [&](const char* name) {
+        char text[64];
+        std::snprintf(text, sizeof text, "%s %.1f ms (%.0f %%)", name, ms[name].get<double>() * 1e3,
+                      share[name].get<double>() * 100.0);
+        return std::string(text);
+      };
+      std::printf("  rendered %dx%d, %dx multisampling, %s camera, on %s: %.2f frames/s\n",
+                  plan.pictures.width, plan.pictures.height, pictures->renderer().device().samples,
+                  pictures::to_string(plan.pictures.view),
+                  pictures->renderer().device().gl_renderer.c_str(), timed_fps);
+      std::printf("  a frame (mean of %zu): %.1f ms (CPU time %.1f ms): %s, %s, %s, %s, %s, %s\n",
+                  t.total.size(), ms["frame"].get<double>() * 1e3,
+                  rendering["cpu_seconds_per_frame_mean"].get<double>() * 1e3,
+                  part("deform").c_str(), part("hand_off").c_str(), part("draw").c_str(),
+                  part("read_back").c_str(), part("files").c_str(), part("annotation").c_str());
+    }
+    if (files) {
+      std::printf("  wrote %zu frame images, %zu videos%s\n", files->images_written(),
+                  plan.files.videos.size(),
+                  plan.files.annotate
+                      ? (", " + std::to_string(files->annotations()) + " annotations").c_str()
+                      : "");
     }
     std::printf("  fish put back inside the water by the tank: %zu times\n",
                 scene.tank().corrections());
-    if (!options.out.empty()) {
+    if (staging) {
       nlohmann::ordered_json summary;
       summary["device"] = context.description().device_name;
       summary["fish"] = plan.fish;
@@ -256,16 +293,19 @@ int run_swim(const SwimOptions& options) {
                          {"depth_m", plan.tank.depth},
                          {"wall_current_m_per_s", plan.tank.wall_current}};
       summary["vertices_per_frame"] = scene.vertices_per_frame();
-      summary["seconds_per_frame_median"] = {{"simulation", bench::median(simulation)},
-                                             {"upload_and_launch", bench::median(enqueue)},
-                                             {"kernels", kernel_median}};
+      summary["seconds_per_frame_median"] = {
+          {"simulation", t.simulation.empty() ? 0.0 : bench::median(t.simulation)},
+          {"upload_and_launch", t.enqueue.empty() ? 0.0 : bench::median(t.enqueue)},
+          {"kernels", kernel_median}};
+      if (!rendering.is_null()) summary["rendering"] = rendering;
       summary["first_frame_seconds"] = first_frame;
       summary["wall_seconds"] = wall;
       summary["corrections"] = scene.tank().corrections();
       summary["track_columns"] = {"time_s", "x_m", "y_m", "z_m", "yaw_rad", "speed_m_per_s"};
       summary["tracks"] = tracks;
-      write_atomically(fs::path(options.out) / "summary.json", summary.dump(1) + "\n");
-      std::printf("  wrote %s\n", (fs::path(options.out) / "summary.json").string().c_str());
+      write_text(folder / "summary.json", summary.dump(1) + "\n");
+      staging->commit();
+      std::printf("  wrote %s\n", options.out.c_str());
     }
     return kExitSuccess;
   } catch (const std::exception& error) {
@@ -290,10 +330,27 @@ Command add_swim_command(CLI::App& app) {
   swim->add_option("--normals", options->normals, "rotate or jacobian")->capture_default_str();
   swim->add_option("--device", options->device,
                    "OpenCL device: 'P:D' indices or a name substring (see finflex info)");
-  swim->add_option("--out", options->out, "Folder for summary.json (and --mesh-frames)");
+  swim->add_option("--out", options->out,
+                   "Folder for summary.json, the frames as PNGs and a video, camera.json "
+                   "(and --mesh-frames, --annotate)");
   swim->add_option("--mesh-frames", options->mesh_frames,
                    "Frames to write as whole-tank meshes (e.g. 0,150,last)");
-  return [options] { return run_swim(*options); };
+  swim->add_option("--size", options->size, "Rendered frames' size, WIDTHxHEIGHT")
+      ->capture_default_str();
+  swim->add_option("--camera", options->camera, "above, oblique or side")->capture_default_str();
+  swim->add_option("--samples", options->samples, "Multisampling of the rendered frames, 1..16")
+      ->capture_default_str();
+  swim->add_option("--image-frames", options->image_frames,
+                   "Frames written as PNGs: all (default), none, or a list (0,150,last)");
+  swim->add_option("--video", options->video,
+                   "auto (MP4 with ffmpeg, else APNG; default), none, or a list of mp4, gif, apng");
+  swim->add_flag("--annotate", options->annotate,
+                 "Also instance masks and COCO annotations of the image frames");
+  swim->add_flag_function(
+      "--render,!--no-render",
+      [options](std::int64_t count) { options->render = count > 0 ? 1 : 0; },
+      "Draw every frame (default with --out); without --out only the timing is printed");
+  return {[options] { plan_of(*options); }, [options] { return run_swim(*options); }};
 }
 
 }  // namespace finflex::cli

@@ -62,6 +62,7 @@ class SwimScene {
   Tank& tank() { return *tank_; }
   const Tank& tank() const { return *tank_; }
   std::vector<Species>& species() { return species_; }
+  const std::vector<Species>& species() const { return species_; }
   // Vertices deformed per frame (all fish).
   std::size_t vertices_per_frame() const;
 

@@ -1,15 +1,16 @@
 /* Reference kernels for the benchmarks (not part of the library's programs): the same
  * NDRange shape and output planes as the deformation kernels (finflex/batch.hpp,
- * kernels/single_bend.cl, kernels/rig.cl), with no arithmetic. write_planes gives the
- * device's write bandwidth; copy_rest reads rest planes and writes them out per
- * instance. Written with scalar stores only, like the deformation kernels, so PoCL
- * vectorises them alike; write_planes honours FF_HALF_NORMALS, FF_TANGENTS,
- * FF_INSTANCES_PER_ITEM (kernels/common/planes.cl) and FF_LANES (kernels/common/lanes.cl:
- * vector stores of FF_LANES slots, kernels/cpu/lane_planes.cl) as they do
- * (NDRange (plane_stride / FF_LANES, ceil(instances / FF_INSTANCES_PER_ITEM))).
+ * kernels/single_bend.cl, kernels/rig.cl), with no arithmetic. write_outputs gives the
+ * device's write bandwidth for the batch's output layout; copy_rest reads rest planes
+ * and writes them out per instance. Written with scalar stores only, like the
+ * deformation kernels, so PoCL vectorises them alike; write_outputs honours the
+ * output layout's options (kernels/common/outputs.cl), FF_INSTANCES_PER_ITEM and
+ * FF_LANES (kernels/common/lanes.cl: vector stores of FF_LANES slots for FinFlex's
+ * float32 planes, kernels/cpu/lane_outputs.cl) as they do
+ * (NDRange (output vertices / FF_LANES, ceil(instances / FF_INSTANCES_PER_ITEM))).
  * Built after the library's common kernel files.
  *
- * FF_VARYING_WRITES (0/1): write_planes writes `value` everywhere (0), or values that
+ * FF_VARYING_WRITES (0/1): write_outputs writes `value` everywhere (0), or values that
  * differ from vertex to vertex and instance to instance (1, a few integer operations):
  * GPUs may compress uniform data on its way to memory and so write it faster than
  * any real output could go. */
@@ -17,10 +18,8 @@
 #define FF_VARYING_WRITES 0
 #endif
 
-__kernel void write_planes(__global float* restrict out_positions,
-                           __global float* restrict out_normals,
-                           __global float* restrict out_tangents, const uint stride,
-                           const uint instances, const float value) {
+__kernel void write_outputs(FF_OUTPUT_ARGUMENTS, const uint vertices, const uint instances,
+                            const float value) {
   const size_t v = FF_FIRST_SLOT;
   const size_t first_instance = get_global_id(1) * FF_INSTANCES_PER_ITEM;
   for (uint k = 0; k < FF_INSTANCES_PER_ITEM; ++k) {
@@ -34,11 +33,12 @@ __kernel void write_planes(__global float* restrict out_positions,
 #else
     const Vec3 filler = vec3(value, value, value);
 #endif
-    store_plane3(out_positions, instance * 3, stride, v, filler);
-    store_direction3(out_normals, instance * 3, stride, v, filler); /* float32 or half */
-#if FF_TANGENTS
-    store_direction3(out_tangents, instance * 3, stride, v, filler);
-#endif
+    /* Every output as the deformation kernels store it (common/outputs.cl); in mesh
+     * order the vertices past the mesh's are padding and write nothing. */
+    if (!FF_MESH_ORDER || v < vertices) {
+      store_outputs(out_positions, out_normals, out_tangents, out_previous, out_layout, instance,
+                    v, filler, filler, filler, 1.0f);
+    }
   }
 }
 

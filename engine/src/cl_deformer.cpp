@@ -8,7 +8,9 @@
 
 #include "cl_deformer_impl.hpp"
 #include "device_profile.hpp"
+#include "finflex/cl_outputs.hpp"
 #include "finflex/error.hpp"
+#include "outputs.hpp"
 #include "rig_program.hpp"
 
 namespace finflex {
@@ -27,12 +29,6 @@ cl_float4 to_cl_float4(const glm::dvec3& v) {
 
 [[noreturn]] void fail_outputs(const std::string& message) {
   throw Error(ErrorCode::kInvalidArgument, "job.outputs", "job.outputs: " + message);
-}
-
-std::size_t buffer_bytes(const cl::Buffer& buffer) {
-  std::size_t bytes = 0;
-  check_cl(buffer.getInfo(CL_MEM_SIZE, &bytes), "clGetMemObjectInfo");
-  return bytes;
 }
 
 }  // namespace
@@ -63,15 +59,25 @@ ClDeformer::Impl::Impl(Context& context_in, const RiggedMesh& model_in, const Cl
     remapped_indices.push_back(slot_of_vertex[index]);
 
   const cl::Context& cl_context = context.context();
+  std::vector<std::uint32_t> vertex_of_slot(slot_count_);
+  for (std::size_t slot = 0; slot < slot_count_; ++slot) {
+    const std::int64_t vertex = slots.vertex_of_slot[slot];
+    vertex_of_slot[slot] = vertex < 0 ? 0xffffffffu : static_cast<std::uint32_t>(vertex);
+    slots_in_mesh_order_ = slots_in_mesh_order_ &&
+                           (slot < model.vertex_count() ? vertex == std::int64_t(slot) : vertex < 0);
+  }
+  vertex_of_slot_ = detail::make_buffer(cl_context, CL_MEM_READ_ONLY,
+                                        slot_count_ * sizeof(std::uint32_t), vertex_of_slot.data());
   const detail::RestPlanes rest = detail::make_rest_planes(model, slots);
   const std::size_t plane_bytes = rest.positions.size() * sizeof(float);
   rest_positions_ =
       detail::make_buffer(cl_context, CL_MEM_READ_ONLY, plane_bytes, rest.positions.data());
   rest_normals_ =
       detail::make_buffer(cl_context, CL_MEM_READ_ONLY, plane_bytes, rest.normals.data());
-  rest_tangents_ = tangents_ ? detail::make_buffer(cl_context, CL_MEM_READ_ONLY, plane_bytes,
-                                                   rest.tangents.data())
-                             : detail::make_buffer(cl_context, CL_MEM_READ_ONLY, sizeof(float));
+  rest_tangents_ =
+      tangents_ ? detail::make_buffer(cl_context, CL_MEM_READ_ONLY,
+                                      rest.tangents.size() * sizeof(float), rest.tangents.data())
+                : detail::make_buffer(cl_context, CL_MEM_READ_ONLY, sizeof(float));
   no_placements_ = detail::make_buffer(cl_context, CL_MEM_READ_ONLY, sizeof(float));
 
   if (single_bend) {
@@ -137,14 +143,36 @@ std::size_t ClDeformer::Impl::per_item(NormalFormat format) const {
              : detail::device_instances_per_item(context.description(), single_bend, format);
 }
 
+// Normals of fewer than 12 bytes (16-bit and octahedral formats) take the work-item
+// shape of half normals.
+std::size_t ClDeformer::Impl::per_item(const OutputLayout& outputs) const {
+  return per_item(format_bytes(outputs.normals.format) < 12 ? NormalFormat::kHalf
+                                                            : NormalFormat::kFloat32);
+}
+
+std::size_t ClDeformer::Impl::output_vertices(VertexOrder order) const {
+  return order == VertexOrder::kMesh ? model.vertex_count() : slot_count_;
+}
+
 std::size_t ClDeformer::Impl::lanes(NormalFormat format) const {
   if (format == NormalFormat::kHalf) return 1;
   return options.lanes ? options.lanes : detail::device_lanes(context.description(), format);
 }
 
-bool ClDeformer::Impl::streams_outputs(const BatchLayout& layout) const {
-  if (lanes(layout.normal_format) == 1) return false;
-  const std::size_t bytes = layout.plane_stride * layout.instance_count * layout.bytes_per_vertex();
+// Lanes store FinFlex's float32 planes only (kernels/cpu/lane_outputs.cl): any other
+// layout takes the one-lane kernels and their store epilogue.
+std::size_t ClDeformer::Impl::lanes(const OutputLayout& outputs) const {
+  return detail::writes_default_planes(outputs, layout(1, NormalFormat::kFloat32))
+             ? lanes(NormalFormat::kFloat32)
+             : 1;
+}
+
+bool ClDeformer::Impl::streams_outputs(const DeviceBatch& batch) const {
+  if (lanes(batch.outputs) == 1) return false;
+  // FinFlex's float32 planes: 12 bytes per attribute, vertex slot and instance.
+  const BatchLayout& counts = batch.layout;
+  const std::size_t bytes = counts.plane_stride * counts.instance_count * 12 *
+                            (batch.outputs.tangents ? 3 : 2);
   return detail::device_streaming_stores(context.description(), options.stores, bytes);
 }
 
@@ -154,40 +182,53 @@ bool ClDeformer::Impl::streams_outputs(const BatchLayout& layout) const {
 void ClDeformer::Impl::check_outputs(const ClJob& job) const {
   const DeviceBatch& batch = *job.outputs;
   const BatchLayout& got = batch.layout;
-  const BatchLayout want = layout(job.parameters.instance_count, got.normal_format);
-  if (batch.serial == 0) fail_outputs("the batch was not allocated (use ClDeformer::allocate)");
-  if (got.vertex_count != want.vertex_count || got.plane_stride != want.plane_stride ||
-      got.tangents != want.tangents) {
-    fail_outputs("the batch is laid out for " + std::to_string(got.vertex_count) + " vertices on " +
-                 std::to_string(got.plane_stride) + " slots" +
-                 (got.tangents ? " with" : " without") + " tangents; this model needs " +
-                 std::to_string(want.vertex_count) + " on " + std::to_string(want.plane_stride) +
-                 (want.tangents ? " with" : " without") +
-                 " tangents (allocate it from this deformer)");
+  if (batch.serial == 0) {
+    fail_outputs("the batch was not made by a deformer (ClDeformer::allocate, bind or bind_host)");
   }
-  if (got.instance_count != want.instance_count) {
+  if (batch.model_id != model.id()) {
+    fail_outputs("the batch was made for another model (make it from this deformer)");
+  }
+  if (got.vertex_count != model.vertex_count() || got.tangents != tangents_) {
+    fail_outputs("the batch is for " + std::to_string(got.vertex_count) + " vertices" +
+                 (got.tangents ? " with" : " without") + " tangents; this model has " +
+                 std::to_string(model.vertex_count()) + (tangents_ ? " with" : " without") +
+                 " tangents (make it from this deformer)");
+  }
+  if (got.instance_count != job.parameters.instance_count) {
     fail_outputs("the batch holds " + std::to_string(got.instance_count) +
-                 " instances, the job's parameters are for " + std::to_string(want.instance_count));
+                 " instances, the job's parameters are for " +
+                 std::to_string(job.parameters.instance_count));
   }
 }
 
-// The buffers themselves, once per batch: a batch put together by hand must hold what
-// its layout says.
+// The layout and its buffers, once per batch: a batch put together by hand must hold
+// what its layout says for this model.
 void ClDeformer::Impl::check_buffer_sizes(const DeviceBatch& batch) {
-  if (batch.serial == validated_serial_) return;
-  const BatchLayout& layout = batch.layout;
-  const std::pair<const char*, std::pair<const cl::Buffer*, std::size_t>> wanted[] = {
-      {"positions", {&batch.positions, detail::position_bytes(layout)}},
-      {"normals", {&batch.normals, detail::direction_bytes(layout)}},
-      {"tangents", {&batch.tangents, layout.tangents ? detail::direction_bytes(layout) : 0}}};
-  for (const auto& [name, buffer] : wanted) {
-    const std::size_t bytes = (*buffer.first)() ? buffer_bytes(*buffer.first) : 0;
-    if (bytes < buffer.second || bytes == 0) {
-      fail_outputs(std::string(name) + " holds " + std::to_string(bytes) + " bytes, the layout " +
-                   std::to_string(buffer.second));
-    }
+  // Checked again when anything the check read has changed since (a batch edited by
+  // hand keeps its serial).
+  const std::array<cl_mem, 4> buffers = {batch.positions(), batch.normals(), batch.tangents(),
+                                         batch.previous_positions()};
+  if (batch.serial == validated_.serial && batch.outputs == validated_.outputs &&
+      buffers == validated_.buffers && batch.layout.instance_count == validated_.instances) {
+    return;
   }
-  validated_serial_ = batch.serial;
+  detail::check_outputs(batch, output_vertices(batch.outputs.order), tangents_, "job.outputs");
+  validated_ = {batch.serial, batch.outputs, buffers, batch.layout.instance_count};
+  if (batch.outputs.order == VertexOrder::kMesh && slots_in_mesh_order_) {
+    // Slot s is mesh vertex s (a plain bend): mesh order is slot order without the
+    // padding, stored without the vertex_of_slot indirection.
+    OutputLayout slot_order = batch.outputs;
+    slot_order.order = VertexOrder::kSlots;
+    batch_options_ = output_build_options(slot_order) +
+                     " -DFF_OUTPUT_LIMIT=" + std::to_string(model.vertex_count());
+  } else {
+    batch_options_ = output_build_options(batch.outputs);
+  }
+  // Lanes (and their kind of store) for this batch: kernels of more than one lane for
+  // FinFlex's float32 planes, the one-lane kernels for any other layout.
+  batch_lanes_ = lanes(batch.outputs);
+  batch_streams_ = streams_outputs(batch);
+  ++generation_;  // kernels take the batch's arguments again
 }
 
 void ClDeformer::Impl::check_shape(const ClJob& job) const {
@@ -208,16 +249,10 @@ void ClDeformer::Impl::check(const ClJob& job) const {
 // Kernels
 
 ClDeformer::Impl::BoundKernel& ClDeformer::Impl::kernel(std::size_t index, const ClJob& job) {
-  const NormalFormat format = job.outputs->layout.normal_format;
   const bool placed = job.placements != nullptr || job.placement_buffer != nullptr;
-  const detail::KernelVariant variant{index,
-                                      job.normals,
-                                      format,
-                                      tangents_,
-                                      per_item(format),
-                                      placed,
-                                      lanes(format),
-                                      streams_outputs(job.outputs->layout)};
+  const detail::KernelVariant variant{index,           job.normals, batch_options_,
+                                      per_item(job.outputs->outputs), placed, batch_lanes_,
+                                      batch_streams_};
   auto found = kernels_.find(variant);
   if (found == kernels_.end()) {
     const std::size_t fused = fused_launches_.size();
@@ -260,10 +295,9 @@ void ClDeformer::Impl::prepare_derived(const ClJob& job, const FrameInputs& inpu
   if (!prepare_()) {
     // From a one-lane build of the program the frame's kernels come from (the same
     // build when they have one lane): it works on instances, not on vertex slots.
-    const NormalFormat format = job.outputs->layout.normal_format;
     const bool placed = job.placements != nullptr || job.placement_buffer != nullptr;
-    const detail::KernelVariant variant{0, job.normals, format, tangents_, per_item(format), placed,
-                                        1};
+    const detail::KernelVariant variant{0, job.normals, batch_options_,
+                                        per_item(job.outputs->outputs), placed, 1};
     prepare_ = context.kernel("rig_prepare", program_, variant.options());
   }
   cl_uint arg = 0;
@@ -284,8 +318,8 @@ void ClDeformer::Impl::prepare_derived(const ClJob& job, const FrameInputs& inpu
 }
 
 // kernels/single_bend.cl's and kernels/rig.cl's arguments, in their order.
-void ClDeformer::Impl::set_arguments(cl::Kernel& kernel, std::size_t index, const ClJob& job,
-                                     const FrameInputs& inputs) const {
+cl_uint ClDeformer::Impl::set_arguments(cl::Kernel& kernel, std::size_t index, const ClJob& job,
+                                        const FrameInputs& inputs) const {
   const DeviceBatch& batch = *job.outputs;
   cl_uint arg = 0;
   auto set = [&](const auto& value) { check_cl(kernel.setArg(arg++, value), "clSetKernelArg"); };
@@ -312,11 +346,16 @@ void ClDeformer::Impl::set_arguments(cl::Kernel& kernel, std::size_t index, cons
   set(batch.positions);
   set(batch.normals);
   set(batch.tangents);
+  set(batch.previous_positions);
+  const cl_uint out_layout = arg;
+  set(output_layout_argument(batch.outputs, batch.frames_written > 0));
+  set(vertex_of_slot_);
   set(static_cast<cl_uint>(slot_count_));
   set(static_cast<cl_uint>(job.parameters.instance_count));
   if (single_bend) {
     for (const cl_float4& value : back_transform_) set(value);
   }
+  return out_layout;
 }
 
 void ClDeformer::Impl::launch(BoundKernel& bound, const ClJob& job, std::size_t first_group,
@@ -326,11 +365,10 @@ void ClDeformer::Impl::launch(BoundKernel& bound, const ClJob& job, std::size_t 
   // profiling (creating events costs host time on some drivers).
   cl::Event own;
   cl::Event* event = done ? done : kernel_events ? &own : nullptr;
-  const NormalFormat format = job.outputs->layout.normal_format;
-  const std::size_t per = per_item(format);
+  const std::size_t per = per_item(job.outputs->outputs);
   // A work-group covers kWorkGroupSize slots whatever the lanes: the rig kernels tell
   // components apart by work-group (kernels/rig.cl).
-  const std::size_t items_per_group = kWorkGroupSize / lanes(format);
+  const std::size_t items_per_group = kWorkGroupSize / batch_lanes_;
   const cl::NDRange offset(first_group * items_per_group, 0);
   const cl::NDRange global((end_group - first_group) * items_per_group,
                            (job.parameters.instance_count + per - 1) / per);
@@ -395,9 +433,11 @@ ClDeformer::Impl::FrameInputs ClDeformer::Impl::upload_inputs(const ClJob& job, 
 
 cl::Event ClDeformer::Impl::enqueue(const ClJob& job, std::vector<cl::Event>* kernel_events,
                                     bool checked) {
-  if (kernel_events) kernel_events->clear();
   if (!checked) check_shape(job);
+  const std::lock_guard<std::mutex> lock(frame_mutex_);
+  if (kernel_events) kernel_events->clear();
   check_buffer_sizes(*job.outputs);
+  if (job.outputs->host_mapped) detail::unmap_host_outputs(context, *job.outputs);
   const std::size_t instances = job.parameters.instance_count;
   const FrameInputs inputs = upload_inputs(job, checked);
 
@@ -414,11 +454,17 @@ cl::Event ClDeformer::Impl::enqueue(const ClJob& job, std::vector<cl::Event>* ke
     BoundKernel& bound = kernel(index, job);
     if (bound.batch_serial != job.outputs->serial || bound.generation != generation_ ||
         bound.parameters != (*inputs.parameters)() || bound.placements != (*inputs.placements)()) {
-      set_arguments(bound.kernel, index, job, inputs);
+      bound.out_layout_argument = set_arguments(bound.kernel, index, job, inputs);
       bound.batch_serial = job.outputs->serial;
       bound.generation = generation_;
       bound.parameters = (*inputs.parameters)();
       bound.placements = (*inputs.placements)();
+    } else if (job.outputs->outputs.previous_positions) {
+      // Whether the positions hold a previous frame changes after the first.
+      check_cl(bound.kernel.setArg(
+                   bound.out_layout_argument,
+                   output_layout_argument(job.outputs->outputs, job.outputs->frames_written > 0)),
+               "clSetKernelArg out_layout");
     }
     launch(bound, job, first_group, end_group, kernel_events, last ? done : nullptr);
   };
@@ -435,6 +481,7 @@ cl::Event ClDeformer::Impl::enqueue(const ClJob& job, std::vector<cl::Event>* ke
   }
   if (!job.parameter_buffer) upload_.used(done);
   if (job.placements) placement_upload_.used(done);
+  ++job.outputs->frames_written;
   return done;
 }
 
@@ -454,7 +501,48 @@ BatchLayout ClDeformer::layout(std::size_t instances, NormalFormat format) const
 }
 
 DeviceBatch ClDeformer::allocate(std::size_t instances, NormalFormat format) const {
-  return detail::allocate_batch(impl_->context, layout(instances, format));
+  DeviceBatch batch = detail::allocate_batch(impl_->context, layout(instances, format));
+  batch.model_id = impl_->model.id();
+  return batch;
+}
+
+std::size_t ClDeformer::output_vertices(VertexOrder order) const {
+  return impl_->output_vertices(order);
+}
+
+OutputLayout ClDeformer::planes_layout(std::size_t instances, NormalFormat format) const {
+  return detail::planes_outputs(layout(instances, format));
+}
+
+DeviceBatch ClDeformer::allocate(std::size_t instances, const OutputLayout& outputs) const {
+  DeviceBatch batch =
+      detail::allocate_outputs(impl_->context, layout(instances, NormalFormat::kFloat32), outputs,
+                               output_vertices(outputs.order));
+  batch.model_id = impl_->model.id();
+  return batch;
+}
+
+DeviceBatch ClDeformer::bind(std::size_t instances, const OutputLayout& outputs,
+                             const OutputBuffers& buffers) const {
+  DeviceBatch batch =
+      detail::bind_outputs(impl_->context, layout(instances, NormalFormat::kFloat32), outputs,
+                           buffers, output_vertices(outputs.order));
+  batch.model_id = impl_->model.id();
+  return batch;
+}
+
+DeviceBatch ClDeformer::bind_host(std::size_t instances, const OutputLayout& outputs,
+                                  const HostOutputs& host) const {
+  DeviceBatch batch =
+      detail::bind_host_outputs(impl_->context, layout(instances, NormalFormat::kFloat32), outputs,
+                                host, output_vertices(outputs.order));
+  batch.model_id = impl_->model.id();
+  return batch;
+}
+
+void ClDeformer::map_host(DeviceBatch& batch) { detail::map_host_outputs(impl_->context, batch); }
+void ClDeformer::unmap_host(DeviceBatch& batch) {
+  detail::unmap_host_outputs(impl_->context, batch);
 }
 
 cl::Event ClDeformer::enqueue(const ClJob& job, std::vector<cl::Event>* kernel_events) {
@@ -464,8 +552,10 @@ cl::Event ClDeformer::enqueue(const ClJob& job, std::vector<cl::Event>* kernel_e
 void ClDeformer::check(const ClJob& job) const { impl_->check(job); }
 
 DeformedBatch<float> ClDeformer::read(const DeviceBatch& batch) {
-  DeformedBatch<float> out = detail::read_batch(impl_->context, batch);
-  out.slot_of_vertex = impl_->slot_of_vertex;
+  const VertexOrder order = batch.outputs.order;
+  DeformedBatch<float> out =
+      detail::read_outputs(impl_->context, batch, impl_->output_vertices(order));
+  if (order == VertexOrder::kSlots) out.slot_of_vertex = impl_->slot_of_vertex;
   return out;
 }
 
@@ -482,9 +572,13 @@ RigPath ClDeformer::automatic_path() const { return impl_->automatic_path; }
 std::size_t ClDeformer::instances_per_item(NormalFormat format) const {
   return impl_->per_item(format);
 }
+std::size_t ClDeformer::instances_per_item(const OutputLayout& outputs) const {
+  return impl_->per_item(outputs);
+}
 std::size_t ClDeformer::lanes(NormalFormat format) const { return impl_->lanes(format); }
-bool ClDeformer::streams_outputs(const BatchLayout& layout) const {
-  return impl_->streams_outputs(layout);
+std::size_t ClDeformer::lanes(const OutputLayout& outputs) const { return impl_->lanes(outputs); }
+bool ClDeformer::streams_outputs(const DeviceBatch& batch) const {
+  return impl_->streams_outputs(batch);
 }
 
 }  // namespace finflex

@@ -5,6 +5,8 @@
 #include <array>
 #include <cstdint>
 #include <map>
+#include <mutex>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -21,13 +23,21 @@ class ClDeformer::Impl {
 
   // enqueue() and check() of the public class. `checked`: the caller has run check()
   // on this job already (RigFrame), so unclamped values are copied, not checked again.
+  // enqueue() holds frame_mutex_ from its checks to its last launch; check() reads
+  // only what is fixed at construction.
   cl::Event enqueue(const ClJob& job, std::vector<cl::Event>* kernel_events, bool checked);
   void check(const ClJob& job) const;
 
   BatchLayout layout(std::size_t instances, NormalFormat format) const;
   std::size_t per_item(NormalFormat format) const;
+  std::size_t per_item(const OutputLayout& outputs) const;
+  // The outputs' vertex count in `order`: slots, or the mesh's vertices.
+  std::size_t output_vertices(VertexOrder order) const;
+  // Lanes for FinFlex's planes in `format`, and for a batch's outputs (1 unless they
+  // are FinFlex's float32 planes: ClOptions::lanes); streaming stores for a batch.
   std::size_t lanes(NormalFormat format) const;
-  bool streams_outputs(const BatchLayout& layout) const;
+  std::size_t lanes(const OutputLayout& outputs) const;
+  bool streams_outputs(const DeviceBatch& batch) const;
 
   Context& context;
   const RiggedMesh model;
@@ -48,6 +58,7 @@ class ClDeformer::Impl {
     std::uint64_t generation = 0;
     cl_mem parameters = nullptr;
     cl_mem placements = nullptr;
+    cl_uint out_layout_argument = 0;  // its index (reset every frame with previous positions)
   };
 
   // A frame's inputs on the device: the deformer's uploads or the job's own buffers.
@@ -59,6 +70,7 @@ class ClDeformer::Impl {
   const detail::ParameterChecker checker_;
   bool tangents_ = false;
   std::size_t slot_count_ = 0;
+  bool slots_in_mesh_order_ = true;  // slot s holds mesh vertex s, padding after
   cl::Buffer rest_positions_, rest_normals_, rest_tangents_;
   cl::Buffer stages_, group_paths_;
   ProgramSource program_;
@@ -69,10 +81,15 @@ class ClDeformer::Impl {
   std::vector<std::pair<std::size_t, std::size_t>> fused_launches_;
   std::size_t scratch_sets_ = 0;
 
+  // The per-frame state below (staging ring, device parameter buffer, scratch sets,
+  // kernels and the arguments they were set up with) belongs to one frame at a time:
+  // a frame sets kernel arguments and enqueues its upload and launches under this
+  // lock, so frames from several threads reach the in-order queue whole.
+  std::mutex frame_mutex_;
   detail::ParameterUpload upload_;
   detail::ParameterUpload placement_upload_;  // world placement records (16 floats each)
   cl::Buffer no_placements_;                  // the kernels' argument when nothing is placed
-  std::vector<cl::Buffer> scratch_;  // 3 per set: positions, normals, tangents
+  std::vector<cl::Buffer> scratch_;           // 3 per set: positions, normals, tangents
   std::size_t scratch_instances_ = 0;
   // Derived values (DeformerType::derived_count): per instance, written by rig_prepare.
   std::size_t derived_per_instance_ = 0;
@@ -82,7 +99,19 @@ class ClDeformer::Impl {
   // Bumped whenever the parameter buffer or the scratch sets are replaced: kernels set
   // up for an older generation get their arguments again.
   std::uint64_t generation_ = 1;
-  std::uint64_t validated_serial_ = 0;
+  // The batch the last check passed, as it was then.
+  struct ValidatedBatch {
+    std::uint64_t serial = 0;
+    OutputLayout outputs;
+    std::array<cl_mem, 4> buffers{};
+    std::size_t instances = 0;
+  };
+  ValidatedBatch validated_;
+  std::string batch_options_;  // output_build_options() of the batch validated last
+  std::size_t batch_lanes_ = 1;  // lanes(outputs) of the batch validated last
+  bool batch_streams_ = false;   // streams_outputs() of the batch validated last
+  // Per slot its mesh vertex (0xffffffff for padding): outputs in mesh order.
+  cl::Buffer vertex_of_slot_;
   std::map<detail::KernelVariant, BoundKernel> kernels_;
 
   // The job's fields, its model and its outputs (not its values).
@@ -97,8 +126,9 @@ class ClDeformer::Impl {
                        std::vector<cl::Event>* kernel_events);
   void launch(BoundKernel& bound, const ClJob& job, std::size_t first_group, std::size_t end_group,
               std::vector<cl::Event>* kernel_events, cl::Event* done);
-  void set_arguments(cl::Kernel& kernel, std::size_t index, const ClJob& job,
-                     const FrameInputs& inputs) const;
+  // Returns the index of the out_layout argument.
+  cl_uint set_arguments(cl::Kernel& kernel, std::size_t index, const ClJob& job,
+                        const FrameInputs& inputs) const;
 };
 
 }  // namespace finflex

@@ -122,7 +122,11 @@ std::vector<DeviceDescription> list_devices() {
   return out;
 }
 
-Context::Context(const std::string& device) {
+Context::Context(const std::string& device) : Context(device, {}) {}
+
+Context::Context(const std::string& device,
+                 const std::vector<cl_context_properties>& extra_properties)
+    : extra_properties_(extra_properties) {
   const std::vector<FoundDevice> found = enumerate_devices();
   if (found.empty()) {
     throw Error(
@@ -143,7 +147,17 @@ Context::Context(const std::string& device) {
   description_ = chosen->description;
   device_ = chosen->device;
   cl_int status = CL_SUCCESS;
-  context_ = cl::Context(device_, nullptr, nullptr, nullptr, &status);
+  if (extra_properties.empty()) {
+    context_ = cl::Context(device_, nullptr, nullptr, nullptr, &status);
+  } else {
+    cl_platform_id platform = nullptr;
+    check_cl(device_.getInfo(CL_DEVICE_PLATFORM, &platform), "clGetDeviceInfo");
+    std::vector<cl_context_properties> properties = {
+        CL_CONTEXT_PLATFORM, reinterpret_cast<cl_context_properties>(platform)};
+    properties.insert(properties.end(), extra_properties.begin(), extra_properties.end());
+    properties.push_back(0);
+    context_ = cl::Context(device_, properties.data(), nullptr, nullptr, &status);
+  }
   check_cl(status, "clCreateContext");
   queue_ = cl::CommandQueue(context_, device_, CL_QUEUE_PROFILING_ENABLE, &status);
   check_cl(status, "clCreateCommandQueue");
@@ -151,8 +165,10 @@ Context::Context(const std::string& device) {
 
 const std::vector<std::string>& common_kernel_files() {
   static const std::vector<std::string> files = {
-      "common/lanes.cl",  "common/vec3.cl",     "common/trig.cl",        "common/secant.cl",
-      "common/planes.cl", "cpu/lane_planes.cl", "common/stage_frame.cl", "common/placement.cl"};
+      "common/lanes.cl",   "common/vec3.cl",        "common/trig.cl",
+      "common/secant.cl",  "common/planes.cl",      "cpu/lane_planes.cl",
+      "common/outputs.cl", "cpu/lane_outputs.cl",   "common/stage_frame.cl",
+      "common/placement.cl"};
   return files;
 }
 

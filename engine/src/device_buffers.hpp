@@ -1,5 +1,5 @@
 // Device buffers of the OpenCL backend: allocation within the device's limits, the
-// outputs of a batch, the per-frame parameter upload, and the blocking read-back.
+// default outputs of a batch, and the per-frame parameter upload.
 #pragma once
 
 #include <array>
@@ -18,9 +18,13 @@ namespace finflex::detail {
 cl::Buffer make_buffer(const cl::Context& context, cl_mem_flags flags, std::size_t bytes,
                        const void* host = nullptr);
 
-// The outputs of `layout`, one buffer per attribute. kInvalidArgument for no
-// instances, kOutOfRange naming "instances" above the device's largest allocation.
+// The outputs of `layout` in FinFlex's planes, one buffer per attribute.
+// kInvalidArgument for no instances, kOutOfRange naming "instances" above the device's
+// largest allocation.
 DeviceBatch allocate_batch(Context& context, const BatchLayout& layout);
+
+// A buffer over the caller's host memory (CL_MEM_USE_HOST_PTR).
+cl::Buffer make_buffer_over(const cl::Context& context, void* host, std::size_t bytes);
 
 // Bytes the outputs of `layout` need per attribute: positions, and normals and
 // tangents (in the layout's normal format).
@@ -70,7 +74,5 @@ class ParameterUpload {
   std::size_t device_values_ = 0;
 };
 
-// Blocking read of a batch's outputs (slot order).
-DeformedBatch<float> read_batch(Context& context, const DeviceBatch& batch);
 
 }  // namespace finflex::detail

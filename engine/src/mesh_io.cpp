@@ -17,6 +17,7 @@
 #include <new>
 #include <random>
 #include <string>
+#include <string_view>
 #include <system_error>
 
 #include "finflex/error.hpp"
@@ -57,8 +58,9 @@ std::string supported_extensions() {
   return list;
 }
 
-// The format named by the path's extension, compared case-insensitively.
-MeshFormat format_of(const std::string& path) {
+// The format named by the path's extension, compared case-insensitively; throws
+// kFormat (the message does not name the path).
+MeshFormat format_of_unquoted(const std::string& path) {
   std::string extension = fs::path(path).extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
@@ -67,28 +69,73 @@ MeshFormat format_of(const std::string& path) {
   }
   const std::string found =
       extension.empty() ? "no extension" : "unsupported extension '" + extension + "'";
-  throw Error(ErrorCode::kFormat, "path",
-              quoted(path) + ": " + found + " (supported: " + supported_extensions() + ")");
+  throw Error(ErrorCode::kFormat, "path", found + " (supported: " + supported_extensions() + ")");
+}
+
+// format_of_unquoted, with the path in front of the message.
+MeshFormat format_of(const std::string& path) {
+  try {
+    return format_of_unquoted(path);
+  } catch (const Error& error) {
+    rethrow_with_path(error, path);
+  }
 }
 
 bool is_gltf(MeshFormat format) {
   return format == MeshFormat::kGltf || format == MeshFormat::kGlb;
 }
 
-// Throws kIo unless `path` is an existing regular file we can open, kFormat if it
-// is empty.
-void check_readable(const std::string& path) {
-  std::error_code ec;
-  const fs::file_status status = fs::status(path, ec);
-  if (status.type() == fs::file_type::not_found) throw_io(path, "file does not exist");
-  if (ec) throw_io(path, "cannot access the file: " + ec.message());
-  if (fs::is_directory(status)) throw_io(path, "is a directory, not a mesh file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw_io(path, "cannot open the file for reading: " + std::string(std::strerror(errno)));
-  if (in.peek() == std::ifstream::traits_type::eof()) {
-    throw Error(ErrorCode::kFormat, "path", quoted(path) + ": the file is empty");
+}  // namespace
+
+namespace io {
+
+const char* format_name(MeshFormat format) {
+  switch (format) {
+    case MeshFormat::kObj:
+      return "OBJ";
+    case MeshFormat::kPly:
+      return "PLY";
+    case MeshFormat::kOff:
+      return "OFF";
+    case MeshFormat::kStl:
+      return "STL";
+    case MeshFormat::kGltf:
+      return "glTF";
+    case MeshFormat::kGlb:
+      return "GLB";
   }
+  return "?";
 }
+
+Mesh read_mesh_bytes(std::string_view bytes, MeshFormat format, const std::string& base_dir) {
+  if (bytes.empty()) throw Error(ErrorCode::kFormat, "path", "the file is empty");
+  Mesh mesh;
+  switch (format) {
+    case MeshFormat::kObj:
+      mesh = read_obj(bytes);
+      break;
+    case MeshFormat::kPly:
+      mesh = read_ply(bytes);
+      break;
+    case MeshFormat::kOff:
+      mesh = read_off(bytes);
+      break;
+    case MeshFormat::kStl:
+      mesh = read_stl(bytes);
+      break;
+    case MeshFormat::kGltf:
+    case MeshFormat::kGlb:
+      mesh = read_gltf(bytes, base_dir);
+      break;
+  }
+  if (!mesh.has_normals()) compute_vertex_normals(mesh);
+  validate_mesh(mesh);
+  return mesh;
+}
+
+}  // namespace io
+
+namespace {
 
 // ---------------------------------------------------------------------------------
 // Atomic write
@@ -191,18 +238,22 @@ void write_atomically(const std::string& path, const std::function<void(std::ost
 }  // namespace
 
 Mesh load_mesh(const std::string& path) {
-  const MeshFormat format = format_of(path);
-  check_readable(path);
+  std::string bytes;
+  MeshFormat format = MeshFormat::kObj;
   try {
-    Mesh mesh = is_gltf(format) ? io::read_gltf(path, format) : io::read_openmesh(path, format);
-    if (!mesh.has_normals()) compute_vertex_normals(mesh);
-    validate_mesh(mesh);
-    return mesh;
+    io::require_regular_file(path);  // first: a device or FIFO is refused whatever its name
+    format = format_of_unquoted(path);
+    bytes = io::read_regular_file(path);
+  } catch (const Error& error) {
+    rethrow_with_path(error, path);
+  }
+  const std::string base_dir = fs::path(path).parent_path().string();
+  try {
+    return io::read_mesh_bytes(bytes, format, base_dir);
   } catch (const Error& error) {
     rethrow_with_path(error, path);
   } catch (const std::bad_alloc&) {
-    throw Error(ErrorCode::kFormat, "path",
-                quoted(path) + ": out of memory while reading (corrupt element counts?)");
+    throw Error(ErrorCode::kFormat, "path", quoted(path) + ": out of memory while reading");
   } catch (const std::exception& error) {
     throw Error(ErrorCode::kFormat, "path", quoted(path) + ": cannot parse: " + error.what());
   }

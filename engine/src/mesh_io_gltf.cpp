@@ -1,31 +1,28 @@
-// glTF 2.0 (.gltf) and GLB (.glb) through tinygltf.
+// glTF 2.0 (.gltf) and GLB (.glb) reading: the scene flattened into one Mesh.
 //
-// Reading flattens the scene into one Mesh: every node that carries a mesh adds the
-// TRIANGLES primitives of that mesh, in depth-first node order, transformed to world
-// space; each primitive becomes a FaceGroup named "<mesh name or index>/<primitive
-// index>". Writing produces one mesh, one primitive, one node without transform.
-#include <tiny_gltf.h>  // implementation compiled into libtinygltf (Debian package)
-
+// Every node that carries a mesh adds the TRIANGLES primitives of that mesh, in
+// depth-first node order (scene_nodes), transformed to world space; each primitive
+// becomes a FaceGroup named "<mesh name or index>/<primitive index>". The work is
+// bounded by the input's size: at most kPlacedElementsPerInputByte vertices, indices
+// and group-name bytes per byte of input, however often nodes instance a mesh.
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
-#include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "finflex/error.hpp"
 #include "mesh_io_formats.hpp"
+#include "mesh_io_gltf.hpp"
+#include "mesh_io_text.hpp"
 
 namespace finflex::io {
 namespace {
-
-// ---------------------------------------------------------------------------------
-// Errors
 
 [[noreturn]] void throw_format(const std::string& field, const std::string& message) {
   throw Error(ErrorCode::kFormat, field, field + ": " + message);
@@ -33,48 +30,6 @@ namespace {
 
 std::string indexed(const std::string& array, std::size_t index) {
   return array + "[" + std::to_string(index) + "]";
-}
-
-const char* component_type_name(int component_type) {
-  switch (component_type) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE:
-      return "byte";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-      return "unsigned byte";
-    case TINYGLTF_COMPONENT_TYPE_SHORT:
-      return "short";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-      return "unsigned short";
-    case TINYGLTF_COMPONENT_TYPE_INT:
-      return "int";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-      return "unsigned int";
-    case TINYGLTF_COMPONENT_TYPE_FLOAT:
-      return "float";
-    default:
-      return "unknown";
-  }
-}
-
-const char* type_name(int type) {
-  switch (type) {
-    case TINYGLTF_TYPE_SCALAR:
-      return "SCALAR";
-    case TINYGLTF_TYPE_VEC2:
-      return "VEC2";
-    case TINYGLTF_TYPE_VEC3:
-      return "VEC3";
-    case TINYGLTF_TYPE_VEC4:
-      return "VEC4";
-    case TINYGLTF_TYPE_MAT2:
-      return "MAT2";
-    case TINYGLTF_TYPE_MAT3:
-      return "MAT3";
-    case TINYGLTF_TYPE_MAT4:
-      return "MAT4";
-    default:
-      return "unknown";
-  }
 }
 
 const char* mode_name(int mode) {
@@ -98,190 +53,11 @@ const char* mode_name(int mode) {
   }
 }
 
-// ---------------------------------------------------------------------------------
-// Accessors
-
-// Where an accessor's elements lie: element i, component c starts at
-// data + i * stride + c * component_size. data is null for an accessor without
-// bufferView (all zeros, as the spec says).
-struct AccessorView {
-  const unsigned char* data = nullptr;
-  std::size_t count = 0;
-  std::size_t stride = 0;
-  std::size_t component_size = 0;
-  int component_type = 0;
-  int components = 0;
-  bool normalized = false;
-};
-
-// Resolves accessor `index` with bounds checks against its bufferView and buffer.
-// `field` names the referring property (e.g. "meshes[0].primitives[1].NORMAL").
-AccessorView view_accessor(const tinygltf::Model& model, int index, int expected_type,
-                           const std::string& field) {
-  if (index < 0 || static_cast<std::size_t>(index) >= model.accessors.size()) {
-    throw_format(field, "accessor " + std::to_string(index) + " does not exist (" +
-                            std::to_string(model.accessors.size()) + " accessors)");
-  }
-  const tinygltf::Accessor& accessor = model.accessors[static_cast<std::size_t>(index)];
-  const std::string where = "accessor " + std::to_string(index);
-  if (accessor.sparse.isSparse) {
-    throw_format(field, where + " is sparse (sparse accessors are not supported)");
-  }
-  if (accessor.type != expected_type) {
-    throw_format(field, where + " has type " + type_name(accessor.type) + ", expected " +
-                            type_name(expected_type));
-  }
-  const int component_size =
-      tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(accessor.componentType));
-  if (component_size <= 0 || accessor.componentType == TINYGLTF_COMPONENT_TYPE_DOUBLE) {
-    throw_format(field,
-                 where + " has unknown componentType " + std::to_string(accessor.componentType));
-  }
-  AccessorView view;
-  view.count = accessor.count;
-  view.component_type = accessor.componentType;
-  view.components = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(expected_type));
-  view.component_size = static_cast<std::size_t>(component_size);
-  view.normalized = accessor.normalized;
-  const std::size_t element_size = view.component_size * static_cast<std::size_t>(view.components);
-  if (accessor.bufferView < 0) {  // no data: zeros
-    view.stride = element_size;
-    return view;
-  }
-  if (static_cast<std::size_t>(accessor.bufferView) >= model.bufferViews.size()) {
-    throw_format(field, where + " refers to bufferView " + std::to_string(accessor.bufferView) +
-                            ", which does not exist");
-  }
-  const tinygltf::BufferView& buffer_view =
-      model.bufferViews[static_cast<std::size_t>(accessor.bufferView)];
-  if (buffer_view.buffer < 0 ||
-      static_cast<std::size_t>(buffer_view.buffer) >= model.buffers.size()) {
-    throw_format(field, "bufferView " + std::to_string(accessor.bufferView) + " refers to buffer " +
-                            std::to_string(buffer_view.buffer) + ", which does not exist");
-  }
-  const std::vector<unsigned char>& bytes =
-      model.buffers[static_cast<std::size_t>(buffer_view.buffer)].data;
-  if (buffer_view.byteOffset > bytes.size() ||
-      buffer_view.byteLength > bytes.size() - buffer_view.byteOffset) {
-    throw_format(field, "bufferView " + std::to_string(accessor.bufferView) + " (byteOffset " +
-                            std::to_string(buffer_view.byteOffset) + ", byteLength " +
-                            std::to_string(buffer_view.byteLength) + ") exceeds its buffer of " +
-                            std::to_string(bytes.size()) + " bytes");
-  }
-  view.stride = buffer_view.byteStride != 0 ? buffer_view.byteStride : element_size;
-  if (view.stride < element_size) {
-    throw_format(field, "bufferView " + std::to_string(accessor.bufferView) + " byteStride " +
-                            std::to_string(view.stride) + " is smaller than the element (" +
-                            std::to_string(element_size) + " bytes)");
-  }
-  if (view.count > 0) {
-    const std::size_t available = buffer_view.byteLength;
-    const bool fits =
-        accessor.byteOffset <= available &&
-        (view.count - 1) <= (available - accessor.byteOffset) / view.stride &&
-        accessor.byteOffset + (view.count - 1) * view.stride + element_size <= available;
-    if (!fits) {
-      throw_format(field, where + " (byteOffset " + std::to_string(accessor.byteOffset) +
-                              ", count " + std::to_string(view.count) + ", stride " +
-                              std::to_string(view.stride) + ") exceeds bufferView " +
-                              std::to_string(accessor.bufferView) + " of " +
-                              std::to_string(available) + " bytes");
-    }
-  }
-  view.data = bytes.data() + buffer_view.byteOffset + accessor.byteOffset;
-  return view;
+bool is_finite(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
-template <typename T>
-T load_component(const AccessorView& view, std::size_t element, int component) {
-  T value;
-  std::memcpy(
-      &value,
-      view.data + element * view.stride + static_cast<std::size_t>(component) * view.component_size,
-      sizeof(T));
-  return value;
-}
-
-// Throws kInvalidMesh for the first non-finite value, naming the accessor element
-// (e.g. "meshes[0].primitives[0].POSITION[1].y"): checked before any transform,
-// which would smear a NaN over all components.
-void check_finite(const std::vector<float>& values, int components, const std::string& field) {
-  const char* const names = components == 2 ? "uv" : "xyzw";
-  for (std::size_t i = 0; i < values.size(); ++i) {
-    if (std::isfinite(values[i])) continue;
-    const std::size_t n = static_cast<std::size_t>(components);
-    const std::string element = indexed(field, i / n) + "." + names[i % n];
-    throw Error(ErrorCode::kInvalidMesh, element,
-                element + " is " +
-                    (std::isnan(values[i]) ? "NaN"
-                     : values[i] > 0       ? "+inf"
-                                           : "-inf"));
-  }
-}
-
-// Reads a float attribute as count * components floats. Float components always;
-// with `allow_normalized`, also normalized unsigned byte / short (mapped to [0, 1]).
-// Non-finite values are rejected (check_finite).
-std::vector<float> read_floats(const tinygltf::Model& model, int index, int type,
-                               bool allow_normalized, const std::string& field) {
-  const AccessorView view = view_accessor(model, index, type, field);
-  const bool is_float = view.component_type == TINYGLTF_COMPONENT_TYPE_FLOAT;
-  const bool is_unorm = allow_normalized && view.normalized &&
-                        (view.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
-                         view.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
-  if (!is_float && !is_unorm) {
-    throw_format(field, "accessor " + std::to_string(index) + " has componentType " +
-                            component_type_name(view.component_type) +
-                            (view.normalized ? " (normalized)" : "") + ", expected float" +
-                            (allow_normalized ? " or normalized unsigned byte/short" : ""));
-  }
-  std::vector<float> values(view.count * static_cast<std::size_t>(view.components), 0.0f);
-  if (view.data == nullptr) return values;
-  std::size_t out = 0;
-  for (std::size_t i = 0; i < view.count; ++i) {
-    for (int c = 0; c < view.components; ++c, ++out) {
-      if (is_float) {
-        values[out] = load_component<float>(view, i, c);
-      } else if (view.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) {
-        values[out] = static_cast<float>(load_component<std::uint8_t>(view, i, c)) / 255.0f;
-      } else {
-        values[out] = static_cast<float>(load_component<std::uint16_t>(view, i, c)) / 65535.0f;
-      }
-    }
-  }
-  check_finite(values, view.components, field);
-  return values;
-}
-
-// Reads an index accessor of unsigned byte, short or int components.
-std::vector<std::uint32_t> read_indices(const tinygltf::Model& model, int index,
-                                        const std::string& field) {
-  const AccessorView view = view_accessor(model, index, TINYGLTF_TYPE_SCALAR, field);
-  const int type = view.component_type;
-  if (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-      type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-      type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
-    throw_format(field, "accessor " + std::to_string(index) + " has componentType " +
-                            component_type_name(type) + ", expected unsigned byte, short or int");
-  }
-  std::vector<std::uint32_t> indices(view.count, 0);
-  if (view.data == nullptr) return indices;
-  for (std::size_t i = 0; i < view.count; ++i) {
-    if (type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) {
-      indices[i] = load_component<std::uint8_t>(view, i, 0);
-    } else if (type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
-      indices[i] = load_component<std::uint16_t>(view, i, 0);
-    } else {
-      indices[i] = load_component<std::uint32_t>(view, i, 0);
-    }
-  }
-  return indices;
-}
-
-// ---------------------------------------------------------------------------------
-// Scene flattening
-
-// Unit vector along v, or v itself if it has zero length (validation reports it).
+// Unit vector along v, or v itself if it has zero length.
 glm::dvec3 normalized_or_same(const glm::dvec3& v) {
   const double length = glm::length(v);
   return length > 0.0 ? v / length : v;
@@ -323,7 +99,7 @@ struct Part {
   std::string group;  // its FaceGroup's name: "<mesh name or index>/<primitive index>"
 };
 
-Part read_primitive(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
+Part read_primitive(const LoadedGltf& gltf, const tinygltf::Primitive& primitive,
                     const Transform& transform, const std::string& field) {
   if (primitive.mode != TINYGLTF_MODE_TRIANGLES) {
     throw_format(field, std::string("mode ") + std::to_string(primitive.mode) + " (" +
@@ -332,7 +108,7 @@ Part read_primitive(const tinygltf::Model& model, const tinygltf::Primitive& pri
   const int position_accessor = find_attribute(primitive, "POSITION");
   if (position_accessor < 0) throw_format(field, "has no POSITION attribute");
   const std::vector<float> positions =
-      read_floats(model, position_accessor, TINYGLTF_TYPE_VEC3, false, field + ".POSITION");
+      read_floats(gltf, position_accessor, TINYGLTF_TYPE_VEC3, false, field + ".POSITION");
   const std::size_t n = positions.size() / 3;
 
   Part part;
@@ -340,35 +116,54 @@ Part read_primitive(const tinygltf::Model& model, const tinygltf::Primitive& pri
   mesh.positions.reserve(n);
   for (std::size_t i = 0; i < n; ++i) {
     const glm::dvec4 p(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2], 1.0);
-    mesh.positions.emplace_back(glm::dvec3(transform.world * p));
+    const glm::vec3 placed(glm::dvec3(transform.world * p));
+    if (!is_finite(placed)) {
+      throw Error(ErrorCode::kInvalidMesh, field + ".POSITION",
+                  indexed(field + ".POSITION", i) +
+                      ": the node's transform takes it outside the float range");
+    }
+    mesh.positions.push_back(placed);
   }
 
   if (const int a = find_attribute(primitive, "NORMAL"); a >= 0) {
     const std::vector<float> normals =
-        read_floats(model, a, TINYGLTF_TYPE_VEC3, false, field + ".NORMAL");
+        read_floats(gltf, a, TINYGLTF_TYPE_VEC3, false, field + ".NORMAL");
     check_count(normals, 3, n, field + ".NORMAL");
     mesh.normals.reserve(n);
     for (std::size_t i = 0; i < n; ++i) {
       const glm::dvec3 v(normals[3 * i], normals[3 * i + 1], normals[3 * i + 2]);
-      mesh.normals.emplace_back(normalized_or_same(transform.normal_matrix * v));
+      const glm::vec3 unit(normalized_or_same(transform.normal_matrix * v));
+      if (!is_finite(unit) || unit == glm::vec3(0.0f)) {
+        const std::string element = indexed(field + ".NORMAL", i);
+        throw Error(
+            ErrorCode::kInvalidMesh, element,
+            element + (unit == glm::vec3(0.0f) ? " has zero length"
+                                               : ": the node's transform makes it non-finite"));
+      }
+      mesh.normals.push_back(unit);
     }
   }
   if (const int a = find_attribute(primitive, "TANGENT"); a >= 0) {
     const std::vector<float> tangents =
-        read_floats(model, a, TINYGLTF_TYPE_VEC4, false, field + ".TANGENT");
+        read_floats(gltf, a, TINYGLTF_TYPE_VEC4, false, field + ".TANGENT");
     check_count(tangents, 4, n, field + ".TANGENT");
     mesh.tangents.reserve(n);
     const float sign = transform.mirrors ? -1.0f : 1.0f;
     for (std::size_t i = 0; i < n; ++i) {
       const glm::dvec3 t(tangents[4 * i], tangents[4 * i + 1], tangents[4 * i + 2]);
       const glm::vec3 xyz(normalized_or_same(transform.linear * t));
+      if (!is_finite(xyz)) {
+        const std::string element = indexed(field + ".TANGENT", i);
+        throw Error(ErrorCode::kInvalidMesh, element,
+                    element + ": the node's transform makes it non-finite");
+      }
       mesh.tangents.emplace_back(xyz, sign * tangents[4 * i + 3]);
     }
     part.has_tangents = true;
   }
   if (const int a = find_attribute(primitive, "TEXCOORD_0"); a >= 0) {
     const std::vector<float> texcoords =
-        read_floats(model, a, TINYGLTF_TYPE_VEC2, true, field + ".TEXCOORD_0");
+        read_floats(gltf, a, TINYGLTF_TYPE_VEC2, true, field + ".TEXCOORD_0");
     check_count(texcoords, 2, n, field + ".TEXCOORD_0");
     mesh.texcoords.reserve(n);
     for (std::size_t i = 0; i < n; ++i) {
@@ -378,7 +173,7 @@ Part read_primitive(const tinygltf::Model& model, const tinygltf::Primitive& pri
   }
 
   if (primitive.indices >= 0) {
-    mesh.indices = read_indices(model, primitive.indices, field + ".indices");
+    mesh.indices = read_indices(gltf, primitive.indices, field + ".indices");
   } else {  // non-indexed: vertices 0, 1, 2, ... in order
     mesh.indices.resize(n);
     for (std::size_t i = 0; i < n; ++i) mesh.indices[i] = static_cast<std::uint32_t>(i);
@@ -422,92 +217,96 @@ glm::dmat4 local_matrix(const tinygltf::Node& node, const std::string& field) {
   if (!node.translation.empty()) m = glm::translate(m, glm::make_vec3(node.translation.data()));
   if (!node.rotation.empty()) {
     const std::vector<double>& r = node.rotation;  // glTF: x, y, z, w
-    m *= glm::mat4_cast(glm::normalize(glm::dquat(r[3], r[0], r[1], r[2])));
+    const glm::dquat q(r[3], r[0], r[1], r[2]);
+    // glm would turn a zero quaternion into the identity without a word.
+    if (!(glm::length(q) > 0.0)) {
+      throw_format(field + ".rotation", "is not a rotation (a quaternion of zero length)");
+    }
+    m *= glm::mat4_cast(glm::normalize(q));
   }
   if (!node.scale.empty()) m = glm::scale(m, glm::make_vec3(node.scale.data()));
   return m;
 }
 
-// Depth-first flattening of the node hierarchy into parts, in traversal order.
+// Throws unless `world`, the transform of nodes[node] that places a mesh, is finite
+// and invertible (normals go through its inverse transpose).
+void check_transform(const glm::dmat4& world, std::size_t node) {
+  const std::string field = indexed("nodes", node);
+  for (int c = 0; c < 4; ++c) {
+    for (int r = 0; r < 4; ++r) {
+      if (!std::isfinite(world[c][r])) {
+        throw_format(field, "its transform (with its ancestors') is not finite");
+      }
+    }
+  }
+  if (glm::determinant(glm::dmat3(world)) == 0.0) {
+    throw_format(field, "its transform (with its ancestors') is singular (determinant 0)");
+  }
+}
+
+// Flattens the scene into parts, node by node in scene_nodes() order.
 class SceneFlattener {
  public:
-  explicit SceneFlattener(const tinygltf::Model& model)
-      : model_(model), on_path_(model.nodes.size(), false) {}
+  explicit SceneFlattener(const LoadedGltf& gltf)
+      : gltf_(gltf), budget_(gltf.input_bytes * kPlacedElementsPerInputByte) {}
 
-  void visit(int node_index, const glm::dmat4& parent, const std::string& referrer) {
-    if (node_index < 0 || static_cast<std::size_t>(node_index) >= model_.nodes.size()) {
-      throw_format(referrer, "node " + std::to_string(node_index) + " does not exist (" +
-                                 std::to_string(model_.nodes.size()) + " nodes)");
+  void flatten() {
+    const tinygltf::Model& model = gltf_.model;
+    const std::vector<PlacedNode> nodes = scene_nodes(model);
+    std::vector<glm::dmat4> world(nodes.size());
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+      const tinygltf::Node& node = model.nodes[nodes[i].node];
+      const glm::dmat4 parent =
+          nodes[i].parent < 0 ? glm::dmat4(1.0) : world[static_cast<std::size_t>(nodes[i].parent)];
+      world[i] = parent * local_matrix(node, indexed("nodes", nodes[i].node));
+      if (node.mesh >= 0) {
+        check_transform(world[i], nodes[i].node);
+        add_mesh(node.mesh, Transform(world[i]), nodes[i].node);
+      }
     }
-    const std::size_t index = static_cast<std::size_t>(node_index);
-    const std::string field = indexed("nodes", index);
-    if (on_path_[index]) throw_format(field, "is its own ancestor (cycle in children)");
-    on_path_[index] = true;
-    const tinygltf::Node& node = model_.nodes[index];
-    const glm::dmat4 world = parent * local_matrix(node, field);
-    if (node.mesh >= 0) add_mesh(node.mesh, Transform(world), field + ".mesh");
-    for (const int child : node.children) visit(child, world, field + ".children");
-    on_path_[index] = false;
   }
 
   std::vector<Part>& parts() { return parts_; }
 
  private:
-  void add_mesh(int mesh_index, const Transform& transform, const std::string& referrer) {
-    if (static_cast<std::size_t>(mesh_index) >= model_.meshes.size()) {
-      throw_format(referrer, "mesh " + std::to_string(mesh_index) + " does not exist (" +
-                                 std::to_string(model_.meshes.size()) + " meshes)");
+  void add_mesh(int mesh_index, const Transform& transform, std::size_t node) {
+    const tinygltf::Model& model = gltf_.model;
+    if (static_cast<std::size_t>(mesh_index) >= model.meshes.size()) {
+      throw_format(indexed("nodes", node) + ".mesh",
+                   "mesh " + std::to_string(mesh_index) + " does not exist (" +
+                       std::to_string(model.meshes.size()) + " meshes)");
     }
-    const tinygltf::Mesh& mesh = model_.meshes[static_cast<std::size_t>(mesh_index)];
+    const tinygltf::Mesh& mesh = model.meshes[static_cast<std::size_t>(mesh_index)];
     const std::string mesh_field = indexed("meshes", static_cast<std::size_t>(mesh_index));
     for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
       const std::string field = indexed(mesh_field + ".primitives", p);
       try {
-        parts_.push_back(read_primitive(model_, mesh.primitives[p], transform, field));
-        parts_.back().group =
-            (mesh.name.empty() ? std::to_string(mesh_index) : mesh.name) + "/" + std::to_string(p);
+        parts_.push_back(read_primitive(gltf_, mesh.primitives[p], transform, field));
       } catch (const Error& e) {
-        // Messages start with the field ("meshes[0].primitives[1]..."): add the
-        // mesh's name after "meshes[0]"; the field itself stays as it is.
-        std::string message = e.what();
-        if (!mesh.name.empty() && message.rfind(mesh_field, 0) == 0) {
-          message.insert(mesh_field.size(), " ('" + mesh.name + "')");
-        }
-        throw Error(e.code(), e.field(), message);
+        if (mesh.name.empty()) throw;
+        // The mesh's name helps find it: "meshes[0].primitives[1]: ...; mesh 'fin'".
+        throw Error(e.code(), e.field(), std::string(e.what()) + "; mesh " + shown(mesh.name));
+      }
+      Part& part = parts_.back();
+      part.group =
+          (mesh.name.empty() ? std::to_string(mesh_index) : mesh.name) + "/" + std::to_string(p);
+      placed_ += part.mesh.positions.size() + part.mesh.indices.size() + part.group.size();
+      if (placed_ > budget_) {
+        throw_format(indexed("nodes", node),
+                     "placing " + mesh_field + " here brings the scene to more than " +
+                         std::to_string(budget_) + " vertices, indices and group-name bytes (" +
+                         std::to_string(kPlacedElementsPerInputByte) + " per byte of the " +
+                         std::to_string(gltf_.input_bytes) +
+                         " bytes of input): too many instances of its meshes");
       }
     }
   }
 
-  const tinygltf::Model& model_;
-  std::vector<bool> on_path_;
+  const LoadedGltf& gltf_;
+  std::uint64_t budget_;
+  std::uint64_t placed_ = 0;
   std::vector<Part> parts_;
 };
-
-// The scene's root nodes: the default scene's, else scene 0's, else (no scenes)
-// every node that is no node's child.
-std::vector<int> root_nodes(const tinygltf::Model& model) {
-  if (!model.scenes.empty()) {
-    const int scene = model.defaultScene >= 0 ? model.defaultScene : 0;
-    if (static_cast<std::size_t>(scene) >= model.scenes.size()) {
-      throw_format("scene", std::to_string(scene) + " does not exist (" +
-                                std::to_string(model.scenes.size()) + " scenes)");
-    }
-    return model.scenes[static_cast<std::size_t>(scene)].nodes;
-  }
-  std::vector<bool> is_child(model.nodes.size(), false);
-  for (const tinygltf::Node& node : model.nodes) {
-    for (const int child : node.children) {
-      if (child >= 0 && static_cast<std::size_t>(child) < is_child.size()) {
-        is_child[static_cast<std::size_t>(child)] = true;
-      }
-    }
-  }
-  std::vector<int> roots;
-  for (std::size_t i = 0; i < model.nodes.size(); ++i) {
-    if (!is_child[i]) roots.push_back(static_cast<int>(i));
-  }
-  return roots;
-}
 
 // Concatenates the parts. Tangents survive only if every part has them; texcoords
 // if any part has them (the others get (0, 0)). Each part with triangles becomes a
@@ -545,154 +344,16 @@ Mesh concatenate(const std::vector<Part>& parts) {
   return out;
 }
 
-// Image loader that keeps no pixels: textures play no part in a mesh, and a
-// missing or undecodable image must not stop the load.
-bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int,
-                const unsigned char*, int, void*) {
-  return true;
-}
-
-bool has_glb_magic(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  char magic[4] = {};
-  in.read(magic, sizeof magic);
-  return in.gcount() == 4 && std::memcmp(magic, "glTF", 4) == 0;
-}
-
-std::string trimmed(std::string text) {
-  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
-  for (char& c : text) {
-    if (c == '\n') c = ';';
-  }
-  return text;
-}
-
-tinygltf::Model load_model(const std::string& path) {
-  tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(&skip_image, nullptr);
-  tinygltf::Model model;
-  std::string error, warning;
-  // The content decides: a .gltf holding GLB bytes (or the reverse) still loads.
-  const bool ok = has_glb_magic(path) ? loader.LoadBinaryFromFile(&model, &error, &warning, path)
-                                      : loader.LoadASCIIFromFile(&model, &error, &warning, path);
-  if (!ok) {
-    // A missing or unreadable external buffer is an I/O problem, the rest is content.
-    const bool io = error.find("File not found") != std::string::npos ||
-                    error.find("File read error") != std::string::npos ||
-                    error.find("Failed to load external") != std::string::npos;
-    throw Error(io ? ErrorCode::kIo : ErrorCode::kFormat, "path",
-                "not a readable glTF file: " + trimmed(error.empty() ? "unknown error" : error));
-  }
-  return model;
-}
-
-// ---------------------------------------------------------------------------------
-// Writing
-
-// Appends `bytes` to the buffer as a new bufferView (4-byte aligned); returns its index.
-int add_buffer_view(tinygltf::Model& model, const void* bytes, std::size_t size, int target) {
-  std::vector<unsigned char>& data = model.buffers[0].data;
-  data.resize((data.size() + 3) / 4 * 4, 0);
-  tinygltf::BufferView view;
-  view.buffer = 0;
-  view.byteOffset = data.size();
-  view.byteLength = size;
-  view.target = target;
-  const unsigned char* begin = static_cast<const unsigned char*>(bytes);
-  data.insert(data.end(), begin, begin + size);
-  model.bufferViews.push_back(view);
-  return static_cast<int>(model.bufferViews.size() - 1);
-}
-
-// Adds a tightly packed float accessor over `values` (count elements of `type`).
-template <typename Vec>
-int add_float_accessor(tinygltf::Model& model, const std::vector<Vec>& values, int type) {
-  tinygltf::Accessor accessor;
-  accessor.bufferView = add_buffer_view(model, values.data(), values.size() * sizeof(Vec),
-                                        TINYGLTF_TARGET_ARRAY_BUFFER);
-  accessor.byteOffset = 0;
-  accessor.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
-  accessor.count = values.size();
-  accessor.type = type;
-  model.accessors.push_back(accessor);
-  return static_cast<int>(model.accessors.size() - 1);
-}
-
-tinygltf::Model build_model(const Mesh& mesh) {
-  static_assert(sizeof(glm::vec3) == 12 && sizeof(glm::vec4) == 16 && sizeof(glm::vec2) == 8,
-                "glm vectors must be tightly packed floats");
-  if (mesh.indices.empty()) {
-    throw Error(ErrorCode::kInvalidMesh, "indices",
-                "indices is empty: a glTF TRIANGLES primitive needs at least one triangle");
-  }
-  tinygltf::Model model;
-  model.asset.version = "2.0";
-  model.asset.generator = "FinFlex";
-  model.buffers.emplace_back();
-
-  tinygltf::Primitive primitive;
-  primitive.mode = TINYGLTF_MODE_TRIANGLES;
-  const int position = add_float_accessor(model, mesh.positions, TINYGLTF_TYPE_VEC3);
-  glm::vec3 lo = mesh.positions[0], hi = mesh.positions[0];
-  for (const glm::vec3& p : mesh.positions) {
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
-  }
-  model.accessors[static_cast<std::size_t>(position)].minValues = {lo.x, lo.y, lo.z};
-  model.accessors[static_cast<std::size_t>(position)].maxValues = {hi.x, hi.y, hi.z};
-  primitive.attributes["POSITION"] = position;
-  primitive.attributes["NORMAL"] = add_float_accessor(model, mesh.normals, TINYGLTF_TYPE_VEC3);
-  if (mesh.has_tangents()) {
-    primitive.attributes["TANGENT"] = add_float_accessor(model, mesh.tangents, TINYGLTF_TYPE_VEC4);
-  }
-  if (!mesh.texcoords.empty()) {
-    primitive.attributes["TEXCOORD_0"] =
-        add_float_accessor(model, mesh.texcoords, TINYGLTF_TYPE_VEC2);
-  }
-
-  tinygltf::Accessor indices;
-  indices.bufferView =
-      add_buffer_view(model, mesh.indices.data(), mesh.indices.size() * sizeof(std::uint32_t),
-                      TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-  indices.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-  indices.count = mesh.indices.size();
-  indices.type = TINYGLTF_TYPE_SCALAR;
-  model.accessors.push_back(indices);
-  primitive.indices = static_cast<int>(model.accessors.size() - 1);
-
-  tinygltf::Mesh gltf_mesh;
-  gltf_mesh.primitives.push_back(primitive);
-  model.meshes.push_back(gltf_mesh);
-  tinygltf::Node node;
-  node.mesh = 0;
-  model.nodes.push_back(node);
-  tinygltf::Scene scene;
-  scene.nodes.push_back(0);
-  model.scenes.push_back(scene);
-  model.defaultScene = 0;
-  return model;
-}
-
 }  // namespace
 
-Mesh read_gltf(const std::string& path, MeshFormat /*format*/) {
-  const tinygltf::Model model = load_model(path);
-  SceneFlattener flattener(model);
-  for (const int root : root_nodes(model)) flattener.visit(root, glm::dmat4(1.0), "scene");
+Mesh read_gltf(std::string_view bytes, const std::string& base_dir) {
+  const LoadedGltf gltf = load_gltf_model(bytes, base_dir);
+  SceneFlattener flattener(gltf);
+  flattener.flatten();
   if (flattener.parts().empty()) {
-    throw Error(ErrorCode::kFormat, "meshes", "the scene has no mesh primitives");
+    throw Error(ErrorCode::kFormat, "meshes", "meshes: the scene has no mesh primitives");
   }
   return concatenate(flattener.parts());
-}
-
-void write_gltf(std::ostream& out, MeshFormat format, const Mesh& mesh) {
-  const tinygltf::Model model = build_model(mesh);
-  tinygltf::TinyGLTF writer;
-  const bool binary = format == MeshFormat::kGlb;
-  // .gltf: the buffer is embedded as a base64 data URI, so the file stands alone.
-  if (!writer.WriteGltfSceneToStream(&model, out, /*prettyPrint=*/!binary, binary)) {
-    throw Error(ErrorCode::kIo, "path", "tinygltf could not serialize the mesh");
-  }
 }
 
 }  // namespace finflex::io

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "finflex/error.hpp"
+#include "rig_structure.hpp"
 
 namespace finflex {
 namespace {
@@ -18,6 +19,7 @@ std::uint64_t next_model_id() {
 
 RiggedMesh::RiggedMesh(Mesh mesh, Rig rig) : mesh_(std::move(mesh)), rig_(std::move(rig)) {
   validate_mesh(mesh_);
+  detail::check_rig_structure(rig_);
   const std::size_t none = rig_.components.size();
   component_of_vertex_.assign(mesh_.vertex_count(), none);
   for (std::size_t c = 0; c < rig_.components.size(); ++c) {

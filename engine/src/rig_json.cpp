@@ -8,14 +8,10 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <filesystem>
-#include <fstream>
 #include <initializer_list>
 #include <limits>
-#include <set>
 #include <sstream>
 #include <string>
-#include <system_error>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -24,6 +20,8 @@
 #include "finflex/deformer_type.hpp"
 #include "finflex/error.hpp"
 #include "finflex/rig.hpp"
+#include "regular_file.hpp"
+#include "rig_json_document.hpp"
 
 namespace finflex {
 namespace {
@@ -38,17 +36,69 @@ constexpr std::size_t kMaxShownChars = 80;
 // messages start with it and name the value found and what was expected.
 
 std::string member(const std::string& path, const std::string& key) {
-  return path.empty() ? key : path + "." + key;
+  return detail::json_member(path, key);
 }
 
 std::string element(const std::string& path, std::size_t index) {
-  return path + "[" + std::to_string(index) + "]";
+  return detail::json_element(path, index);
+}
+
+// The first `size` bytes of `text`, moved back to a UTF-8 character boundary.
+std::string utf8_prefix(const std::string& text, std::size_t size) {
+  if (size >= text.size()) return text;
+  while (size > 0 && (static_cast<unsigned char>(text[size]) & 0xC0u) == 0x80u) --size;
+  return text.substr(0, size);
+}
+
+std::string dump_scalar(const json& value) {
+  if (value.is_string()) {  // only the start of a long string is shown
+    const json start = utf8_prefix(value.get_ref<const std::string&>(), kMaxShownChars);
+    return start.dump(-1, ' ', false, json::error_handler_t::replace);
+  }
+  return value.dump(-1, ' ', false, json::error_handler_t::replace);
+}
+
+// The compact JSON text of `value` as json::dump() writes it, stopped once longer than
+// `limit`: a loop over an explicit stack, so neither the depth of the value nor its
+// size matters (dump() recurses, and would write all of it).
+std::string limited_dump(const json& value, std::size_t limit) {
+  struct Open {
+    const json* container;
+    json::const_iterator next;
+    bool first;
+  };
+  std::vector<Open> stack;
+  std::string out;
+  const json* current = &value;
+  for (;;) {
+    if (current->is_object() || current->is_array()) {
+      out += current->is_object() ? '{' : '[';
+      stack.push_back({current, current->cbegin(), true});
+    } else {
+      out += dump_scalar(*current);
+    }
+    for (;;) {
+      if (out.size() > limit || stack.empty()) return out;
+      Open& top = stack.back();
+      if (top.next == top.container->cend()) {
+        out += top.container->is_object() ? '}' : ']';
+        stack.pop_back();
+        continue;
+      }
+      if (!top.first) out += ',';
+      top.first = false;
+      if (top.container->is_object()) out += dump_scalar(json(top.next.key())) + ':';
+      current = &*top.next;
+      ++top.next;
+      break;
+    }
+  }
 }
 
 // The JSON text of `value`, shortened to kMaxShownChars.
 std::string shown(const json& value) {
-  std::string text = value.dump();
-  if (text.size() > kMaxShownChars) text = text.substr(0, kMaxShownChars - 3) + "...";
+  std::string text = limited_dump(value, kMaxShownChars);
+  if (text.size() > kMaxShownChars) text = utf8_prefix(text, kMaxShownChars - 3) + "...";
   return text;
 }
 
@@ -363,76 +413,10 @@ ComponentSpec parse_component(const json& value, std::size_t index) {
 // ---------------------------------------------------------------------------------
 // The document
 
-// nlohmann keeps the last of two equal keys without a word; this parser callback makes
-// that an error naming where. It tracks the path of the value being parsed.
-class DuplicateKeyCheck {
- public:
-  bool operator()(int /*depth*/, json::parse_event_t event, json& parsed) {
-    switch (event) {
-      case json::parse_event_t::object_start:
-      case json::parse_event_t::array_start:
-        count_array_element();
-        levels_.push_back(Level{event == json::parse_event_t::object_start, {}, {}, 0});
-        break;
-      case json::parse_event_t::object_end:
-      case json::parse_event_t::array_end:
-        levels_.pop_back();
-        break;
-      case json::parse_event_t::key:
-        add_key(parsed.get<std::string>());
-        break;
-      case json::parse_event_t::value:
-        count_array_element();
-        break;
-    }
-    return true;
-  }
-
- private:
-  struct Level {
-    bool object = true;
-    std::set<std::string> keys;
-    std::string key;           // object: the key being parsed
-    std::size_t elements = 0;  // array: elements started so far
-  };
-
-  void count_array_element() {
-    if (!levels_.empty() && !levels_.back().object) ++levels_.back().elements;
-  }
-
-  void add_key(const std::string& key) {
-    Level& level = levels_.back();
-    level.key = key;
-    if (level.keys.insert(key).second) return;
-    std::string path;
-    for (const Level& l : levels_) {
-      path = l.object ? member(path, l.key) : element(path, l.elements - 1);
-    }
-    fail(path, "duplicate key '" + key + "' (the later value would silently replace the earlier)");
-  }
-
-  std::vector<Level> levels_;
-};
-
-json parse_document(const std::string& text) {
-  try {
-    return json::parse(text, DuplicateKeyCheck());
-  } catch (const json::exception& e) {
-    // "[json.exception.parse_error.101] parse error at line 3, column 5: ...", or
-    // out_of_range.406 for a number beyond double ("number overflow parsing '1e999'").
-    std::string message = e.what();
-    if (const std::size_t end = message.find("] ");
-        message.rfind("[json.", 0) == 0 && end != std::string::npos) {
-      message.erase(0, end + 2);
-    }
-    throw Error(ErrorCode::kFormat, "rig", "rig: malformed JSON: " + message);
-  }
-}
-
 }  // namespace
 
 RigSpec parse_rig_json(const std::string& text) {
-  const json document = parse_document(text);
+  const json document = detail::parse_rig_document(text);
   expect_object(document, "rig", "an object {[\"frame\": ...,] \"components\": [...]}");
   check_keys(document, "", {"frame", "components"});
   RigSpec spec;
@@ -451,19 +435,9 @@ RigSpec parse_rig_json(const std::string& text) {
 }
 
 RigSpec load_rig_file(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) {
-    throw Error(ErrorCode::kIo, "path", "'" + path + "': is a directory, not a rig file");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    throw Error(ErrorCode::kIo, "path", "'" + path + "': cannot open the rig file for reading");
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw Error(ErrorCode::kIo, "path", "'" + path + "': reading the rig file failed");
+  const std::string text = detail::read_regular_file(path, "path", "a rig file");
   try {
-    return parse_rig_json(text.str());
+    return parse_rig_json(text);
   } catch (const Error& e) {
     throw Error(e.code(), e.field(), "'" + path + "': " + e.what());
   }

@@ -135,13 +135,16 @@ RestPlanes make_rest_planes(const RiggedMesh& model, const SlotLayout& slots) {
   const std::size_t n = slots.slot_count;
   rest.positions.assign(3 * n, 0.0f);
   rest.normals.assign(3 * n, 0.0f);
-  if (mesh.has_tangents()) rest.tangents.assign(3 * n, 0.0f);
+  if (mesh.has_tangents()) rest.tangents.assign(4 * n, 0.0f);  // x, y, z, handedness
   auto put = [n](std::vector<float>& planes, std::size_t slot, const glm::dvec3& value) {
     for (int c = 0; c < 3; ++c) planes[static_cast<std::size_t>(c) * n + slot] = float(value[c]);
   };
   for (std::size_t slot = 0; slot < n; ++slot) {  // padding: harmless values
     put(rest.normals, slot, glm::dvec3(0.0, 0.0, 1.0));
-    if (!rest.tangents.empty()) put(rest.tangents, slot, glm::dvec3(1.0, 0.0, 0.0));
+    if (!rest.tangents.empty()) {
+      put(rest.tangents, slot, glm::dvec3(1.0, 0.0, 0.0));
+      rest.tangents[3 * n + slot] = 1.0f;
+    }
   }
   for (std::size_t c = 0; c < rig.components.size(); ++c) {
     const std::vector<StageRef>& path = model.paths()[c];
@@ -154,6 +157,7 @@ RestPlanes make_rest_planes(const RiggedMesh& model, const SlotLayout& slots) {
       if (!rest.tangents.empty()) {
         put(rest.tangents, slot,
             first.vector_to_local(glm::normalize(glm::dvec3(mesh.tangents[v]))));
+        rest.tangents[3 * n + slot] = mesh.tangents[v].w;
       }
     }
   }
@@ -275,14 +279,25 @@ PassPlan make_pass_plan(const RiggedMesh& model, const SlotLayout& slots, std::s
     steps.push_back(step);
   };
 
-  std::size_t max_depth = 0;
-  for (std::size_t c = 0; c < count; ++c) max_depth = std::max(max_depth, rig.depth(c));
-  for (std::size_t depth = max_depth + 1; depth-- > 0;) {
+  // The components at each depth (depths computed once, parents first): each pass
+  // visits only the components it has a stage of, so planning takes O(stages x their
+  // subtrees) <= O(components x kMaxRigPathStages).
+  std::vector<std::vector<std::size_t>> at_depth;
+  {
+    std::vector<std::size_t> depth(count, 0);
+    for (std::size_t c = 0; c < count; ++c) {
+      const int parent = rig.components[c].parent;
+      depth[c] = parent < 0 ? 0 : depth[static_cast<std::size_t>(parent)] + 1;
+      if (at_depth.size() <= depth[c]) at_depth.resize(depth[c] + 1);
+      at_depth[depth[c]].push_back(c);
+    }
+  }
+  for (std::size_t depth = at_depth.size(); depth-- > 0;) {
     for (std::size_t position = 0;; ++position) {
       std::vector<PassStep> steps;
       bool any_stage = false;
-      for (std::size_t c = 0; c < count; ++c) {
-        if (rig.depth(c) != depth || rig.components[c].chain.size() <= position) continue;
+      for (const std::size_t c : at_depth[depth]) {
+        if (rig.components[c].chain.size() <= position) continue;
         any_stage = true;
         for (std::size_t d = c; d < rig.subtree_end[c]; ++d) {
           const auto [first, end] = groups_of(d);

@@ -7,6 +7,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -18,11 +19,15 @@
 #include "finflex/error.hpp"
 #include "finflex/mesh.hpp"
 #include "finflex/rig.hpp"
+#include "rig_tree.hpp"
 
 namespace finflex {
 namespace {
 
-constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
+using detail::component_field;
+using detail::kNoComponent;
+using detail::RigTree;
+constexpr auto fail = detail::fail_rig;
 // |sin| of the angle between a frame's y and x below which y is taken as parallel.
 constexpr double kParallelTolerance = 1e-6;
 // Automatic child frames: when the parent's axis_y has less than this much left
@@ -50,155 +55,57 @@ bool is_finite(const glm::dvec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
-// Throws kInvalidArgument: "<field>: <message>", or "<field> = <value> ..." when the
-// message starts with "= ".
-[[noreturn]] void fail(const std::string& field, const std::string& message) {
-  const char* const separator = message.rfind("= ", 0) == 0 ? " " : ": ";
-  throw Error(ErrorCode::kInvalidArgument, field, field + separator + message);
-}
-
-std::string component_field(const RigSpec& spec, std::size_t i) {
-  return "components[" + std::to_string(i) + "] '" + spec.components[i].name + "'";
-}
-
-std::string name_list(const RigSpec& spec) {
-  std::string list;
-  for (const ComponentSpec& c : spec.components) list += (list.empty() ? "" : ", ") + c.name;
-  return list;
-}
-
 glm::dvec3 position(const Mesh& mesh, std::uint32_t v) { return glm::dvec3(mesh.positions[v]); }
-
-// ---------------------------------------------------------------------------------
-// The component tree (spec indices)
-
-struct Tree {
-  std::size_t root = kNone;
-  std::vector<std::size_t> parent;                 // kNone for the root
-  std::vector<std::vector<std::size_t>> children;  // in spec order
-};
-
-void check_names(const RigSpec& spec) {
-  std::map<std::string, std::size_t> seen;
-  for (std::size_t i = 0; i < spec.components.size(); ++i) {
-    const std::string& name = spec.components[i].name;
-    const std::string at = "components[" + std::to_string(i) + "]";
-    if (name.empty()) fail(at + ".name", "is empty: every component needs a name");
-    const auto [it, inserted] = seen.emplace(name, i);
-    if (!inserted) {
-      fail(component_field(spec, i) + ".name", "'" + name + "' is also the name of components[" +
-                                                   std::to_string(it->second) +
-                                                   "]: names must be unique");
-    }
-  }
-}
-
-// Parent links by name; exactly one root. Names are unique (check_names).
-Tree link_parents(const RigSpec& spec) {
-  const std::size_t n = spec.components.size();
-  std::map<std::string, std::size_t> index;
-  for (std::size_t i = 0; i < n; ++i) index.emplace(spec.components[i].name, i);
-  Tree tree;
-  tree.parent.assign(n, kNone);
-  tree.children.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::string& parent = spec.components[i].parent;
-    if (parent.empty()) continue;
-    const auto it = index.find(parent);
-    if (it == index.end()) {
-      fail(component_field(spec, i) + ".parent",
-           "'" + parent + "' is not a component of the rig (its components: " + name_list(spec) +
-               ")");
-    }
-    tree.parent[i] = it->second;
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    if (tree.parent[i] != kNone) continue;
-    if (tree.root != kNone) {
-      fail(component_field(spec, i) + ".parent",
-           "missing, and '" + spec.components[tree.root].name + "' (components[" +
-               std::to_string(tree.root) +
-               "]) has no parent either: a rig has exactly one root, every other component "
-               "names its parent");
-    }
-    tree.root = i;
-  }
-  if (tree.root == kNone) {
-    fail("components", "no root component: every component names a parent (" + name_list(spec) +
-                           "); the root (the whole body) has none");
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    if (tree.parent[i] != kNone) tree.children[tree.parent[i]].push_back(i);
-  }
-  return tree;
-}
-
-// Throws for a component whose parent chain loops (never reaches the root), naming
-// the loop. With one root and every parent known, those are the unreachable ones.
-void check_cycles(const RigSpec& spec, const Tree& tree) {
-  const std::size_t n = spec.components.size();
-  std::vector<bool> reached(n, false);
-  std::vector<std::size_t> stack = {tree.root};
-  while (!stack.empty()) {
-    const std::size_t c = stack.back();
-    stack.pop_back();
-    reached[c] = true;
-    for (const std::size_t child : tree.children[c]) stack.push_back(child);
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    if (reached[i]) continue;
-    std::size_t first = i;  // n steps up from i surely land on the loop
-    for (std::size_t k = 0; k < n; ++k) first = tree.parent[first];
-    for (std::size_t c = tree.parent[first], start = first; c != start; c = tree.parent[c]) {
-      first = std::min(first, c);  // the loop's first component in the spec
-    }
-    std::string loop = "'" + spec.components[first].name + "'";
-    for (std::size_t c = tree.parent[first]; c != first; c = tree.parent[c]) {
-      loop += " -> '" + spec.components[c].name + "'";
-    }
-    loop += " -> '" + spec.components[first].name + "'";
-    fail(component_field(spec, first) + ".parent",
-         "the parent chain loops (" + loop + ", child -> parent) and never reaches the root '" +
-             spec.components[tree.root].name + "'");
-  }
-}
-
-Tree build_tree(const RigSpec& spec) {
-  if (spec.components.empty()) {
-    fail("components", "is empty: a rig needs at least its root component (select \"all\")");
-  }
-  check_names(spec);
-  Tree tree = link_parents(spec);
-  check_cycles(spec, tree);
-  const ComponentSpec& root = spec.components[tree.root];
-  const std::string field = component_field(spec, tree.root);
-  if (root.select.kind != SelectorSpec::Kind::kAll) {
-    fail(field + ".select", "the root component must select \"all\" (its children select parts)");
-  }
-  if (root.frame) {
-    fail(field + ".frame",
-         "the root component takes no frame: its frame is the rig's top-level \"frame\"");
-  }
-  return tree;
-}
 
 // ---------------------------------------------------------------------------------
 // Vertex selection. A set is a sorted vector of vertex indices.
 
 using VertexSet = std::vector<std::uint32_t>;
 
-// Membership flags over all vertices for `set`.
-std::vector<char> membership(const VertexSet& set, std::size_t vertex_count) {
-  std::vector<char> in(vertex_count, 0);
-  for (const std::uint32_t v : set) in[v] = 1;
-  return in;
-}
+// Flags over all vertices, allocated once per resolve_rig and set and cleared for one
+// vertex set at a time: O(set size) per use, not O(vertex count).
+class VertexFlags {
+ public:
+  explicit VertexFlags(std::size_t vertex_count) : flags_(vertex_count, 0) {}
+  void set(const VertexSet& set) {
+    for (const std::uint32_t v : set) flags_[v] = 1;
+  }
+  void clear(const VertexSet& set) {
+    for (const std::uint32_t v : set) flags_[v] = 0;
+  }
+  bool operator[](std::uint32_t v) const { return flags_[v] != 0; }
+
+ private:
+  std::vector<char> flags_;
+};
+
+// The triangles around each vertex (compressed rows): triangles_of(v).
+class VertexTriangles {
+ public:
+  explicit VertexTriangles(const Mesh& mesh) : first_(mesh.vertex_count() + 1, 0) {
+    for (const std::uint32_t v : mesh.indices) ++first_[v + 1];
+    for (std::size_t v = 0; v < mesh.vertex_count(); ++v) first_[v + 1] += first_[v];
+    triangles_.resize(mesh.indices.size());
+    std::vector<std::size_t> next(first_.begin(), first_.end() - 1);
+    for (std::size_t k = 0; k < mesh.indices.size(); ++k) {
+      triangles_[next[mesh.indices[k]]++] = static_cast<std::uint32_t>(k / 3);
+    }
+  }
+  template <typename Visit>
+  void for_each(std::uint32_t v, Visit visit) const {
+    for (std::size_t k = first_[v]; k < first_[v + 1]; ++k) visit(triangles_[k]);
+  }
+
+ private:
+  std::vector<std::size_t> first_;
+  std::vector<std::uint32_t> triangles_;
+};
 
 // What a child selects from its parent: the parent's subtree vertices, their flags,
 // its mesh-space frame and its name (for messages).
 struct ParentView {
   const VertexSet* vertices;
-  const std::vector<char>* in;
+  const VertexFlags* in;
   const BodyFrame* frame;
   std::string name;
 };
@@ -251,16 +158,15 @@ VertexSet select_group(const Mesh& mesh, const SelectorSpec& select, const Paren
                mesh.indices.begin() + static_cast<std::ptrdiff_t>(end));
   }
   if (!found) {
-    std::string names;
+    std::vector<std::string> names;
+    std::set<std::string> seen;
     for (const FaceGroup& group : mesh.groups) {
-      if (names.find("'" + group.name + "'") == std::string::npos) {
-        names += (names.empty() ? "'" : ", '") + group.name + "'";
-      }
+      if (seen.insert(group.name).second) names.push_back(group.name);
     }
     fail(group_field, "'" + select.group + "' is not a face group of the mesh (" +
                           (names.empty() ? std::string("the mesh has no groups: OBJ g/o lines "
                                                        "or glTF primitives name them")
-                                         : "its groups: " + names) +
+                                         : "its groups: " + detail::short_list(names, "'")) +
                           ")");
   }
   set = sorted_unique(std::move(set));
@@ -430,7 +336,7 @@ BodyFrame assemble(const Mesh& mesh, const VertexSet& subtree, const glm::dvec3&
 }
 
 // The root's frame (in mesh coordinates); the root owns every vertex.
-BodyFrame root_frame(const Mesh& mesh, const RigSpec& spec, const Tree& tree,
+BodyFrame root_frame(const Mesh& mesh, const RigSpec& spec, const RigTree& tree,
                      const VertexSet& all) {
   const std::string note =
       " (frame of the root component '" + spec.components[tree.root].name + "')";
@@ -454,29 +360,42 @@ BodyFrame root_frame(const Mesh& mesh, const RigSpec& spec, const Tree& tree,
   return assemble(mesh, all, spec.frame.origin, x, y, length, "frame", note);
 }
 
-// The vertices of `subtree` on its boundary with the rest of the mesh: those sharing a
-// triangle with a vertex outside it.
-VertexSet boundary(const Mesh& mesh, const std::vector<char>& in_subtree) {
-  std::vector<char> on(mesh.vertex_count(), 0);
-  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
-    const std::uint32_t* corner = &mesh.indices[3 * t];
-    const int inside = in_subtree[corner[0]] + in_subtree[corner[1]] + in_subtree[corner[2]];
-    if (inside == 0 || inside == 3) continue;
-    for (int k = 0; k < 3; ++k) {
-      if (in_subtree[corner[k]]) on[corner[k]] = 1;
-    }
-  }
+// What resolving reuses from one component to the next, allocated once: vertex flags,
+// the owner of each vertex among a parent's children, and (built for the first
+// automatic child frame) the triangles around each vertex.
+struct Scratch {
+  explicit Scratch(const Mesh& mesh)
+      : in_parent(mesh.vertex_count()),
+        in_child(mesh.vertex_count()),
+        taken_by(mesh.vertex_count(), kNoComponent) {}
+  VertexFlags in_parent, in_child;
+  std::vector<std::size_t> taken_by;
+  std::optional<VertexTriangles> around;
+};
+
+// The vertices of `subtree` (flagged in `in`) on its boundary with the rest of the
+// mesh: those sharing a triangle with a vertex outside it. Ascending, like `subtree`;
+// O(triangles around the subtree).
+VertexSet boundary(const Mesh& mesh, const VertexSet& subtree, const VertexFlags& in,
+                   const VertexTriangles& around) {
   VertexSet set;
-  for (std::size_t v = 0; v < on.size(); ++v) {
-    if (on[v]) set.push_back(static_cast<std::uint32_t>(v));
+  for (const std::uint32_t v : subtree) {
+    bool on = false;
+    around.for_each(v, [&](std::uint32_t t) {
+      for (std::size_t k = 0; k < 3; ++k) on = on || !in[mesh.indices[3 * t + k]];
+    });
+    if (on) set.push_back(v);
   }
   return set;
 }
 
 // The automatic frame of a child (rule in rig.hpp).
 BodyFrame auto_child_frame(const Mesh& mesh, const VertexSet& subtree, const BodyFrame& parent,
-                           const std::string& field) {
-  const VertexSet attachment = boundary(mesh, membership(subtree, mesh.vertex_count()));
+                           const std::string& field, Scratch& scratch) {
+  if (!scratch.around) scratch.around.emplace(mesh);
+  scratch.in_child.set(subtree);
+  const VertexSet attachment = boundary(mesh, subtree, scratch.in_child, *scratch.around);
+  scratch.in_child.clear(subtree);
   glm::dvec3 origin{0.0};
   if (!attachment.empty()) {
     origin = centroid(mesh, attachment);
@@ -511,10 +430,11 @@ BodyFrame auto_child_frame(const Mesh& mesh, const VertexSet& subtree, const Bod
 
 // A child's frame in mesh coordinates, from its spec (in the parent's local frame).
 BodyFrame child_frame(const Mesh& mesh, const ComponentSpec& component, const VertexSet& subtree,
-                      const BodyFrame& parent, const std::string& component_field_name) {
+                      const BodyFrame& parent, const std::string& component_field_name,
+                      Scratch& scratch) {
   const std::string field = component_field_name + ".frame";
   if (!component.frame || component.frame->mode == FrameSpec::Mode::kAuto) {
-    return auto_child_frame(mesh, subtree, parent, field);
+    return auto_child_frame(mesh, subtree, parent, field, scratch);
   }
   if (component.frame->mode == FrameSpec::Mode::kIdentity) return parent;
   const FrameSpec& spec = *component.frame;
@@ -533,25 +453,75 @@ BodyFrame child_frame(const Mesh& mesh, const ComponentSpec& component, const Ve
 // ---------------------------------------------------------------------------------
 // Walking the tree
 
-// Per spec component: its subtree vertices, own vertices and frame.
+// The rest vertices in `frame`.
+std::vector<glm::dvec3> local_positions(const Mesh& mesh, const VertexSet& vertices,
+                                        const BodyFrame& frame) {
+  std::vector<glm::dvec3> local;
+  local.reserve(vertices.size());
+  for (const std::uint32_t v : vertices) local.push_back(frame.point_to_local(position(mesh, v)));
+  return local;
+}
+
+// The extent along x of `local` (and the deformer's measurements of it).
+StageGeometry measure_stage(const std::vector<glm::dvec3>& local, const StageSpec& stage) {
+  StageGeometry geometry;
+  if (!local.empty()) {
+    geometry.x_lowest = geometry.x_highest = local.front().x;
+  }
+  for (const glm::dvec3& p : local) {
+    geometry.x_lowest = std::min(geometry.x_lowest, p.x);
+    geometry.x_highest = std::max(geometry.x_highest, p.x);
+    geometry.x_max = std::max(geometry.x_max, std::abs(p.x));
+  }
+  if (stage.deformer->measure) geometry.measurements = stage.deformer->measure(stage.options, local);
+  return geometry;
+}
+
+void check_options(const RigSpec& spec, std::size_t c, std::size_t k);  // below
+
+// The geometry of each stage of component c's chain (its options checked first), over
+// `subtree` in `frame`.
+std::vector<StageGeometry> measure_chain(const Mesh& mesh, const RigSpec& spec, std::size_t c,
+                                         const VertexSet& subtree, const BodyFrame& frame) {
+  const std::vector<StageSpec>& chain = spec.components[c].chain;
+  const std::vector<glm::dvec3> local = local_positions(mesh, subtree, frame);
+  std::vector<StageGeometry> geometry;
+  geometry.reserve(chain.size());
+  for (std::size_t k = 0; k < chain.size(); ++k) {
+    check_options(spec, c, k);
+    geometry.push_back(measure_stage(local, chain[k]));
+  }
+  return geometry;
+}
+
+// Per spec component: its subtree vertices (until its children are resolved), own
+// vertices, frame, and its stages' geometry over its subtree in its frame.
 struct Resolved {
   std::vector<VertexSet> subtree;
   std::vector<VertexSet> own;
   std::vector<BodyFrame> frame;
+  std::vector<std::vector<StageGeometry>> geometry;
 };
 
 // Selects the children of `c` (whose subtree and frame are known) and places their
-// frames; fills own[c]; recurses.
-void resolve_children(const Mesh& mesh, const RigSpec& spec, const Tree& tree, std::size_t c,
-                      Resolved& out) {
-  const std::vector<char> in_parent = membership(out.subtree[c], mesh.vertex_count());
-  const ParentView parent{&out.subtree[c], &in_parent, &out.frame[c], spec.components[c].name};
-  std::vector<std::size_t> taken_by(mesh.vertex_count(), kNone);
+// frames; fills own[c] and geometry[c], then releases subtree[c]. Called in depth-first
+// order, so the subtrees held at any time are disjoint: memory stays O(vertices).
+void resolve_children(const Mesh& mesh, const RigSpec& spec, const RigTree& tree, std::size_t c,
+                      Scratch& scratch, Resolved& out) {
+  const VertexSet& subtree = out.subtree[c];
+  out.geometry[c] = measure_chain(mesh, spec, c, subtree, out.frame[c]);
+  if (tree.children[c].empty()) {
+    out.own[c] = std::move(out.subtree[c]);
+    return;
+  }
+  scratch.in_parent.set(subtree);
+  const ParentView parent{&subtree, &scratch.in_parent, &out.frame[c], spec.components[c].name};
+  std::vector<std::size_t>& taken_by = scratch.taken_by;
   for (const std::size_t child : tree.children[c]) {
     const std::string field = component_field(spec, child);
     out.subtree[child] = select_vertices(mesh, spec.components[child], parent, field);
     for (const std::uint32_t v : out.subtree[child]) {
-      if (taken_by[v] != kNone) {
+      if (taken_by[v] != kNoComponent) {
         fail(field + ".select", "takes vertex " + std::to_string(v) + ", which its sibling '" +
                                     spec.components[taken_by[v]].name + "' (components[" +
                                     std::to_string(taken_by[v]) +
@@ -560,32 +530,23 @@ void resolve_children(const Mesh& mesh, const RigSpec& spec, const Tree& tree, s
       taken_by[v] = child;
     }
     out.frame[child] =
-        child_frame(mesh, spec.components[child], out.subtree[child], out.frame[c], field);
+        child_frame(mesh, spec.components[child], out.subtree[child], out.frame[c], field, scratch);
   }
-  for (const std::uint32_t v : out.subtree[c]) {
-    if (taken_by[v] == kNone) out.own[c].push_back(v);
+  for (const std::uint32_t v : subtree) {
+    if (taken_by[v] == kNoComponent) out.own[c].push_back(v);
   }
-  for (const std::size_t child : tree.children[c]) resolve_children(mesh, spec, tree, child, out);
-}
-
-// Spec indices in depth-first order (children in spec order).
-std::vector<std::size_t> depth_first(const Tree& tree) {
-  std::vector<std::size_t> order;
-  std::vector<std::size_t> stack = {tree.root};
-  while (!stack.empty()) {
-    const std::size_t c = stack.back();
-    stack.pop_back();
-    order.push_back(c);
-    for (auto it = tree.children[c].rbegin(); it != tree.children[c].rend(); ++it) {
-      stack.push_back(*it);
-    }
+  for (const std::size_t child : tree.children[c]) {
+    for (const std::uint32_t v : out.subtree[child]) taken_by[v] = kNoComponent;
   }
-  return order;
+  scratch.in_parent.clear(subtree);
+  VertexSet().swap(out.subtree[c]);
 }
 
 // The per-instance parameters in order of first use (components and chains in spec
 // order), each with the count of values its stages read; limits come later.
-std::vector<RigParameter> collect_parameters(const RigSpec& spec) {
+// `index_of` receives each parameter's index by name.
+std::vector<RigParameter> collect_parameters(const RigSpec& spec,
+                                             std::map<std::string, std::size_t>& index_of) {
   std::vector<RigParameter> parameters;
   for (std::size_t i = 0; i < spec.components.size(); ++i) {
     const std::vector<StageSpec>& chain = spec.components[i].chain;
@@ -599,14 +560,13 @@ std::vector<RigParameter> collect_parameters(const RigSpec& spec) {
         fail(field + ".param", "is empty: every stage names the parameter it reads");
       }
       const std::size_t count = stage.deformer->value_count(stage.options);
-      auto found = std::find_if(parameters.begin(), parameters.end(),
-                                [&](const RigParameter& p) { return p.name == stage.param; });
-      if (found == parameters.end()) {
+      const auto [it, added] = index_of.emplace(stage.param, parameters.size());
+      if (added) {
         RigParameter parameter;
         parameter.name = stage.param;
         parameter.count = count;
         parameters.push_back(parameter);
-      } else if (found->count != count) {
+      } else if (const RigParameter* found = &parameters[it->second]; found->count != count) {
         fail(field + ".param", "'" + stage.param + "' is read by stages taking " +
                                    std::to_string(found->count) + " and " + std::to_string(count) +
                                    " values: a parameter has one size");
@@ -641,44 +601,18 @@ void check_options(const RigSpec& spec, std::size_t c, std::size_t k) {
   }
 }
 
-// The rest vertices in `frame`.
-std::vector<glm::dvec3> local_positions(const Mesh& mesh, const VertexSet& vertices,
-                                        const BodyFrame& frame) {
-  std::vector<glm::dvec3> local;
-  local.reserve(vertices.size());
-  for (const std::uint32_t v : vertices) local.push_back(frame.point_to_local(position(mesh, v)));
-  return local;
-}
-
-// The extent along x of `local` (and the deformer's measurements of it).
-StageGeometry measure_stage(const std::vector<glm::dvec3>& local, const StageSpec& stage) {
-  StageGeometry geometry;
-  if (!local.empty()) {
-    geometry.x_lowest = geometry.x_highest = local.front().x;
-  }
-  for (const glm::dvec3& p : local) {
-    geometry.x_lowest = std::min(geometry.x_lowest, p.x);
-    geometry.x_highest = std::max(geometry.x_highest, p.x);
-    geometry.x_max = std::max(geometry.x_max, std::abs(p.x));
-  }
-  if (stage.deformer->measure) geometry.measurements = stage.deformer->measure(stage.options, local);
-  return geometry;
-}
-
-std::vector<RigStage> resolve_chain(const Mesh& mesh, const RigSpec& spec, std::size_t c,
-                                    const Resolved& resolved, const Rig& rig) {
+std::vector<RigStage> resolve_chain(const RigSpec& spec, std::size_t c, const Resolved& resolved,
+                                    const std::map<std::string, std::size_t>& param_of) {
   std::vector<RigStage> stages;
   const BodyFrame& frame = resolved.frame[c];
-  const std::vector<glm::dvec3> local = local_positions(mesh, resolved.subtree[c], frame);
   const std::vector<StageSpec>& chain = spec.components[c].chain;
   for (std::size_t k = 0; k < chain.size(); ++k) {
-    check_options(spec, c, k);
     RigStage out;
     out.deformer = chain[k].deformer;
     out.options = chain[k].options;
-    out.param = rig.param_index(chain[k].param);
+    out.param = param_of.at(chain[k].param);
     out.frame = frame;
-    out.geometry = measure_stage(local, chain[k]);
+    out.geometry = resolved.geometry[c][k];
     stages.push_back(out);
   }
   return stages;
@@ -710,6 +644,19 @@ void check_component(const Rig& rig, std::size_t component) {
   }
 }
 
+// The parent of component c, checked to come before it (depth-first order), so that
+// every walk up the tree ends at the root in at most c steps.
+std::size_t parent_of(const Rig& rig, std::size_t c) {
+  const int parent = rig.components[c].parent;
+  if (parent >= 0 && static_cast<std::size_t>(parent) >= c) {
+    const std::string field = "components[" + std::to_string(c) + "].parent";
+    throw Error(ErrorCode::kInvalidArgument, field,
+                field + " = " + std::to_string(parent) +
+                    ": a parent comes before its children (depth-first order)");
+  }
+  return parent < 0 ? kNoComponent : static_cast<std::size_t>(parent);
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------------
@@ -722,19 +669,19 @@ std::size_t Rig::param_index(const std::string& name) const {
   for (std::size_t p = 0; p < parameters.size(); ++p) {
     if (parameters[p].name == name) return p;
   }
-  std::string list;
-  for (const RigParameter& p : parameters) list += (list.empty() ? "" : ", ") + p.name;
+  std::vector<std::string> names;
+  names.reserve(parameters.size());
+  for (const RigParameter& p : parameters) names.push_back(p.name);
   throw Error(ErrorCode::kInvalidArgument, name,
-              "'" + name + "' is not a parameter of the rig (its parameters: " + list + ")");
+              "'" + name + "' is not a parameter of the rig (its parameters: " +
+                  detail::short_list(names) + ")");
 }
 
 std::vector<StageRef> Rig::path(std::size_t component) const {
   check_component(*this, component);
   std::vector<StageRef> stages;
-  for (int c = static_cast<int>(component); c >= 0;
-       c = components[static_cast<std::size_t>(c)].parent) {
-    const std::size_t index = static_cast<std::size_t>(c);
-    for (std::size_t k = 0; k < components[index].chain.size(); ++k) stages.push_back({index, k});
+  for (std::size_t c = component; c != kNoComponent; c = parent_of(*this, c)) {
+    for (std::size_t k = 0; k < components[c].chain.size(); ++k) stages.push_back({c, k});
   }
   return stages;
 }
@@ -742,8 +689,7 @@ std::vector<StageRef> Rig::path(std::size_t component) const {
 std::size_t Rig::depth(std::size_t component) const {
   check_component(*this, component);
   std::size_t depth = 0;
-  for (int c = components[component].parent; c >= 0;
-       c = components[static_cast<std::size_t>(c)].parent) {
+  for (std::size_t c = parent_of(*this, component); c != kNoComponent; c = parent_of(*this, c)) {
     ++depth;
   }
   return depth;
@@ -751,39 +697,45 @@ std::size_t Rig::depth(std::size_t component) const {
 
 Rig resolve_rig(const RigSpec& spec, const Mesh& mesh) {
   validate_mesh(mesh);
-  const Tree tree = build_tree(spec);
+  const RigTree tree = detail::build_rig_tree(spec);
   Rig rig;
-  rig.parameters = collect_parameters(spec);
+  std::map<std::string, std::size_t> param_of;
+  rig.parameters = collect_parameters(spec, param_of);
 
   const std::size_t n = spec.components.size();
   Resolved resolved;
   resolved.subtree.resize(n);
   resolved.own.resize(n);
   resolved.frame.resize(n);
+  resolved.geometry.resize(n);
   VertexSet& all = resolved.subtree[tree.root];
   all.resize(mesh.vertex_count());
   for (std::size_t v = 0; v < all.size(); ++v) all[v] = static_cast<std::uint32_t>(v);
   resolved.frame[tree.root] = root_frame(mesh, spec, tree, all);
-  resolve_children(mesh, spec, tree, tree.root, resolved);
+  Scratch scratch(mesh);
+  for (const std::size_t c : tree.order) resolve_children(mesh, spec, tree, c, scratch, resolved);
 
-  const std::vector<std::size_t> order = depth_first(tree);
-  std::vector<std::size_t> position_of(n, kNone);
-  for (std::size_t k = 0; k < order.size(); ++k) position_of[order[k]] = k;
+  std::vector<std::size_t> position_of(n, kNoComponent);
+  for (std::size_t k = 0; k < n; ++k) position_of[tree.order[k]] = k;
   rig.components.resize(n);
   rig.subtree_end.assign(n, 0);
+  std::vector<std::size_t> depth(n, 0);
   for (std::size_t k = 0; k < n; ++k) {
-    const std::size_t c = order[k];
+    const std::size_t c = tree.order[k];
     RigComponent& out = rig.components[k];
     out.name = spec.components[c].name;
-    out.parent = tree.parent[c] == kNone ? -1 : static_cast<int>(position_of[tree.parent[c]]);
+    out.parent =
+        tree.parent[c] == kNoComponent ? -1 : static_cast<int>(position_of[tree.parent[c]]);
     out.vertices = std::move(resolved.own[c]);
     out.frame = resolved.frame[c];
-    out.chain = resolve_chain(mesh, spec, c, resolved, rig);
+    out.chain = resolve_chain(spec, c, resolved, param_of);
+    depth[k] = tree.depth[c];
   }
-  // Subtrees are contiguous: a component's ends where the next non-descendant starts.
+  // Subtrees are contiguous: a component's ends where the next non-descendant starts
+  // (each step skips a whole child subtree: O(components) in all).
   for (std::size_t k = n; k-- > 0;) {
     std::size_t end = k + 1;
-    while (end < n && rig.depth(end) > rig.depth(k)) end = rig.subtree_end[end];
+    while (end < n && depth[end] > depth[k]) end = rig.subtree_end[end];
     rig.subtree_end[k] = end;
   }
   set_limits(rig);

@@ -1,13 +1,7 @@
 /* Structure-of-arrays planes (finflex/batch.hpp): component c of vertex v of an
- * array whose planes start at `first_plane` is planes[(first_plane + c) * stride + v].
- *
- * Build option FF_HALF_NORMALS (0/1): the outputs' normals and tangents are IEEE
- * halves (round to nearest even) instead of float32, converted with vstore_half on
- * GPUs (FF_GPU, set by the host: one instruction) and with half_bits below on CPUs
- * (PoCL's vstore_half does not vectorise). */
-#ifndef FF_HALF_NORMALS
-#define FF_HALF_NORMALS 0
-#endif
+ * array whose planes start at `first_plane` is planes[(first_plane + c) * stride + v]:
+ * the rest mesh and the multi-pass scratch sets (the outputs: common/outputs.cl).
+ * FF_GPU (set by the host) is 1 on GPUs. */
 #ifndef FF_GPU
 #define FF_GPU 0
 #endif
@@ -60,32 +54,9 @@ FF_INLINE ushort half_bits(float f) {
   return (ushort)(bits | (sign >> 16));
 }
 
-/* A normal or tangent into an output array, in the batch's normal format. */
-#if FF_LANES == 1
-FF_INLINE void store_direction3(__global float* planes, size_t first_plane, size_t stride,
-                                size_t v, Vec3 value) {
-#if FF_HALF_NORMALS && FF_GPU
-  __global half* halves = (__global half*)planes;
-  vstore_half(value.x, first_plane * stride + v, halves); /* round to nearest even */
-  vstore_half(value.y, (first_plane + 1) * stride + v, halves);
-  vstore_half(value.z, (first_plane + 2) * stride + v, halves);
-#elif FF_HALF_NORMALS
-  __global ushort* halves = (__global ushort*)planes;
-  halves[first_plane * stride + v] = half_bits(value.x);
-  halves[(first_plane + 1) * stride + v] = half_bits(value.y);
-  halves[(first_plane + 2) * stride + v] = half_bits(value.z);
-#else
-  store_plane3(planes, first_plane, stride, v, value);
-#endif
-}
-#endif
-
 /* Tangents only when the batch has them (the placeholder direction otherwise). */
 #if FF_TANGENTS
 #define FF_LOAD_TANGENT(planes, first, stride, v) load_plane3(planes, first, stride, v)
-#define FF_STORE_TANGENT(planes, first, stride, v, value) \
-  store_direction3(planes, first, stride, v, value)
 #else
 #define FF_LOAD_TANGENT(planes, first, stride, v) vec3(1.0f, 0.0f, 0.0f)
-#define FF_STORE_TANGENT(planes, first, stride, v, value)
 #endif

@@ -2,8 +2,9 @@
  * FF_LANES > 1 lanes (kernels/common/lanes.cl): v is the work-item's first slot, a
  * multiple of FF_LANES, and component c of its lanes is the FF_LANES consecutive
  * floats from planes[(first_plane + c) * stride + v], loaded and stored as one vector.
- * Planes of float32 only: kernels with half normals run with one lane (the host's
- * choice, engine/src/device_profile.hpp).
+ * Planes of float32 only: the rest planes, the scratch sets and outputs in FinFlex's
+ * float32 planes (kernels/cpu/lane_outputs.cl); any other output layout runs with one
+ * lane (the host's choice, engine/src/device_profile.hpp).
  *
  * Alignment: plane strides are multiples of 64 floats, so a work-item's lanes start
  * on a vector boundary of their plane; a plane is so aligned when its buffer is, as
@@ -19,9 +20,6 @@
  * thousands of fish larger than the caches would otherwise cost twice its bytes in
  * memory traffic; 0, ordinary stores (outputs that fit stay in the caches). */
 #if FF_LANES > 1
-#if FF_HALF_NORMALS
-#error "kernels of more than one lane store float32 planes only"
-#endif
 #ifndef FF_STREAMING_STORES
 #define FF_STREAMING_STORES 0
 #endif
@@ -54,10 +52,5 @@ FF_INLINE void store_plane3(__global float* planes, size_t first_plane, size_t s
   store_lanes(planes + first_plane * stride + v, value.x);
   store_lanes(planes + (first_plane + 1) * stride + v, value.y);
   store_lanes(planes + (first_plane + 2) * stride + v, value.z);
-}
-
-FF_INLINE void store_direction3(__global float* planes, size_t first_plane, size_t stride,
-                                size_t v, Vec3 value) {
-  store_plane3(planes, first_plane, stride, v, value);
 }
 #endif

@@ -2,7 +2,8 @@
 # Packs what a run on a GPU machine without this project's build dependencies needs:
 # the tool, the benchmarks, the tests that exercise device code, and the shared
 # libraries they load that such a machine may lack (OpenMesh, tinygltf, stb, Google
-# Benchmark), into DIR/bin and DIR/lib. The OpenCL loader stays the machine's.
+# Benchmark; libepoxy and the X11 client libraries GLVND's libGL loads, for the renderer),
+# into DIR/bin and DIR/lib. The OpenCL loader stays the machine's.
 #
 #   scripts/device/bundle.sh BUILD_DIR DIR [EXTRA_BINARY ...]
 set -euo pipefail
@@ -28,6 +29,10 @@ for binary in "${binaries[@]}"; do
 done
 for binary in "$out"/bin/*; do
   ldd "$binary" | awk '/=> \//{print $3}' |
-    grep -E 'libOpenMesh|libtinygltf|libstb|libbenchmark|libgomp' | xargs -r -I{} cp -L {} "$out/lib/"
+    grep -E 'libOpenMesh|libtinygltf|libstb|libbenchmark|libgomp|libepoxy' | xargs -r -I{} cp -L {} "$out/lib/"
+done
+for library in libX11.so.6 libxcb.so.1 libXau.so.6 libXdmcp.so.6 libbsd.so.0 libmd.so.0; do
+  found=$(ldconfig -p | awk -v name="$library" '$1 == name && /x86-64/ {print $NF; exit}')
+  [ -n "$found" ] && cp -L "$found" "$out/lib/"
 done
 du -sh "$out"

@@ -52,4 +52,21 @@ glm::vec3 project_to_pixel(const Camera& camera, int width, int height, const gl
           (0.5f - ndc.y * 0.5f) * static_cast<float>(height), clip.w};
 }
 
+PinholeIntrinsics pinhole_intrinsics(const Camera& camera, int width, int height) {
+  const double half_angle = glm::radians(static_cast<double>(camera.vertical_fov_degrees)) / 2.0;
+  PinholeIntrinsics k;
+  k.fy = 0.5 * static_cast<double>(height) / std::tan(half_angle);
+  k.fx = k.fy;
+  k.cx = 0.5 * static_cast<double>(width);
+  k.cy = 0.5 * static_cast<double>(height);
+  return k;
+}
+
+glm::dmat4 camera_from_world(const Camera& camera) {
+  const glm::dmat4 view =
+      glm::lookAt(glm::dvec3(camera.position), glm::dvec3(camera.target), glm::dvec3(camera.up));
+  const glm::dmat4 flip = glm::scale(glm::dmat4(1.0), glm::dvec3(1.0, -1.0, -1.0));
+  return flip * view;
+}
+
 }  // namespace finflex::render

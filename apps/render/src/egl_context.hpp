@@ -31,6 +31,8 @@ class EglContext {
   bool try_make_current() const noexcept;
   // How the display was reached, e.g. "device 0 (software)".
   const std::string& description() const { return description_; }
+  EGLDisplay display() const { return display_; }
+  EGLContext context() const { return context_; }
 
  private:
   EGLDisplay display_ = EGL_NO_DISPLAY;

@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <initializer_list>
 #include <sstream>
 #include <vector>
 
@@ -32,18 +33,39 @@ std::string last_line(const std::string& path) {
   return last;
 }
 
-std::vector<std::string> ffmpeg_arguments(const VideoOptions& options, const std::string& output) {
+void append(std::vector<std::string>& arguments, std::initializer_list<std::string> more) {
+  arguments.insert(arguments.end(), more);
+}
+
+std::vector<std::string> ffmpeg_arguments(const VideoOptions& options, FfmpegFormat format,
+                                          const std::string& output) {
   const std::string size = std::to_string(options.width) + "x" + std::to_string(options.height);
-  return {"ffmpeg", "-hide_banner", "-loglevel", "error", "-y",
-          // input: raw frames on standard input
-          "-f", "rawvideo", "-pix_fmt", "rgb24", "-s", size, "-framerate",
-          std::to_string(options.fps), "-i", "pipe:0",
-          // even sizes for 4:2:0, BT.709 limited range, tagged as sRGB transfer
-          "-vf",
-          "pad=ceil(iw/2)*2:ceil(ih/2)*2,scale=out_color_matrix=bt709:out_range=tv,format=yuv420p",
-          "-colorspace", "bt709", "-color_primaries", "bt709", "-color_trc", "iec61966-2-1",
-          "-color_range", "tv", "-c:v", "libx264", "-preset", options.preset, "-crf",
-          std::to_string(options.crf), "-movflags", "+faststart", "-f", "mp4", output};
+  std::vector<std::string> arguments = {"ffmpeg", "-hide_banner", "-loglevel", "error", "-y"};
+  // input: raw frames on standard input
+  append(arguments, {"-f", "rawvideo", "-pix_fmt", "rgb24", "-s", size});
+  append(arguments, {"-framerate", std::to_string(options.fps), "-i", "pipe:0"});
+  if (format == FfmpegFormat::kGif) {
+    // scaled down to gif_width; one palette for the clip, from every frame;
+    // error-diffusion dithering (Sierra-2-4A)
+    std::string filter;
+    if (options.gif_width > 0) {
+      filter = "scale=w='min(" + std::to_string(options.gif_width) + ",iw)':h=-1:flags=lanczos,";
+    }
+    filter += "split[a][b];[a]palettegen=max_colors=" + std::to_string(options.gif_colours) +
+              ":stats_mode=full[p];[b][p]paletteuse=dither=sierra2_4a";
+    append(arguments, {"-vf", filter, "-loop", "0", "-f", "gif", output});
+    return arguments;
+  }
+  // even sizes for 4:2:0, BT.709 limited range, tagged as sRGB transfer
+  append(arguments, {"-vf",
+                     "pad=ceil(iw/2)*2:ceil(ih/2)*2,scale=out_color_matrix=bt709:"
+                     "out_range=tv,format=yuv420p"});
+  append(arguments, {"-colorspace", "bt709", "-color_primaries", "bt709"});
+  append(arguments, {"-color_trc", "iec61966-2-1", "-color_range", "tv"});
+  append(arguments, {"-c:v", "libx264", "-preset", options.preset});
+  append(arguments, {"-crf", std::to_string(options.crf), "-movflags", "+faststart"});
+  append(arguments, {"-f", "mp4", output});
+  return arguments;
 }
 
 }  // namespace
@@ -64,7 +86,8 @@ bool on_path(const std::string& program) {
   return false;
 }
 
-FfmpegWriter::FfmpegWriter(const std::string& path, const VideoOptions& options)
+FfmpegWriter::FfmpegWriter(const std::string& path, const VideoOptions& options,
+                           FfmpegFormat format)
     : file_(path), log_(path + ".log"), options_(options) {
   options_.validate();
   int sockets[2];
@@ -77,7 +100,7 @@ FfmpegWriter::FfmpegWriter(const std::string& path, const VideoOptions& options)
   posix_spawn_file_actions_adddup2(&actions, sockets[1], 0);
   posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
   posix_spawn_file_actions_adddup2(&actions, log_.descriptor(), 2);
-  const std::vector<std::string> arguments = ffmpeg_arguments(options_, file_.path());
+  const std::vector<std::string> arguments = ffmpeg_arguments(options_, format, file_.path());
   std::vector<char*> argv;
   for (const std::string& argument : arguments) argv.push_back(const_cast<char*>(argument.c_str()));
   argv.push_back(nullptr);

@@ -1,8 +1,11 @@
-// MP4 through the ffmpeg program: raw RGB24 frames go through a socket to its
+// MP4 or GIF through the ffmpeg program: raw RGB24 frames go through a socket to its
 // standard input (a socket rather than a pipe, so that a vanished ffmpeg is an error
-// from send(), not a SIGPIPE), and it encodes H.264 (libx264, yuv420p, BT.709
-// matrix, sRGB transfer tagged) into a temporary file that finish() renames into
-// place. Its standard error goes to a temporary log whose last line explains a failure.
+// from send(), not a SIGPIPE), and it encodes them into a temporary file that
+// finish() renames into place: H.264 (libx264, yuv420p, BT.709 matrix, sRGB transfer
+// tagged) for MP4; for GIF, scaled down to VideoOptions::gif_width, one palette made
+// from every frame (palettegen: ffmpeg holds the whole clip until the end, so GIFs are
+// for short clips), applied with error diffusion, looping forever. Its standard error
+// goes to a temporary log whose last line explains a failure.
 #pragma once
 
 #include <sys/types.h>
@@ -14,10 +17,13 @@
 
 namespace finflex::render::detail {
 
+enum class FfmpegFormat { kMp4, kGif };
+
 class FfmpegWriter : public VideoWriter {
  public:
   // Starts ffmpeg. kIo when it cannot be started.
-  FfmpegWriter(const std::string& path, const VideoOptions& options);
+  FfmpegWriter(const std::string& path, const VideoOptions& options,
+               FfmpegFormat format = FfmpegFormat::kMp4);
   ~FfmpegWriter() override;
   void add_frame(const Image& frame) override;
   void finish() override;

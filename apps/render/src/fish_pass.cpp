@@ -10,6 +10,10 @@ namespace finflex::render::detail {
 
 namespace {
 
+// Instanced attributes: locations 0..3 the transform's columns, 4 the id (unsigned
+// integer). Each is read from an upload, or is a constant: the identity, id 0.
+constexpr GLuint kIdLocation = 4;
+
 GLenum texel_format(ComponentType type) {
   return type == ComponentType::kFloat16 ? GL_R16F : GL_R32F;
 }
@@ -22,12 +26,18 @@ GLint shader_stride(std::size_t bytes, std::size_t element, std::size_t count) {
   return static_cast<GLint>(elements);
 }
 
+std::vector<std::string> fragment_files(FishOutput output) {
+  if (output == FishOutput::kIds) return {"id.frag.glsl"};
+  return {"scene_block.glsl", "shading.glsl", "surface.frag.glsl"};
+}
+
 }  // namespace
 
-FishPass::FishPass(const GlLimits& limits)
+FishPass::FishPass(const GlLimits& limits, FishOutput output)
     : limits_(limits),
-      program_("fish", {"scene_block.glsl", "fish.vert.glsl"},
-               {"scene_block.glsl", "shading.glsl", "surface.frag.glsl"}),
+      output_(output),
+      program_(output == FishOutput::kIds ? "fish ids" : "fish",
+               {"scene_block.glsl", "fish.vert.glsl"}, fragment_files(output)),
       positions_(GlTexture::create()),
       normals_(GlTexture::create()) {
   program_.bind_block("Scene", 0);
@@ -119,24 +129,11 @@ void FishPass::draw(const std::vector<FishDraw>& fish, const std::vector<MeshRes
     if (draw.instance_count == 0) continue;
     const MeshResources& mesh = meshes[draw.mesh];
     const std::size_t count = draw.instance_count;
-    const Stream positions = prepare(draw.positions, count, mesh.vertex_count, 3 * d, buffers);
-    const Stream normals = prepare(draw.normals, count, mesh.vertex_count, 3 * d + 1, buffers);
+    const Stream positions = prepare(draw.positions, count, mesh.vertex_count, 4 * d, buffers);
+    const Stream normals = prepare(draw.normals, count, mesh.vertex_count, 4 * d + 1, buffers);
 
     glBindVertexArray(mesh.vertex_array.get());
-    const bool placed = draw.transforms != nullptr;
-    if (placed) {
-      glBindBuffer(GL_ARRAY_BUFFER, upload(3 * d + 2, draw.transforms, count * sizeof(glm::mat4)));
-    }
-    for (GLuint column = 0; column < 4; ++column) {
-      if (placed) {
-        glEnableVertexAttribArray(column);
-        glVertexAttribDivisor(column, 1);
-      } else {  // the identity, as the attribute's constant value
-        glDisableVertexAttribArray(column);
-        const glm::vec4 identity = glm::mat4(1.0f)[static_cast<int>(column)];
-        glVertexAttrib4f(column, identity.x, identity.y, identity.z, identity.w);
-      }
-    }
+    set_instance_attributes(draw, 4 * d + 2);
     glUniform3f(albedo_, draw.albedo.r, draw.albedo.g, draw.albedo.b);
 
     const std::string field = "fish[" + std::to_string(d) + "]";
@@ -147,11 +144,7 @@ void FishPass::draw(const std::vector<FishDraw>& fish, const std::vector<MeshRes
       const std::size_t instances = std::min(run, count - first);
       bind_run(GL_TEXTURE0, positions_, position_stream_, positions, first, instances);
       bind_run(GL_TEXTURE1, normals_, normal_stream_, normals, first, instances);
-      for (GLuint column = 0; placed && column < 4; ++column) {
-        const std::size_t offset = (first * 4 + column) * sizeof(glm::vec4);
-        glVertexAttribPointer(column, 4, GL_FLOAT, GL_FALSE, sizeof(glm::mat4),
-                              reinterpret_cast<const void*>(offset));
-      }
+      point_instance_attributes(first);
       glDrawElementsInstanced(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr,
                               static_cast<GLsizei>(instances));
     }
@@ -159,6 +152,51 @@ void FishPass::draw(const std::vector<FishDraw>& fish, const std::vector<MeshRes
     glBindBuffer(GL_ARRAY_BUFFER, 0);
   }
   glActiveTexture(GL_TEXTURE0);
+}
+
+void FishPass::set_instance_attributes(const FishDraw& draw, std::size_t slot) {
+  const std::size_t count = draw.instance_count;
+  transform_buffer_ = 0;
+  id_buffer_ = 0;
+  if (draw.transforms != nullptr) {
+    transform_buffer_ = upload(slot, draw.transforms, count * sizeof(glm::mat4));
+  }
+  if (output_ == FishOutput::kIds) {
+    id_buffer_ = upload(slot + 1, draw.ids, count * sizeof(std::uint32_t));
+  }
+  for (GLuint column = 0; column < 4; ++column) {
+    if (transform_buffer_ != 0) {
+      glEnableVertexAttribArray(column);
+      glVertexAttribDivisor(column, 1);
+    } else {  // the identity, as the attribute's constant value
+      glDisableVertexAttribArray(column);
+      const glm::vec4 identity = glm::mat4(1.0f)[static_cast<int>(column)];
+      glVertexAttrib4f(column, identity.x, identity.y, identity.z, identity.w);
+    }
+  }
+  if (id_buffer_ != 0) {
+    glEnableVertexAttribArray(kIdLocation);
+    glVertexAttribDivisor(kIdLocation, 1);
+  } else {
+    glDisableVertexAttribArray(kIdLocation);
+    glVertexAttribI4ui(kIdLocation, 0, 0, 0, 0);
+  }
+}
+
+void FishPass::point_instance_attributes(std::size_t first_instance) const {
+  if (transform_buffer_ != 0) {
+    glBindBuffer(GL_ARRAY_BUFFER, transform_buffer_);
+    for (GLuint column = 0; column < 4; ++column) {
+      const std::size_t offset = (first_instance * 4 + column) * sizeof(glm::vec4);
+      glVertexAttribPointer(column, 4, GL_FLOAT, GL_FALSE, sizeof(glm::mat4),
+                            reinterpret_cast<const void*>(offset));
+    }
+  }
+  if (id_buffer_ != 0) {
+    glBindBuffer(GL_ARRAY_BUFFER, id_buffer_);
+    glVertexAttribIPointer(kIdLocation, 1, GL_UNSIGNED_INT, sizeof(std::uint32_t),
+                           reinterpret_cast<const void*>(first_instance * sizeof(std::uint32_t)));
+  }
 }
 
 }  // namespace finflex::render::detail

@@ -68,4 +68,18 @@ void validate_fish(const std::vector<FishDraw>& fish, const std::vector<MeshReso
   }
 }
 
+void validate_ids(const std::vector<FishDraw>& fish) {
+  for (std::size_t d = 0; d < fish.size(); ++d) {
+    const FishDraw& draw = fish[d];
+    if (draw.instance_count == 0) continue;
+    const std::string field = "fish[" + std::to_string(d) + "].ids";
+    if (draw.ids == nullptr) invalid(field, "is null: the id pass needs an id per instance");
+    for (std::size_t i = 0; i < draw.instance_count; ++i) {
+      if (draw.ids[i] == 0) {
+        invalid(field + "[" + std::to_string(i) + "]", "0 (the background's id; ids are > 0)");
+      }
+    }
+  }
+}
+
 }  // namespace finflex::render::detail

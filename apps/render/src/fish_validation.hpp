@@ -17,4 +17,8 @@ namespace finflex::render::detail {
 void validate_fish(const std::vector<FishDraw>& fish, const std::vector<MeshResources>& meshes,
                    const std::vector<BufferResource>& buffers);
 
+// For the id pass: every draw with instances has ids ("fish[d].ids": null), all > 0
+// ("fish[d].ids[i]": 0 is the background's).
+void validate_ids(const std::vector<FishDraw>& fish);
+
 }  // namespace finflex::render::detail

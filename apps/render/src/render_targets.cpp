@@ -7,8 +7,6 @@
 
 namespace finflex::render::detail {
 
-namespace {
-
 GlRenderbuffer renderbuffer(GLenum format, int width, int height, int samples) {
   GlRenderbuffer buffer = GlRenderbuffer::create();
   glBindRenderbuffer(GL_RENDERBUFFER, buffer.get());
@@ -31,8 +29,6 @@ void require_complete(const char* name) {
         std::string("the ") + name + " framebuffer is incomplete (status " + code + ")");
   }
 }
-
-}  // namespace
 
 RenderTargets::RenderTargets(int width, int height, int samples) : width_(width), height_(height) {
   scene_colour_ = renderbuffer(GL_RGBA16F, width, height, samples);

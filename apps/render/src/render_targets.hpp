@@ -9,6 +9,12 @@
 
 namespace finflex::render::detail {
 
+// A renderbuffer of `format`, multisampled when samples > 1.
+GlRenderbuffer renderbuffer(GLenum format, int width, int height, int samples);
+// Throws RenderError (kGraphics) naming the framebuffer bound to GL_FRAMEBUFFER when it
+// is incomplete.
+void require_complete(const char* name);
+
 class RenderTargets {
  public:
   // `samples` >= 1, within the driver's GL_MAX_SAMPLES. Throws RenderError (kGraphics)

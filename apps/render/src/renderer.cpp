@@ -9,6 +9,7 @@
 #include "fish_pass.hpp"
 #include "fish_validation.hpp"
 #include "gl_resources.hpp"
+#include "id_targets.hpp"
 #include "render_targets.hpp"
 #include "scene_uniforms.hpp"
 #include "tank_pass.hpp"
@@ -76,6 +77,9 @@ struct Renderer::Impl {
   TankPass tank;
   FishPass fish;
   EncodePass encode;
+  std::unique_ptr<IdTargets> id_targets;  // the id pass's, made on its first use
+  std::unique_ptr<FishPass> fish_ids;
+  Camera id_camera;  // the last id pass's, for its depth
   std::vector<MeshResources> meshes;
   std::vector<BufferResource> buffers;
 
@@ -85,7 +89,7 @@ struct Renderer::Impl {
         device(describe(egl, limits, std::min(settings.samples, limits.max_samples))),
         targets(settings.width, settings.height, device.samples),
         scene_block(GlBuffer::create()),
-        fish(limits) {
+        fish(limits, FishOutput::kLitColour) {
     glBindBuffer(GL_UNIFORM_BUFFER, scene_block.get());
     glBufferData(GL_UNIFORM_BUFFER, sizeof(SceneBlock), nullptr, GL_DYNAMIC_DRAW);
     glBindBuffer(GL_UNIFORM_BUFFER, 0);
@@ -217,6 +221,53 @@ void Renderer::render(const Scene& scene, const Camera& camera, const std::vecto
   require_no_gl_error("render");
 }
 
+void Renderer::render_ids(const Scene& scene, const Camera& camera,
+                          const std::vector<FishDraw>& fish) {
+  impl_->egl.make_current();
+  scene.validate();
+  camera.validate();
+  validate_fish(fish, impl_->meshes, impl_->buffers);
+  validate_ids(fish);
+  Impl& r = *impl_;
+  if (!r.id_targets) {
+    r.id_targets = std::make_unique<IdTargets>(r.settings.width, r.settings.height);
+    r.fish_ids = std::make_unique<FishPass>(r.limits, FishOutput::kIds);
+  }
+  const float aspect = static_cast<float>(r.settings.width) / static_cast<float>(r.settings.height);
+  const SceneBlock block = make_scene_block(scene, camera, aspect);
+  glBindBuffer(GL_UNIFORM_BUFFER, r.scene_block.get());
+  glBufferSubData(GL_UNIFORM_BUFFER, 0, sizeof block, &block);
+  glBindBuffer(GL_UNIFORM_BUFFER, 0);
+  glBindBufferBase(GL_UNIFORM_BUFFER, 0, r.scene_block.get());
+
+  r.id_targets->bind_and_clear();
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glEnable(GL_CULL_FACE);
+  glCullFace(GL_BACK);
+  glFrontFace(GL_CCW);
+  glDrawBuffer(GL_NONE);  // the tank hides what is behind it, and writes no id
+  r.tank.draw(scene.tank);
+  glDrawBuffer(GL_COLOR_ATTACHMENT0);
+  r.fish_ids->draw(fish, r.meshes, r.buffers);
+  r.id_camera = camera;
+  require_no_gl_error("render_ids");
+}
+
+void Renderer::read_ids(IdImage& out) {
+  impl_->egl.make_current();
+  Impl& r = *impl_;
+  if (!r.id_targets) invalid("read_ids", "no id pass was rendered");
+  r.id_targets->read(out, r.id_camera.near_plane, r.id_camera.far_plane);
+  require_no_gl_error("read_ids");
+}
+
+IdImage Renderer::read_ids() {
+  IdImage image;
+  read_ids(image);
+  return image;
+}
+
 void Renderer::finish() {
   impl_->egl.make_current();
   glFinish();
@@ -241,5 +292,7 @@ Image Renderer::read_image() {
 }
 
 void Renderer::make_current() { impl_->egl.make_current(); }
+void* Renderer::egl_display() const { return impl_->egl.display(); }
+void* Renderer::egl_context() const { return impl_->egl.context(); }
 
 }  // namespace finflex::render

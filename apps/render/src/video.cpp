@@ -30,6 +30,8 @@ void VideoOptions::validate() const {
   detail::require_in_range("video.fps", fps, 1, 240);
   detail::require_in_range("video.crf", crf, 0, 51);
   detail::require_in_range("video.png_compression", png_compression, 1, 9);
+  detail::require_in_range("video.gif_width", gif_width, 0, 16384);
+  detail::require_in_range("video.gif_colours", gif_colours, 2, 256);
   const char* presets[] = {"ultrafast", "superfast", "veryfast", "faster",  "fast",
                            "medium",    "slow",      "slower",   "veryslow"};
   if (std::find(std::begin(presets), std::end(presets), preset) == std::end(presets)) {
@@ -43,19 +45,21 @@ bool ffmpeg_available() { return detail::on_path("ffmpeg"); }
 std::unique_ptr<VideoWriter> open_video(const std::string& path, const VideoOptions& options) {
   options.validate();
   const std::string extension = lower_extension(path);
-  if (extension == ".mp4") {
+  if (extension == ".mp4" || extension == ".gif") {
     if (!ffmpeg_available()) {
       throw RenderError(ErrorCode::kIo, path,
-                        "\"" + path +
-                            "\": MP4 needs the ffmpeg program, which is not on PATH "
+                        "\"" + path + "\": " + (extension == ".mp4" ? "MP4" : "GIF") +
+                            " needs the ffmpeg program, which is not on PATH "
                             "(write .png for an animated PNG instead)");
     }
-    return std::make_unique<detail::FfmpegWriter>(path, options);
+    return std::make_unique<detail::FfmpegWriter>(
+        path, options,
+        extension == ".mp4" ? detail::FfmpegFormat::kMp4 : detail::FfmpegFormat::kGif);
   }
   if (extension == ".png" || extension == ".apng") {
     return std::make_unique<detail::ApngWriter>(path, options);
   }
-  detail::invalid("path", "\"" + path + "\" does not end in .mp4, .png or .apng");
+  detail::invalid("path", "\"" + path + "\" does not end in .mp4, .gif, .png or .apng");
 }
 
 std::string default_video_path(const std::string& stem) {

@@ -74,6 +74,7 @@ struct DeformedBatch {
   std::vector<T> positions;
   std::vector<T> normals;
   std::vector<T> tangents;                    // empty unless layout.tangents
+  std::vector<T> previous_positions;          // empty unless the batch writes them
   std::vector<std::uint32_t> slot_of_vertex;  // empty: slot = vertex
 
   Vec3 position(std::size_t instance, std::size_t vertex) const {
@@ -84,6 +85,9 @@ struct DeformedBatch {
   }
   Vec3 tangent(std::size_t instance, std::size_t vertex) const {
     return gather(tangents, instance, vertex);
+  }
+  Vec3 previous_position(std::size_t instance, std::size_t vertex) const {
+    return gather(previous_positions, instance, vertex);
   }
 
   void resize(const BatchLayout& new_layout) {

@@ -26,9 +26,23 @@
 // (RiggedMesh::is_single_bend) has its own kernel; other rigs run fused (one kernel,
 // each vertex's whole path in registers) or in passes (job.path).
 //
-// Thread-safety: a deformer records which batch its kernels were last set up for and
-// owns its parameter staging: use each deformer from one thread at a time. Deformers
-// on one Context may be used from different threads.
+// Thread-safety:
+// - Deformers on one Context may be used from different threads at once.
+// - One deformer may be shared by several threads: enqueue() holds the deformer's
+//   lock from its checks to its last launch (its staging ring, parameter buffer,
+//   scratch sets and kernel arguments are per frame), so each thread's frames come
+//   out whole and right. The cost: one uncontended lock per frame (about 25 ns,
+//   against tens of microseconds for the frame's enqueue); threads sharing a deformer
+//   take turns to enqueue (the kernels still run on the device's one in-order queue),
+//   and each frame on another batch than the deformer's last sets the kernel
+//   arguments again. check(), read(), allocate(), layout() and the accessors only
+//   read what is fixed at construction.
+// - A DeviceBatch, its RigParameters and a ClJob belong to one thread at a time; two
+//   threads enqueueing into one batch get whichever frame the queue runs last.
+// - A RigFrame belongs to one thread at a time; RigFrames on several threads may share
+//   deformers.
+// - read() blocks until every command queued on the context before it is done (all
+//   threads' frames, not only this batch's).
 #pragma once
 
 #include <cstddef>
@@ -82,8 +96,13 @@ struct ClOptions {
   // Vertex slots one work-item deforms, one per lane of OpenCL vectors over the output
   // planes (kernels/common/lanes.cl): 1, 8 or 16; 0: the device's choice (GPUs 1;
   // CPUs 16 where their native float vectors have 16 lanes, else 8: vector code by
-  // construction, whatever the OpenCL compiler vectorises). Outputs with half
-  // normals take 1.
+  // construction, whatever the OpenCL compiler vectorises).
+  // Lanes apply per batch, only to outputs in FinFlex's default planes: a batch whose
+  // OutputLayout equals planes_layout(instances, NormalFormat::kFloat32) (float32
+  // planes, slot order, no previous positions; allocate(instances) makes one). Any
+  // other output layout (half normals, packed or 16-bit attributes, mesh order,
+  // previous positions, ...) runs the one-lane kernels with the store epilogue of
+  // kernels/common/outputs.cl, whatever this asks: lanes(outputs) says which.
   std::size_t lanes = 0;
   // With more than one lane: how the outputs are stored.
   OutputStores stores = OutputStores::kAuto;
@@ -103,10 +122,33 @@ class FINFLEX_API ClDeformer {
   Context& context() const;
 
   BatchLayout layout(std::size_t instances, NormalFormat format = NormalFormat::kFloat32) const;
-  // Allocates the outputs of `instances` instances, normals and tangents in `format`.
-  // kInvalidArgument for 0, kOutOfRange naming "instances" when one attribute array
-  // would exceed the device's largest allocation.
+  // Allocates the outputs of `instances` instances in FinFlex's planes, normals and
+  // tangents in `format`. kInvalidArgument for 0, kOutOfRange naming "instances" when
+  // one attribute array would exceed the device's largest allocation or above
+  // kMaxDeviceInstances.
   DeviceBatch allocate(std::size_t instances, NormalFormat format = NormalFormat::kFloat32) const;
+
+  // ---- Hand-off (finflex/output_layout.hpp, docs/handoff.md) ----
+  // The vertices an output layout in `order` covers: the slots (slot_of_vertex(),
+  // padding included) or the mesh's vertices.
+  std::size_t output_vertices(VertexOrder order) const;
+  // FinFlex's planes for `instances` instances as an OutputLayout, to start from.
+  OutputLayout planes_layout(std::size_t instances,
+                             NormalFormat format = NormalFormat::kFloat32) const;
+  // Outputs in any layout: allocated by the deformer (a buffer per attribute), in the
+  // caller's buffers, or in the caller's host memory. Every descriptor and buffer is
+  // checked (validate_output_layout, sizes against OutputLayout::required_bytes):
+  // kInvalidArgument naming the attribute ("outputs.normals.vertex_stride", ...).
+  DeviceBatch allocate(std::size_t instances, const OutputLayout& outputs) const;
+  DeviceBatch bind(std::size_t instances, const OutputLayout& outputs,
+                   const OutputBuffers& buffers) const;
+  DeviceBatch bind_host(std::size_t instances, const OutputLayout& outputs,
+                        const HostOutputs& host) const;
+  // A bind_host batch's frame in the caller's memory: maps its buffers for the host,
+  // blocking until the frame is there (on CPU devices the kernels wrote it there
+  // already: no copy). The next enqueue() on the batch unmaps them; so does unmap_host.
+  void map_host(DeviceBatch& batch);
+  void unmap_host(DeviceBatch& batch);
 
   // Validates the job (ClJob::validate, then: the job's model is this deformer's,
   // and its outputs were allocated for this model with room for its instances:
@@ -119,7 +161,8 @@ class FINFLEX_API ClDeformer {
   // Throws what enqueue() would throw for `job`, and enqueues nothing.
   void check(const ClJob& job) const;
 
-  // Blocking read of a batch; the result's accessors take mesh vertex indices.
+  // Blocking read of a batch in any layout, decoded to float; the result's accessors
+  // take mesh vertex indices.
   DeformedBatch<float> read(const DeviceBatch& batch);
 
   const std::vector<std::uint32_t>& slot_of_vertex() const;
@@ -136,11 +179,15 @@ class FINFLEX_API ClDeformer {
   RigPath automatic_path() const;
   // Instances one work-item deforms for outputs in `format` (ClOptions).
   std::size_t instances_per_item(NormalFormat format) const;
-  // Vertex slots one work-item deforms for outputs in `format` (ClOptions::lanes).
+  std::size_t instances_per_item(const OutputLayout& outputs) const;
+  // Vertex slots one work-item deforms for outputs in FinFlex's planes in `format`, and
+  // for outputs in `outputs` (ClOptions::lanes: 1 for any layout but FinFlex's float32
+  // planes in slot order).
   std::size_t lanes(NormalFormat format) const;
-  // True when a frame on a batch of `layout` writes it with streaming stores
-  // (ClOptions::stores; only kernels of more than one lane have them).
-  bool streams_outputs(const BatchLayout& layout) const;
+  std::size_t lanes(const OutputLayout& outputs) const;
+  // True when a frame on `batch` writes it with streaming stores (ClOptions::stores;
+  // only kernels of more than one lane have them).
+  bool streams_outputs(const DeviceBatch& batch) const;
 
   // The work-group size along the slots (every plane stride is a multiple of it).
   static constexpr std::size_t kGroupSize = 64;

@@ -1,5 +1,11 @@
 // OpenCL plumbing: picks a platform and device, owns the context and an in-order
 // profiling queue, and caches compiled programs by build options.
+//
+// Thread-safety: a Context may be shared by any number of threads (deformers on
+// several threads, program builds): the program cache is guarded by a lock, and the
+// queue is used only through OpenCL calls, which are thread-safe. Every thread's
+// commands go to the one in-order queue. Construction and destruction are not
+// concurrent with any use.
 #pragma once
 
 #include <map>
@@ -48,8 +54,9 @@ struct ProgramSource {
 };
 
 // The library's shared kernel files, in build order: lanes (the slots of a work-item)
-// and vectors, the secant surface's (7) and (8), the output planes (one lane, then more
-// than one), stage frames, world placement.
+// and vectors, the secant surface's (7) and (8), the planes (one lane, then more than
+// one), the outputs' store epilogue (one lane, then more than one), stage frames, world
+// placement.
 FINFLEX_API const std::vector<std::string>& common_kernel_files();
 
 class FINFLEX_API Context {
@@ -59,12 +66,18 @@ class FINFLEX_API Context {
   // device or platform name ("pocl", "H100"). The first match wins. Throws kDevice
   // naming the value when nothing matches or no OpenCL platform exists.
   explicit Context(const std::string& device = "");
+  // The same with context properties after CL_CONTEXT_PLATFORM (pairs, without the
+  // closing 0), e.g. an OpenGL context to share buffers with (finflex/gl_outputs.hpp):
+  // kOpenCL when the platform refuses them.
+  Context(const std::string& device, const std::vector<cl_context_properties>& extra_properties);
   Context(const Context&) = delete;
   Context& operator=(const Context&) = delete;
 
   const DeviceDescription& description() const { return description_; }
   const cl::Device& device() const { return device_; }
   const cl::Context& context() const { return context_; }
+  // The extra context properties it was made with (pairs; empty for none).
+  const std::vector<cl_context_properties>& extra_properties() const { return extra_properties_; }
   cl::CommandQueue& queue() { return queue_; }
 
   // The program of `source`, built once per (source, options) and cached. Every build
@@ -80,6 +93,7 @@ class FINFLEX_API Context {
   cl::Device device_;
   cl::Context context_;
   cl::CommandQueue queue_;
+  std::vector<cl_context_properties> extra_properties_;
   std::mutex cache_mutex_;
   std::map<std::string, cl::Program> programs_;
 };

@@ -4,6 +4,9 @@
 //
 //   RiggedMesh fish(mesh, resolve_rig(load_rig_file("data/rigs/blub.rig.json"), mesh));
 //   RiggedMesh bent = RiggedMesh::single_bend(mesh, find_body_frame(mesh), BendMode::kExact);
+//
+// Thread-safety: a RiggedMesh does not change after construction; any number of
+// threads may read it (deformers and reference jobs on several threads).
 #pragma once
 
 #include <cstddef>
@@ -19,9 +22,11 @@ namespace finflex {
 
 class FINFLEX_API RiggedMesh {
  public:
-  // Validates the mesh (validate_mesh) and that the rig's components take every
-  // vertex exactly once: kInvalidArgument (field "rig") naming the first vertex that
-  // belongs to no component or to two. Mesh and rig are copied.
+  // Validates the mesh (validate_mesh), the rig's structure (kInvalidArgument, field
+  // "rig": parents before children, the limits kMaxRigDepth and kMaxRigPathStages,
+  // subtree_end, stage parameters in range and of the right size) and that the rig's
+  // components take every vertex exactly once: kInvalidArgument (field "rig") naming
+  // the first vertex that belongs to no component or to two. Mesh and rig are copied.
   RiggedMesh(Mesh mesh, Rig rig);
 
   // The paper's whole-body bend: single_bend_rig(mesh, frame, mode).

@@ -4,6 +4,10 @@
 //   RigParameters values(model, 1000);        // all zero: the rest pose
 //   values.set(7, "tail_angle", 0.4f);
 //   job.parameters = values.view();
+//
+// Thread-safety: a RigParameters is written by its thread; a job reads its values
+// during enqueue() / run_reference() only (enqueue copies them), so they may be
+// refilled for the next frame as soon as enqueue() returns.
 #pragma once
 
 #include <cstddef>

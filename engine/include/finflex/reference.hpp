@@ -11,6 +11,9 @@
 //   DeformedBatch<double> out;
 //   job.outputs = &out;
 //   run_reference(job);
+//
+// Thread-safety: run_reference only reads the model and the parameters; jobs may run
+// on several threads at once, each with its own outputs.
 #pragma once
 
 #include <glm/glm.hpp>

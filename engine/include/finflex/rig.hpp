@@ -23,6 +23,16 @@
 
 namespace finflex {
 
+// Limits, so that the work and memory a rig takes follow its size (nothing in rig
+// parsing or resolution recurses): beyond them parse_rig_json, resolve_rig and
+// RiggedMesh refuse the rig with kInvalidArgument naming the limit.
+// Deepest nesting of a component below the root (the root's depth is 0).
+constexpr std::size_t kMaxRigDepth = 64;
+// Most stages on one vertex's path (its component's chain, then its ancestors').
+constexpr std::size_t kMaxRigPathStages = 256;
+// Deepest nesting of arrays and objects in a rig file (the schema needs 6).
+constexpr std::size_t kMaxRigJsonDepth = 64;
+
 // ---------------------------------------------------------------- the rig file ---
 
 // A frame as a rig file writes it. The root's frame is in mesh coordinates; a child's
@@ -120,16 +130,19 @@ struct RigSpec {
 // on the root only; "frame" is not allowed on the root. Every key must be known and
 // appear once per object: a typo is an error, never ignored.
 // Errors: kFormat (field "rig") for malformed JSON, with the parser's line and
-// column; kInvalidArgument naming the place, e.g. "components[1] 'tail'.select.box.min"
-// ("components[1].name" before the name is known; "frame.x" at the top level), the
+// column; kInvalidArgument (field: the place) for arrays and objects nested deeper
+// than kMaxRigJsonDepth; kInvalidArgument naming the place, e.g.
+// "components[1] 'tail'.select.box.min" ("components[1].name" before the name is
+// known; "frame.x" at the top level), the
 // value found and what was expected, for a missing, unknown, duplicated or mistyped
 // key, an unknown deformer or selector, an option of another deformer, an option
 // value outside its range or choices, a length <= 0, a box with max < min, a frame
 // on the root. No mesh is needed: names, parents, vertices and
 // frame geometry (zero or parallel axes) are resolve_rig's to check.
 FINFLEX_API RigSpec parse_rig_json(const std::string& text);
-// Reads and parses a rig file: kIo (field "path") when it cannot be read, then as
-// parse_rig_json, with the path in front of the message.
+// Reads and parses a rig file: kIo (field "path") when it cannot be read or is not a
+// regular file (a directory, a FIFO, a device: refused without reading or blocking),
+// then as parse_rig_json, with the path in front of the message.
 FINFLEX_API RigSpec load_rig_file(const std::string& path);
 
 // ------------------------------------------------------- resolved against a mesh ---
@@ -189,7 +202,9 @@ struct FINFLEX_API Rig {
   const RigStage& stage(StageRef ref) const { return components[ref.component].chain[ref.stage]; }
   // The stages a vertex of component c goes through, bottom-up: c's chain, then its
   // parent's, ... then the root's.
-  // kInvalidArgument (field "component") when c is out of range; so does depth().
+  // kInvalidArgument (field "component") when c is out of range; so does depth(); and
+  // (field "components[k].parent") when a parent on the way does not come before its
+  // child (depth-first order), so a hand-made rig with a cycle cannot loop.
   std::vector<StageRef> path(std::size_t component) const;
   // Depth of component c (the root is 0).
   std::size_t depth(std::size_t component) const;
@@ -211,10 +226,13 @@ struct FINFLEX_API Rig {
 // whose attachment and centroid coincide: ".frame"), an empty param, a stage without a
 // deformer or with an option outside its range (".chain[k].param", ".deformer",
 // ".<option>"), a parameter read by stages that take different numbers of values
-// (".chain[k].param"). Also: the mesh fails validate_mesh()
-// (kInvalidMesh); a group beyond the triangles (kInvalidMesh, "groups[g]"); the
-// automatic root frame fails (find_body_frame's code and field, "frame" in the
-// message).
+// (".chain[k].param"), a component nested deeper than kMaxRigDepth (".parent"), a
+// path of more than kMaxRigPathStages stages (".chain"). Also: the mesh fails
+// validate_mesh() (kInvalidMesh); a group beyond the triangles (kInvalidMesh,
+// "groups[g]"); the automatic root frame fails (find_body_frame's code and field,
+// "frame" in the message). Work is O(components + stages + the vertices each
+// component selects + the triangles around automatic child frames), without
+// recursion; messages list at most 20 names.
 FINFLEX_API Rig resolve_rig(const RigSpec& spec, const Mesh& mesh);
 
 // The two forms of the paper's bend (METHOD.md section 5), the bend's "mode" option.

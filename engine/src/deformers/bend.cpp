@@ -62,34 +62,39 @@ SecantSample exact_secant(double x, double m) {
   return s;
 }
 
-const DeformerType kBend = {
-    "bend",
-    "the paper's fish bend: the spine becomes z = m x^2, arc length kept (12)-(17)",
-    "m, the bend (12); |m| <= 0.5 / x_max (13)",
-    {{"mode",
-      {"paper", "exact"},
-      0.0,
-      0.0,
-      false,
-      1.0,
-      "paper: the 4th-order series (15)-(17); exact: the closed form of (13)"}},
-    [](const StageOptions&) -> std::size_t { return 1; },
-    [](const StageOptions&, const StageGeometry& geometry) { return max_abs_m(geometry.x_max); },
-    [](double x, const double* values, const StageOptions& options, const StageGeometry&) {
-      return mode_of(options) == BendMode::kExact ? exact_secant(x, values[0])
-                                                  : paper_secant(x, values[0]);
-    },
-    "deformers/bend.cl",
-    [](const StageOptions& options) {
-      return mode_of(options) == BendMode::kExact ? "bend_exact_stage" : "bend_paper_stage";
-    },
-    [](const StageOptions&, const StageGeometry&) { return StageConstants{}; },
-};
+// The description, built on first use rather than a global: the registry may be read
+// while other files are statically initialised.
+const DeformerType& bend_type() {
+  static const DeformerType type = {
+      "bend",
+      "the paper's fish bend: the spine becomes z = m x^2, arc length kept (12)-(17)",
+      "m, the bend (12); |m| <= 0.5 / x_max (13)",
+      {{"mode",
+        {"paper", "exact"},
+        0.0,
+        0.0,
+        false,
+        1.0,
+        "paper: the 4th-order series (15)-(17); exact: the closed form of (13)"}},
+      [](const StageOptions&) -> std::size_t { return 1; },
+      [](const StageOptions&, const StageGeometry& geometry) { return max_abs_m(geometry.x_max); },
+      [](double x, const double* values, const StageOptions& options, const StageGeometry&) {
+        return mode_of(options) == BendMode::kExact ? exact_secant(x, values[0])
+                                                    : paper_secant(x, values[0]);
+      },
+      "deformers/bend.cl",
+      [](const StageOptions& options) {
+        return mode_of(options) == BendMode::kExact ? "bend_exact_stage" : "bend_paper_stage";
+      },
+      [](const StageOptions&, const StageGeometry&) { return StageConstants{}; },
+  };
+  return type;
+}
 
 }  // namespace
 
 namespace deformers {
-const DeformerType& bend() { return kBend; }
+const DeformerType& bend() { return bend_type(); }
 }  // namespace deformers
 
 const char* to_string(BendMode mode) { return mode == BendMode::kExact ? "exact" : "paper"; }

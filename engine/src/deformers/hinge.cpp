@@ -39,35 +39,40 @@ SecantSample hinge_secant(double x, double angle, double width) {
   return s;
 }
 
-const DeformerType kHinge = {
-    "hinge",
-    "a fin folding about its base: the angle ramps from 0 to `angle` over x in [0, width]",
-    "the fold angle in radians; |angle| <= pi",
-    {{"width",
-      {},
-      0.0,
-      std::numeric_limits<double>::infinity(),
-      false,
-      0.0,
-      "the ramp's width in x (the frame's lengths), >= 0"}},
-    [](const StageOptions&) -> std::size_t { return 1; },
-    [](const StageOptions&, const StageGeometry&) { return kPi; },
-    [](double x, const double* values, const StageOptions& options, const StageGeometry&) {
-      return hinge_secant(x, values[0], options[kWidth]);
-    },
-    "deformers/hinge.cl",
-    [](const StageOptions&) { return "hinge_stage"; },
-    [](const StageOptions& options, const StageGeometry&) {
-      // The kernel's hinge_sample reads width and 1 / width (0 for width 0).
-      const double width = options[kWidth];
-      return StageConstants{width, width > 0.0 ? 1.0 / width : 0.0, 0.0, 0.0};
-    },
-};
+// The description, built on first use rather than a global: the registry may be read
+// while other files are statically initialised.
+const DeformerType& hinge_type() {
+  static const DeformerType type = {
+      "hinge",
+      "a fin folding about its base: the angle ramps from 0 to `angle` over x in [0, width]",
+      "the fold angle in radians; |angle| <= pi",
+      {{"width",
+        {},
+        0.0,
+        std::numeric_limits<double>::infinity(),
+        false,
+        0.0,
+        "the ramp's width in x (the frame's lengths), >= 0"}},
+      [](const StageOptions&) -> std::size_t { return 1; },
+      [](const StageOptions&, const StageGeometry&) { return kPi; },
+      [](double x, const double* values, const StageOptions& options, const StageGeometry&) {
+        return hinge_secant(x, values[0], options[kWidth]);
+      },
+      "deformers/hinge.cl",
+      [](const StageOptions&) { return "hinge_stage"; },
+      [](const StageOptions& options, const StageGeometry&) {
+        // The kernel's hinge_sample reads width and 1 / width (0 for width 0).
+        const double width = options[kWidth];
+        return StageConstants{width, width > 0.0 ? 1.0 / width : 0.0, 0.0, 0.0};
+      },
+  };
+  return type;
+}
 
 }  // namespace
 
 namespace deformers {
-const DeformerType& hinge() { return kHinge; }
+const DeformerType& hinge() { return hinge_type(); }
 }  // namespace deformers
 
 }  // namespace finflex

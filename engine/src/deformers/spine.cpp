@@ -149,36 +149,41 @@ std::string check_spine(float* theta, const StageOptions& options, const StageGe
   return "";
 }
 
-const DeformerType kSpine = {
-    "spine",
-    "the general inextensible spine: a table of tangent angles along x, arc length kept",
-    "the tangent angle at each sample, in radians; |theta| <= pi",
-    {{"samples",
-      {},
-      2.0,
-      256.0,
-      true,
-      32.0,
-      "the angles per instance, evenly spaced over the stage's extent in x"}},
-    [](const StageOptions& options) { return samples_of(options); },
-    [](const StageOptions&, const StageGeometry&) { return kPi; },
-    spine_secant,
-    "deformers/spine.cl",
-    [](const StageOptions&) { return "spine_stage"; },
-    [](const StageOptions& options, const StageGeometry& geometry) {
-      const double h = spacing(options, geometry);
-      return StageConstants{geometry.x_lowest, 1.0 / h, h, double(samples_of(options) - 1)};
-    },
-    [](const StageOptions& options) { return 8 * samples_of(options); },  // spine.cl's records
-    "spine_prepare",
-    measure_spine,
-    check_spine,
-};
+// The description, built on first use rather than a global: the registry may be read
+// while other files are statically initialised.
+const DeformerType& spine_type() {
+  static const DeformerType type = {
+      "spine",
+      "the general inextensible spine: a table of tangent angles along x, arc length kept",
+      "the tangent angle at each sample, in radians; |theta| <= pi",
+      {{"samples",
+        {},
+        2.0,
+        256.0,
+        true,
+        32.0,
+        "the angles per instance, evenly spaced over the stage's extent in x"}},
+      [](const StageOptions& options) { return samples_of(options); },
+      [](const StageOptions&, const StageGeometry&) { return kPi; },
+      spine_secant,
+      "deformers/spine.cl",
+      [](const StageOptions&) { return "spine_stage"; },
+      [](const StageOptions& options, const StageGeometry& geometry) {
+        const double h = spacing(options, geometry);
+        return StageConstants{geometry.x_lowest, 1.0 / h, h, double(samples_of(options) - 1)};
+      },
+      [](const StageOptions& options) { return 8 * samples_of(options); },  // spine.cl's records
+      "spine_prepare",
+      measure_spine,
+      check_spine,
+  };
+  return type;
+}
 
 }  // namespace
 
 namespace deformers {
-const DeformerType& spine() { return kSpine; }
+const DeformerType& spine() { return spine_type(); }
 }  // namespace deformers
 
 }  // namespace finflex

@@ -30,4 +30,24 @@ glm::mat4 projection_matrix(const Camera& camera, float aspect);
 // in front of the camera).
 glm::vec3 project_to_pixel(const Camera& camera, int width, int height, const glm::vec3& world);
 
+// The same projection as a pinhole camera, for tools that calibrate with one (OpenCV,
+// COLMAP, a dataset's camera file). Camera coordinates on OpenCV's axes (x right, y
+// down, z forward, metres); a point (X, Y, Z) with Z > 0 lands at
+//   u = fx X / Z + cx,   v = fy Y / Z + cy
+// in pixels from the image's top-left corner, as project_to_pixel: pixel (i, j)
+// covers [i, i + 1) x [j, j + 1), its centre at (i + 0.5, j + 0.5). Square pixels:
+// fx = fy = (height / 2) / tan(vertical_fov / 2); cx = width / 2, cy = height / 2.
+// (Tools whose pixel centres are the integers use cx - 0.5 and cy - 0.5.)
+struct PinholeIntrinsics {
+  double fx = 0.0;
+  double fy = 0.0;
+  double cx = 0.0;
+  double cy = 0.0;
+};
+PinholeIntrinsics pinhole_intrinsics(const Camera& camera, int width, int height);
+
+// World (metres, y up) to camera coordinates on OpenCV's axes: the view matrix with
+// its y and z axes turned around (diag(1, -1, -1) view_matrix(camera)); a rigid motion.
+glm::dmat4 camera_from_world(const Camera& camera);
+
 }  // namespace finflex::render

@@ -80,6 +80,10 @@ struct FishDraw {
   // identity (positions are world coordinates). Else instance_count matrices, read
   // during Renderer::render only.
   const glm::mat4* transforms = nullptr;
+  // Per instance, the value the id pass writes where the instance is the nearest
+  // surface (Renderer::render_ids; 0 is the background, so ids are > 0). Needed by
+  // render_ids only; instance_count values, read during that call.
+  const std::uint32_t* ids = nullptr;
 };
 
 }  // namespace finflex::render

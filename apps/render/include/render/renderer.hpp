@@ -31,6 +31,7 @@
 #include "render/camera.hpp"
 #include "render/error.hpp"
 #include "render/fish_draw.hpp"
+#include "render/id_image.hpp"
 #include "render/image.hpp"
 #include "render/scene.hpp"
 
@@ -94,6 +95,17 @@ class Renderer {
   // "fish[0].positions" (too few bytes for its instances), and the value.
   void render(const Scene& scene, const Camera& camera, const std::vector<FishDraw>& fish);
 
+  // The id pass of the same view: per pixel the FishDraw::ids value of the nearest
+  // fish instance (0: none), at one sample per pixel, the tank drawn into the depth
+  // only (render/id_image.hpp). Validated as render() does, and every draw with
+  // instances needs ids, all > 0 (kInvalidArgument naming "fish[d].ids" or
+  // "fish[d].ids[i]"). Reuses the streams' uploads of nothing: host streams are
+  // copied again, so hand it renderer buffers where both passes run.
+  void render_ids(const Scene& scene, const Camera& camera, const std::vector<FishDraw>& fish);
+  // The last id pass (waits for the GPU).
+  IdImage read_ids();
+  void read_ids(IdImage& out);  // reuses out's storage
+
   // Waits until the GPU has drawn the frames rendered so far (glFinish): for timing.
   void finish();
 
@@ -103,6 +115,11 @@ class Renderer {
 
   // Makes the context current on the calling thread.
   void make_current();
+
+  // The EGL display and context (EGLDisplay, EGLContext), e.g. for an OpenCL context
+  // that shares this context's buffers (finflex/gl_outputs.hpp).
+  void* egl_display() const;
+  void* egl_context() const;
 
  private:
   struct Impl;

@@ -1,9 +1,13 @@
 // Videos from frames: MP4 (H.264) through the `ffmpeg` program when it is installed,
-// else an animated PNG (APNG) written here. Both take whole RGB8 frames in order.
+// else an animated PNG (APNG) written here; animated GIF through ffmpeg too. All take
+// whole RGB8 frames in order.
 //
 //   MP4: frames go raw through a pipe to ffmpeg (libx264, yuv420p, BT.709, sRGB
 //        transfer tagged); small files, the encoder runs in its own process. Needs
 //        `ffmpeg` on PATH.
+//   GIF:  a preview: one palette (128 colours) for the whole clip, at most 400 pixels
+//        wide, looping; a few hundred KB for a couple of seconds (a README's
+//        animation), through ffmpeg.
 //   APNG: every frame a whole PNG image (filtered rows, zlib deflate) in one file;
 //        no dependency beyond zlib, lossless, but one to two orders of magnitude
 //        larger than the MP4 and encoded on the calling thread.
@@ -30,6 +34,10 @@ struct VideoOptions {
   std::string preset = "veryfast";
   // APNG: zlib level, 1 (fast) .. 9 (small).
   int png_compression = 6;
+  // GIF, a preview: frames wider than this are scaled down to it (Lanczos, aspect
+  // kept); 0 keeps every frame's size. Colours: a palette of gif_colours (2 .. 256).
+  int gif_width = 400;
+  int gif_colours = 128;
 
   // Throws RenderError (kInvalidArgument) naming the field ("video.fps", ...).
   void validate() const;
@@ -50,8 +58,8 @@ class VideoWriter {
 // Whether an executable `ffmpeg` is on PATH.
 bool ffmpeg_available();
 
-// A writer chosen by the extension of `path`: ".mp4" through ffmpeg (kIo when it is
-// not installed), ".png" or ".apng" an APNG; anything else is kInvalidArgument.
+// A writer chosen by the extension of `path`: ".mp4" or ".gif" through ffmpeg (kIo when
+// it is not installed), ".png" or ".apng" an APNG; anything else is kInvalidArgument.
 std::unique_ptr<VideoWriter> open_video(const std::string& path, const VideoOptions& options);
 
 // stem + ".mp4" when ffmpeg is available, else stem + ".png" (an APNG).

@@ -1,0 +1,95 @@
+#include "bench_layouts.hpp"
+
+#include <algorithm>
+
+namespace finflex::cli {
+namespace {
+
+// One vertex struct: position float32x3 at 0, then the normal and the tangent.
+OutputLayout interleaved(AttributeFormat directions, bool tangents, std::size_t vertices) {
+  const std::size_t direction_bytes = format_bytes(directions);
+  const std::size_t stride = 12 + direction_bytes * (tangents ? 2 : 1);
+  OutputLayout l;
+  l.positions = AttributeLayout::packed(AttributeFormat::kFloat32x3, vertices, stride, 0);
+  l.normals = AttributeLayout::packed(directions, vertices, stride, 12);
+  l.tangents = tangents;
+  l.tangent_layout = AttributeLayout::packed(directions, vertices, stride, 12 + direction_bytes);
+  return l;
+}
+
+std::size_t written_bytes(const OutputLayout& l) {
+  return format_bytes(l.positions.format) + format_bytes(l.normals.format) +
+         (l.tangents ? format_bytes(l.tangent_layout.format) : 0) +
+         (l.previous_positions ? format_bytes(l.previous_layout.format) : 0);
+}
+
+}  // namespace
+
+void check_bench_layout(const std::string& name, const std::string& order) {
+  if (name != "planes" && name != "interleaved" && name != "compact" && name != "snorm") {
+    throw Error(ErrorCode::kInvalidArgument, "--layout",
+                "--layout '" + name +
+                    "' is not a layout (expected planes, interleaved, compact or snorm)");
+  }
+  if (order != "slots" && order != "mesh") {
+    throw Error(ErrorCode::kInvalidArgument, "--order",
+                "--order '" + order + "' is not an order (expected slots or mesh)");
+  }
+}
+
+BenchLayout bench_layout(const ClDeformer& deformer, NormalFormat format,
+                         const std::string& name, const std::string& order, bool previous) {
+  check_bench_layout(name, order);
+  BenchLayout out;
+  const VertexOrder vertex_order = order == "mesh" ? VertexOrder::kMesh : VertexOrder::kSlots;
+  out.vertices = deformer.output_vertices(vertex_order);
+  const bool tangents = deformer.model().mesh().has_tangents();
+  const bool half = format == NormalFormat::kHalf;
+  if (name == "planes") {
+    const std::size_t stride = padded_plane_stride(out.vertices);
+    const AttributeFormat directions = half ? AttributeFormat::kFloat16x3 : AttributeFormat::kFloat32x3;
+    out.layout.positions = AttributeLayout::planes(AttributeFormat::kFloat32x3, stride);
+    out.layout.normals = AttributeLayout::planes(directions, stride);
+    out.layout.tangents = tangents;
+    out.layout.tangent_layout = AttributeLayout::planes(directions, stride);
+  } else if (name == "interleaved") {
+    out.layout = interleaved(half ? AttributeFormat::kFloat16x4 : AttributeFormat::kFloat32x3,
+                             tangents, out.vertices);
+  } else if (name == "compact") {
+    out.layout = interleaved(AttributeFormat::kOctahedral16x2, tangents, out.vertices);
+  } else {  // snorm (check_bench_layout)
+    out.layout = interleaved(AttributeFormat::kSnorm16x4, tangents, out.vertices);
+  }
+  out.layout.order = vertex_order;
+  if (previous) {
+    out.layout.previous_positions = true;
+    out.layout.previous_layout = AttributeLayout::planes(AttributeFormat::kFloat32x3,
+                                                         padded_plane_stride(out.vertices));
+  }
+  out.bytes_per_vertex = written_bytes(out.layout);
+  return out;
+}
+
+DeviceBatch make_bench_batch(ClDeformer& deformer, std::size_t instances,
+                             const BenchLayout& layout) {
+  const OutputLayout& l = layout.layout;
+  if (l.positions.arrangement == Arrangement::kPlanes) return deformer.allocate(instances, l);
+  // One buffer for the vertex struct, up to its last attribute's end.
+  std::size_t bytes = OutputLayout::required_bytes(l.normals, instances, layout.vertices);
+  if (l.tangents) {
+    bytes = std::max(bytes, OutputLayout::required_bytes(l.tangent_layout, instances, layout.vertices));
+  }
+  cl_int status = CL_SUCCESS;
+  cl::Buffer vertices(deformer.context().context(), CL_MEM_READ_WRITE, bytes, nullptr, &status);
+  check_cl(status, "clCreateBuffer");
+  OutputBuffers buffers{vertices, vertices, vertices, {}};
+  if (l.previous_positions) {
+    buffers.previous_positions = cl::Buffer(
+        deformer.context().context(), CL_MEM_READ_WRITE,
+        OutputLayout::required_bytes(l.previous_layout, instances, layout.vertices), nullptr, &status);
+    check_cl(status, "clCreateBuffer");
+  }
+  return deformer.bind(instances, l, buffers);
+}
+
+}  // namespace finflex::cli

@@ -1,0 +1,34 @@
+// The output layouts `finflex bench --layout` measures (finflex/output_layout.hpp):
+//   planes       FinFlex's structure-of-arrays planes (the default)
+//   interleaved  one vertex struct: position float32x3, normal float32x3 (float16x4
+//                with --normal-format half), tangent likewise
+//   compact      position float32x3, normal and tangent octahedral16x2: 16 or 20 bytes
+//   snorm        position float32x3, normal and tangent snorm16x4: 20 or 28 bytes
+// in slot or mesh order, with previous positions (float32x3 planes) when asked.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+#include "finflex/finflex.hpp"
+
+namespace finflex::cli {
+
+struct BenchLayout {
+  OutputLayout layout;
+  std::size_t vertices = 0;         // the outputs' vertex count (slots or mesh vertices)
+  std::size_t bytes_per_vertex = 0;  // written per vertex and instance
+};
+
+// kInvalidArgument naming "--layout" or "--order" for an unknown name.
+void check_bench_layout(const std::string& name, const std::string& order);
+
+BenchLayout bench_layout(const ClDeformer& deformer, NormalFormat format, const std::string& name,
+                         const std::string& order, bool previous);
+
+// A batch in `layout`: interleaved layouts in one buffer, others one buffer per
+// attribute.
+DeviceBatch make_bench_batch(ClDeformer& deformer, std::size_t instances,
+                             const BenchLayout& layout);
+
+}  // namespace finflex::cli

@@ -1,0 +1,35 @@
+// Numbers on the command line, parsed strictly: the whole text must be the number, and
+// a count is decimal digits only, so "-1" is an error naming the option and the value
+// as typed (never 2^64 - 1), and a count past its limit is refused before anything
+// is allocated or read.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <utility>
+
+namespace finflex::cli {
+
+// A whole number in [minimum, maximum] written with decimal digits only (no sign,
+// space, point or exponent). Errors (field `option`): kInvalidArgument "--frames '-1':
+// expected a whole number in [1, 1000000]"; kOutOfRange when the digits are past
+// `maximum`: "--frames '99999999999' is above the limit 1000000 (<why>)".
+std::size_t parse_count(const std::string& text, const std::string& option, std::size_t minimum,
+                        std::size_t maximum, const std::string& why = "");
+
+// A decimal or hexadecimal floating-point number (strtod's syntax, "inf" and "nan"
+// included: the library names those as errors where they are), the whole text, no
+// leading space. kInvalidArgument naming `option` when the text is not a number.
+double parse_number(const std::string& text, const std::string& option);
+
+// A finite number > 0 (or >= 0 when `zero_allowed`); kInvalidArgument naming `option`.
+double parse_positive(const std::string& text, const std::string& option,
+                      bool zero_allowed = false);
+
+// "A,B": two finite numbers > 0.
+std::pair<double, double> parse_positive_pair(const std::string& text, const std::string& option);
+
+// "WIDTHxHEIGHT": an image size, each a whole number in [1, 16384] ("640x360").
+std::pair<int, int> parse_size(const std::string& text, const std::string& option);
+
+}  // namespace finflex::cli

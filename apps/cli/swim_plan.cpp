@@ -1,0 +1,155 @@
+#include "swim_plan.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "cli_numbers.hpp"
+#include "cli_errors.hpp"
+#include "render/video.hpp"
+#include "staging_folder.hpp"
+
+namespace finflex::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+// "0,150,last": frame indices below `frames` ("last": the final frame).
+std::set<std::size_t> parse_frames(const std::string& text, std::size_t frames,
+                                   const std::string& option) {
+  std::set<std::size_t> chosen;
+  std::size_t begin = 0;
+  while (begin <= text.size() && !text.empty()) {
+    const std::size_t comma = std::min(text.find(',', begin), text.size());
+    const std::string item = text.substr(begin, comma - begin);
+    chosen.insert(item == "last" ? frames - 1 : parse_count(item, option, 0, frames - 1));
+    begin = comma + 1;
+  }
+  return chosen;
+}
+
+// "auto": MP4 when ffmpeg is installed, else APNG; "none"; or a list of mp4, gif, apng.
+// Returns the files' extensions ("png" for APNG). kInvalidArgument naming --video for
+// an unknown name, kIo for MP4 or GIF without ffmpeg.
+std::vector<std::string> parse_videos(const std::string& text) {
+  if (text == "none") return {};
+  if (text == "auto") return {render::ffmpeg_available() ? "mp4" : "png"};
+  std::vector<std::string> videos;
+  std::size_t begin = 0;
+  while (begin <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', begin), text.size());
+    const std::string item = text.substr(begin, comma - begin);
+    begin = comma + 1;
+    if (item != "mp4" && item != "gif" && item != "apng") {
+      throw Error(ErrorCode::kInvalidArgument, "--video",
+                  "--video '" + text + "': '" + item +
+                      "' is not a video format (auto, none, or a list of mp4, gif, apng)");
+    }
+    if (item != "apng" && !render::ffmpeg_available()) {
+      throw Error(ErrorCode::kIo, "--video",
+                  "--video " + item +
+                      " needs the ffmpeg program, which is not on PATH "
+                      "(--video apng writes an animated PNG)");
+    }
+    const std::string extension = item == "apng" ? "png" : item;
+    if (std::find(videos.begin(), videos.end(), extension) == videos.end()) {
+      videos.push_back(extension);
+    }
+  }
+  return videos;
+}
+
+// The pictures' options, checked against each other and --out.
+void plan_pictures(const SwimOptions& options, SwimPlan& plan) {
+  const bool out = !options.out.empty();
+  plan.render = options.render == 1 || (options.render == -1 && out);
+  const auto [width, height] = parse_size(options.size, "--size");
+  plan.pictures.width = width;
+  plan.pictures.height = height;
+  plan.pictures.view = pictures::parse_camera_view(options.camera, "--camera");
+  plan.pictures.samples = static_cast<int>(parse_count(options.samples, "--samples", 1, 16));
+  for (const auto& [given, option] :
+       {std::pair{!options.image_frames.empty(), "--image-frames"},
+        std::pair{!options.video.empty(), "--video"}, std::pair{options.annotate, "--annotate"}}) {
+    if (!given) continue;
+    if (!out) {
+      throw Error(ErrorCode::kInvalidArgument, option, std::string(option) + " needs --out");
+    }
+    if (!plan.render) {
+      throw Error(ErrorCode::kInvalidArgument, option,
+                  std::string(option) + " draws frames: it cannot go with --no-render");
+    }
+  }
+  PictureFiles& files = plan.files;
+  const std::string images = options.image_frames.empty() ? "all" : options.image_frames;
+  files.every_image = images == "all";
+  if (images != "all" && images != "none") {
+    files.image_frames = parse_frames(images, plan.frames, "--image-frames");
+  }
+  files.videos = parse_videos(options.video.empty() ? "auto" : options.video);
+  if (!out || !plan.render) {
+    files.every_image = false;
+    files.image_frames.clear();
+    files.videos.clear();
+  }
+  files.fps = static_cast<int>(std::lround(plan.fps));
+  if (!files.videos.empty() && (files.fps < 1 || files.fps > 240)) {
+    throw Error(ErrorCode::kInvalidArgument, "--fps",
+                "--fps " + options.fps +
+                    ": a video plays at 1 to 240 frames per second "
+                    "(--video none writes none)");
+  }
+  files.annotate = options.annotate;
+  if (files.annotate && !files.every_image && files.image_frames.empty()) {
+    throw Error(ErrorCode::kInvalidArgument, "--annotate",
+                "--annotate annotates the frames written as images: --image-frames is none");
+  }
+  if (files.annotate && plan.fish > pictures::kMaxAnnotatedFish) {
+    throw Error(ErrorCode::kInvalidArgument, "--fish",
+                "--fish " + options.fish + " with --annotate: masks hold 16-bit ids, at most " +
+                    std::to_string(pictures::kMaxAnnotatedFish) + " fish");
+  }
+}
+
+}  // namespace
+
+SwimPlan plan_of(const SwimOptions& options) {
+  SwimPlan plan;
+  plan.fish = parse_count(options.fish, "--fish", 1, 1000000);
+  const double seconds = parse_positive(options.seconds, "--seconds");
+  plan.fps = parse_positive(options.fps, "--fps");
+  const double frames = std::round(seconds * plan.fps);
+  if (frames < 1.0 || frames > 1e7) {
+    throw Error(ErrorCode::kInvalidArgument, "--seconds",
+                "--seconds " + options.seconds + " at --fps " + options.fps + " gives " +
+                    std::to_string(frames) + " frames (expected 1 to 10,000,000)");
+  }
+  plan.frames = static_cast<std::size_t>(frames);
+  for (const std::string& text : options.species)
+    plan.species.push_back(tank::parse_species(text, "--species"));
+  if (plan.species.empty()) plan.species = tank::bundled_species(FINFLEX_DATA_DIR);
+  for (const tank::SpeciesFiles& files : plan.species) {
+    for (const std::string& path : {files.mesh, files.rig}) {
+      std::error_code ec;
+      if (!fs::is_regular_file(path, ec)) {
+        throw Error(ErrorCode::kIo, "--species", "--species: '" + path + "' is not a file");
+      }
+    }
+  }
+  if (!options.tank.empty()) {
+    const auto [diameter, depth] = parse_positive_pair(options.tank, "--tank");
+    plan.tank.diameter = diameter;
+    plan.tank.depth = depth;
+  }
+  plan.seed = parse_count(options.seed, "--seed", 0, UINT64_MAX);
+  plan.normals = parse_normal_mode(options.normals, "--normals");
+  if (!options.mesh_frames.empty() && options.out.empty()) {
+    throw Error(ErrorCode::kInvalidArgument, "--mesh-frames", "--mesh-frames needs --out");
+  }
+  plan.mesh_frames = parse_frames(options.mesh_frames, plan.frames, "--mesh-frames");
+  plan_pictures(options, plan);
+  if (!options.out.empty()) check_output_folder(options.out, "--out");
+  return plan;
+}
+
+}  // namespace finflex::cli

@@ -1,0 +1,58 @@
+// finflex swim's options as typed and the plan they make, every value checked against
+// the others before anything runs: counts, the species' files, the tank, the pictures
+// (size, camera, frames, videos, the dataset) and the output folder.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "finflex/finflex.hpp"
+#include "swim_pictures.hpp"
+#include "swim_scene.hpp"
+#include "tank_pictures.hpp"
+
+namespace finflex::cli {
+
+struct SwimOptions {
+  std::string fish = "1000";
+  std::string seconds = "10";
+  std::string fps = "30";
+  std::vector<std::string> species;
+  std::string tank;
+  std::string seed = "1";
+  std::string normals = "jacobian";
+  std::string device;
+  std::string out;
+  std::string mesh_frames;
+  std::string size = "640x360";
+  std::string camera = "oblique";
+  std::string samples = "4";
+  std::string image_frames;
+  std::string video;
+  bool annotate = false;
+  int render = -1;  // --render: 1, --no-render: 0, neither: -1 (on with --out)
+};
+
+// What the command runs, every value checked.
+struct SwimPlan {
+  std::size_t fish = 0;
+  std::size_t frames = 0;
+  double fps = 0.0;
+  std::vector<tank::SpeciesFiles> species;
+  tank::TankSettings tank;
+  std::uint64_t seed = 0;
+  NormalMode normals = NormalMode::kJacobian;
+  std::set<std::size_t> mesh_frames;
+  bool render = false;
+  pictures::PictureSettings pictures;
+  PictureFiles files;
+};
+
+// The plan of `options`. finflex::Error (kInvalidArgument or kIo) naming the option and
+// the value for the first one at fault; nothing is created.
+SwimPlan plan_of(const SwimOptions& options);
+
+}  // namespace finflex::cli

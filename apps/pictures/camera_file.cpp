@@ -1,0 +1,53 @@
+#include "camera_file.hpp"
+
+namespace finflex::pictures {
+
+namespace {
+
+nlohmann::ordered_json rows(const glm::dmat4& m) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (int r = 0; r < 4; ++r) out.push_back({m[0][r], m[1][r], m[2][r], m[3][r]});
+  return out;
+}
+
+nlohmann::ordered_json vector(const glm::vec3& v) {
+  return {double(v.x), double(v.y), double(v.z)};
+}
+
+}  // namespace
+
+nlohmann::ordered_json camera_json(const render::Camera& camera, int width, int height) {
+  const render::PinholeIntrinsics k = render::pinhole_intrinsics(camera, width, height);
+  const glm::dmat4 camera_from_world = render::camera_from_world(camera);
+  nlohmann::ordered_json out;
+  out["model"] = "pinhole";
+  out["width"] = width;
+  out["height"] = height;
+  out["fx"] = k.fx;
+  out["fy"] = k.fy;
+  out["cx"] = k.cx;
+  out["cy"] = k.cy;
+  out["K"] = {{k.fx, 0.0, k.cx}, {0.0, k.fy, k.cy}, {0.0, 0.0, 1.0}};
+  out["distortion"] = {0.0, 0.0, 0.0, 0.0, 0.0};
+  out["camera_from_world"] = rows(camera_from_world);
+  out["world_from_camera"] = rows(glm::inverse(camera_from_world));
+  out["position"] = vector(camera.position);
+  out["target"] = vector(camera.target);
+  out["up"] = vector(camera.up);
+  out["vertical_fov_degrees"] = camera.vertical_fov_degrees;
+  out["near"] = camera.near_plane;
+  out["far"] = camera.far_plane;
+  out["conventions"] = {
+      {"world", "metres; y up; the tank's axis is the y axis, its floor the plane y = 0"},
+      {"camera", "OpenCV axes: x right, y down, z forward (the view direction)"},
+      {"projection",
+       "u = fx X / Z + cx, v = fy Y / Z + cy for (X, Y, Z) = camera_from_world (x, y, z, 1)"},
+      {"pixels",
+       "(u, v) from the image's top-left corner; pixel (i, j) covers [i, i+1) x [j, j+1), "
+       "its centre at (i + 0.5, j + 0.5); for tools whose pixel centres are integers, "
+       "use cx - 0.5 and cy - 0.5"},
+      {"optics", "an ideal pinhole: no lens distortion and no refraction at the water's surface"}};
+  return out;
+}
+
+}  // namespace finflex::pictures

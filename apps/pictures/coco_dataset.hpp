@@ -1,0 +1,76 @@
+// The machine-vision dataset of a swim (`finflex swim --annotate`): for every frame
+// written as an image, an instance mask and COCO annotations whose ground truth is the
+// engine's own deformed geometry:
+//
+//   masks/frame_NNNNNN.png   16-bit grey: 1 + the fish's index in the tank where that
+//                            fish is the nearest surface at the pixel's centre, 0 else
+//   coco.json                COCO "instances" with keypoints: one category per species
+//                            (keypoints "snout", "tail_fork"), one image per frame,
+//                            one annotation per fish with at least one pixel
+//
+// Each annotation: "bbox" [x, y, w, h] (the mask's tight box, pixel edges), "area" (its
+// pixels: the visible area), "segmentation" (the mask as COCO's compressed run-length
+// counts), "iscrowd" 0, "keypoints" [u, v, visibility] x 2 (the projected vertices,
+// visibility 2 where nothing nearer covers the pixel, 1 where something does, 0 with
+// u = v = 0 outside the image), "num_keypoints", and the truth beyond COCO's fields:
+// "fish_id" (the tank's index: the same fish in every frame, for tracking),
+// "species", "length_m" (total length, snout to tail tip), "fork_length_m",
+// "keypoints_camera_m" (the two points in camera coordinates, OpenCV axes, metres).
+// coco.json is streamed: memory does not grow with the frames.
+#pragma once
+
+#include <cstddef>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "landmarks.hpp"
+#include "render/camera.hpp"
+#include "render/id_image.hpp"
+#include "swim_scene.hpp"
+
+namespace finflex::pictures {
+
+// Ids are 16-bit in the masks: at most this many fish.
+constexpr std::size_t kMaxAnnotatedFish = 65535;
+
+class CocoDataset {
+ public:
+  // Opens `folder`/coco.json and makes `folder`/masks. kInvalidArgument naming "fish"
+  // when the tank has more than kMaxAnnotatedFish fish; kIo when a file cannot be made.
+  CocoDataset(const std::string& folder, tank::SwimScene& scene, const render::Camera& camera,
+              int width, int height, const nlohmann::ordered_json& info);
+
+  // Frame `frame` (time_s into the swim), whose colour image is `image_file` (relative
+  // to the folder) and whose id pass is `ids`; the scene's batches must still hold
+  // that frame (the keypoints are read from them).
+  void add_frame(std::size_t frame, double time_s, const std::string& image_file,
+                 const render::IdImage& ids);
+  // Writes the images' list and closes coco.json. kIo when the file could not be written.
+  void finish();
+
+  std::size_t annotation_count() const { return next_annotation_ - 1; }
+
+ private:
+  struct SpeciesTruth {
+    FishLandmarks landmarks;
+    std::uint32_t snout_slot = 0;
+    std::uint32_t fork_slot = 0;
+  };
+
+  std::string folder_;
+  tank::SwimScene& scene_;
+  render::Camera camera_;
+  int width_;
+  int height_;
+  glm::dmat4 camera_from_world_;
+  std::vector<SpeciesTruth> species_;
+  std::vector<std::size_t> instance_of_fish_;  // per tank fish, its index in its species
+  std::ofstream coco_;
+  nlohmann::ordered_json images_ = nlohmann::ordered_json::array();
+  std::size_t next_annotation_ = 1;
+};
+
+}  // namespace finflex::pictures

@@ -1,0 +1,57 @@
+#include "landmarks.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace finflex::pictures {
+
+FishLandmarks find_landmarks(const RiggedMesh& model) {
+  const Mesh& mesh = model.mesh();
+  const BodyFrame& frame = model.rig().components.front().frame;  // the root's
+  std::vector<glm::dvec3> local(mesh.vertex_count());
+  for (std::size_t v = 0; v < local.size(); ++v) {
+    const glm::dvec3 d = glm::dvec3(mesh.positions[v]) - frame.origin;
+    local[v] = glm::dvec3(glm::dot(d, frame.axis_x), glm::dot(d, frame.axis_y),
+                          glm::dot(d, frame.axis_z)) /
+               frame.length;
+  }
+  FishLandmarks marks;
+  double x_min = std::numeric_limits<double>::infinity();
+  double x_max = -x_min;
+  for (std::size_t v = 0; v < local.size(); ++v) {
+    x_min = std::min(x_min, local[v].x);
+    if (local[v].x > x_max) {
+      x_max = local[v].x;
+      marks.snout = static_cast<std::uint32_t>(v);
+    }
+  }
+  double y_low = std::numeric_limits<double>::infinity();
+  double y_high = -y_low;
+  for (const glm::dvec3& p : local) {
+    if (p.x < x_min + 0.1) {
+      y_low = std::min(y_low, p.y);
+      y_high = std::max(y_high, p.y);
+    }
+  }
+  const double mid_height = 0.5 * (y_low + y_high);
+  double rearmost = std::numeric_limits<double>::infinity();
+  for (std::size_t v = 0; v < local.size(); ++v) {
+    const glm::dvec3& p = local[v];
+    if (p.x < x_min + 0.2 && std::fabs(p.y - mid_height) < 0.05 && p.x < rearmost) {
+      rearmost = p.x;
+      marks.tail_fork = static_cast<std::uint32_t>(v);
+    }
+  }
+  // With no vertex in the band (a tail too sparse), the rearmost vertex stands in.
+  if (!std::isfinite(rearmost)) {
+    for (std::size_t v = 0; v < local.size(); ++v) {
+      if (local[v].x == x_min) marks.tail_fork = static_cast<std::uint32_t>(v);
+    }
+  }
+  marks.fork_fraction = x_max - local[marks.tail_fork].x;  // local lengths are in s_x
+  return marks;
+}
+
+}  // namespace finflex::pictures

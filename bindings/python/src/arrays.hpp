@@ -1,0 +1,39 @@
+// numpy arrays in: checked without copying, refused with a message that names the
+// argument, the expected shape, dtype and strides, and what was given.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "bindings.hpp"
+
+namespace finflex::python {
+
+// The parameter rows of a job: a finflex.Parameters of the model, or an object with
+// the buffer protocol (a numpy array) of float32, shape (instances,
+// model.values_per_instance), whose rows are contiguous (any row stride of at least a
+// row; rows may be a slice of a wider array). No copy: view() points at the object's
+// memory, held (the buffer exported) until this object goes. Needs the GIL to make
+// and to destroy.
+class ParameterArgument {
+ public:
+  ParameterArgument(nb::handle parameters, const RiggedMesh& model);
+  ~ParameterArgument();
+  ParameterArgument(const ParameterArgument&) = delete;
+  ParameterArgument& operator=(const ParameterArgument&) = delete;
+
+  const ParameterView& view() const { return view_; }
+
+ private:
+  ParameterView view_;
+  Py_buffer buffer_{};
+  bool held_ = false;
+};
+
+// A copy of an (n, columns) array of float32 (any strides) as n * columns floats.
+std::vector<float> float_rows(nb::handle array, const char* name, std::size_t columns);
+// A copy of an (n, columns) array of uint32 (any strides).
+std::vector<std::uint32_t> index_rows(nb::handle array, const char* name, std::size_t columns);
+
+}  // namespace finflex::python

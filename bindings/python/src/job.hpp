@@ -1,0 +1,26 @@
+// A frame's job from Python: described once (PyJob) or per call (Deformer.enqueue),
+// enqueued by one function.
+#pragma once
+
+#include <string>
+
+#include "bindings.hpp"
+
+namespace finflex::python {
+
+// A job whose model, outputs, normals, clamp and path are set once.
+struct PyJob {
+  nb::object deformer;  // the PyDeformer and PyBatch the job refers to, kept alive
+  nb::object batch;
+  ClJob job;
+};
+
+// The job of `deformer` into `batch` (normals, clamp, path parsed: errors name them).
+ClJob describe_frames(const PyDeformer& deformer, PyBatch& batch, const std::string& normals,
+                      bool clamp, const std::string& path);
+
+// Points `job` at `parameters` (checked: ParameterArgument), waits for the events of
+// `wait` (a sequence of finflex.Event, or None), enqueues it with the GIL released.
+PyEvent enqueue_frame(PyDeformer& deformer, ClJob& job, nb::handle parameters, nb::handle wait);
+
+}  // namespace finflex::python

@@ -1,0 +1,197 @@
+/* Output stores (finflex/output_layout.hpp): each attribute in its own format and
+ * arrangement, given as build options (so every branch below folds away):
+ *   FF_POSITION_FORMAT, FF_NORMAL_FORMAT, FF_TANGENT_FORMAT, FF_PREVIOUS_FORMAT:
+ *     the AttributeFormat (FF_F32X3 ...); FF_*_PACKED: 1 packed, 0 planes;
+ *   FF_PREVIOUS (0/1): previous-frame positions are written;
+ *   FF_MESH_ORDER (0/1): outputs indexed by mesh vertex (vertex_of_slot) instead of slot.
+ * and their numbers as the kernel argument `out_layout` (ulong16, in scalars of each
+ * attribute's format: 4 bytes for float32 and the octahedral pair, 2 for 16 bits):
+ *   s0-s2 positions: offset, step (packed: vertex stride; planes: plane stride),
+ *         instance stride; s3-s5 normals; s6-s8 tangents; s9-sb previous positions;
+ *   sc    1 when the previous positions' place holds last frame's positions, else 0
+ *         (the first frame writes the current positions there: no motion). */
+#define FF_F32X3 0
+#define FF_F32X4 1
+#define FF_F16X3 2
+#define FF_F16X4 3
+#define FF_S16X4 4
+#define FF_OCT16 5
+
+#ifndef FF_POSITION_FORMAT
+#define FF_POSITION_FORMAT FF_F32X3
+#endif
+#ifndef FF_POSITION_PACKED
+#define FF_POSITION_PACKED 0
+#endif
+#ifndef FF_NORMAL_FORMAT
+#define FF_NORMAL_FORMAT FF_F32X3
+#endif
+#ifndef FF_NORMAL_PACKED
+#define FF_NORMAL_PACKED 0
+#endif
+#ifndef FF_TANGENT_FORMAT
+#define FF_TANGENT_FORMAT FF_F32X3
+#endif
+#ifndef FF_TANGENT_PACKED
+#define FF_TANGENT_PACKED 0
+#endif
+#ifndef FF_PREVIOUS
+#define FF_PREVIOUS 0
+#endif
+#ifndef FF_PREVIOUS_FORMAT
+#define FF_PREVIOUS_FORMAT FF_F32X3
+#endif
+#ifndef FF_PREVIOUS_PACKED
+#define FF_PREVIOUS_PACKED 0
+#endif
+#ifndef FF_MESH_ORDER
+#define FF_MESH_ORDER 0
+#endif
+
+/* The tangents' w (handedness) is written by the 4-component formats. */
+#define FF_TANGENT_W                                                          \
+  (FF_TANGENTS && (FF_TANGENT_FORMAT == FF_F32X4 || FF_TANGENT_FORMAT == FF_F16X4 || \
+                   FF_TANGENT_FORMAT == FF_S16X4))
+
+/* round(clamp(c, -1, 1) * 32767) as int16 bits: GL's snorm16 (c = max(s / 32767, -1)). */
+FF_INLINE ushort snorm16_bits(float c) {
+  return (ushort)(short)rint(clamp(c, -1.0f, 1.0f) * 32767.0f);
+}
+
+/* The octahedral encoding of a unit vector (Cigolle et al. 2014, "A Survey of
+ * Efficient Representations for Independent Unit Vectors", section 3.2): project on
+ * the octahedron |x| + |y| + |z| = 1, fold the lower half over the diagonals; two
+ * snorm16, u in the low half of the word. Branch-free. */
+FF_INLINE uint octahedral16_bits(float x, float y, float z) {
+  const float inverse_l1 = 1.0f / (fabs(x) + fabs(y) + fabs(z));
+  const float u = x * inverse_l1;
+  const float v = y * inverse_l1;
+  const float folded_u = (1.0f - fabs(v)) * (u >= 0.0f ? 1.0f : -1.0f);
+  const float folded_v = (1.0f - fabs(u)) * (v >= 0.0f ? 1.0f : -1.0f);
+  const float out_u = z < 0.0f ? folded_u : u;
+  const float out_v = z < 0.0f ? folded_v : v;
+  return (uint)snorm16_bits(out_u) | ((uint)snorm16_bits(out_v) << 16);
+}
+
+/* A half (round to nearest even) at `index` of `buffer`: vstore_half on GPUs (one
+ * instruction), half_bits on CPUs (it vectorises; PoCL's vstore_half does not). */
+FF_INLINE void store_half_at(__global float* buffer, size_t index, float value) {
+#if FF_GPU
+  vstore_half(value, index, (__global half*)buffer);
+#else
+  ((__global ushort*)buffer)[index] = half_bits(value);
+#endif
+}
+
+/* Element (instance i, vertex v) of an attribute, in scalars of its format: the first
+ * component's index and the distance between components (planes: a plane). */
+FF_INLINE size_t element_index(const int packed, ulong offset, ulong step, ulong instance_stride,
+                               size_t i, size_t v) {
+  return (size_t)(offset + i * instance_stride + (packed ? v * step : v));
+}
+
+/* One vertex slot per work-item from here to FF_STORE_OUTPUTS; kernels of more than one
+ * lane store FinFlex's float32 planes only, with the same names
+ * (kernels/cpu/lane_outputs.cl). */
+#if FF_LANES == 1
+/* Writes (x, y, z, w) as `format`, `packed` or planes (compile-time constants). */
+FF_INLINE void store_attribute(__global float* buffer, const int format, const int packed,
+                               ulong offset, ulong step, ulong instance_stride, size_t i, size_t v,
+                               Vec3 value, float w) {
+  const size_t first = element_index(packed, offset, step, instance_stride, i, v);
+  const size_t apart = packed ? 1 : (size_t)step;
+  if (format == FF_F32X3 || format == FF_F32X4) {
+    buffer[first] = value.x;
+    buffer[first + apart] = value.y;
+    buffer[first + 2 * apart] = value.z;
+    if (format == FF_F32X4) buffer[first + 3] = w;
+  } else if (format == FF_F16X3 || format == FF_F16X4) {
+    store_half_at(buffer, first, value.x);
+    store_half_at(buffer, first + apart, value.y);
+    store_half_at(buffer, first + 2 * apart, value.z);
+    if (format == FF_F16X4) store_half_at(buffer, first + 3, w);
+  } else if (format == FF_S16X4) {
+    __global ushort* shorts = (__global ushort*)buffer;
+    shorts[first] = snorm16_bits(value.x);
+    shorts[first + 1] = snorm16_bits(value.y);
+    shorts[first + 2] = snorm16_bits(value.z);
+    shorts[first + 3] = snorm16_bits(w);
+  } else { /* FF_OCT16 */
+    ((__global uint*)buffer)[first] = octahedral16_bits(value.x, value.y, value.z);
+  }
+}
+
+/* A float32 position (float32x3 or float32x4, packed or planes). */
+FF_INLINE Vec3 load_position_attribute(__global const float* buffer, const int packed,
+                                       ulong offset, ulong step, ulong instance_stride, size_t i,
+                                       size_t v) {
+  const size_t first = element_index(packed, offset, step, instance_stride, i, v);
+  const size_t apart = packed ? 1 : (size_t)step;
+  return vec3(buffer[first], buffer[first + apart], buffer[first + 2 * apart]);
+}
+
+/* Every output of one vertex and instance: the previous position first (read where
+ * the position still holds last frame's), then the position, the normal and the
+ * tangent. rest_tangent_w: the rest mesh's handedness (FF_TANGENT_W). */
+FF_INLINE void store_outputs(__global float* out_positions, __global float* out_normals,
+                             __global float* out_tangents, __global float* out_previous,
+                             ulong16 out_layout, size_t instance, size_t v, Vec3 p, Vec3 n,
+                             Vec3 t, float rest_tangent_w) {
+#if FF_PREVIOUS
+  const Vec3 before = out_layout.sc ? load_position_attribute(out_positions, FF_POSITION_PACKED,
+                                                              out_layout.s0, out_layout.s1,
+                                                              out_layout.s2, instance, v)
+                                    : p;
+  store_attribute(out_previous, FF_PREVIOUS_FORMAT, FF_PREVIOUS_PACKED, out_layout.s9,
+                  out_layout.sa, out_layout.sb, instance, v, before, 1.0f);
+#endif
+  store_attribute(out_positions, FF_POSITION_FORMAT, FF_POSITION_PACKED, out_layout.s0,
+                  out_layout.s1, out_layout.s2, instance, v, p, 1.0f);
+  store_attribute(out_normals, FF_NORMAL_FORMAT, FF_NORMAL_PACKED, out_layout.s3, out_layout.s4,
+                  out_layout.s5, instance, v, n, 0.0f);
+#if FF_TANGENTS
+  store_attribute(out_tangents, FF_TANGENT_FORMAT, FF_TANGENT_PACKED, out_layout.s6,
+                  out_layout.s7, out_layout.s8, instance, v, t, rest_tangent_w);
+#endif
+}
+
+/* The output vertex of slot v: the slot, or its mesh vertex (FF_MESH_ORDER; padding
+ * slots have none, FF_NO_VERTEX, and write nothing). */
+#define FF_NO_VERTEX 0xffffffffu
+#if FF_MESH_ORDER
+#define FF_OUTPUT_VERTEX(v) vertex_of_slot[v]
+#else
+#define FF_OUTPUT_VERTEX(v) ((uint)(v))
+#endif
+
+/* The kernels' outputs, after their arguments out_positions, out_normals,
+ * out_tangents, out_previous, out_layout and vertex_of_slot (in scope with p, n, t and
+ * rest_tangents, stride: the rest planes). */
+#if FF_TANGENT_W
+#define FF_REST_TANGENT_W(v) rest_tangents[3 * (size_t)stride + (v)]
+#else
+#define FF_REST_TANGENT_W(v) 1.0f
+#endif
+/* FF_OUTPUT_LIMIT: slots at or past it are padding and write nothing (mesh order of a
+ * model whose slots are its vertices in mesh order). */
+#ifdef FF_OUTPUT_LIMIT
+#define FF_WRITES_SLOT(v, out_v) ((v) < FF_OUTPUT_LIMIT)
+#else
+#define FF_WRITES_SLOT(v, out_v) (!FF_MESH_ORDER || (out_v) != FF_NO_VERTEX)
+#endif
+#define FF_STORE_OUTPUTS(instance, v)                                                         \
+  {                                                                                           \
+    const uint out_v = FF_OUTPUT_VERTEX(v);                                                   \
+    if (FF_WRITES_SLOT(v, out_v)) {                                                           \
+      store_outputs(out_positions, out_normals, out_tangents, out_previous, out_layout,       \
+                    instance, out_v, p, n, t, FF_REST_TANGENT_W(v));                           \
+    }                                                                                         \
+  }
+
+#endif
+
+/* The output arguments every deformation kernel ends with (before stride, instances). */
+#define FF_OUTPUT_ARGUMENTS                                                           \
+  __global float* restrict out_positions, __global float* restrict out_normals,       \
+      __global float* restrict out_tangents, __global float* restrict out_previous,   \
+      const ulong16 out_layout, __global const uint* restrict vertex_of_slot

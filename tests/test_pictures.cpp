@@ -1,0 +1,270 @@
+// Pictures of the swim (apps/pictures): the hand-off draws exactly what the engine
+// computed; the id pass covers the fish's silhouette in the colour image with the
+// tank's fish ids; masks become COCO's run lengths (checked by hand here and against
+// pycocotools by tests/python/check_coco.py); the landmarks are the snout's tip and
+// the tail's fork; every camera view frames the whole tank.
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <set>
+
+#include <gtest/gtest.h>
+
+#include "instance_masks.hpp"
+#include "landmarks.hpp"
+#include "support/test_support.hpp"
+#include "swim_scene.hpp"
+#include "tank_pictures.hpp"
+#include "tank_view.hpp"
+
+namespace finflex::pictures {
+namespace {
+
+// 4 x 3 ids, rows from the top:   0 1 1 0 / 0 1 2 2 / 0 0 2 0
+render::IdImage small_ids() {
+  render::IdImage image;
+  image.width = 4;
+  image.height = 3;
+  image.ids = {0, 1, 1, 0, 0, 1, 2, 2, 0, 0, 2, 0};
+  image.depth.assign(12, 1.0f);
+  return image;
+}
+
+TEST(Masks, RunLengthsAreCocosColumnMajorCounts) {
+  // Column-major: 0 0 0 | 1 1 0 | 1 2 2 | 0 2 0.
+  const std::vector<InstanceMask> masks = instance_masks(small_ids());
+  ASSERT_EQ(masks.size(), 2u);
+  EXPECT_EQ(masks[0].id, 1u);
+  EXPECT_EQ(masks[0].counts, (std::vector<std::uint32_t>{3, 2, 1, 1, 5}));
+  EXPECT_EQ(masks[0].area, 3u);
+  EXPECT_EQ(std::vector<int>({masks[0].x_min, masks[0].y_min, masks[0].x_max, masks[0].y_max}),
+            std::vector<int>({1, 0, 2, 1}));
+  EXPECT_EQ(masks[1].id, 2u);
+  EXPECT_EQ(masks[1].counts, (std::vector<std::uint32_t>{7, 2, 1, 1, 1}));
+  EXPECT_EQ(std::vector<int>({masks[1].x_min, masks[1].y_min, masks[1].x_max, masks[1].y_max}),
+            std::vector<int>({2, 1, 3, 2}));
+  // pycocotools' string: 3, 2, 1, then 1 - 2 = -1 (31 with the sign's bits: 'O'), 5 - 1 = 4.
+  EXPECT_EQ(compress_counts(masks[0].counts), "321O4");
+  // Counts of 32 and more take two groups, the first flagged with 0x20.
+  EXPECT_EQ(compress_counts({40}), std::string({char(48 + (40 & 0x1f) + 0x20), char(48 + 1)}));
+  // An empty image has no instances.
+  render::IdImage empty = small_ids();
+  std::fill(empty.ids.begin(), empty.ids.end(), 0u);
+  EXPECT_TRUE(instance_masks(empty).empty());
+}
+
+TEST(Masks, ARunAcrossColumnsBoxesTheColumnsItSpans) {
+  // Pixels (0, 2) and (1, 0) follow each other in column-major order: one run.
+  render::IdImage image = small_ids();
+  image.ids = {0, 3, 0, 0, 0, 0, 0, 0, 3, 0, 0, 0};
+  const std::vector<InstanceMask> masks = instance_masks(image);
+  ASSERT_EQ(masks.size(), 1u);
+  EXPECT_EQ(masks[0].counts, (std::vector<std::uint32_t>{2, 2, 8}));
+  EXPECT_EQ(std::vector<int>({masks[0].x_min, masks[0].y_min, masks[0].x_max, masks[0].y_max}),
+            std::vector<int>({0, 0, 1, 2}));
+}
+
+TEST(Landmarks, SnoutTipAndTailForkOfTheBundledFish) {
+  for (const char* name : {"blub/fish_low_resolution.obj", "barramundi/BarramundiFish.gltf"}) {
+    SCOPED_TRACE(name);
+    const Mesh mesh = load_mesh(test::data_path(name));
+    const RiggedMesh model = RiggedMesh::single_bend(mesh, find_body_frame(mesh), BendMode::kExact);
+    const FishLandmarks marks = find_landmarks(model);
+    const BodyFrame& frame = model.rig().components.front().frame;
+    const auto x_of = [&](std::size_t v) {
+      return glm::dot(glm::dvec3(mesh.positions[v]) - frame.origin, frame.axis_x) / frame.length;
+    };
+    double x_min = 1e9, x_max = -1e9;
+    for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+      x_min = std::min(x_min, x_of(v));
+      x_max = std::max(x_max, x_of(v));
+    }
+    EXPECT_EQ(x_of(marks.snout), x_max);
+    // The fork is at the back: within the rearmost 15 % of the body.
+    EXPECT_LT(x_of(marks.tail_fork) - x_min, 0.15);
+    EXPECT_NEAR(marks.fork_fraction, x_max - x_of(marks.tail_fork), 1e-12);
+    EXPECT_GT(marks.fork_fraction, 0.85);
+    EXPECT_LE(marks.fork_fraction, 1.0 + 1e-12);
+  }
+}
+
+TEST(TankView, EveryViewFramesTheWholeTank) {
+  const tank::TankSettings settings;
+  const float radius = float(0.5 * settings.diameter);
+  const float rim = float(1.1 * settings.depth);
+  for (const auto& [width, height] : {std::pair{640, 360}, std::pair{360, 640}}) {
+    for (CameraView view : {CameraView::kAbove, CameraView::kOblique, CameraView::kSide}) {
+      SCOPED_TRACE(std::string(to_string(view)) + " " + std::to_string(width));
+      const render::Camera camera = tank_camera(settings, view, width, height);
+      camera.validate();
+      glm::vec2 low(1e9f), high(-1e9f);
+      for (int k = 0; k < 72; ++k) {
+        const float angle = 6.2831853f * float(k) / 72.0f;
+        for (float y : {0.0f, rim}) {
+          const glm::vec3 p{radius * std::cos(angle), y, radius * std::sin(angle)};
+          // The side view looks through the near wall: its far half must fit.
+          if (view == CameraView::kSide && p.z > 0.0f) continue;
+          const glm::vec3 pixel = render::project_to_pixel(camera, width, height, p);
+          ASSERT_GT(pixel.z, 0.0f);
+          low = glm::min(low, glm::vec2(pixel));
+          high = glm::max(high, glm::vec2(pixel));
+        }
+      }
+      EXPECT_GE(low.x, 0.0f);
+      EXPECT_GE(low.y, 0.0f);
+      EXPECT_LE(high.x, float(width));
+      EXPECT_LE(high.y, float(height));
+      // Tight: the tank spans most of the frame one way or the other (the side view
+      // stands back far enough that the near wall's rim clears the frame's top).
+      EXPECT_GT(std::max((high.x - low.x) / float(width), (high.y - low.y) / float(height)),
+                view == CameraView::kSide ? 0.7f : 0.8f);
+    }
+  }
+  EXPECT_EQ(parse_camera_view("side", "--camera"), CameraView::kSide);
+  EXPECT_THROW(parse_camera_view("top", "--camera"), Error);
+}
+
+// A small tank of low-resolution Blubs seen from above, a few frames in.
+struct SmallTank {
+  tank::SwimScene scene;
+  TankPictures pictures;
+  SmallTank()
+      : scene(test::shared_context(),
+              {{test::data_path("blub/fish_low_resolution.obj"),
+                test::data_path("rigs/blub_low_resolution_swim.rig.json")}},
+              8, tank::TankSettings{}, 3, NormalMode::kJacobian),
+        pictures(scene, {200, 150, 4, CameraView::kAbove}) {
+    for (int frame = 0; frame < 3; ++frame) scene.enqueue_frame(1.0 / 30.0);
+  }
+};
+
+render::Image empty_tank(TankPictures& pictures) {
+  pictures.renderer().render(pictures.look(), pictures.camera(), {});
+  return pictures.renderer().read_image();
+}
+
+TEST(TankPictures, TheHandOffDrawsWhatTheEngineComputed) {
+  SmallTank tank;
+  tank.pictures.hand_off();
+  tank.pictures.draw();
+  const render::Image handed = tank.pictures.read_image();
+  // The same frame from the batch read back to the host (ClDeformer::read: mesh order),
+  // drawn with the mesh's own triangles.
+  tank::Species& species = tank.scene.species()[0];
+  const DeformedBatch<float> host = species.deformer->read(species.batch);
+  std::vector<float> positions(host.layout.instance_count * 3 * host.layout.vertex_count);
+  std::vector<float> normals(positions.size());
+  for (std::size_t i = 0; i < host.layout.instance_count; ++i) {
+    for (std::size_t v = 0; v < host.layout.vertex_count; ++v) {
+      for (int c = 0; c < 3; ++c) {
+        positions[(i * host.layout.vertex_count + v) * 3 + std::size_t(c)] = host.position(i, v)[c];
+        normals[(i * host.layout.vertex_count + v) * 3 + std::size_t(c)] = host.normal(i, v)[c];
+      }
+    }
+  }
+  render::Renderer& renderer = tank.pictures.renderer();
+  const Mesh& rest = species.swim.model().mesh();
+  render::FishDraw draw;
+  draw.mesh = renderer.add_mesh(rest.indices, rest.vertex_count());
+  draw.albedo = species_albedo(species.name, 0);
+  draw.instance_count = host.layout.instance_count;
+  const auto layout = render::StreamLayout::interleaved(host.layout.vertex_count);
+  draw.positions = render::VertexStream::from_host(positions.data(), positions.size() * 4, layout);
+  draw.normals = render::VertexStream::from_host(normals.data(), normals.size() * 4, layout);
+  renderer.render(tank.pictures.look(), tank.pictures.camera(), {draw});
+  const render::Image read = renderer.read_image();
+  EXPECT_EQ(handed.rgb, read.rgb);
+  EXPECT_NE(handed.rgb, empty_tank(tank.pictures).rgb);  // the fish are in the picture
+}
+
+TEST(TankPictures, TheIdPassCoversTheFishWithTheirTankIds) {
+  SmallTank tank;
+  tank.pictures.hand_off();
+  tank.pictures.draw();
+  const render::Image colour = tank.pictures.read_image();
+  const render::IdImage ids = tank.pictures.draw_ids();
+  const render::Image empty = empty_tank(tank.pictures);
+  ASSERT_EQ(ids.ids.size(), std::size_t(200 * 150));
+  std::set<std::uint32_t> seen;
+  std::vector<bool> fish_in_colour(ids.ids.size()), fish_in_ids(ids.ids.size());
+  for (int y = 0; y < ids.height; ++y) {
+    for (int x = 0; x < ids.width; ++x) {
+      const std::size_t k = ids.index(x, y);
+      int difference = 0;
+      for (int c = 0; c < 3; ++c) {
+        difference += std::abs(int(colour.pixel(x, y)[c]) - int(empty.pixel(x, y)[c]));
+      }
+      fish_in_colour[k] = difference > 12;
+      fish_in_ids[k] = ids.ids[k] != 0;
+      EXPECT_GT(ids.depth[k], 0.0f);
+      if (ids.ids[k] == 0) continue;
+      seen.insert(ids.ids[k]);
+      // A fish is between the camera and the floor.
+      EXPECT_GT(ids.depth[k], 0.5f);
+      EXPECT_LT(ids.depth[k], tank.pictures.camera().position.y);
+    }
+  }
+  // Where a fish covers the pixel's centre, its colour shows; where the antialiased
+  // colour shows a fish, a fish covers that pixel's centre or a neighbour's (edges).
+  const auto near_a = [&](const std::vector<bool>& mask, int x, int y) {
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dx = -1; dx <= 1; ++dx) {
+        const int u = x + dx, v = y + dy;
+        if (u >= 0 && v >= 0 && u < ids.width && v < ids.height && mask[ids.index(u, v)])
+          return true;
+      }
+    }
+    return false;
+  };
+  std::size_t in_ids = 0, id_shown = 0, in_colour = 0, colour_covered = 0;
+  for (int y = 0; y < ids.height; ++y) {
+    for (int x = 0; x < ids.width; ++x) {
+      const std::size_t k = ids.index(x, y);
+      in_ids += fish_in_ids[k];
+      id_shown += fish_in_ids[k] && fish_in_colour[k];
+      in_colour += fish_in_colour[k];
+      colour_covered += fish_in_colour[k] && near_a(fish_in_ids, x, y);
+    }
+  }
+  ASSERT_GT(in_ids, 100u);
+  EXPECT_GT(double(id_shown) / double(in_ids), 0.97);
+  EXPECT_GT(double(colour_covered) / double(in_colour), 0.97);
+  // Ids are 1 + the tank's fish indices, and every fish is seen from above.
+  EXPECT_EQ(seen.size(), 8u);
+  EXPECT_EQ(*seen.begin(), 1u);
+  EXPECT_EQ(*seen.rbegin(), 8u);
+}
+
+TEST(TankPictures, TheIdPassNeedsAnIdPerInstance) {
+  SmallTank tank;
+  tank.pictures.hand_off();
+  render::Renderer& renderer = tank.pictures.renderer();
+  const Mesh& rest = tank.scene.species()[0].swim.model().mesh();
+  const std::vector<float> one(rest.vertex_count() * 3, 0.5f);
+  render::FishDraw draw;
+  draw.mesh = renderer.add_mesh(rest.indices, rest.vertex_count());
+  draw.instance_count = 2;
+  // Both instances read one set of vertices: a zero instance stride.
+  render::StreamLayout shared = render::StreamLayout::interleaved(rest.vertex_count());
+  shared.instance_stride = 0;
+  draw.positions = render::VertexStream::from_host(one.data(), one.size() * 4, shared);
+  draw.normals = draw.positions;
+  const auto field_of = [&](const render::FishDraw& d) {
+    try {
+      renderer.render_ids(tank.pictures.look(), tank.pictures.camera(), {d});
+    } catch (const render::RenderError& error) {
+      return error.field();
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(field_of(draw), "fish[0].ids");
+  const std::uint32_t with_zero[] = {4, 0};
+  draw.ids = with_zero;
+  EXPECT_EQ(field_of(draw), "fish[0].ids[1]");
+  const std::uint32_t good[] = {4, 5};
+  draw.ids = good;
+  EXPECT_EQ(field_of(draw), "accepted");
+}
+
+}  // namespace
+}  // namespace finflex::pictures
