@@ -85,28 +85,12 @@ void bend_all(const Baseline& b, const std::vector<float>& m, std::vector<Float3
   }
 }
 
-std::vector<float> parameters(std::size_t instances, double x_max) {
-  std::vector<float> m(instances);
-  for (std::size_t i = 0; i < instances; ++i) {
-    m[i] = static_cast<float>(max_abs_m(x_max) * (static_cast<double>(i % 17) / 8.0 - 1.0));
-  }
-  return m;
-}
-
-void report(benchmark::State& state, std::size_t instances, double seconds) {
-  BatchLayout layout;
-  layout.vertex_count = Setup::get().mesh.vertex_count();
-  layout.instance_count = instances;
-  layout.plane_stride = layout.vertex_count;
-  set_counters(state, layout, seconds);
-}
-
 }  // namespace
 
 void BM_OpenMPBaseline(benchmark::State& state) {
   const Baseline& b = Baseline::get();
   const std::size_t instances = static_cast<std::size_t>(state.range(0));
-  const std::vector<float> m = parameters(instances, b.x_max);
+  const std::vector<float> m = baseline_bend_values(instances, b.x_max);
   std::vector<Float3> positions(instances * b.positions.size()), normals(positions.size());
   bend_all(b, m, positions, normals);  // warm-up: pages touched, threads started
   double total = 0.0;
@@ -119,14 +103,15 @@ void BM_OpenMPBaseline(benchmark::State& state) {
     total += seconds;
   }
   benchmark::DoNotOptimize(positions.data());
-  report(state, instances, total);
+  set_baseline_counters(state, instances, total);
 }
 
 void BM_DoubleReference(benchmark::State& state) {
   DeviceModel& bend = Setup::get().bend(BendMode::kPaper);
   const std::size_t instances = static_cast<std::size_t>(state.range(0));
   RigParameters m(bend.model, instances);
-  m.values() = parameters(instances, bend.model.rig().components[0].chain[0].geometry.x_max);
+  m.values() =
+      baseline_bend_values(instances, bend.model.rig().components[0].chain[0].geometry.x_max);
   double total = 0.0;
   for (auto _ : state) {
     const auto start = std::chrono::steady_clock::now();
@@ -137,7 +122,7 @@ void BM_DoubleReference(benchmark::State& state) {
     state.SetIterationTime(seconds);
     total += seconds;
   }
-  report(state, instances, total);
+  set_baseline_counters(state, instances, total);
 }
 
 }  // namespace finflex::bench

@@ -7,14 +7,16 @@
 namespace finflex::bench {
 
 void BM_WriteOnly(benchmark::State& state, NormalFormat format, std::size_t per_item,
-                  WriteValues values) {
+                  WriteValues values, std::size_t lanes, bool streaming) {
   Setup& setup = Setup::get();
   DeviceModel& bend = setup.bend(BendMode::kPaper);
   DeviceBatch& batch = bend.batch(static_cast<std::size_t>(state.range(0)), format);
   if (per_item == 0) per_item = bend.deformer.instances_per_item(format);
+  if (lanes == 0) lanes = bend.deformer.lanes(format);
   const double seconds = time_iterations(state, [&] {
     return event_seconds(
-        enqueue_write_only(setup.context, batch, batch.layout.plane_stride, per_item, values));
+        enqueue_write_only(setup.context, batch, batch.layout.plane_stride, per_item, values,
+                           lanes, streaming));
   });
   // The reference of write_fraction: the fastest write-only shape measured writing the
   // device's default values (never uniform data on GPUs, which they may compress).
@@ -25,6 +27,8 @@ void BM_WriteOnly(benchmark::State& state, NormalFormat format, std::size_t per_
   }
   set_counters(state, batch.layout, 0.0);
   state.counters["per_item"] = static_cast<double>(per_item);
+  state.counters["lanes"] = static_cast<double>(lanes);
+  state.counters["streaming"] = lanes > 1 && streaming ? 1.0 : 0.0;
 }
 
 void BM_CopyRest(benchmark::State& state) {

@@ -50,6 +50,22 @@ DeviceModel& Setup::rig() {
   return *rig_;
 }
 
+std::vector<float> baseline_bend_values(std::size_t instances, double x_max) {
+  std::vector<float> m(instances);
+  for (std::size_t i = 0; i < instances; ++i) {
+    m[i] = static_cast<float>(max_abs_m(x_max) * (static_cast<double>(i % 17) / 8.0 - 1.0));
+  }
+  return m;
+}
+
+void set_baseline_counters(benchmark::State& state, std::size_t instances, double seconds) {
+  BatchLayout layout;
+  layout.vertex_count = Setup::get().mesh.vertex_count();
+  layout.instance_count = instances;
+  layout.plane_stride = layout.vertex_count;
+  set_counters(state, layout, seconds);
+}
+
 double written_bytes(const BatchLayout& layout) {
   return static_cast<double>(layout.plane_stride * layout.instance_count *
                              layout.bytes_per_vertex());

@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <benchmark/benchmark.h>
 
@@ -65,6 +66,13 @@ double written_bytes(const BatchLayout& layout);
 // write-only kernel was measured for this instance count.
 void set_counters(benchmark::State& state, const BatchLayout& layout, double seconds);
 
+// The baselines' values of m for `instances` instances: fractions of the limit for
+// x_max, both signs (the same for every baseline).
+std::vector<float> baseline_bend_values(std::size_t instances, double x_max);
+// The counters of set_counters for a baseline's `instances` instances of the mesh
+// (outputs over unpadded arrays) deformed in `seconds`.
+void set_baseline_counters(benchmark::State& state, std::size_t instances, double seconds);
+
 // Runs `launch` (returning the device seconds of one frame) once to warm up (PoCL
 // compiles per work-group shape), then times it; returns the total seconds.
 template <typename Launch>
@@ -81,12 +89,15 @@ double time_iterations(benchmark::State& state, Launch launch) {
 
 // Benchmark bodies (bench_bend.cpp, bench_rig.cpp, bench_baselines.cpp); registered in
 // bench_main.cpp.
+// per_item, lanes: 0 for the bend deformer's own (ClDeformer::instances_per_item, lanes);
+// streaming: with more than one lane, streaming stores (ClOptions::stores).
 void BM_WriteOnly(benchmark::State& state, NormalFormat format, std::size_t per_item,
-                  WriteValues values);
+                  WriteValues values, std::size_t lanes, bool streaming);
 void BM_CopyRest(benchmark::State& state);
 void BM_Bend(benchmark::State& state, BendMode mode, NormalMode normals, NormalFormat format);
 void BM_Rig(benchmark::State& state, RigPath path);
 void BM_OpenMPBaseline(benchmark::State& state);
+void BM_OpenMPSimdBaseline(benchmark::State& state);
 void BM_HostOverhead(benchmark::State& state);
 void BM_DoubleReference(benchmark::State& state);
 

@@ -25,7 +25,10 @@
  *
  * Build options: FF_NORMALS_JACOBIAN (common/secant.cl), FF_TANGENTS and
  * FF_INSTANCES_PER_ITEM (common/planes.cl), the outputs' formats and arrangement
- * (common/outputs.cl; scratch sets stay float32 planes). Generated before the files:
+ * (common/outputs.cl; scratch sets stay float32 planes), FF_LANES (common/lanes.cl: a
+ * work-item deforms FF_LANES consecutive slots, a work-group still 64; more than one
+ * lane for FinFlex's float32 planes only, kernels/cpu/lane_outputs.cl). Generated
+ * before the files:
  * FF_STAGE_COUNT (the stage table's rows), FF_ROOT_FRAME (the root frame's row, when
  * the root has no stage), FF_RIG_GROUP_COUNT and the macros above. */
 /* The path table (group_path_table in engine/src/rig_program.cpp): the stage at
@@ -51,7 +54,7 @@
       __global const float* restrict derived_values, const uint derived_count,          \
       __global const float* restrict placements, FF_OUTPUT_ARGUMENTS,                   \
       const uint stride, const uint instances) {                                        \
-    const size_t v = get_global_id(0);                                                  \
+    const size_t v = FF_FIRST_SLOT;                                                     \
     const size_t first_instance = get_global_id(1) * FF_INSTANCES_PER_ITEM;            \
     const uint group = FF_GROUP;                                                        \
     const Vec3 rest_p = load_plane3(rest_positions, 0, stride, v);                      \
@@ -118,7 +121,7 @@ FF_RIG_FUSED_KERNELS
       __global const float* restrict derived_values, const uint derived_count,          \
       __global const float* restrict placements, FF_OUTPUT_ARGUMENTS,                   \
       const uint stride, const uint instances) {                                        \
-    const size_t v = get_global_id(0);                                                  \
+    const size_t v = FF_FIRST_SLOT;                                                     \
     const size_t first_instance = get_global_id(1) * FF_INSTANCES_PER_ITEM;            \
     const uint group = FF_GROUP;                                                        \
     for (uint k = 0; k < FF_INSTANCES_PER_ITEM; ++k) {                                  \
@@ -137,7 +140,9 @@ FF_RIG_PASS_KERNELS
  * kernel rig_prepare writes them from every instance's values before the deformation
  * kernels run, one work-item per instance, the stages that have them listed in the
  * generated FF_RIG_PREPARE (calls "<prepare function>(values + <offset>, derived +
- * <offset>, stages + <k>);"). Launched only when the rig has such stages. */
+ * <offset>, stages + <k>);"). Launched only when the rig has such stages, always from
+ * the one-lane build of the program (it works on an instance, not on vertices). */
+#if FF_LANES == 1
 __kernel void rig_prepare(__global const float* restrict params, const uint param_count,
                           __constant const float* stages, __global float* restrict derived_values,
                           const uint derived_count, const uint instances) {
@@ -147,3 +152,4 @@ __kernel void rig_prepare(__global const float* restrict params, const uint para
   __global float* derived = derived_values + instance * derived_count;
   FF_RIG_PREPARE
 }
+#endif

@@ -17,8 +17,11 @@
  *         p_b = origin + s (x e_x + y e_y + z e_z), n_b = x e_x + y e_y + z e_z;
  *         scaled_axis_* = s e_*, axis_* = e_* (all in mesh coordinates).
  *
- * Build options: FF_BEND_EXACT (deformers/bend.cl), FF_NORMALS_JACOBIAN, and those of
- * common/planes.cl and common/outputs.cl. No branch depends on the vertex: the planes are padded to the
+ * Build options: FF_BEND_EXACT (deformers/bend.cl), FF_NORMALS_JACOBIAN, those of
+ * common/planes.cl and common/outputs.cl, and FF_LANES (common/lanes.cl: FF_LANES
+ * consecutive slots per work-item, NDRange (plane_stride / FF_LANES, ...); more than
+ * one lane for FinFlex's float32 planes only, kernels/cpu/lane_outputs.cl). No branch
+ * depends on the vertex: the planes are padded to the
  * work-group size, and the instance bound is the same for a whole work-group. */
 
 /* x a_x + y a_y + z a_z (+ origin): the way back to mesh coordinates, M^-1 of (2). */
@@ -38,7 +41,7 @@ __kernel void single_bend(__global const float* restrict rest_positions,
                           const float4 scaled_axis_x, const float4 scaled_axis_y,
                           const float4 scaled_axis_z,
                           const float4 axis_x, const float4 axis_y, const float4 axis_z) {
-  const size_t v = get_global_id(0);
+  const size_t v = FF_FIRST_SLOT;
   const size_t first_instance = get_global_id(1) * FF_INSTANCES_PER_ITEM;
   const float4 no_offset = (float4)(0.0f);
   const Vec3 rest_p = load_plane3(rest_positions, 0, stride, v);

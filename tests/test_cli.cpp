@@ -148,7 +148,9 @@ void expect_bench_json(const std::string& arguments, const RiggedMesh& model, Ri
                                                   "host_enqueue_seconds_median",
                                                   "host_outputs",
                                                   "kernel_seconds_median",
-                                                  "instances_per_item"};
+                                                  "instances_per_item",
+                                                  "lanes",
+                                                  "streaming_stores"};
   EXPECT_EQ(keys, expected_keys);  // in this order, none missing, none extra
 
   ClDeformer deformer(test::shared_context(), model);
@@ -199,6 +201,9 @@ void expect_bench_json(const std::string& arguments, const RiggedMesh& model, Ri
   }
   for (double seconds : kernels) EXPECT_GT(seconds, 0.0);
   EXPECT_EQ(j.at("instances_per_item").get<std::size_t>(), deformer.instances_per_item(format));
+  EXPECT_EQ(j.at("lanes").get<std::size_t>(), deformer.lanes(format));
+  EXPECT_EQ(j.at("streaming_stores").get<bool>(),
+            deformer.streams_outputs(deformer.allocate(8, format)));
 }
 
 TEST(Cli, BenchJsonKeysAndValues) {
@@ -240,6 +245,23 @@ TEST(Cli, BenchMeasuresOutputLayouts) {
     EXPECT_EQ(bad.exit_code, 2);
     EXPECT_EQ(line_count(bad.err), 1) << bad.err;
     EXPECT_NE(bad.err.find(option + " '" + value + "'"), std::string::npos) << bad.err;
+  }
+}
+
+// --lanes applies to FinFlex's float32 planes only: another --layout reports the one
+// lane it ran with, and no streaming stores.
+TEST(Cli, BenchLanesApplyToThePlanesOnly) {
+  const std::string mesh = fish("blub/fish_low_resolution.obj");
+  for (const char* layout : {"planes", "compact"}) {
+    SCOPED_TRACE(layout);
+    const RunResult r = run_cli("bench --mesh " + mesh +
+                                " --instances 8 --frames 2 --json --lanes 16 --stores streaming"
+                                " --layout " + layout);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    const bool planes = std::string(layout) == "planes";
+    EXPECT_EQ(j.at("lanes").get<std::size_t>(), planes ? 16u : 1u);
+    EXPECT_EQ(j.at("streaming_stores").get<bool>(), planes);
   }
 }
 

@@ -101,6 +101,18 @@ TEST(CliNumbers, HugeAndMalformedCountsAreRefusedWithTheLimit) {
                  {"--levels '9'", "above the limit 8"});
 }
 
+// --lanes and --stores go through bench's checks like every option: strict counts
+// with their limit, then the lane counts the kernels have, then the kinds of store.
+TEST(CliNumbers, BenchLanesAndStoresAreCheckedStrictly) {
+  expect_refused("bench --mesh " + kMesh + " --lanes -1", {"--lanes '-1'", "[0, 16]"});
+  expect_refused("bench --mesh " + kMesh + " --lanes 32",
+                 {"--lanes '32'", "above the limit 16 (vertex slots per work-item)"});
+  expect_refused("bench --mesh " + kMesh + " --lanes 8.0", {"--lanes '", "whole number"});
+  expect_refused("bench --mesh " + kMesh + " --lanes 4", {"--lanes '4'", "1, 8 or 16"});
+  expect_refused("bench --mesh " + kMesh + " --stores fast",
+                 {"--stores 'fast'", "auto, plain or streaming"});
+}
+
 TEST(CliNumbers, ParameterValuesBeyondFloatAreNamedAsTyped) {
   expect_refused("deform --in " + kMesh + " --out x.obj --rig " + kRig + " --set body_m=1e300",
                  {"--set body_m '1e300'", "float"});

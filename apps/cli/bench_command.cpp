@@ -1,12 +1,13 @@
 // finflex bench: frames of a batch on one device, timed by OpenCL profiling events,
-// next to a write-only kernel of the same NDRange and output planes (the device's
-// write bandwidth, measured in the same run).
+// next to a write-only kernel of the same outputs (the device's write bandwidth,
+// measured in the same run: the fastest of its shapes).
 //
 //   finflex bench --mesh PATH --instances N --frames F [--mode paper|exact]
 //                 [--normals rotate|jacobian] [--normal-format float32|half]
 //                 [--rig RIG.json [--path fused|passes] [--swim]]
 //                 [--layout planes|interleaved|compact|snorm] [--order slots|mesh] [--previous]
-//                 [--host] [--device NAME] [--json]
+//                 [--host] [--per-item N] [--lanes 0|1|8|16] [--stores auto|plain|streaming]
+//                 [--device NAME] [--json]
 //
 // --layout, --order, --previous: the outputs in that layout (docs/handoff.md), the
 // write-only kernel writing the same layout. --host: the outputs in host memory
@@ -49,6 +50,8 @@ struct BenchOptions {
   std::string rig;
   std::string path = "auto";
   std::string per_item = "0";
+  std::string lanes = "0";
+  std::string stores = "auto";
   std::string dispatch = "auto";
   bool swim = false;
   std::string layout = "planes";
@@ -67,6 +70,8 @@ struct Measured {
   bench::FrameTimes times;
   DeviceBatch* batch = nullptr;
   std::size_t per_item = 1;
+  std::size_t lanes = 1;
+  bool streaming = false;           // streaming stores (with lanes)
   std::size_t vertices = 0;         // per instance
   std::size_t output_vertices = 0;  // the outputs' (slots or mesh vertices)
   std::size_t bytes_per_vertex = 0;  // written per output vertex and instance
@@ -93,19 +98,31 @@ std::vector<double> time_host_maps(ClDeformer& deformer, ClJob& job, std::size_t
   return seconds;
 }
 
-// The write-only kernel over the batch's planes: the faster of the deformer's
-// instances per work-item and 4 (the rig kernels' on GPUs).
+// The write-only kernel through the batch's layout: the fastest of the deformer's
+// instances per work-item and 4 (the rig kernels' on GPUs), each with one lane and,
+// when the deformer has more for this batch (FinFlex's float32 planes), with its lanes
+// (vector stores, kernels/cpu/lane_outputs.cl), streaming and plain.
 double write_only_median(Context& context, DeviceBatch& batch, std::size_t vertices,
-                         std::size_t per_item, std::size_t frames) {
+                         std::size_t per_item, std::size_t lanes, std::size_t frames) {
+  struct Shape {
+    std::size_t lanes;
+    bool streaming;
+  };
+  std::vector<Shape> shapes = {{1, false}};
+  if (lanes > 1) shapes.insert(shapes.end(), {{lanes, true}, {lanes, false}});
   double fastest = 0.0;
   for (std::size_t per : {per_item, std::size_t{4}}) {
-    const bench::FrameTimes times = bench::time_frames(
-        frames, [](std::size_t) {},
-        [&](std::vector<cl::Event>& events) {
-          events.assign(1, bench::enqueue_write_only(context, batch, vertices, per));
-        });
-    const double seconds = bench::median(times.device);
-    fastest = fastest == 0.0 ? seconds : std::min(fastest, seconds);
+    for (const Shape& shape : shapes) {
+      const bench::FrameTimes times = bench::time_frames(
+          frames, [](std::size_t) {},
+          [&](std::vector<cl::Event>& events) {
+            events.assign(1, bench::enqueue_write_only(context, batch, vertices, per,
+                                                       bench::WriteValues::kDeviceDefault,
+                                                       shape.lanes, shape.streaming));
+          });
+      const double seconds = bench::median(times.device);
+      fastest = fastest == 0.0 ? seconds : std::min(fastest, seconds);
+    }
   }
   return fastest;
 }
@@ -130,11 +147,26 @@ struct DeformBench {
   DeviceBatch batch;
 };
 
-// --per-item and --dispatch: the backend's choices, for experiments.
+// --per-item, --lanes, --stores and --dispatch: the backend's choices, for experiments.
 ClOptions cl_options(const BenchOptions& options) {
   ClOptions cl;
   cl.instances_per_item =
       parse_count(options.per_item, "--per-item", 0, 64, "instances per work-item");
+  cl.lanes = parse_count(options.lanes, "--lanes", 0, 16, "vertex slots per work-item");
+  if (cl.lanes != 0 && cl.lanes != 1 && cl.lanes != 8 && cl.lanes != 16) {
+    throw Error(ErrorCode::kInvalidArgument, "--lanes",
+                "--lanes '" + options.lanes +
+                    "' is not a number of lanes (expected 0: the device's, 1, 8 or 16)");
+  }
+  if (options.stores == "plain") {
+    cl.stores = OutputStores::kPlain;
+  } else if (options.stores == "streaming") {
+    cl.stores = OutputStores::kStreaming;
+  } else if (options.stores != "auto") {
+    throw Error(ErrorCode::kInvalidArgument, "--stores",
+                "--stores '" + options.stores +
+                    "' is not a kind of store (expected auto, plain or streaming)");
+  }
   if (options.dispatch == "per-component") {
     cl.dispatch = RigDispatch::kPerComponent;
   } else if (options.dispatch == "by-path-shape") {
@@ -198,6 +230,8 @@ Measured measure_deform(const BenchOptions& options, const Mesh& mesh, Context& 
                                       : std::string("rig ") + to_string(chosen);
   measured.batch = &bench.batch;
   measured.per_item = deformer.instances_per_item(layout.layout);
+  measured.lanes = deformer.lanes(layout.layout);
+  measured.streaming = deformer.streams_outputs(bench.batch);
   measured.vertices = mesh.vertex_count();
   measured.output_vertices = layout.vertices;
   measured.bytes_per_vertex = layout.bytes_per_vertex;
@@ -239,6 +273,8 @@ Measured measure_swim(const BenchOptions& options, Context& context, std::size_t
   measured.what = std::string("swim ") + to_string(species.deformer->automatic_path());
   measured.batch = &species.batch();
   measured.per_item = species.deformer->instances_per_item(format);
+  measured.lanes = species.deformer->lanes(species.batch().outputs);
+  measured.streaming = species.deformer->streams_outputs(species.batch());
   measured.vertices = species.swim.model().vertex_count();
   measured.output_vertices = species.batch().layout.plane_stride;
   measured.bytes_per_vertex = species.batch().layout.bytes_per_vertex();
@@ -263,7 +299,7 @@ BenchCounts check_bench(const BenchOptions& options) {
   parse_normal_mode(options.normals, "--normals");
   parse_normal_format(options.normal_format, "--normal-format");
   parse_rig_path(options.path, "--path");
-  cl_options(options);  // --per-item, --dispatch
+  cl_options(options);  // --per-item, --lanes, --stores, --dispatch
   check_bench_layout(options.layout, options.order);
   check_input_file("--mesh", options.mesh, mesh_extensions());
   if (options.rig.empty()) {
@@ -296,7 +332,7 @@ int run_bench(const BenchOptions& options) {
             : measure_deform(options, mesh, context, instances, frames, normals, format, deform);
     const double seconds = bench::median(m.times.device);
     const double write_seconds =
-        write_only_median(context, *m.batch, m.output_vertices, m.per_item, frames);
+        write_only_median(context, *m.batch, m.output_vertices, m.per_item, m.lanes, frames);
     const double vertices = double(m.vertices) * double(instances);
     const BatchLayout& layout = m.batch->layout;
     const double bytes_per_vertex = double(m.bytes_per_vertex);
@@ -337,6 +373,8 @@ int run_bench(const BenchOptions& options) {
     // deformation's).
     result["kernel_seconds_median"] = m.times.kernel_medians();
     result["instances_per_item"] = m.per_item;
+    result["lanes"] = m.lanes;
+    result["streaming_stores"] = m.streaming;
     std::printf("%s\n", options.json ? result.dump().c_str() : result.dump(2).c_str());
     return kExitSuccess;
   } catch (const std::exception& error) {
@@ -365,6 +403,14 @@ Command add_bench_command(CLI::App& app) {
       ->capture_default_str();
   bench->add_option("--per-item", options->per_item,
                     "Instances per work-item (0: the device's choice)")
+      ->capture_default_str();
+  bench->add_option("--lanes", options->lanes,
+                    "Vertex slots per work-item: 1, 8, 16 (0: the device's; FinFlex's float32 "
+                    "planes only, other layouts run with 1)")
+      ->capture_default_str();
+  bench->add_option("--stores", options->stores,
+                    "With lanes: auto (streaming when the outputs exceed the cache), plain or "
+                    "streaming")
       ->capture_default_str();
   bench->add_option("--dispatch", options->dispatch, "auto, per-component or by-path-shape")
       ->capture_default_str();

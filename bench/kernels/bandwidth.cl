@@ -4,8 +4,10 @@
  * device's write bandwidth for the batch's output layout; copy_rest reads rest planes
  * and writes them out per instance. Written with scalar stores only, like the
  * deformation kernels, so PoCL vectorises them alike; write_outputs honours the
- * output layout's options (kernels/common/outputs.cl) and FF_INSTANCES_PER_ITEM as they
- * do (NDRange (output vertices, ceil(instances / FF_INSTANCES_PER_ITEM))).
+ * output layout's options (kernels/common/outputs.cl), FF_INSTANCES_PER_ITEM and
+ * FF_LANES (kernels/common/lanes.cl: vector stores of FF_LANES slots for FinFlex's
+ * float32 planes, kernels/cpu/lane_outputs.cl) as they do
+ * (NDRange (output vertices / FF_LANES, ceil(instances / FF_INSTANCES_PER_ITEM))).
  * Built after the library's common kernel files.
  *
  * FF_VARYING_WRITES (0/1): write_outputs writes `value` everywhere (0), or values that
@@ -18,7 +20,7 @@
 
 __kernel void write_outputs(FF_OUTPUT_ARGUMENTS, const uint vertices, const uint instances,
                             const float value) {
-  const size_t v = get_global_id(0);
+  const size_t v = FF_FIRST_SLOT;
   const size_t first_instance = get_global_id(1) * FF_INSTANCES_PER_ITEM;
   for (uint k = 0; k < FF_INSTANCES_PER_ITEM; ++k) {
     const size_t instance = first_instance + k;

@@ -19,14 +19,17 @@ ProgramSource bandwidth_program() {
   return {common_kernel_files(), "", found->text};
 }
 
+// The deformation kernels' NDRange: work-groups of kGroupSize slots, `lanes` slots per
+// work-item.
 cl::Event launch(Context& context, cl::Kernel& kernel, std::size_t vertices, std::size_t instances,
-                 std::size_t per_item) {
+                 std::size_t per_item, std::size_t lanes) {
   const std::size_t group = ClDeformer::kGroupSize;
   cl::Event done;
   check_cl(context.queue().enqueueNDRangeKernel(
                kernel, cl::NullRange,
-               cl::NDRange((vertices + group - 1) / group * group, (instances + per_item - 1) / per_item),
-               cl::NDRange(group, 1), nullptr, &done),
+               cl::NDRange((vertices + group - 1) / group * group / lanes,
+                           (instances + per_item - 1) / per_item),
+               cl::NDRange(group / lanes, 1), nullptr, &done),
            "clEnqueueNDRangeKernel");
   return done;
 }
@@ -34,14 +37,18 @@ cl::Event launch(Context& context, cl::Kernel& kernel, std::size_t vertices, std
 }  // namespace
 
 cl::Event enqueue_write_only(Context& context, DeviceBatch& batch, std::size_t vertices,
-                             std::size_t instances_per_item, WriteValues values) {
+                             std::size_t instances_per_item, WriteValues values,
+                             std::size_t lanes, bool streaming) {
   if (values == WriteValues::kDeviceDefault) {
     values = context.description().is_gpu() ? WriteValues::kVarying : WriteValues::kConstant;
   }
   const std::string options =
       std::string("-DFF_INSTANCES_PER_ITEM=") + std::to_string(instances_per_item) +
       (values == WriteValues::kVarying ? " -DFF_VARYING_WRITES=1" : "") +
-      output_build_options(batch.outputs);
+      output_build_options(batch.outputs) +
+      (lanes > 1 ? " -DFF_LANES=" + std::to_string(lanes) +
+                       " -DFF_STREAMING_STORES=" + (streaming ? "1" : "0")
+                 : std::string());
   cl::Kernel kernel = context.kernel("write_outputs", bandwidth_program(), options);
   cl_uint arg = 0;
   auto set = [&](const auto& value) { check_cl(kernel.setArg(arg++, value), "clSetKernelArg"); };
@@ -54,7 +61,7 @@ cl::Event enqueue_write_only(Context& context, DeviceBatch& batch, std::size_t v
   set(static_cast<cl_uint>(vertices));
   set(static_cast<cl_uint>(batch.layout.instance_count));
   set(1.0f);
-  return launch(context, kernel, vertices, batch.layout.instance_count, instances_per_item);
+  return launch(context, kernel, vertices, batch.layout.instance_count, instances_per_item, lanes);
 }
 
 cl::Event enqueue_copy_rest(Context& context, const cl::Buffer& source, DeviceBatch& batch) {
@@ -65,7 +72,7 @@ cl::Event enqueue_copy_rest(Context& context, const cl::Buffer& source, DeviceBa
   set(batch.positions);
   set(batch.normals);
   set(static_cast<cl_uint>(batch.layout.plane_stride));
-  return launch(context, kernel, batch.layout.plane_stride, batch.layout.instance_count, 1);
+  return launch(context, kernel, batch.layout.plane_stride, batch.layout.instance_count, 1, 1);
 }
 
 }  // namespace finflex::bench

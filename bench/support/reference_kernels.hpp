@@ -23,11 +23,15 @@ enum class WriteValues {
 
 // Writes every output the batch's layout has (positions, normals, tangents, previous
 // positions, in their formats and arrangements) for `vertices` vertices
-// (ClDeformer::output_vertices of its order), `instances_per_item` instances per
-// work-item (ClDeformer::instances_per_item). Returns the kernel's event.
+// (ClDeformer::output_vertices of its order), `instances_per_item` instances and
+// `lanes` slots per work-item (the deformer's: ClDeformer::instances_per_item,
+// ClDeformer::lanes; more than one lane: FinFlex's float32 planes only, with streaming
+// stores or ordinary ones: ClOptions::stores; for another layout the kernel's build
+// fails, kernels/cpu/lane_outputs.cl). Returns the kernel's event.
 cl::Event enqueue_write_only(Context& context, DeviceBatch& batch, std::size_t vertices,
                              std::size_t instances_per_item,
-                             WriteValues values = WriteValues::kDeviceDefault);
+                             WriteValues values = WriteValues::kDeviceDefault,
+                             std::size_t lanes = 1, bool streaming = true);
 
 // Copies 6 planes of `source` (positions and normals of plane_stride slots) into every
 // instance of the batch's float32 outputs. Returns the kernel's event.

@@ -40,6 +40,11 @@ ClDeformer::Impl::Impl(Context& context_in, const RiggedMesh& model_in, const Cl
     : context(context_in), model(model_in), options(options_in), checker_(model_in.rig()) {
   const DeviceDescription& device = context.description();
   options.dispatch = detail::device_dispatch(device, options.dispatch);
+  if (options.lanes != 0 && options.lanes != 1 && options.lanes != 8 && options.lanes != 16) {
+    throw Error(ErrorCode::kInvalidArgument, "options.lanes",
+                "options.lanes: " + std::to_string(options.lanes) +
+                    " is not a number of lanes (expected 0: the device's, 1, 8 or 16)");
+  }
   single_bend = options.single_bend_kernel && model.is_single_bend();
   const bool share_code = options.dispatch == RigDispatch::kByPathShape;
   const Rig& rig = model.rig();
@@ -149,6 +154,28 @@ std::size_t ClDeformer::Impl::output_vertices(VertexOrder order) const {
   return order == VertexOrder::kMesh ? model.vertex_count() : slot_count_;
 }
 
+std::size_t ClDeformer::Impl::lanes(NormalFormat format) const {
+  if (format == NormalFormat::kHalf) return 1;
+  return options.lanes ? options.lanes : detail::device_lanes(context.description(), format);
+}
+
+// Lanes store FinFlex's float32 planes only (kernels/cpu/lane_outputs.cl): any other
+// layout takes the one-lane kernels and their store epilogue.
+std::size_t ClDeformer::Impl::lanes(const OutputLayout& outputs) const {
+  return detail::writes_default_planes(outputs, layout(1, NormalFormat::kFloat32))
+             ? lanes(NormalFormat::kFloat32)
+             : 1;
+}
+
+bool ClDeformer::Impl::streams_outputs(const DeviceBatch& batch) const {
+  if (lanes(batch.outputs) == 1) return false;
+  // FinFlex's float32 planes: 12 bytes per attribute, vertex slot and instance.
+  const BatchLayout& counts = batch.layout;
+  const std::size_t bytes = counts.plane_stride * counts.instance_count * 12 *
+                            (batch.outputs.tangents ? 3 : 2);
+  return detail::device_streaming_stores(context.description(), options.stores, bytes);
+}
+
 // ----------------------------------------------------------------------------------
 // Checks
 
@@ -197,6 +224,10 @@ void ClDeformer::Impl::check_buffer_sizes(const DeviceBatch& batch) {
   } else {
     batch_options_ = output_build_options(batch.outputs);
   }
+  // Lanes (and their kind of store) for this batch: kernels of more than one lane for
+  // FinFlex's float32 planes, the one-lane kernels for any other layout.
+  batch_lanes_ = lanes(batch.outputs);
+  batch_streams_ = streams_outputs(batch);
   ++generation_;  // kernels take the batch's arguments again
 }
 
@@ -219,8 +250,9 @@ void ClDeformer::Impl::check(const ClJob& job) const {
 
 ClDeformer::Impl::BoundKernel& ClDeformer::Impl::kernel(std::size_t index, const ClJob& job) {
   const bool placed = job.placements != nullptr || job.placement_buffer != nullptr;
-  const detail::KernelVariant variant{index, job.normals, batch_options_,
-                                      per_item(job.outputs->outputs), placed};
+  const detail::KernelVariant variant{index,           job.normals, batch_options_,
+                                      per_item(job.outputs->outputs), placed, batch_lanes_,
+                                      batch_streams_};
   auto found = kernels_.find(variant);
   if (found == kernels_.end()) {
     const std::size_t fused = fused_launches_.size();
@@ -261,10 +293,11 @@ void ClDeformer::Impl::prepare_derived(const ClJob& job, const FrameInputs& inpu
                                        std::vector<cl::Event>* kernel_events) {
   const std::size_t instances = job.parameters.instance_count;
   if (!prepare_()) {
-    // From a program the frame's kernels come from: no build of its own.
+    // From a one-lane build of the program the frame's kernels come from (the same
+    // build when they have one lane): it works on instances, not on vertex slots.
     const bool placed = job.placements != nullptr || job.placement_buffer != nullptr;
     const detail::KernelVariant variant{0, job.normals, batch_options_,
-                                        per_item(job.outputs->outputs), placed};
+                                        per_item(job.outputs->outputs), placed, 1};
     prepare_ = context.kernel("rig_prepare", program_, variant.options());
   }
   cl_uint arg = 0;
@@ -333,11 +366,14 @@ void ClDeformer::Impl::launch(BoundKernel& bound, const ClJob& job, std::size_t 
   cl::Event own;
   cl::Event* event = done ? done : kernel_events ? &own : nullptr;
   const std::size_t per = per_item(job.outputs->outputs);
-  const cl::NDRange offset(first_group * kWorkGroupSize, 0);
-  const cl::NDRange global((end_group - first_group) * kWorkGroupSize,
+  // A work-group covers kWorkGroupSize slots whatever the lanes: the rig kernels tell
+  // components apart by work-group (kernels/rig.cl).
+  const std::size_t items_per_group = kWorkGroupSize / batch_lanes_;
+  const cl::NDRange offset(first_group * items_per_group, 0);
+  const cl::NDRange global((end_group - first_group) * items_per_group,
                            (job.parameters.instance_count + per - 1) / per);
   check_cl(context.queue().enqueueNDRangeKernel(bound.kernel, offset, global,
-                                                cl::NDRange(kWorkGroupSize, 1), nullptr, event),
+                                                cl::NDRange(items_per_group, 1), nullptr, event),
            "clEnqueueNDRangeKernel");
   if (kernel_events) kernel_events->push_back(*event);
 }
@@ -538,6 +574,11 @@ std::size_t ClDeformer::instances_per_item(NormalFormat format) const {
 }
 std::size_t ClDeformer::instances_per_item(const OutputLayout& outputs) const {
   return impl_->per_item(outputs);
+}
+std::size_t ClDeformer::lanes(NormalFormat format) const { return impl_->lanes(format); }
+std::size_t ClDeformer::lanes(const OutputLayout& outputs) const { return impl_->lanes(outputs); }
+bool ClDeformer::streams_outputs(const DeviceBatch& batch) const {
+  return impl_->streams_outputs(batch);
 }
 
 }  // namespace finflex

@@ -33,6 +33,11 @@ class ClDeformer::Impl {
   std::size_t per_item(const OutputLayout& outputs) const;
   // The outputs' vertex count in `order`: slots, or the mesh's vertices.
   std::size_t output_vertices(VertexOrder order) const;
+  // Lanes for FinFlex's planes in `format`, and for a batch's outputs (1 unless they
+  // are FinFlex's float32 planes: ClOptions::lanes); streaming stores for a batch.
+  std::size_t lanes(NormalFormat format) const;
+  std::size_t lanes(const OutputLayout& outputs) const;
+  bool streams_outputs(const DeviceBatch& batch) const;
 
   Context& context;
   const RiggedMesh model;
@@ -103,6 +108,8 @@ class ClDeformer::Impl {
   };
   ValidatedBatch validated_;
   std::string batch_options_;  // output_build_options() of the batch validated last
+  std::size_t batch_lanes_ = 1;  // lanes(outputs) of the batch validated last
+  bool batch_streams_ = false;   // streams_outputs() of the batch validated last
   // Per slot its mesh vertex (0xffffffff for padding): outputs in mesh order.
   cl::Buffer vertex_of_slot_;
   std::map<detail::KernelVariant, BoundKernel> kernels_;

@@ -82,6 +82,8 @@ std::vector<FoundDevice> enumerate_devices() {
       desc.global_memory_bytes = devices[d].getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
       desc.max_allocation_bytes = devices[d].getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
       desc.extensions = devices[d].getInfo<CL_DEVICE_EXTENSIONS>();
+      desc.native_float_vector_width = devices[d].getInfo<CL_DEVICE_NATIVE_VECTOR_WIDTH_FLOAT>();
+      desc.global_memory_cache_bytes = devices[d].getInfo<CL_DEVICE_GLOBAL_MEM_CACHE_SIZE>();
       found.push_back(f);
     }
   }
@@ -164,8 +166,10 @@ Context::Context(const std::string& device,
 
 const std::vector<std::string>& common_kernel_files() {
   static const std::vector<std::string> files = {
-      "common/vec3.cl",    "common/trig.cl",        "common/secant.cl",   "common/planes.cl",
-      "common/outputs.cl", "common/stage_frame.cl", "common/placement.cl"};
+      "common/lanes.cl",   "common/vec3.cl",        "common/trig.cl",
+      "common/secant.cl",  "common/planes.cl",      "cpu/lane_planes.cl",
+      "common/outputs.cl", "cpu/lane_outputs.cl",   "common/stage_frame.cl",
+      "common/placement.cl"};
   return files;
 }
 

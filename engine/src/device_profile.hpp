@@ -1,6 +1,6 @@
 // What the OpenCL backend chooses per device kind, in one place: work-group size,
-// instances per work-item and the rig dispatch (the figures behind them are in
-// docs/benchmarks.md).
+// instances and vertex slots per work-item and the rig dispatch (the figures behind
+// them are in docs/benchmarks.md).
 #pragma once
 
 #include <cstddef>
@@ -24,6 +24,26 @@ inline std::size_t device_instances_per_item(const DeviceDescription& device,
   if (!device.is_gpu()) return 1;
   if (!single_bend_kernel) return 4;
   return format == NormalFormat::kHalf ? 4 : 2;
+}
+
+// Vertex slots one work-item deforms (kernels/common/lanes.cl). GPUs: 1 (a warp is
+// their vector). CPUs: a vector of 16 floats where the native one has 16 lanes, else
+// 8 (two native vectors of 4 on older CPUs), so the kernels are vector code whatever
+// the OpenCL compiler's work-group vectoriser does. Half normals: 1 (their stores are
+// the one-lane kernels').
+inline std::size_t device_lanes(const DeviceDescription& device, NormalFormat format) {
+  if (device.is_gpu() || format == NormalFormat::kHalf) return 1;
+  return device.native_float_vector_width >= 16 ? 16 : 8;
+}
+
+// Streaming stores (kernels of more than one lane) for a frame writing `output_bytes`:
+// kAuto streams outputs larger than the device's global memory cache, which would go
+// to memory anyway (reading each line before writing it doubles their traffic), and
+// keeps smaller ones in the caches.
+inline bool device_streaming_stores(const DeviceDescription& device, OutputStores asked,
+                                    std::size_t output_bytes) {
+  if (asked != OutputStores::kAuto) return asked == OutputStores::kStreaming;
+  return output_bytes > device.global_memory_cache_bytes;
 }
 
 // kPerComponent on GPUs (fewest instructions), kByPathShape on CPUs (straight-line

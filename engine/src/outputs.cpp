@@ -219,6 +219,16 @@ OutputLayout planes_outputs(const BatchLayout& layout) {
   return outputs;
 }
 
+bool writes_default_planes(const OutputLayout& outputs, const BatchLayout& counts) {
+  BatchLayout float32 = counts;
+  float32.normal_format = NormalFormat::kFloat32;
+  const OutputLayout planes = planes_outputs(float32);
+  return outputs.order == VertexOrder::kSlots && !outputs.previous_positions &&
+         outputs.positions == planes.positions && outputs.normals == planes.normals &&
+         outputs.tangents == planes.tangents &&
+         (!outputs.tangents || outputs.tangent_layout == planes.tangent_layout);
+}
+
 void check_outputs(const DeviceBatch& batch, std::size_t vertices, bool mesh_tangents,
                    const std::string& field) {
   const OutputLayout& outputs = batch.outputs;

@@ -17,6 +17,12 @@ namespace finflex::detail {
 // FinFlex's planes for `layout` (its plane stride, normal format and tangents).
 OutputLayout planes_outputs(const BatchLayout& layout);
 
+// True when `outputs` writes what planes_outputs(counts) writes, where it does: float32
+// planes for positions, normals (and tangents when `counts` has them) at FinFlex's
+// offsets and strides, in slot order, without previous positions. The only outputs
+// kernels of more than one lane store (kernels/cpu/lane_outputs.cl).
+bool writes_default_planes(const OutputLayout& outputs, const BatchLayout& counts);
+
 // Checks that `batch` holds `counts.instance_count` instances of `vertices` vertices
 // (slots or mesh vertices, as its order says) in its layout, in buffers large enough,
 // tangents only for a mesh that has them. kInvalidArgument naming `field` (e.g.

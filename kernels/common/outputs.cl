@@ -90,6 +90,10 @@ FF_INLINE size_t element_index(const int packed, ulong offset, ulong step, ulong
   return (size_t)(offset + i * instance_stride + (packed ? v * step : v));
 }
 
+/* One vertex slot per work-item from here to FF_STORE_OUTPUTS; kernels of more than one
+ * lane store FinFlex's float32 planes only, with the same names
+ * (kernels/cpu/lane_outputs.cl). */
+#if FF_LANES == 1
 /* Writes (x, y, z, w) as `format`, `packed` or planes (compile-time constants). */
 FF_INLINE void store_attribute(__global float* buffer, const int format, const int packed,
                                ulong offset, ulong step, ulong instance_stride, size_t i, size_t v,
@@ -183,6 +187,8 @@ FF_INLINE void store_outputs(__global float* out_positions, __global float* out_
                     instance, out_v, p, n, t, FF_REST_TANGENT_W(v));                           \
     }                                                                                         \
   }
+
+#endif
 
 /* The output arguments every deformation kernel ends with (before stride, instances). */
 #define FF_OUTPUT_ARGUMENTS                                                           \

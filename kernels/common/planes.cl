@@ -17,6 +17,9 @@
 #define FF_INSTANCES_PER_ITEM 1
 #endif
 
+/* One slot per work-item here; kernels/cpu/lane_planes.cl has the same functions over
+ * FF_LANES slots. */
+#if FF_LANES == 1
 FF_INLINE Vec3 load_plane3(__global const float* planes, size_t first_plane, size_t stride,
                         size_t v) {
   return vec3(planes[first_plane * stride + v], planes[(first_plane + 1) * stride + v],
@@ -29,6 +32,7 @@ FF_INLINE void store_plane3(__global float* planes, size_t first_plane, size_t s
   planes[(first_plane + 1) * stride + v] = value.y;
   planes[(first_plane + 2) * stride + v] = value.z;
 }
+#endif
 
 
 /* The IEEE half nearest to f (ties to even), as bits: F. Giesen's

@@ -20,9 +20,9 @@
  *                     normal ~ R (along n_x, across n_y, across n_z),
  *                     tangent ~ R (across t_x, along t_y, along t_z). */
 typedef struct {
-  float spine_x, spine_z;
-  float sin_t, cos_t;
-  float along, across;
+  LaneFloat spine_x, spine_z;
+  LaneFloat sin_t, cos_t;
+  LaneFloat along, across;
 } SecantSample;
 
 /* (7): p' = f(x, y, 0) + z n. */
@@ -40,7 +40,8 @@ FF_INLINE Vec3 rotate_to_secant_normal(Vec3 v, SecantSample s) {
  * Rotate mode: (8) is a rotation ((sin_t, cos_t) is a unit vector) and rest directions
  * are unit, so the result is unit to float rounding and is not renormalised; the
  * weights scale, so Jacobian mode renormalises. */
-FF_INLINE Vec3 secant_direction(Vec3 v, SecantSample s, float weight_x, float weight_yz) {
+FF_INLINE Vec3 secant_direction(Vec3 v, SecantSample s, LaneFloat weight_x,
+                                 LaneFloat weight_yz) {
 #if FF_NORMALS_JACOBIAN
   return unit(rotate_to_secant_normal(vec3(weight_x * v.x, weight_yz * v.y, weight_yz * v.z), s));
 #else

@@ -11,11 +11,11 @@
  * structs of up to 16 bytes as 2-float vectors, and such vectors, once formed, also
  * stop the vectoriser; larger structs dissolve into scalars. */
 typedef struct {
-  float x, y, z;
+  LaneFloat x, y, z; /* one vertex per lane (common/lanes.cl) */
   float unused0, unused1;
 } Vec3;
 
-FF_INLINE Vec3 vec3(float x, float y, float z) {
+FF_INLINE Vec3 vec3(LaneFloat x, LaneFloat y, LaneFloat z) {
   Vec3 v = {x, y, z, 0.0f, 0.0f};
   return v;
 }
@@ -23,6 +23,6 @@ FF_INLINE Vec3 vec3(float x, float y, float z) {
 /* v / |v| without the library normalize()'s branches for huge and tiny vectors:
  * directions here are unit or of order 1. */
 FF_INLINE Vec3 unit(Vec3 v) {
-  const float inverse_length = rsqrt(v.x * v.x + v.y * v.y + v.z * v.z);
+  const LaneFloat inverse_length = rsqrt(v.x * v.x + v.y * v.y + v.z * v.z);
   return vec3(v.x * inverse_length, v.y * inverse_length, v.z * inverse_length);
 }

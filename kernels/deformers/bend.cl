@@ -20,25 +20,25 @@
  * exact bend vectorises and is smooth through m = 0. Cephes' asinf: for |u| <= 1/2,
  * asin(u) = u + u z P(z) with z = u^2, so asin(u)/u = 1 + z P(z); for |u| > 1/2,
  * asin(|u|) = pi/2 - 2 asin(sqrt(z)) with z = (1 - |u|)/2. Relative error 2.5e-7. */
-FF_INLINE float asin_over_u(float u) {
-  const float a = fabs(u);
-  const int big = a > 0.5f;
-  const float z = big ? 0.5f * (1.0f - a) : a * a;
-  const float root = sqrt(z);
-  const float p = ((((4.2163199048e-2f * z + 2.4181311049e-2f) * z + 4.5470025998e-2f) * z +
+FF_INLINE LaneFloat asin_over_u(LaneFloat u) {
+  const LaneFloat a = fabs(u);
+  const LaneMask big = a > 0.5f;
+  const LaneFloat z = big ? 0.5f * (1.0f - a) : a * a;
+  const LaneFloat root = sqrt(z);
+  const LaneFloat p = ((((4.2163199048e-2f * z + 2.4181311049e-2f) * z + 4.5470025998e-2f) * z +
                     7.4953002686e-2f) * z + 1.6666752422e-1f) * z;
-  const float small_ratio = 1.0f + p;                                   /* |u| <= 1/2 */
-  const float big_ratio = (M_PI_2_F - 2.0f * (root + root * p)) / fmax(a, 0.5f);
+  const LaneFloat small_ratio = 1.0f + p;                               /* |u| <= 1/2 */
+  const LaneFloat big_ratio = (M_PI_2_F - 2.0f * (root + root * p)) / fmax(a, 0.5f);
   return big ? big_ratio : small_ratio;
 }
 
 /* Exact bend: x' = x sqrt(1 - u^2) / 2 + asin(u) / (4m) = x (c + asin(u) / u) / 2;
  * (1 - u)(1 + u) keeps c accurate as |u| -> 1. |df/dx| = 1, k = 2m / c: scaled by c,
  * (along, across) = (c, c - 2 m z). */
-FF_INLINE SecantSample bend_sample_exact(float x, float z, float m) {
-  const float u = clamp(2.0f * m * x, -1.0f, 1.0f);
-  const float c = sqrt((1.0f - u) * (1.0f + u));
-  const float c_floor = fmax(c, FF_MIN_SPINE_COSINE);
+FF_INLINE SecantSample bend_sample_exact(LaneFloat x, LaneFloat z, float m) {
+  const LaneFloat u = clamp(2.0f * m * x, -1.0f, 1.0f);
+  const LaneFloat c = sqrt((1.0f - u) * (1.0f + u));
+  const LaneFloat c_floor = fmax(c, FF_MIN_SPINE_COSINE);
   SecantSample s;
   s.spine_x = 0.5f * x * (c + asin_over_u(u));
   s.spine_z = 0.5f * u * x; /* m x^2 */
@@ -54,13 +54,13 @@ FF_INLINE SecantSample bend_sample_exact(float x, float z, float m) {
  * n = (-u, 0, a) / g, g = |df/dx| (17). k = (a u' - u a') / g^3 with u' = 2m,
  * a' = -2m (u + u^3/2): D g^2 = g^3 - z 2m (1 + u^2/2 + 3u^4/8); scaled by g^2,
  * (along, across) = (g^2, D g^2). */
-FF_INLINE SecantSample bend_sample_paper(float x, float z, float m) {
-  const float u = clamp(2.0f * m * x, -1.0f, 1.0f);
-  const float u2 = u * u;
-  const float a = 1.0f - u2 * (0.5f + 0.125f * u2);
-  const float g2 = a * a + u2;
-  const float inverse_g = rsqrt(g2);
-  const float g = g2 * inverse_g;
+FF_INLINE SecantSample bend_sample_paper(LaneFloat x, LaneFloat z, float m) {
+  const LaneFloat u = clamp(2.0f * m * x, -1.0f, 1.0f);
+  const LaneFloat u2 = u * u;
+  const LaneFloat a = 1.0f - u2 * (0.5f + 0.125f * u2);
+  const LaneFloat g2 = a * a + u2;
+  const LaneFloat inverse_g = rsqrt(g2);
+  const LaneFloat g = g2 * inverse_g;
   SecantSample s;
   s.spine_x = x * (1.0f - u2 * (1.0f / 6.0f + u2 * (1.0f / 40.0f)));
   s.spine_z = 0.5f * u * x; /* m x^2 */
@@ -72,7 +72,7 @@ FF_INLINE SecantSample bend_sample_paper(float x, float z, float m) {
 }
 
 /* The bend chosen by FF_BEND_EXACT, for kernels specialised to one mode. */
-FF_INLINE SecantSample bend_sample(float x, float z, float m) {
+FF_INLINE SecantSample bend_sample(LaneFloat x, LaneFloat z, float m) {
 #if FF_BEND_EXACT
   return bend_sample_exact(x, z, m);
 #else

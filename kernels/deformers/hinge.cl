@@ -13,24 +13,25 @@
  * (1 - cos theta)/theta = (sin h / h) sin h. Curvature k = angle / width inside the
  * ramp, 0 elsewhere: (along, across) = (1, 1 - z k). inverse_width = 1 / width
  * (any value when width = 0), from the host: no division per vertex. */
-FF_INLINE SecantSample hinge_sample(float x, float z, float angle, float width,
+FF_INLINE SecantSample hinge_sample(LaneFloat x, LaneFloat z, float angle, float width,
                                   float inverse_width) {
-  const int has_ramp = width > 0.0f;
-  const float ramp = has_ramp ? clamp(x, 0.0f, width) : 0.0f;
-  const float beyond = fmax(x - width, 0.0f);
-  const float fraction = has_ramp ? ramp * inverse_width : (x > 0.0f ? 1.0f : 0.0f);
-  const float half_theta = 0.5f * angle * fraction;
-  const float sinc_h = sin_over_h(half_theta);
-  const float sin_h = sinc_h * half_theta;
-  const float cos_h = cos_of_h(half_theta);
+  const LaneMask has_ramp = FF_UNIFORM_MASK(width > 0.0f);
+  const LaneFloat ramp = has_ramp ? clamp(x, 0.0f, width) : 0.0f;
+  const LaneFloat beyond = fmax(x - width, 0.0f);
+  const LaneFloat fraction =
+      has_ramp ? ramp * inverse_width : (x > 0.0f ? (LaneFloat)1.0f : (LaneFloat)0.0f);
+  const LaneFloat half_theta = 0.5f * angle * fraction;
+  const LaneFloat sinc_h = sin_over_h(half_theta);
+  const LaneFloat sin_h = sinc_h * half_theta;
+  const LaneFloat cos_h = cos_of_h(half_theta);
   SecantSample s;
   s.sin_t = 2.0f * sin_h * cos_h;
   s.cos_t = 1.0f - 2.0f * sin_h * sin_h;
   s.spine_x = fmin(x, 0.0f) + ramp * sinc_h * cos_h + beyond * s.cos_t;
   s.spine_z = ramp * sinc_h * sin_h + beyond * s.sin_t;
-  const int in_ramp = has_ramp & (x > 0.0f) & (x < width);
+  const LaneMask in_ramp = has_ramp & (x > 0.0f) & (x < width);
   s.along = 1.0f;
-  s.across = 1.0f - z * (in_ramp ? angle * inverse_width : 0.0f);
+  s.across = 1.0f - z * (in_ramp ? (LaneFloat)(angle * inverse_width) : (LaneFloat)0.0f);
   return s;
 }
 

@@ -27,14 +27,21 @@
  * end, delta = half the turn so far: the sines and cosines at the middle and at the
  * end come from those of theta_j (a table) and of delta (short series) by the
  * angle-addition formulas, the cheapest way on every device. */
-FF_INLINE SecantSample spine_sample(float x, float z, __global const float* derived,
+FF_INLINE SecantSample spine_sample(LaneFloat x, LaneFloat z, __global const float* derived,
                                     StageFrame f) {
   const float x_first = FF_STAGE_CONSTANT(f, 0);
   const float inverse_h = FF_STAGE_CONSTANT(f, 1);
   const float h = FF_STAGE_CONSTANT(f, 2);
   const float last = FF_STAGE_CONSTANT(f, 3);
-  const float position = (x - x_first) * inverse_h;
-  const float segment = clamp(floor(position), 0.0f, last - 1.0f);
+  const LaneFloat position = (x - x_first) * inverse_h;
+  const LaneFloat segment = clamp(floor(position), 0.0f, last - 1.0f);
+#if FF_LANES > 1
+  /* Each lane's own segment's record, gathered lane by lane (common/lanes.cl). */
+  const LaneInt record = 8 * FF_LANE_INT(segment);
+  const LaneFloat x_j = FF_GATHER(derived, record), z_j = FF_GATHER(derived + 1, record);
+  const LaneFloat sin_j = FF_GATHER(derived + 2, record), cos_j = FF_GATHER(derived + 3, record);
+  const LaneFloat slope = FF_GATHER(derived + 4, record);
+#else
   __global const float* record = derived + 8 * (int)segment;
 #if FF_GPU
   const float4 at_j = *(__global const float4*)record; /* aligned: one load */
@@ -43,21 +50,22 @@ FF_INLINE SecantSample spine_sample(float x, float z, __global const float* deri
   const float x_j = record[0], z_j = record[1], sin_j = record[2], cos_j = record[3];
 #endif
   const float slope = record[4];
-  const float d = (position - segment) * h;  /* from x_j; outside the table: < 0 or > h */
-  const float inside = clamp(d, 0.0f, h);     /* the part of d where theta is linear */
-  const float beyond = d - inside;            /* beyond the ends theta is constant */
-  const float delta = 0.5f * slope * inside;
-  const float sinc_delta = sin_over_h(delta);
-  const float sin_delta = delta * sinc_delta;
-  const float cos_delta = cos_of_h(delta);
+#endif
+  const LaneFloat d = (position - segment) * h;  /* from x_j; outside the table: < 0 or > h */
+  const LaneFloat inside = clamp(d, 0.0f, h);     /* the part of d where theta is linear */
+  const LaneFloat beyond = d - inside;            /* beyond the ends theta is constant */
+  const LaneFloat delta = 0.5f * slope * inside;
+  const LaneFloat sinc_delta = sin_over_h(delta);
+  const LaneFloat sin_delta = delta * sinc_delta;
+  const LaneFloat cos_delta = cos_of_h(delta);
   /* theta_j + delta (the chord's direction) and theta_j + 2 delta (the end). */
-  const float sin_mid = sin_j * cos_delta + cos_j * sin_delta;
-  const float cos_mid = cos_j * cos_delta - sin_j * sin_delta;
-  const float sin_two = 2.0f * sin_delta * cos_delta;
-  const float cos_two = 1.0f - 2.0f * sin_delta * sin_delta;
-  const float sin_end = sin_j * cos_two + cos_j * sin_two;
-  const float cos_end = cos_j * cos_two - sin_j * sin_two;
-  const float chord = inside * sinc_delta;
+  const LaneFloat sin_mid = sin_j * cos_delta + cos_j * sin_delta;
+  const LaneFloat cos_mid = cos_j * cos_delta - sin_j * sin_delta;
+  const LaneFloat sin_two = 2.0f * sin_delta * cos_delta;
+  const LaneFloat cos_two = 1.0f - 2.0f * sin_delta * sin_delta;
+  const LaneFloat sin_end = sin_j * cos_two + cos_j * sin_two;
+  const LaneFloat cos_end = cos_j * cos_two - sin_j * sin_two;
+  const LaneFloat chord = inside * sinc_delta;
   SecantSample s;
   s.spine_x = x_j + chord * cos_mid + beyond * cos_end;
   s.spine_z = z_j + chord * sin_mid + beyond * sin_end;
@@ -65,7 +73,7 @@ FF_INLINE SecantSample spine_sample(float x, float z, __global const float* deri
   s.cos_t = cos_end;
   /* |df/dx| = 1; k = slope within the table, 0 beyond it (METHOD.md section 6). */
   s.along = 1.0f;
-  s.across = 1.0f - z * (beyond == 0.0f ? slope : 0.0f);
+  s.across = 1.0f - z * (beyond == 0.0f ? slope : (LaneFloat)0.0f);
   return s;
 }
 
@@ -75,8 +83,9 @@ FF_INLINE SecantSample spine_stage(Vec3 p, StageFrame f, __global const float* v
   return spine_sample(p.x, p.z, derived, f);
 }
 
-/* The records of one instance's angles (rig_prepare): the running integrals X_k, Z_k
- * from x = 0, sin theta_k, cos theta_k, and the segment's slope. */
+/* The records of one instance's angles (rig_prepare, one-lane programs): the running
+ * integrals X_k, Z_k from x = 0, sin theta_k, cos theta_k, and the segment's slope. */
+#if FF_LANES == 1
 FF_INLINE void spine_prepare(__global const float* theta, __global float* derived, StageFrame f) {
   const float x_first = FF_STAGE_CONSTANT(f, 0);
   const float inverse_h = FF_STAGE_CONSTANT(f, 1);
@@ -122,3 +131,4 @@ FF_INLINE void spine_prepare(__global const float* theta, __global float* derive
     derived[8 * k + 1] -= z_origin;
   }
 }
+#endif

@@ -74,6 +74,16 @@ enum class RigDispatch {
                   // PoCL's work-group vectoriser needs
 };
 
+// How kernels of more than one lane (ClOptions::lanes) write the outputs.
+enum class OutputStores {
+  kAuto,       // kStreaming where a frame's outputs are larger than the device's global
+               // memory cache (CL_DEVICE_GLOBAL_MEM_CACHE_SIZE), else kPlain
+  kPlain,      // ordinary stores: the outputs pass through the caches (and stay there
+               // for whoever reads them next, when they fit)
+  kStreaming,  // streaming (non-temporal) stores: whole cache lines to memory, none read
+               // first, which halves the memory traffic of outputs larger than the caches
+};
+
 struct ClOptions {
   // Instances one work-item deforms (reading its rest vertex once); 0: the device's
   // choice (GPUs: 2 for the single bend with float32 normals, 4 with half normals
@@ -83,6 +93,19 @@ struct ClOptions {
   // The whole-body bend runs on its own kernel (faster); false runs it as a rig like
   // any other (for comparing the two).
   bool single_bend_kernel = true;
+  // Vertex slots one work-item deforms, one per lane of OpenCL vectors over the output
+  // planes (kernels/common/lanes.cl): 1, 8 or 16; 0: the device's choice (GPUs 1;
+  // CPUs 16 where their native float vectors have 16 lanes, else 8: vector code by
+  // construction, whatever the OpenCL compiler vectorises).
+  // Lanes apply per batch, only to outputs in FinFlex's default planes: a batch whose
+  // OutputLayout equals planes_layout(instances, NormalFormat::kFloat32) (float32
+  // planes, slot order, no previous positions; allocate(instances) makes one). Any
+  // other output layout (half normals, packed or 16-bit attributes, mesh order,
+  // previous positions, ...) runs the one-lane kernels with the store epilogue of
+  // kernels/common/outputs.cl, whatever this asks: lanes(outputs) says which.
+  std::size_t lanes = 0;
+  // With more than one lane: how the outputs are stored.
+  OutputStores stores = OutputStores::kAuto;
 };
 
 class FINFLEX_API ClDeformer {
@@ -157,6 +180,14 @@ class FINFLEX_API ClDeformer {
   // Instances one work-item deforms for outputs in `format` (ClOptions).
   std::size_t instances_per_item(NormalFormat format) const;
   std::size_t instances_per_item(const OutputLayout& outputs) const;
+  // Vertex slots one work-item deforms for outputs in FinFlex's planes in `format`, and
+  // for outputs in `outputs` (ClOptions::lanes: 1 for any layout but FinFlex's float32
+  // planes in slot order).
+  std::size_t lanes(NormalFormat format) const;
+  std::size_t lanes(const OutputLayout& outputs) const;
+  // True when a frame on `batch` writes it with streaming stores (ClOptions::stores;
+  // only kernels of more than one lane have them).
+  bool streams_outputs(const DeviceBatch& batch) const;
 
   // The work-group size along the slots (every plane stride is a multiple of it).
   static constexpr std::size_t kGroupSize = 64;

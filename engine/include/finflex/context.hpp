@@ -30,6 +30,11 @@ struct DeviceDescription {
   std::size_t global_memory_bytes = 0;
   std::size_t max_allocation_bytes = 0;
   std::string extensions;  // CL_DEVICE_EXTENSIONS, separated by spaces
+  // Floats in the device's native vector (CL_DEVICE_NATIVE_VECTOR_WIDTH_FLOAT): e.g. 16
+  // on a CPU with AVX-512, 8 with AVX2.
+  std::size_t native_float_vector_width = 1;
+  // CL_DEVICE_GLOBAL_MEM_CACHE_SIZE: on CPUs, PoCL reports the last-level cache.
+  std::size_t global_memory_cache_bytes = 0;
   bool is_default = false;
 
   bool is_gpu() const { return type == "GPU"; }
@@ -54,8 +59,10 @@ struct ProgramSource {
   std::string appended;
 };
 
-// The library's shared kernel files, in build order: vectors, the secant surface's
-// (7) and (8), the output planes, stage frames, world placement.
+// The library's shared kernel files, in build order: lanes (the slots of a work-item)
+// and vectors, the secant surface's (7) and (8), the planes (one lane, then more than
+// one), the outputs' store epilogue (one lane, then more than one), stage frames, world
+// placement.
 FINFLEX_API const std::vector<std::string>& common_kernel_files();
 
 class FINFLEX_API Context {

@@ -1,0 +1,67 @@
+/* Lanes: the vertex slots one work-item deforms. Build option FF_LANES (the host's
+ * choice, finflex/cl_deformer.hpp ClOptions::lanes): 1 on GPUs, 8 or 16 on CPUs.
+ * Work-item w deforms the FF_LANES consecutive slots from w * FF_LANES, one in each
+ * lane of an OpenCL vector, so a kernel of more than one lane is vector code by
+ * construction: no compiler has to vectorise it across work-items (PoCL 3.1's
+ * work-group vectoriser does that for the one-lane kernels, PoCL 5.0's does not:
+ * docs/benchmarks.md).
+ *
+ * The per-vertex code (common/, deformers/) is written once, over LaneFloat and
+ * LaneMask: float and int with one lane (the kernels are then the scalar ones,
+ * token for token but for these names), float8/int8 or float16/int16 with more.
+ * What keeps one text right for both:
+ *  - a comparison of lane values is a LaneMask (1 or 0 in a scalar, -1 or 0 in each
+ *    lane of a vector); masks are combined only with & and |, and used only as the
+ *    condition of ?:, which selects lane by lane;
+ *  - a condition on values the same in every lane (a stage's constant) becomes a
+ *    LaneMask through FF_UNIFORM_MASK;
+ *  - both arms of a ?: on a LaneMask are LaneFloat (write constants as (LaneFloat)c);
+ *  - values the same in every lane stay float (an instance's parameters, a stage's
+ *    frame): OpenCL widens them where they meet lane values.
+ * Planes are padded to 64 slots (finflex/batch.hpp), so the lanes of a work-item never
+ * straddle two planes and their loads and stores are whole vectors
+ * (kernels/cpu/lane_planes.cl). */
+#ifndef FF_LANES
+#define FF_LANES 1
+#endif
+
+#if FF_LANES == 1
+typedef float LaneFloat;
+typedef int LaneMask;
+#define FF_UNIFORM_MASK(condition) (condition)
+#elif FF_LANES == 8
+typedef float8 LaneFloat;
+typedef int8 LaneMask;
+typedef int8 LaneInt;
+#define FF_UNIFORM_MASK(condition) ((LaneMask)(-(int)(condition)))
+#define FF_LANE_INT(x) convert_int8(x)
+#define FF_VLOAD vload8
+#define FF_VSTORE vstore8
+#define FF_GATHER(base, index) FF_GATHER8(base, index)
+#elif FF_LANES == 16
+typedef float16 LaneFloat;
+typedef int16 LaneMask;
+typedef int16 LaneInt;
+#define FF_UNIFORM_MASK(condition) ((LaneMask)(-(int)(condition)))
+#define FF_LANE_INT(x) convert_int16(x)
+#define FF_VLOAD vload16
+#define FF_VSTORE vstore16
+#define FF_GATHER(base, index) \
+  ((float16)(FF_GATHER8(base, (index).lo), FF_GATHER8(base, (index).hi)))
+#else
+#error "FF_LANES must be 1, 8 or 16"
+#endif
+
+/* The first slot of the work-item's lanes. */
+#if FF_LANES == 1
+#define FF_FIRST_SLOT get_global_id(0)
+#else
+#define FF_FIRST_SLOT (get_global_id(0) * FF_LANES)
+#endif
+
+/* FF_GATHER(base, index): base[index] lane by lane (index a LaneInt variable): a
+ * vertex's own entry of a table, e.g. its spine segment's record. */
+#define FF_GATHER8(base, index)                                                    \
+  ((float8)((base)[(index).s0], (base)[(index).s1], (base)[(index).s2],            \
+            (base)[(index).s3], (base)[(index).s4], (base)[(index).s5],            \
+            (base)[(index).s6], (base)[(index).s7]))

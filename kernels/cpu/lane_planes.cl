@@ -1,0 +1,56 @@
+/* The planes' loads and stores of kernels/common/planes.cl for work-items of
+ * FF_LANES > 1 lanes (kernels/common/lanes.cl): v is the work-item's first slot, a
+ * multiple of FF_LANES, and component c of its lanes is the FF_LANES consecutive
+ * floats from planes[(first_plane + c) * stride + v], loaded and stored as one vector.
+ * Planes of float32 only: the rest planes, the scratch sets and outputs in FinFlex's
+ * float32 planes (kernels/cpu/lane_outputs.cl); any other output layout runs with one
+ * lane (the host's choice, engine/src/device_profile.hpp).
+ *
+ * Alignment: plane strides are multiples of 64 floats, so a work-item's lanes start
+ * on a vector boundary of their plane; a plane is so aligned when its buffer is, as
+ * buffers of the library's own always are (CL_DEVICE_MEM_BASE_ADDR_ALIGN, 128 bytes
+ * on PoCL, covers the 64 of a float16). The rest planes and scratch sets are the
+ * library's own: loaded as aligned vectors. Outputs may be a caller's buffers (PoCL
+ * uses a CL_MEM_USE_HOST_PTR buffer's memory as it is): each store checks, and an
+ * unaligned plane is stored with vstoren.
+ *
+ * Build option FF_STREAMING_STORES (0/1, the host's choice: ClOptions::stores): 1,
+ * aligned outputs are written with streaming (non-temporal) stores, which send whole
+ * cache lines to memory without first reading them into the caches: an output of
+ * thousands of fish larger than the caches would otherwise cost twice its bytes in
+ * memory traffic; 0, ordinary stores (outputs that fit stay in the caches). */
+#if FF_LANES > 1
+#ifndef FF_STREAMING_STORES
+#define FF_STREAMING_STORES 0
+#endif
+
+FF_INLINE LaneFloat load_lanes(__global const float* first) {
+  return *(__global const LaneFloat*)first;
+}
+
+FF_INLINE void store_lanes(__global float* first, LaneFloat value) {
+  if (((size_t)first & (sizeof(LaneFloat) - 1)) == 0) {
+#if FF_STREAMING_STORES && defined(__clang__)
+    __builtin_nontemporal_store(value, (__global LaneFloat*)first);
+#else
+    *(__global LaneFloat*)first = value;
+#endif
+  } else {
+    FF_VSTORE(value, 0, first);
+  }
+}
+
+FF_INLINE Vec3 load_plane3(__global const float* planes, size_t first_plane, size_t stride,
+                           size_t v) {
+  return vec3(load_lanes(planes + first_plane * stride + v),
+              load_lanes(planes + (first_plane + 1) * stride + v),
+              load_lanes(planes + (first_plane + 2) * stride + v));
+}
+
+FF_INLINE void store_plane3(__global float* planes, size_t first_plane, size_t stride, size_t v,
+                            Vec3 value) {
+  store_lanes(planes + first_plane * stride + v, value.x);
+  store_lanes(planes + (first_plane + 1) * stride + v, value.y);
+  store_lanes(planes + (first_plane + 2) * stride + v, value.z);
+}
+#endif

@@ -1,0 +1,422 @@
+// Kernels of several lanes (kernels/common/lanes.cl: a work-item deforms 8 or 16
+// consecutive slots with vector loads, arithmetic and stores; CPUs' default) against
+// the one-lane kernels and the double reference: the whole-body bend on every bundled
+// fish, every shipped rig (the swim rigs' spines included) on both paths, world
+// placements, several instances per work-item, and the fall-back to one lane for half
+// normals. Every lane count is forced through ClOptions::lanes, so this runs on any
+// device; the other test programs run the device's own choice.
+//
+// Tolerances: against the reference, compare_to_reference's bounds
+// (finflex/accuracy.hpp), as for the one-lane kernels. Lanes against one lane: the same
+// float32 operations, which a compiler may contract differently into multiply-adds
+// (vector and scalar code are selected apart): 1e-6 (|origin| + s_x) for positions, 1e-5
+// for normals and tangents, as between the fused and multi-pass paths
+// (test_rig_deformer.cpp).
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "finflex/finflex.hpp"
+#include "support/deform.hpp"
+#include "support/test_support.hpp"
+
+namespace finflex {
+namespace {
+
+const std::size_t kVectorLanes[] = {8, 16};
+
+ClOptions with_lanes(std::size_t lanes, std::size_t per_item = 0) {
+  ClOptions options;
+  options.lanes = lanes;
+  options.instances_per_item = per_item;
+  return options;
+}
+
+// Scale of the coordinates the kernels handle: the root frame's origin and length.
+double coordinate_scale(const Rig& rig) {
+  const BodyFrame& f = rig.components.front().frame;
+  return glm::length(f.origin) + f.length;
+}
+
+// Instances swimming through their ranges: each single parameter at a fraction of its
+// limit (up to 0.95, both signs), each table (a spine's angles) a travelling wave of
+// up to 0.6 rad; then clamped as the backends clamp.
+RigParameters swimming_values(const RiggedMesh& model, std::size_t instances) {
+  RigParameters values(model, instances);
+  const std::vector<RigParameter>& parameters = model.rig().parameters;
+  for (std::size_t i = 0; i < instances; ++i) {
+    const double phase = 1.3 * double(i);
+    for (std::size_t p = 0; p < parameters.size(); ++p) {
+      for (std::size_t k = 0; k < parameters[p].count; ++k) {
+        const double along = double(k) / double(parameters[p].count);
+        const double value = parameters[p].count == 1
+                                 ? 0.95 * parameters[p].limit * std::sin(phase + double(p))
+                                 : 0.6 * std::sin(6.0 * along + phase) * along;
+        values.values()[i * values.values_per_instance() + parameters[p].offset + k] =
+            static_cast<float>(value);
+      }
+    }
+  }
+  std::vector<float> clamped(values.values().size());
+  check_parameters(model.rig(), values.view(), /*clamp=*/true, clamped.data());
+  values.values() = clamped;
+  return values;
+}
+
+void expect_within_reference_bounds(const RiggedMesh& model, const RigParameters& values,
+                                    NormalMode normals, const DeformedBatch<float>& device,
+                                    const DeformedBatch<double>& reference,
+                                    const Placement* placements = nullptr) {
+  const AccuracyReport report =
+      compare_to_reference(model, values.view(), normals, device, reference, placements);
+  EXPECT_LE(report.max_position_ratio, 1.0) << report.max_position_error;
+  EXPECT_LE(report.max_normal_ratio, 1.0) << report.max_normal_error;
+}
+
+void expect_close_to_one_lane(const DeformedBatch<float>& lanes,
+                              const DeformedBatch<float>& one_lane, std::size_t vertices,
+                              std::size_t instances, double scale) {
+  const test::Difference d = test::max_difference(lanes, one_lane, vertices, instances);
+  EXPECT_LT(d.position, 1e-6 * scale);
+  EXPECT_LT(d.normal, 1e-5);
+  EXPECT_LT(d.tangent, 1e-5);
+}
+
+TEST(Lanes, CpusTakeVectorsGpusOneLaneHalfNormalsOneLane) {
+  const Mesh mesh = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
+  const RiggedMesh model = RiggedMesh::single_bend(mesh, find_body_frame(mesh), BendMode::kPaper);
+  const DeviceDescription& device = test::shared_context().description();
+  ClDeformer automatic(test::shared_context(), model);
+  const std::size_t expected =
+      device.is_gpu() ? 1 : (device.native_float_vector_width >= 16 ? 16 : 8);
+  EXPECT_EQ(automatic.lanes(NormalFormat::kFloat32), expected);
+  EXPECT_EQ(automatic.lanes(NormalFormat::kHalf), 1u);
+  for (std::size_t lanes : {std::size_t{1}, std::size_t{8}, std::size_t{16}}) {
+    ClDeformer forced(test::shared_context(), model, with_lanes(lanes));
+    EXPECT_EQ(forced.lanes(NormalFormat::kFloat32), lanes);
+    EXPECT_EQ(forced.lanes(NormalFormat::kHalf), 1u);
+  }
+}
+
+TEST(Lanes, OtherLaneCountsAreRefusedByName) {
+  const Mesh mesh = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
+  const RiggedMesh model = RiggedMesh::single_bend(mesh, find_body_frame(mesh), BendMode::kPaper);
+  for (std::size_t lanes : {std::size_t{2}, std::size_t{4}, std::size_t{32}}) {
+    try {
+      ClDeformer deformer(test::shared_context(), model, with_lanes(lanes));
+      ADD_FAILURE() << lanes << " lanes were accepted";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.code(), ErrorCode::kInvalidArgument);
+      EXPECT_EQ(e.field(), "options.lanes");
+    }
+  }
+}
+
+TEST(Lanes, BendOnEveryBundledFishMatchesOneLaneAndTheReference) {
+  for (const char* fish : test::kBundledFish) {
+    const Mesh mesh = load_mesh(test::data_path(fish));
+    const BodyFrame frame = find_body_frame(mesh);
+    for (BendMode mode : {BendMode::kPaper, BendMode::kExact}) {
+      const RiggedMesh model = RiggedMesh::single_bend(mesh, frame, mode);
+      const RigParameters m = test::bend_fractions(model, {0.0, 0.3, -0.7, 0.95, -1.0, 1.0});
+      ClDeformer one_lane(test::shared_context(), model, with_lanes(1));
+      for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {
+        const DeformedBatch<double> reference = run_reference(model, m, normals);
+        const DeformedBatch<float> scalar = test::run_on_device(one_lane, m, normals);
+        for (std::size_t lanes : kVectorLanes) {
+          SCOPED_TRACE(std::string(fish) + " " + to_string(mode) + " " + to_string(normals) + " " +
+                       std::to_string(lanes) + " lanes");
+          ClDeformer vector(test::shared_context(), model, with_lanes(lanes));
+          ASSERT_TRUE(vector.uses_single_bend_kernel());
+          const DeformedBatch<float> device = test::run_on_device(vector, m, normals);
+          expect_within_reference_bounds(model, m, normals, device, reference);
+          expect_close_to_one_lane(device, scalar, mesh.vertex_count(), m.instance_count(),
+                                   glm::length(frame.origin) + frame.length);
+          EXPECT_EQ(device.layout.tangents, mesh.has_tangents());
+        }
+      }
+    }
+  }
+}
+
+// Every shipped rig: bends, hinges and the swim rigs' spines (a vertex's own segment
+// gathered lane by lane), both dispatches of the rig kernels, both paths.
+TEST(Lanes, ShippedRigsWithSpinesMatchOneLaneAndTheReference) {
+  struct Shipped {
+    const char* fish;
+    const char* rig;
+    std::vector<std::size_t> lanes;  // besides 1: 16 everywhere, 8 on some
+  };
+  const Shipped shipped[] = {
+      {"blub/fish.obj", "rigs/blub.rig.json", {16}},
+      {"blub/fish.obj", "rigs/blub_swim.rig.json", {16}},
+      {"blub/fish_low_resolution.obj", "rigs/blub_low_resolution.rig.json", {8, 16}},
+      {"blub/fish_low_resolution.obj", "rigs/blub_low_resolution_swim.rig.json", {8, 16}},
+      {"barramundi/BarramundiFish.gltf", "rigs/barramundi.rig.json", {16}},
+      {"barramundi/BarramundiFish.gltf", "rigs/barramundi_swim.rig.json", {8, 16}}};
+  for (const Shipped& c : shipped) {
+    const Mesh mesh = load_mesh(test::data_path(c.fish));
+    const RiggedMesh model(mesh, resolve_rig(load_rig_file(test::data_path(c.rig)), mesh));
+    const RigParameters values = swimming_values(model, 4);
+    const double scale = coordinate_scale(model.rig());
+    ClOptions scalar_options = with_lanes(1);
+    ClDeformer one_lane(test::shared_context(), model, scalar_options);
+    for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {
+      const DeformedBatch<double> reference = run_reference(model, values, normals);
+      const DeformedBatch<float> scalar =
+          test::run_on_device(one_lane, values, normals, RigPath::kFused);
+      for (std::size_t lanes : c.lanes) {
+        for (RigDispatch dispatch : {RigDispatch::kByPathShape, RigDispatch::kPerComponent}) {
+          ClOptions options = with_lanes(lanes);
+          options.dispatch = dispatch;
+          ClDeformer vector(test::shared_context(), model, options);
+          for (RigPath path : {RigPath::kFused, RigPath::kPasses}) {
+            SCOPED_TRACE(std::string(c.rig) + " " + to_string(normals) + " " + to_string(path) +
+                         " " + std::to_string(lanes) + " lanes" +
+                         (dispatch == RigDispatch::kPerComponent ? " per component" : ""));
+            const DeformedBatch<float> device = test::run_on_device(vector, values, normals, path);
+            expect_within_reference_bounds(model, values, normals, device, reference);
+            expect_close_to_one_lane(device, scalar, mesh.vertex_count(), values.instance_count(),
+                                     scale);
+          }
+        }
+      }
+    }
+  }
+}
+
+// World placement as the last stage (kernels/common/placement.cl), from the job's host
+// records: the whole-body bend and the swim rig of the Barramundi (tangents too).
+TEST(Lanes, PlacedInstancesMatchOneLaneAndTheReference) {
+  const Mesh mesh = load_mesh(test::data_path("barramundi/BarramundiFish.gltf"));
+  const RiggedMesh bend = RiggedMesh::single_bend(mesh, find_body_frame(mesh), BendMode::kExact);
+  const RiggedMesh swim(
+      mesh, resolve_rig(load_rig_file(test::data_path("rigs/barramundi_swim.rig.json")), mesh));
+  std::vector<Placement> where(3);
+  for (std::size_t i = 0; i < where.size(); ++i) {
+    const float turn = 2.0f * float(i) - 2.5f;
+    where[i].position = glm::vec3(1.5f * float(i) - 1.0f, 0.4f * float(i), -0.7f + 0.2f * float(i));
+    where[i].orientation = glm::angleAxis(turn, glm::normalize(glm::vec3(0.2f, 1.0f, 0.1f * turn)));
+    where[i].length = 0.3f + 0.08f * float(i);
+  }
+  for (const RiggedMesh* model : {&bend, &swim}) {
+    const RigParameters values = swimming_values(*model, where.size());
+    ClDeformer one_lane(test::shared_context(), *model, with_lanes(1));
+    for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {
+      ReferenceJob reference_job;
+      DeformedBatch<double> reference;
+      reference_job.model = model;
+      reference_job.parameters = values.view();
+      reference_job.normals = normals;
+      reference_job.placements = where.data();
+      reference_job.outputs = &reference;
+      run_reference(reference_job);
+      auto placed_run = [&](ClDeformer& deformer) {
+        DeviceBatch batch = deformer.allocate(where.size());
+        ClJob job;
+        job.model = model;
+        job.parameters = values.view();
+        job.normals = normals;
+        job.placements = where.data();
+        job.outputs = &batch;
+        deformer.enqueue(job);
+        return deformer.read(batch);
+      };
+      const DeformedBatch<float> scalar = placed_run(one_lane);
+      for (std::size_t lanes : kVectorLanes) {
+        SCOPED_TRACE(std::string(model == &bend ? "bend " : "swim rig ") + to_string(normals) +
+                     " " + std::to_string(lanes) + " lanes");
+        ClDeformer vector(test::shared_context(), *model, with_lanes(lanes));
+        const DeformedBatch<float> device = placed_run(vector);
+        expect_within_reference_bounds(*model, values, normals, device, reference, where.data());
+        // World coordinates: the scale is the fish's placement (lengths below 0.5 m,
+        // positions within 3 m of the origin).
+        expect_close_to_one_lane(device, scalar, mesh.vertex_count(), where.size(), 4.0);
+      }
+    }
+  }
+}
+
+// Several instances per work-item with lanes: each reads its rest vertices once for all
+// of them; 5 instances over 3 per item leave the last work-item one short.
+TEST(Lanes, SeveralInstancesPerWorkItemGiveTheSameResult) {
+  const Mesh mesh = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
+  const RiggedMesh bend = RiggedMesh::single_bend(mesh, find_body_frame(mesh), BendMode::kPaper);
+  const RiggedMesh rig(
+      mesh,
+      resolve_rig(load_rig_file(test::data_path("rigs/blub_low_resolution_swim.rig.json")), mesh));
+  for (const RiggedMesh* model : {&bend, &rig}) {
+    const RigParameters values = swimming_values(*model, 5);
+    ClDeformer one(test::shared_context(), *model, with_lanes(16, 1));
+    ClDeformer three(test::shared_context(), *model, with_lanes(16, 3));
+    EXPECT_EQ(three.instances_per_item(NormalFormat::kFloat32), 3u);
+    for (RigPath path : {RigPath::kFused, RigPath::kPasses}) {
+      SCOPED_TRACE(std::string(model == &bend ? "bend " : "swim rig ") + to_string(path));
+      const DeformedBatch<float> a = test::run_on_device(one, values, NormalMode::kJacobian, path);
+      const DeformedBatch<float> b =
+          test::run_on_device(three, values, NormalMode::kJacobian, path);
+      expect_close_to_one_lane(b, a, mesh.vertex_count(), 5, coordinate_scale(model->rig()));
+    }
+  }
+}
+
+// The kind of store changes where the bytes go, not their values: streaming and plain
+// stores, and outputs in a caller's memory that is not aligned to the vectors (PoCL
+// runs kernels on a CL_MEM_USE_HOST_PTR buffer's own memory: stored with vstoren), all
+// write the same bits.
+TEST(Lanes, StreamingPlainAndUnalignedStoresWriteTheSameBits) {
+  const Mesh mesh = load_mesh(test::data_path("barramundi/BarramundiFish.gltf"));
+  const RiggedMesh model(
+      mesh, resolve_rig(load_rig_file(test::data_path("rigs/barramundi_swim.rig.json")), mesh));
+  const RigParameters values = swimming_values(model, 3);
+  ClOptions plain_options = with_lanes(16);
+  plain_options.stores = OutputStores::kPlain;
+  ClOptions streaming_options = with_lanes(16);
+  streaming_options.stores = OutputStores::kStreaming;
+  ClDeformer streaming(test::shared_context(), model, streaming_options);
+  ClDeformer plain(test::shared_context(), model, plain_options);
+  for (RigPath path : {RigPath::kFused, RigPath::kPasses}) {
+    SCOPED_TRACE(to_string(path));
+    const DeformedBatch<float> a =
+        test::run_on_device(streaming, values, NormalMode::kJacobian, path);
+    const DeformedBatch<float> b = test::run_on_device(plain, values, NormalMode::kJacobian, path);
+    EXPECT_EQ(a.positions, b.positions);
+    EXPECT_EQ(a.normals, b.normals);
+    EXPECT_EQ(a.tangents, b.tangents);
+
+    // The same outputs in host memory one float past a vector boundary.
+    DeviceBatch unaligned = streaming.allocate(values.instance_count());
+    const std::size_t floats = unaligned.layout.attribute_elements();
+    std::vector<std::vector<float>> memory(3, std::vector<float>(floats + 16));
+    cl::Buffer* buffers[] = {&unaligned.positions, &unaligned.normals, &unaligned.tangents};
+    for (std::size_t k = 0; k < 3; ++k) {
+      float* first = memory[k].data() + 1;
+      ASSERT_NE(reinterpret_cast<std::uintptr_t>(first) % 64, 0u);
+      *buffers[k] = cl::Buffer(test::shared_context().context(), CL_MEM_USE_HOST_PTR,
+                               floats * sizeof(float), first);
+    }
+    const DeformedBatch<float> c =
+        test::run_on_device(streaming, unaligned, values, NormalMode::kJacobian, path);
+    EXPECT_EQ(a.positions, c.positions);
+    EXPECT_EQ(a.normals, c.normals);
+    EXPECT_EQ(a.tangents, c.tangents);
+  }
+}
+
+// Lanes apply per batch, only to FinFlex's float32 planes in slot order: any other
+// output layout on a deformer asked for 16 lanes runs the one-lane kernels with the
+// store epilogue (kernels/common/outputs.cl), so it matches the reference and a
+// one-lane deformer's outputs in that layout bit for bit; the default planes on the
+// same deformer still take 16 lanes.
+TEST(Lanes, OtherOutputLayoutsRunOnOneLaneAndMatchTheReference) {
+  const Mesh mesh = load_mesh(test::data_path("barramundi/BarramundiFish.gltf"));
+  const RiggedMesh model(
+      mesh, resolve_rig(load_rig_file(test::data_path("rigs/barramundi_swim.rig.json")), mesh));
+  const RigParameters values = swimming_values(model, 3);
+  const std::size_t instances = values.instance_count();
+  ClDeformer sixteen(test::shared_context(), model, with_lanes(16));
+  ClDeformer one_lane(test::shared_context(), model, with_lanes(1));
+  const OutputLayout planes = sixteen.planes_layout(instances);
+  EXPECT_EQ(sixteen.lanes(planes), 16u);
+
+  struct Case {
+    const char* name;
+    OutputLayout layout;
+  };
+  std::vector<Case> cases;
+  const std::size_t slots = sixteen.output_vertices(VertexOrder::kSlots);
+  OutputLayout packed = planes;
+  packed.positions = AttributeLayout::packed(AttributeFormat::kFloat32x3, slots);
+  packed.normals = AttributeLayout::packed(AttributeFormat::kFloat32x3, slots);
+  packed.tangent_layout = AttributeLayout::packed(AttributeFormat::kFloat32x4, slots);
+  cases.push_back({"packed float32", packed});
+  cases.push_back({"half normals", sixteen.planes_layout(instances, NormalFormat::kHalf)});
+  OutputLayout mesh_order = planes;
+  mesh_order.order = VertexOrder::kMesh;
+  const std::size_t vertices = sixteen.output_vertices(VertexOrder::kMesh);
+  mesh_order.positions = AttributeLayout::planes(AttributeFormat::kFloat32x3, vertices);
+  mesh_order.normals = mesh_order.positions;
+  mesh_order.tangent_layout = mesh_order.positions;
+  cases.push_back({"mesh order", mesh_order});
+  OutputLayout previous = planes;
+  previous.previous_positions = true;
+  cases.push_back({"previous positions", previous});
+  OutputLayout offset = planes;
+  offset.positions.offset = 64;
+  cases.push_back({"positions at an offset", offset});
+
+  for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {
+    const DeformedBatch<double> reference = run_reference(model, values, normals);
+    for (const Case& c : cases) {
+      SCOPED_TRACE(std::string(c.name) + " " + to_string(normals));
+      EXPECT_EQ(sixteen.lanes(c.layout), 1u);
+      DeviceBatch vector_batch = sixteen.allocate(instances, c.layout);
+      DeviceBatch scalar_batch = one_lane.allocate(instances, c.layout);
+      EXPECT_FALSE(sixteen.streams_outputs(vector_batch));
+      const DeformedBatch<float> got = test::run_on_device(sixteen, vector_batch, values, normals);
+      const DeformedBatch<float> want =
+          test::run_on_device(one_lane, scalar_batch, values, normals);
+      if (c.layout.normals.format == AttributeFormat::kFloat32x3) {
+        expect_within_reference_bounds(model, values, normals, got, reference);
+      }
+      EXPECT_EQ(got.positions, want.positions);
+      EXPECT_EQ(got.normals, want.normals);
+      EXPECT_EQ(got.tangents, want.tangents);
+    }
+  }
+}
+
+// OutputStores::kAuto streams a frame's outputs only when they are larger than the
+// device's global memory cache (CL_DEVICE_GLOBAL_MEM_CACHE_SIZE); kPlain and
+// kStreaming are what they say; one lane never streams.
+TEST(Lanes, AutomaticStoresStreamOutputsLargerThanTheCache) {
+  const Mesh mesh = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
+  const RiggedMesh model = RiggedMesh::single_bend(mesh, find_body_frame(mesh), BendMode::kPaper);
+  const std::size_t cache = test::shared_context().description().global_memory_cache_bytes;
+  ClDeformer automatic(test::shared_context(), model, with_lanes(16));
+  const BatchLayout one = automatic.layout(1);
+  const std::size_t per_instance = one.plane_stride * one.bytes_per_vertex();
+  const std::size_t fitting = std::max<std::size_t>(1, cache / per_instance);
+  // A batch's size as its layout says (streams_outputs allocates nothing; a batch that
+  // large would be the cache's size).
+  DeviceBatch batch = automatic.allocate(1);
+  batch.layout.instance_count = fitting;
+  if (fitting * per_instance <= cache) {
+    EXPECT_FALSE(automatic.streams_outputs(batch));
+  }
+  batch.layout.instance_count = cache / per_instance + 1;
+  EXPECT_TRUE(automatic.streams_outputs(batch));
+  ClOptions plain = with_lanes(16), streaming = with_lanes(16);
+  plain.stores = OutputStores::kPlain;
+  streaming.stores = OutputStores::kStreaming;
+  const DeviceBatch small = automatic.allocate(1);
+  EXPECT_FALSE(ClDeformer(test::shared_context(), model, plain).streams_outputs(small));
+  EXPECT_TRUE(ClDeformer(test::shared_context(), model, streaming).streams_outputs(small));
+  streaming.lanes = 1;
+  EXPECT_FALSE(ClDeformer(test::shared_context(), model, streaming).streams_outputs(small));
+}
+
+// Half normals are stored by the one-lane kernels whatever ClOptions::lanes asks: the
+// same kernels, so the same bits.
+TEST(Lanes, HalfNormalsRunOnOneLane) {
+  const Mesh mesh = load_mesh(test::data_path("barramundi/BarramundiFish.gltf"));
+  const RiggedMesh model(
+      mesh, resolve_rig(load_rig_file(test::data_path("rigs/barramundi.rig.json")), mesh));
+  const RigParameters values = swimming_values(model, 3);
+  ClDeformer one_lane(test::shared_context(), model, with_lanes(1));
+  ClDeformer sixteen(test::shared_context(), model, with_lanes(16));
+  const DeformedBatch<float> a = test::run_on_device(one_lane, values, NormalMode::kRotate,
+                                                     RigPath::kFused, false, NormalFormat::kHalf);
+  const DeformedBatch<float> b = test::run_on_device(sixteen, values, NormalMode::kRotate,
+                                                     RigPath::kFused, false, NormalFormat::kHalf);
+  EXPECT_EQ(a.positions, b.positions);
+  EXPECT_EQ(a.normals, b.normals);
+  EXPECT_EQ(a.tangents, b.tangents);
+}
+
+}  // namespace
+}  // namespace finflex
