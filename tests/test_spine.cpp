@@ -66,6 +66,28 @@ double spine_length(const DeformedBatch<float>& batch, std::size_t instance, std
   return length;
 }
 
+// A sample count that is not a whole number in [2, 256] (NaN included, as a hand-made
+// RigSpec may hold) is named before the deformer reads it (found by fuzzing).
+TEST(Spine, BadSampleCountsAreNamedBeforeUse) {
+  const Mesh mesh = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
+  for (const double samples : {std::nan(""), 1.0, 2.5, 257.0, -1.0, 1e300}) {
+    RigSpec spec;
+    spec.frame.mode = FrameSpec::Mode::kIdentity;
+    ComponentSpec body;
+    body.name = "body";
+    StageSpec stage = make_stage("spine", "wave");
+    stage.options[0] = samples;  // "samples", written past set_option's own check
+    body.chain.push_back(stage);
+    spec.components.push_back(body);
+    try {
+      resolve_rig(spec, mesh);
+      ADD_FAILURE() << "samples = " << samples << " was accepted";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.field(), "components[0] 'body'.chain[0].samples") << e.what();
+    }
+  }
+}
+
 TEST(Spine, ZeroAnglesAreTheIdentity) {
   const Mesh mesh = test::synthetic_fish(32, 16, true);
   const RiggedMesh model = spine_model(mesh, 32);

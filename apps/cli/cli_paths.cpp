@@ -9,30 +9,12 @@
 #include <filesystem>
 
 #include "finflex/error.hpp"
+#include "finflex/file_kind.hpp"
 
 namespace finflex::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string kind_of(mode_t mode) {
-  switch (mode & S_IFMT) {
-    case S_IFREG:
-      return "";
-    case S_IFDIR:
-      return "a directory";
-    case S_IFIFO:
-      return "a FIFO (named pipe)";
-    case S_IFCHR:
-      return "a character device";
-    case S_IFBLK:
-      return "a block device";
-    case S_IFSOCK:
-      return "a socket";
-    default:
-      return "not a regular file";
-  }
-}
 
 std::string lower(std::string text) {
   std::transform(text.begin(), text.end(), text.begin(),
@@ -69,7 +51,7 @@ void check_input_file(const std::string& option, const std::string& path,
     const int error = errno;
     throw Error(ErrorCode::kIo, option, quoted + ": cannot read it (" + std::strerror(error) + ")");
   }
-  const std::string kind = kind_of(status.st_mode);
+  const std::string kind = non_regular_kind(static_cast<unsigned>(status.st_mode));
   if (!kind.empty()) {
     throw Error(ErrorCode::kIo, option, quoted + ": is " + kind + ", not a regular file");
   }
@@ -82,7 +64,7 @@ void check_output_file(const std::string& option, const std::string& path,
   if (path.empty()) throw Error(ErrorCode::kInvalidArgument, option, option + " is empty");
   struct stat status {};
   if (::stat(path.c_str(), &status) == 0) {
-    const std::string kind = kind_of(status.st_mode);
+    const std::string kind = non_regular_kind(static_cast<unsigned>(status.st_mode));
     if (!kind.empty()) {
       throw Error(ErrorCode::kIo, option,
                   quoted + ": is " + kind + " (only a regular file is replaced)");

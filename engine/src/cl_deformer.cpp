@@ -144,8 +144,15 @@ std::size_t ClDeformer::Impl::per_item(NormalFormat format) const {
 }
 
 // Normals of fewer than 12 bytes (16-bit and octahedral formats) take the work-item
-// shape of half normals.
+// shape of half normals. Packed positions (a vertex struct or separate arrays) take one
+// instance per work-item on GPUs: a warp's strided stores then stay within one
+// instance's vertices (measured on the H100, 4,000 fish: interleaved bend 0.64 ms at
+// one, 0.76 at two; docs/handoff.md).
 std::size_t ClDeformer::Impl::per_item(const OutputLayout& outputs) const {
+  if (options.instances_per_item == 0 && context.description().is_gpu() &&
+      outputs.positions.arrangement == Arrangement::kPacked) {
+    return 1;
+  }
   return per_item(format_bytes(outputs.normals.format) < 12 ? NormalFormat::kHalf
                                                             : NormalFormat::kFloat32);
 }

@@ -12,6 +12,7 @@
 
 #include "finflex/error.hpp"
 #include "mesh_io_formats.hpp"
+#include "regular_file.hpp"
 
 namespace finflex::io {
 namespace {
@@ -22,29 +23,11 @@ namespace {
 
 // Why a file of this mode is not read, or "" for a regular file.
 std::string refusal(mode_t mode) {
-  if (S_ISREG(mode)) return "";
-  if (S_ISDIR(mode)) return "is a directory, not a regular file";
-  if (S_ISFIFO(mode)) return "is a FIFO (named pipe), not a regular file";
-  if (S_ISCHR(mode)) return "is a character device, not a regular file";
-  if (S_ISBLK(mode)) return "is a block device, not a regular file";
-  if (S_ISSOCK(mode)) return "is a socket, not a regular file";
-  return "is not a regular file";
+  const std::string kind = non_regular_kind(static_cast<unsigned>(mode));
+  if (kind.empty()) return "";
+  if (kind == "not a regular file") return "is not a regular file";
+  return "is " + kind + ", not a regular file";
 }
-
-// Closes a file descriptor when it goes out of scope.
-class FileDescriptor {
- public:
-  explicit FileDescriptor(int fd) : fd_(fd) {}
-  ~FileDescriptor() {
-    if (fd_ >= 0) ::close(fd_);
-  }
-  FileDescriptor(const FileDescriptor&) = delete;
-  FileDescriptor& operator=(const FileDescriptor&) = delete;
-  int get() const { return fd_; }
-
- private:
-  int fd_;
-};
 
 }  // namespace
 
@@ -72,7 +55,7 @@ void read_into(const std::string& path, std::uint64_t max_bytes, const char* lim
   // and opening some devices has effects of its own.
   require_regular_file(path);
   // O_NONBLOCK: should the path have been replaced by a FIFO since, open returns at once.
-  const FileDescriptor file(::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY | O_NONBLOCK));
+  const detail::FileDescriptor file(::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY | O_NONBLOCK));
   if (file.get() < 0) {
     throw_io(std::string("cannot open the file for reading: ") + std::strerror(errno));
   }

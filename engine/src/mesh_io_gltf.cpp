@@ -24,14 +24,6 @@
 namespace finflex::io {
 namespace {
 
-[[noreturn]] void throw_format(const std::string& field, const std::string& message) {
-  throw Error(ErrorCode::kFormat, field, field + ": " + message);
-}
-
-std::string indexed(const std::string& array, std::size_t index) {
-  return array + "[" + std::to_string(index) + "]";
-}
-
 const char* mode_name(int mode) {
   switch (mode) {
     case TINYGLTF_MODE_POINTS:
@@ -85,7 +77,7 @@ int find_attribute(const tinygltf::Primitive& primitive, const char* name) {
 void check_count(const std::vector<float>& values, std::size_t components, std::size_t vertex_count,
                  const std::string& field) {
   if (values.size() == vertex_count * components) return;
-  throw_format(field, "has " + std::to_string(values.size() / components) +
+  throw_gltf_format(field, "has " + std::to_string(values.size() / components) +
                           " elements, but POSITION has " + std::to_string(vertex_count));
 }
 
@@ -102,11 +94,11 @@ struct Part {
 Part read_primitive(const LoadedGltf& gltf, const tinygltf::Primitive& primitive,
                     const Transform& transform, const std::string& field) {
   if (primitive.mode != TINYGLTF_MODE_TRIANGLES) {
-    throw_format(field, std::string("mode ") + std::to_string(primitive.mode) + " (" +
+    throw_gltf_format(field, std::string("mode ") + std::to_string(primitive.mode) + " (" +
                             mode_name(primitive.mode) + ") is not supported (only TRIANGLES)");
   }
   const int position_accessor = find_attribute(primitive, "POSITION");
-  if (position_accessor < 0) throw_format(field, "has no POSITION attribute");
+  if (position_accessor < 0) throw_gltf_format(field, "has no POSITION attribute");
   const std::vector<float> positions =
       read_floats(gltf, position_accessor, TINYGLTF_TYPE_VEC3, false, field + ".POSITION");
   const std::size_t n = positions.size() / 3;
@@ -179,7 +171,7 @@ Part read_primitive(const LoadedGltf& gltf, const tinygltf::Primitive& primitive
     for (std::size_t i = 0; i < n; ++i) mesh.indices[i] = static_cast<std::uint32_t>(i);
   }
   if (mesh.indices.size() % 3 != 0) {
-    throw_format(field + ".indices", "has " + std::to_string(mesh.indices.size()) +
+    throw_gltf_format(field + ".indices", "has " + std::to_string(mesh.indices.size()) +
                                          " entries, not a multiple of 3 (TRIANGLES)");
   }
   for (std::size_t i = 0; i < mesh.indices.size(); ++i) {
@@ -201,17 +193,17 @@ Part read_primitive(const LoadedGltf& gltf, const tinygltf::Primitive& primitive
 
 glm::dmat4 local_matrix(const tinygltf::Node& node, const std::string& field) {
   if (!node.matrix.empty()) {
-    if (node.matrix.size() != 16) throw_format(field + ".matrix", "must have 16 numbers");
+    if (node.matrix.size() != 16) throw_gltf_format(field + ".matrix", "must have 16 numbers");
     return glm::make_mat4(node.matrix.data());  // both column-major
   }
   if (!node.translation.empty() && node.translation.size() != 3) {
-    throw_format(field + ".translation", "must have 3 numbers");
+    throw_gltf_format(field + ".translation", "must have 3 numbers");
   }
   if (!node.rotation.empty() && node.rotation.size() != 4) {
-    throw_format(field + ".rotation", "must have 4 numbers");
+    throw_gltf_format(field + ".rotation", "must have 4 numbers");
   }
   if (!node.scale.empty() && node.scale.size() != 3) {
-    throw_format(field + ".scale", "must have 3 numbers");
+    throw_gltf_format(field + ".scale", "must have 3 numbers");
   }
   glm::dmat4 m(1.0);  // T * R * S
   if (!node.translation.empty()) m = glm::translate(m, glm::make_vec3(node.translation.data()));
@@ -220,7 +212,7 @@ glm::dmat4 local_matrix(const tinygltf::Node& node, const std::string& field) {
     const glm::dquat q(r[3], r[0], r[1], r[2]);
     // glm would turn a zero quaternion into the identity without a word.
     if (!(glm::length(q) > 0.0)) {
-      throw_format(field + ".rotation", "is not a rotation (a quaternion of zero length)");
+      throw_gltf_format(field + ".rotation", "is not a rotation (a quaternion of zero length)");
     }
     m *= glm::mat4_cast(glm::normalize(q));
   }
@@ -235,12 +227,12 @@ void check_transform(const glm::dmat4& world, std::size_t node) {
   for (int c = 0; c < 4; ++c) {
     for (int r = 0; r < 4; ++r) {
       if (!std::isfinite(world[c][r])) {
-        throw_format(field, "its transform (with its ancestors') is not finite");
+        throw_gltf_format(field, "its transform (with its ancestors') is not finite");
       }
     }
   }
   if (glm::determinant(glm::dmat3(world)) == 0.0) {
-    throw_format(field, "its transform (with its ancestors') is singular (determinant 0)");
+    throw_gltf_format(field, "its transform (with its ancestors') is singular (determinant 0)");
   }
 }
 
@@ -272,7 +264,7 @@ class SceneFlattener {
   void add_mesh(int mesh_index, const Transform& transform, std::size_t node) {
     const tinygltf::Model& model = gltf_.model;
     if (static_cast<std::size_t>(mesh_index) >= model.meshes.size()) {
-      throw_format(indexed("nodes", node) + ".mesh",
+      throw_gltf_format(indexed("nodes", node) + ".mesh",
                    "mesh " + std::to_string(mesh_index) + " does not exist (" +
                        std::to_string(model.meshes.size()) + " meshes)");
     }
@@ -292,7 +284,7 @@ class SceneFlattener {
           (mesh.name.empty() ? std::to_string(mesh_index) : mesh.name) + "/" + std::to_string(p);
       placed_ += part.mesh.positions.size() + part.mesh.indices.size() + part.group.size();
       if (placed_ > budget_) {
-        throw_format(indexed("nodes", node),
+        throw_gltf_format(indexed("nodes", node),
                      "placing " + mesh_field + " here brings the scene to more than " +
                          std::to_string(budget_) + " vertices, indices and group-name bytes (" +
                          std::to_string(kPlacedElementsPerInputByte) + " per byte of the " +
@@ -321,7 +313,7 @@ Mesh concatenate(const std::vector<Part>& parts) {
     const Mesh& m = part.mesh;
     const std::size_t base = out.positions.size();
     if (base + m.positions.size() > UINT32_MAX) {
-      throw_format("meshes", "more than 2^32 vertices in the scene");
+      throw_gltf_format("meshes", "more than 2^32 vertices in the scene");
     }
     out.positions.insert(out.positions.end(), m.positions.begin(), m.positions.end());
     out.normals.insert(out.normals.end(), m.normals.begin(), m.normals.end());

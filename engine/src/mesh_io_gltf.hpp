@@ -12,7 +12,19 @@
 #include <string_view>
 #include <vector>
 
+#include "finflex/error.hpp"
+
 namespace finflex::io {
+
+// kFormat naming a glTF field ("meshes[0].primitives[1].indices"): "<field>: <message>".
+[[noreturn]] inline void throw_gltf_format(const std::string& field, const std::string& message) {
+  throw Error(ErrorCode::kFormat, field, field + ": " + message);
+}
+
+// "array[index]", a glTF field's name.
+inline std::string indexed(const std::string& array, std::size_t index) {
+  return array + "[" + std::to_string(index) + "]";
+}
 
 // JSON arrays and objects may nest at most this deep (a glTF file needs about 8
 // levels, extras and extensions included); deeper text is refused before tinygltf

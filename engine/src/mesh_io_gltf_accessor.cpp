@@ -11,14 +11,6 @@
 namespace finflex::io {
 namespace {
 
-[[noreturn]] void throw_format(const std::string& field, const std::string& message) {
-  throw Error(ErrorCode::kFormat, field, field + ": " + message);
-}
-
-std::string indexed(const std::string& array, std::size_t index) {
-  return array + "[" + std::to_string(index) + "]";
-}
-
 const char* component_type_name(int component_type) {
   switch (component_type) {
     case TINYGLTF_COMPONENT_TYPE_BYTE:
@@ -84,22 +76,22 @@ AccessorView view_accessor(const LoadedGltf& gltf, int index, int expected_type,
                            const std::string& field) {
   const tinygltf::Model& model = gltf.model;
   if (index < 0 || static_cast<std::size_t>(index) >= model.accessors.size()) {
-    throw_format(field, "accessor " + std::to_string(index) + " does not exist (" +
+    throw_gltf_format(field, "accessor " + std::to_string(index) + " does not exist (" +
                             std::to_string(model.accessors.size()) + " accessors)");
   }
   const tinygltf::Accessor& accessor = model.accessors[static_cast<std::size_t>(index)];
   const std::string where = "accessor " + std::to_string(index);
   if (accessor.sparse.isSparse) {
-    throw_format(field, where + " is sparse (sparse accessors are not supported)");
+    throw_gltf_format(field, where + " is sparse (sparse accessors are not supported)");
   }
   if (accessor.type != expected_type) {
-    throw_format(field, where + " has type " + type_name(accessor.type) + ", expected " +
+    throw_gltf_format(field, where + " has type " + type_name(accessor.type) + ", expected " +
                             type_name(expected_type));
   }
   const int component_size =
       tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(accessor.componentType));
   if (component_size <= 0 || accessor.componentType == TINYGLTF_COMPONENT_TYPE_DOUBLE) {
-    throw_format(field,
+    throw_gltf_format(field,
                  where + " has unknown componentType " + std::to_string(accessor.componentType));
   }
   AccessorView view;
@@ -111,7 +103,7 @@ AccessorView view_accessor(const LoadedGltf& gltf, int index, int expected_type,
   const std::size_t element_size = view.component_size * static_cast<std::size_t>(view.components);
   if (accessor.bufferView < 0) {  // no data: zeros, as many as the input's bytes at most
     if (view.count > gltf.input_bytes) {
-      throw_format(field, where + " has no bufferView (all zeros) and count " +
+      throw_gltf_format(field, where + " has no bufferView (all zeros) and count " +
                               std::to_string(view.count) + ", more than the " +
                               std::to_string(gltf.input_bytes) + " bytes of input allow");
     }
@@ -119,28 +111,28 @@ AccessorView view_accessor(const LoadedGltf& gltf, int index, int expected_type,
     return view;
   }
   if (static_cast<std::size_t>(accessor.bufferView) >= model.bufferViews.size()) {
-    throw_format(field, where + " refers to bufferView " + std::to_string(accessor.bufferView) +
+    throw_gltf_format(field, where + " refers to bufferView " + std::to_string(accessor.bufferView) +
                             ", which does not exist");
   }
   const tinygltf::BufferView& buffer_view =
       model.bufferViews[static_cast<std::size_t>(accessor.bufferView)];
   if (buffer_view.buffer < 0 ||
       static_cast<std::size_t>(buffer_view.buffer) >= model.buffers.size()) {
-    throw_format(field, "bufferView " + std::to_string(accessor.bufferView) + " refers to buffer " +
+    throw_gltf_format(field, "bufferView " + std::to_string(accessor.bufferView) + " refers to buffer " +
                             std::to_string(buffer_view.buffer) + ", which does not exist");
   }
   const std::vector<unsigned char>& bytes =
       model.buffers[static_cast<std::size_t>(buffer_view.buffer)].data;
   if (buffer_view.byteOffset > bytes.size() ||
       buffer_view.byteLength > bytes.size() - buffer_view.byteOffset) {
-    throw_format(field, "bufferView " + std::to_string(accessor.bufferView) + " (byteOffset " +
+    throw_gltf_format(field, "bufferView " + std::to_string(accessor.bufferView) + " (byteOffset " +
                             std::to_string(buffer_view.byteOffset) + ", byteLength " +
                             std::to_string(buffer_view.byteLength) + ") exceeds its buffer of " +
                             std::to_string(bytes.size()) + " bytes");
   }
   view.stride = buffer_view.byteStride != 0 ? buffer_view.byteStride : element_size;
   if (view.stride < element_size) {
-    throw_format(field, "bufferView " + std::to_string(accessor.bufferView) + " byteStride " +
+    throw_gltf_format(field, "bufferView " + std::to_string(accessor.bufferView) + " byteStride " +
                             std::to_string(view.stride) + " is smaller than the element (" +
                             std::to_string(element_size) + " bytes)");
   }
@@ -151,7 +143,7 @@ AccessorView view_accessor(const LoadedGltf& gltf, int index, int expected_type,
         (view.count - 1) <= (available - accessor.byteOffset) / view.stride &&
         accessor.byteOffset + (view.count - 1) * view.stride + element_size <= available;
     if (!fits) {
-      throw_format(field, where + " (byteOffset " + std::to_string(accessor.byteOffset) +
+      throw_gltf_format(field, where + " (byteOffset " + std::to_string(accessor.byteOffset) +
                               ", count " + std::to_string(view.count) + ", stride " +
                               std::to_string(view.stride) + ") exceeds bufferView " +
                               std::to_string(accessor.bufferView) + " of " +
@@ -199,7 +191,7 @@ std::vector<float> read_floats(const LoadedGltf& gltf, int index, int type, bool
                         (view.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
                          view.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
   if (!is_float && !is_unorm) {
-    throw_format(field, "accessor " + std::to_string(index) + " has componentType " +
+    throw_gltf_format(field, "accessor " + std::to_string(index) + " has componentType " +
                             component_type_name(view.component_type) +
                             (view.normalized ? " (normalized)" : "") + ", expected float" +
                             (allow_normalized ? " or normalized unsigned byte/short" : ""));
@@ -229,7 +221,7 @@ std::vector<std::uint32_t> read_indices(const LoadedGltf& gltf, int index,
   if (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
       type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
       type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
-    throw_format(field, "accessor " + std::to_string(index) + " has componentType " +
+    throw_gltf_format(field, "accessor " + std::to_string(index) + " has componentType " +
                             component_type_name(type) + ", expected unsigned byte, short or int");
   }
   std::vector<std::uint32_t> indices(view.count, 0);

@@ -10,10 +10,6 @@
 namespace finflex::io {
 namespace {
 
-[[noreturn]] void throw_format(const std::string& field, const std::string& message) {
-  throw Error(ErrorCode::kFormat, field, field + ": " + message);
-}
-
 std::string node_field(std::size_t index) { return "nodes[" + std::to_string(index) + "]"; }
 
 constexpr std::int64_t kNoParent = -1;
@@ -29,17 +25,17 @@ std::vector<std::int64_t> parents_of(const tinygltf::Model& model) {
     for (std::size_t k = 0; k < children.size(); ++k) {
       const int child = children[k];
       if (child < 0 || static_cast<std::size_t>(child) >= count) {
-        throw_format(node_field(p) + ".children[" + std::to_string(k) + "]",
+        throw_gltf_format(node_field(p) + ".children[" + std::to_string(k) + "]",
                      "node " + std::to_string(child) + " does not exist (" + std::to_string(count) +
                          " nodes)");
       }
       const auto c = static_cast<std::size_t>(child);
       if (parent[c] == static_cast<std::int64_t>(p)) {
-        throw_format(node_field(c), "is listed twice in " + node_field(p) +
+        throw_gltf_format(node_field(c), "is listed twice in " + node_field(p) +
                                         ".children (a node has one place in the scene)");
       }
       if (parent[c] != kNoParent) {
-        throw_format(node_field(c), "is a child of both " +
+        throw_gltf_format(node_field(c), "is a child of both " +
                                         node_field(static_cast<std::size_t>(parent[c])) + " and " +
                                         node_field(p) + " (a node has at most one parent)");
       }
@@ -64,7 +60,7 @@ void check_no_cycle(const std::vector<std::int64_t>& parent) {
       n = parent[static_cast<std::size_t>(n)];
     }
     if (n != kNoParent && state[static_cast<std::size_t>(n)] == kOnWalk) {
-      throw_format(node_field(static_cast<std::size_t>(n)),
+      throw_gltf_format(node_field(static_cast<std::size_t>(n)),
                    "is its own ancestor (cycle in children)");
     }
     for (const std::size_t w : walk) state[w] = kDone;
@@ -85,7 +81,7 @@ std::vector<std::size_t> root_nodes(const tinygltf::Model& model,
   }
   const int scene = model.defaultScene >= 0 ? model.defaultScene : 0;
   if (static_cast<std::size_t>(scene) >= model.scenes.size()) {
-    throw_format("scene", std::to_string(scene) + " does not exist (" +
+    throw_gltf_format("scene", std::to_string(scene) + " does not exist (" +
                               std::to_string(model.scenes.size()) + " scenes)");
   }
   const std::string scene_field = "scenes[" + std::to_string(scene) + "].nodes";
@@ -94,15 +90,15 @@ std::vector<std::size_t> root_nodes(const tinygltf::Model& model,
   for (std::size_t k = 0; k < listed.size(); ++k) {
     const int node = listed[k];
     if (node < 0 || static_cast<std::size_t>(node) >= model.nodes.size()) {
-      throw_format(scene_field + "[" + std::to_string(k) + "]",
+      throw_gltf_format(scene_field + "[" + std::to_string(k) + "]",
                    "node " + std::to_string(node) + " does not exist (" +
                        std::to_string(model.nodes.size()) + " nodes)");
     }
     const auto n = static_cast<std::size_t>(node);
-    if (seen[n]) throw_format(node_field(n), "is listed twice in " + scene_field);
+    if (seen[n]) throw_gltf_format(node_field(n), "is listed twice in " + scene_field);
     seen[n] = true;
     if (parent[n] != kNoParent) {
-      throw_format(node_field(n), "is listed in " + scene_field + " but is a child of " +
+      throw_gltf_format(node_field(n), "is listed in " + scene_field + " but is a child of " +
                                       node_field(static_cast<std::size_t>(parent[n])) +
                                       " (scene nodes must be root nodes)");
     }
@@ -131,13 +127,13 @@ std::vector<PlacedNode> scene_nodes(const tinygltf::Model& model) {
     const Pending pending = stack.back();
     stack.pop_back();
     if (pending.depth > kMaxNodeDepth) {
-      throw_format(node_field(pending.node), "is nested " + std::to_string(pending.depth) +
+      throw_gltf_format(node_field(pending.node), "is nested " + std::to_string(pending.depth) +
                                                  " levels deep, more than the limit of " +
                                                  std::to_string(kMaxNodeDepth));
     }
     // The checks above make a second visit impossible; this keeps the walk linear
     // should they ever miss one.
-    if (placed[pending.node]) throw_format(node_field(pending.node), "is reached twice");
+    if (placed[pending.node]) throw_gltf_format(node_field(pending.node), "is reached twice");
     placed[pending.node] = true;
     const auto slot = static_cast<std::int64_t>(order.size());
     order.push_back({pending.node, pending.parent_slot});

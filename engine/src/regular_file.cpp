@@ -9,27 +9,10 @@
 
 #include "finflex/error.hpp"
 
-namespace finflex::detail {
-namespace {
+namespace finflex {
 
-class Descriptor {
- public:
-  explicit Descriptor(int fd) : fd_(fd) {}
-  ~Descriptor() {
-    if (fd_ >= 0) ::close(fd_);
-  }
-  Descriptor(const Descriptor&) = delete;
-  Descriptor& operator=(const Descriptor&) = delete;
-  int get() const { return fd_; }
-
- private:
-  int fd_;
-};
-
-}  // namespace
-
-std::string non_regular_kind(unsigned mode) {
-  switch (mode & S_IFMT) {
+std::string non_regular_kind(unsigned st_mode) {
+  switch (st_mode & S_IFMT) {
     case S_IFREG:
       return "";
     case S_IFDIR:
@@ -47,11 +30,17 @@ std::string non_regular_kind(unsigned mode) {
   }
 }
 
+namespace detail {
+
+FileDescriptor::~FileDescriptor() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
 std::string read_regular_file(const std::string& path, const std::string& field,
                               const std::string& what) {
   const std::string at = "'" + path + "': ";
   // Non-blocking: opening a FIFO for reading would otherwise wait for a writer.
-  const Descriptor file(::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY));
+  const FileDescriptor file(::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY));
   if (file.get() < 0) {
     const int error = errno;
     throw Error(ErrorCode::kIo, field,
@@ -84,4 +73,5 @@ std::string read_regular_file(const std::string& path, const std::string& field,
   return text;
 }
 
-}  // namespace finflex::detail
+}  // namespace detail
+}  // namespace finflex

@@ -5,6 +5,8 @@
 
 #include <string>
 
+#include "finflex/file_kind.hpp"
+
 namespace finflex::detail {
 
 // All of the regular file at `path`. Throws kIo with `field`, the message starting
@@ -14,7 +16,17 @@ namespace finflex::detail {
 std::string read_regular_file(const std::string& path, const std::string& field,
                               const std::string& what);
 
-// "a directory", "a FIFO", "a character device", ... for st_mode; "" for a regular file.
-std::string non_regular_kind(unsigned mode);
+// Closes a file descriptor when it goes out of scope.
+class FileDescriptor {
+ public:
+  explicit FileDescriptor(int fd) : fd_(fd) {}
+  ~FileDescriptor();
+  FileDescriptor(const FileDescriptor&) = delete;
+  FileDescriptor& operator=(const FileDescriptor&) = delete;
+  int get() const { return fd_; }
+
+ private:
+  int fd_;
+};
 
 }  // namespace finflex::detail

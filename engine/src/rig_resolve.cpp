@@ -477,20 +477,15 @@ StageGeometry measure_stage(const std::vector<glm::dvec3>& local, const StageSpe
   return geometry;
 }
 
-void check_options(const RigSpec& spec, std::size_t c, std::size_t k);  // below
-
-// The geometry of each stage of component c's chain (its options checked first), over
-// `subtree` in `frame`.
+// The geometry of each stage of component c's chain (its options checked already, by
+// collect_parameters), over `subtree` in `frame`.
 std::vector<StageGeometry> measure_chain(const Mesh& mesh, const RigSpec& spec, std::size_t c,
                                          const VertexSet& subtree, const BodyFrame& frame) {
   const std::vector<StageSpec>& chain = spec.components[c].chain;
   const std::vector<glm::dvec3> local = local_positions(mesh, subtree, frame);
   std::vector<StageGeometry> geometry;
   geometry.reserve(chain.size());
-  for (std::size_t k = 0; k < chain.size(); ++k) {
-    check_options(spec, c, k);
-    geometry.push_back(measure_stage(local, chain[k]));
-  }
+  for (const StageSpec& stage : chain) geometry.push_back(measure_stage(local, stage));
   return geometry;
 }
 
@@ -545,6 +540,8 @@ void resolve_children(const Mesh& mesh, const RigSpec& spec, const RigTree& tree
 // The per-instance parameters in order of first use (components and chains in spec
 // order), each with the count of values its stages read; limits come later.
 // `index_of` receives each parameter's index by name.
+void check_options(const RigSpec& spec, std::size_t c, std::size_t k);  // below
+
 std::vector<RigParameter> collect_parameters(const RigSpec& spec,
                                              std::map<std::string, std::size_t>& index_of) {
   std::vector<RigParameter> parameters;
@@ -559,6 +556,7 @@ std::vector<RigParameter> collect_parameters(const RigSpec& spec,
       if (stage.param.empty()) {
         fail(field + ".param", "is empty: every stage names the parameter it reads");
       }
+      check_options(spec, i, k);  // before the deformer reads them (value_count)
       const std::size_t count = stage.deformer->value_count(stage.options);
       const auto [it, added] = index_of.emplace(stage.param, parameters.size());
       if (added) {

@@ -179,7 +179,8 @@ FINFLEX_C_API const finflex_error* finflex_rig_error(const finflex_rig* rig);
 
 typedef enum finflex_bend_mode {
   FINFLEX_BEND_PAPER = 0, /* the paper's 4th-order series (15)-(17) */
-  FINFLEX_BEND_EXACT = 1  /* the closed form: the spine keeps its length exactly */
+  FINFLEX_BEND_EXACT = 1, /* the closed form: the spine keeps its length exactly */
+  FINFLEX_BEND_MODE_MAX_ENUM = 0x7fffffff /* every int is a value (checked), not a mode */
 } finflex_bend_mode;
 
 typedef struct finflex_model finflex_model; /* a mesh with its rig (finflex::RiggedMesh) */
@@ -245,13 +246,15 @@ FINFLEX_C_API finflex_status finflex_parameters_view(finflex_parameters* paramet
 
 typedef enum finflex_normal_mode {
   FINFLEX_NORMALS_ROTATE = 0,  /* the paper's (8) */
-  FINFLEX_NORMALS_JACOBIAN = 1 /* exact, through the deformation's Jacobian */
+  FINFLEX_NORMALS_JACOBIAN = 1, /* exact, through the deformation's Jacobian */
+  FINFLEX_NORMAL_MODE_MAX_ENUM = 0x7fffffff
 } finflex_normal_mode;
 
 typedef enum finflex_rig_path {
   FINFLEX_PATH_AUTO = 0,  /* fused where it applies */
   FINFLEX_PATH_FUSED = 1, /* one pass, each vertex's whole path in registers */
-  FINFLEX_PATH_PASSES = 2 /* one pass per hierarchy level and chain position */
+  FINFLEX_PATH_PASSES = 2, /* one pass per hierarchy level and chain position */
+  FINFLEX_RIG_PATH_MAX_ENUM = 0x7fffffff
 } finflex_rig_path;
 
 /* One frame's deformation (finflex/job.hpp, BasicDeformJob): the parameter rows of
@@ -272,7 +275,8 @@ FINFLEX_C_API void finflex_job_init(finflex_job* job);
 
 typedef enum finflex_format {
   FINFLEX_FORMAT_FLOAT32 = 0, /* 4 bytes a component */
-  FINFLEX_FORMAT_HALF = 1     /* IEEE half, device batches only (finflex_deformer_allocate) */
+  FINFLEX_FORMAT_HALF = 1,    /* IEEE half, device batches only (finflex_deformer_allocate) */
+  FINFLEX_FORMAT_MAX_ENUM = 0x7fffffff
 } finflex_format;
 
 /* Where one attribute (positions, normals or tangents) goes in the caller's memory:
@@ -359,7 +363,8 @@ FINFLEX_C_API size_t finflex_batch_instance_count(const finflex_batch* batch);
 typedef enum finflex_attribute {
   FINFLEX_POSITIONS = 0,
   FINFLEX_NORMALS = 1,
-  FINFLEX_TANGENTS = 2
+  FINFLEX_TANGENTS = 2,
+  FINFLEX_ATTRIBUTE_MAX_ENUM = 0x7fffffff
 } finflex_attribute;
 /* The device layout of a batch (finflex/batch.hpp): component c of slot s of instance
  * i at element (i * 3 + c) * plane_stride + s of the attribute's buffer. */

@@ -15,6 +15,8 @@ finflex::NormalFormat normal_format(finflex_format format) {
       return finflex::NormalFormat::kFloat32;
     case FINFLEX_FORMAT_HALF:
       return finflex::NormalFormat::kHalf;
+    default:  // not a value of the enum: refused below
+      break;
   }
   throw finflex::Error(finflex::ErrorCode::kInvalidArgument, "format",
                        "format = " + std::to_string(static_cast<int>(format)) +
@@ -165,6 +167,8 @@ void* finflex_batch_cl_buffer(const finflex_batch* batch, finflex_attribute attr
       return batch->batch.normals();
     case FINFLEX_TANGENTS:
       return batch->batch.layout.tangents ? batch->batch.tangents() : nullptr;
+    default:  // not a value of the enum: refused below
+      break;
   }
   return nullptr;
 }

@@ -11,6 +11,8 @@ finflex::NormalMode normal_mode(finflex_normal_mode mode) {
       return NormalMode::kRotate;
     case FINFLEX_NORMALS_JACOBIAN:
       return NormalMode::kJacobian;
+    default:  // not a value of the enum: refused below
+      break;
   }
   throw Error(ErrorCode::kInvalidArgument, "job.normals",
               "job.normals = " + std::to_string(static_cast<int>(mode)) +
@@ -25,6 +27,8 @@ finflex::RigPath rig_path(finflex_rig_path path) {
       return RigPath::kFused;
     case FINFLEX_PATH_PASSES:
       return RigPath::kPasses;
+    default:  // not a value of the enum: refused below
+      break;
   }
   throw Error(ErrorCode::kInvalidArgument, "job.path",
               "job.path = " + std::to_string(static_cast<int>(path)) +

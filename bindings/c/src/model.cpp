@@ -24,6 +24,8 @@ finflex::BendMode bend_mode(finflex_bend_mode mode) {
       return finflex::BendMode::kPaper;
     case FINFLEX_BEND_EXACT:
       return finflex::BendMode::kExact;
+    default:  // not a value of the enum: refused below
+      break;
   }
   throw Error(ErrorCode::kInvalidArgument, "mode",
               "mode = " + std::to_string(static_cast<int>(mode)) +

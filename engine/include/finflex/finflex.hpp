@@ -27,6 +27,7 @@
 #include "finflex/deformer_type.hpp"
 #include "finflex/device_batch.hpp"
 #include "finflex/error.hpp"
+#include "finflex/file_kind.hpp"
 #include "finflex/instance_mesh.hpp"
 #include "finflex/job.hpp"
 #include "finflex/mesh.hpp"
