@@ -9,8 +9,9 @@
 #   scripts/device/pocl_cpu_bench.sh BUNDLE_DIR OUT_DIR [THREADS] [INSTANCES] [FRAMES]
 #   scripts/device/pocl_cpu_bench.sh .device out "1 2 4 8 16" "1000 4000" 15
 #
-# Only PoCL is visible to the programs (OCL_ICD_VENDORS names its ICD alone), so the
-# default device is the CPU even where a GPU driver is registered. Writes to OUT_DIR:
+# Only PoCL is visible to the programs (OCL_ICD_VENDORS and OCL_ICD_FILENAMES name its
+# ICD alone), so the default device is the CPU even where a GPU driver is registered;
+# `finflex bench` also names it (--device cpu, or FINFLEX_CPU_DEVICE). Writes to OUT_DIR:
 #   info.txt       machine, PoCL, `finflex info`
 #   remarks_raw.txt, remarks.txt   the vectoriser's remarks, raw and per kernel
 #                                  (docs/tools/vectorizer_remarks.py)
@@ -47,6 +48,9 @@ first_instances=${instance_counts%% *}
 icds=$(mktemp -d)
 for icd in /etc/OpenCL/vendors/*pocl*.icd; do [ -e "$icd" ] && cp "$icd" "$icds/"; done
 export OCL_ICD_VENDORS=$icds
+# The Khronos loader reads OCL_ICD_FILENAMES (library paths) instead.
+OCL_ICD_FILENAMES=$(cat "$icds"/*.icd 2>/dev/null | head -n 1)
+export OCL_ICD_FILENAMES
 export POCL_CACHE_DIR=$(mktemp -d)
 
 # One `finflex bench` as a JSON line with the case's name and thread count.
@@ -54,7 +58,7 @@ bench() {
   local name=$1 count=$2
   shift 2
   local result
-  result=$(POCL_MAX_PTHREAD_COUNT=$count POCL_CPU_MAX_CU_COUNT=$count "$finflex" bench --mesh "$fish" --json "$@") || result=null
+  result=$(POCL_MAX_PTHREAD_COUNT=$count POCL_CPU_MAX_CU_COUNT=$count "$finflex" bench --mesh "$fish" --device "${FINFLEX_CPU_DEVICE:-cpu}" --json "$@") || result=null
   echo "{\"case\":\"$name\",\"threads\":$count,\"result\":$result}"
 }
 
