@@ -496,7 +496,9 @@ std::string small_swim(const std::string& fish_count = "12") {
 
 TEST(Cli, SwimsAndWritesASummaryAndMeshes) {
   const std::string out = test::temp_path("tank");
-  const RunResult r = run_cli(small_swim() + " --out '" + out + "' --mesh-frames 0,last --seed 4");
+  // --no-render: the summary and the meshes (the pictures: test_cli_pictures.cpp).
+  const RunResult r =
+      run_cli(small_swim() + " --out '" + out + "' --mesh-frames 0,last --seed 4 --no-render");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("swam 12 fish (12 blub_low_resolution)"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("6 frames"), std::string::npos) << r.out;
