@@ -519,7 +519,8 @@ TEST(Cli, SwimsAndWritesASummaryAndMeshes) {
   }
   // The same seed, the same tank.
   const std::string again = test::temp_path("tank_again");
-  ASSERT_EQ(run_cli(small_swim() + " --out '" + again + "' --mesh-frames last --seed 4").exit_code,
+  ASSERT_EQ(run_cli(small_swim() + " --out '" + again + "' --mesh-frames last --seed 4 --no-render")
+                .exit_code,
             0);
   EXPECT_EQ(read_text(out + "/tank_frame_000005.glb"), read_text(again + "/tank_frame_000005.glb"));
 }

@@ -21,9 +21,12 @@
 #include "finflex/mesh.hpp"
 #include "finflex/mesh_io.hpp"
 #include "support/test_support.hpp"
+#include "support/throws_error.hpp"
 
 namespace finflex {
 namespace {
+
+using test::ThrowsError;
 
 namespace fs = std::filesystem;
 using test::data_path;
@@ -32,33 +35,6 @@ using test::temp_path;
 // ---------------------------------------------------------------------------------
 // Helpers
 
-// Success iff `action` throws finflex::Error with `code`, a field containing
-// `field_part` and a message containing `message_part`.
-::testing::AssertionResult ThrowsError(const std::function<void()>& action, ErrorCode code,
-                                       const std::string& field_part,
-                                       const std::string& message_part = "") {
-  try {
-    action();
-  } catch (const Error& e) {
-    if (e.code() != code) {
-      return ::testing::AssertionFailure()
-             << "code " << error_code_name(e.code()) << " instead of " << error_code_name(code)
-             << " (field '" << e.field() << "': " << e.what() << ")";
-    }
-    if (e.field().find(field_part) == std::string::npos) {
-      return ::testing::AssertionFailure()
-             << "field '" << e.field() << "' lacks '" << field_part << "': " << e.what();
-    }
-    if (std::string(e.what()).find(message_part) == std::string::npos) {
-      return ::testing::AssertionFailure()
-             << "message lacks '" << message_part << "': " << e.what();
-    }
-    return ::testing::AssertionSuccess();
-  } catch (const std::exception& e) {
-    return ::testing::AssertionFailure() << "not a finflex::Error: " << e.what();
-  }
-  return ::testing::AssertionFailure() << "nothing thrown";
-}
 
 void write_file(const std::string& path, const std::string& bytes) {
   std::ofstream out(path, std::ios::binary);

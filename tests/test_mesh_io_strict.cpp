@@ -27,6 +27,7 @@
 #include "finflex/mesh.hpp"
 #include "finflex/mesh_io.hpp"
 #include "support/test_support.hpp"
+#include "support/throws_error.hpp"
 
 // ---------------------------------------------------------------------------------
 // Allocation probe: while active, records the largest single allocation and refuses
@@ -65,6 +66,7 @@ namespace {
 namespace fs = std::filesystem;
 using test::data_path;
 using test::temp_path;
+using test::ThrowsError;
 
 // The largest single allocation `action` makes (exceptions are swallowed).
 std::size_t largest_allocation(const std::function<void()>& action) {
@@ -78,34 +80,6 @@ std::size_t largest_allocation(const std::function<void()>& action) {
   return g_largest_allocation;
 }
 
-// Success iff `action` throws finflex::Error with `code`, a field containing
-// `field_part` and a message containing every one of `message_parts`.
-::testing::AssertionResult ThrowsError(const std::function<void()>& action, ErrorCode code,
-                                       const std::string& field_part,
-                                       const std::vector<std::string>& message_parts = {}) {
-  try {
-    action();
-  } catch (const Error& e) {
-    if (e.code() != code) {
-      return ::testing::AssertionFailure()
-             << "code " << error_code_name(e.code()) << " instead of " << error_code_name(code)
-             << " (field '" << e.field() << "': " << e.what() << ")";
-    }
-    if (e.field().find(field_part) == std::string::npos) {
-      return ::testing::AssertionFailure()
-             << "field '" << e.field() << "' lacks '" << field_part << "': " << e.what();
-    }
-    for (const std::string& part : message_parts) {
-      if (std::string(e.what()).find(part) == std::string::npos) {
-        return ::testing::AssertionFailure() << "message lacks '" << part << "': " << e.what();
-      }
-    }
-    return ::testing::AssertionSuccess() << e.what();
-  } catch (const std::exception& e) {
-    return ::testing::AssertionFailure() << "not a finflex::Error: " << e.what();
-  }
-  return ::testing::AssertionFailure() << "nothing thrown";
-}
 
 // ThrowsError for load_mesh(path), also checking that the message starts with the
 // quoted path.

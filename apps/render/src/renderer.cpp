@@ -99,6 +99,16 @@ struct Renderer::Impl {
   // GL objects are deleted in the context they belong to, whichever is current now.
   ~Impl() { egl.try_make_current(); }
 
+  // The scene's uniform block (lights, tank, camera at the frame's aspect), bound at 0.
+  void upload_scene_block(const Scene& scene, const Camera& camera) {
+    const float aspect = static_cast<float>(settings.width) / static_cast<float>(settings.height);
+    const SceneBlock block = make_scene_block(scene, camera, aspect);
+    glBindBuffer(GL_UNIFORM_BUFFER, scene_block.get());
+    glBufferSubData(GL_UNIFORM_BUFFER, 0, sizeof block, &block);
+    glBindBuffer(GL_UNIFORM_BUFFER, 0);
+    glBindBufferBase(GL_UNIFORM_BUFFER, 0, scene_block.get());
+  }
+
   static DeviceInfo describe(const EglContext& egl, const GlLimits& limits, int samples) {
     DeviceInfo info;
     info.egl_display = egl.description();
@@ -197,12 +207,7 @@ void Renderer::render(const Scene& scene, const Camera& camera, const std::vecto
   validate_fish(fish, impl_->meshes, impl_->buffers);
   Impl& r = *impl_;
 
-  const float aspect = static_cast<float>(r.settings.width) / static_cast<float>(r.settings.height);
-  const SceneBlock block = make_scene_block(scene, camera, aspect);
-  glBindBuffer(GL_UNIFORM_BUFFER, r.scene_block.get());
-  glBufferSubData(GL_UNIFORM_BUFFER, 0, sizeof block, &block);
-  glBindBuffer(GL_UNIFORM_BUFFER, 0);
-  glBindBufferBase(GL_UNIFORM_BUFFER, 0, r.scene_block.get());
+  r.upload_scene_block(scene, camera);
 
   r.targets.bind_scene();
   glClearColor(scene.background.r, scene.background.g, scene.background.b, 1.0f);
@@ -233,12 +238,7 @@ void Renderer::render_ids(const Scene& scene, const Camera& camera,
     r.id_targets = std::make_unique<IdTargets>(r.settings.width, r.settings.height);
     r.fish_ids = std::make_unique<FishPass>(r.limits, FishOutput::kIds);
   }
-  const float aspect = static_cast<float>(r.settings.width) / static_cast<float>(r.settings.height);
-  const SceneBlock block = make_scene_block(scene, camera, aspect);
-  glBindBuffer(GL_UNIFORM_BUFFER, r.scene_block.get());
-  glBufferSubData(GL_UNIFORM_BUFFER, 0, sizeof block, &block);
-  glBindBuffer(GL_UNIFORM_BUFFER, 0);
-  glBindBufferBase(GL_UNIFORM_BUFFER, 0, r.scene_block.get());
+  r.upload_scene_block(scene, camera);
 
   r.id_targets->bind_and_clear();
   glEnable(GL_DEPTH_TEST);
