@@ -54,6 +54,7 @@
       __global const float* restrict derived_values, const uint derived_count,          \
       __global const float* restrict placements, FF_OUTPUT_ARGUMENTS,                   \
       const uint stride, const uint instances) {                                        \
+    FF_OUTPUT_LOCALS                                                                    \
     const size_t v = FF_FIRST_SLOT;                                                     \
     const size_t first_instance = get_global_id(1) * FF_INSTANCES_PER_ITEM;            \
     const uint group = FF_GROUP;                                                        \
@@ -121,6 +122,7 @@ FF_RIG_FUSED_KERNELS
       __global const float* restrict derived_values, const uint derived_count,          \
       __global const float* restrict placements, FF_OUTPUT_ARGUMENTS,                   \
       const uint stride, const uint instances) {                                        \
+    FF_OUTPUT_LOCALS                                                                    \
     const size_t v = FF_FIRST_SLOT;                                                     \
     const size_t first_instance = get_global_id(1) * FF_INSTANCES_PER_ITEM;            \
     const uint group = FF_GROUP;                                                        \

@@ -41,6 +41,7 @@ __kernel void single_bend(__global const float* restrict rest_positions,
                           const float4 scaled_axis_x, const float4 scaled_axis_y,
                           const float4 scaled_axis_z,
                           const float4 axis_x, const float4 axis_y, const float4 axis_z) {
+  FF_OUTPUT_LOCALS
   const size_t v = FF_FIRST_SLOT;
   const size_t first_instance = get_global_id(1) * FF_INSTANCES_PER_ITEM;
   const float4 no_offset = (float4)(0.0f);

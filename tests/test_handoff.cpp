@@ -232,6 +232,60 @@ TEST(Handoff, InterleavedAndSeparateArraysHoldTheSameData) {
   EXPECT_EQ(a.tangents, b.tangents);
 }
 
+// A vertex struct that its float32x3 attributes fill (tangent, position, normal: 36
+// bytes; 24 without tangents), written through local memory (as GPUs do,
+// ClOptions::struct_stores) and directly, holds exactly what the default planes hold:
+// the single-bend kernel, and the rig's fused and multi-pass kernels.
+TEST(Handoff, StagedVertexStructsHoldWhatThePlanesHold) {
+  const Mesh blub = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
+  const RiggedMesh bend = RiggedMesh::single_bend(blub, find_body_frame(blub), BendMode::kExact);
+  const RigParameters rig_values = frame_values(0.9);
+  RigParameters bend_values(bend, kInstances);
+  for (std::size_t i = 0; i < kInstances; ++i) bend_values.set(i, "m", 0.2f * float(i + 1));
+  struct Case {
+    const RiggedMesh* model;
+    const RigParameters* values;
+    RigPath path;
+  };
+  for (const Case& c : {Case{&bend, &bend_values, RigPath::kAuto},
+                        Case{&barramundi(), &rig_values, RigPath::kFused},
+                        Case{&barramundi(), &rig_values, RigPath::kPasses}}) {
+    for (const auto stores : {ClOptions::StructStores::kStaged, ClOptions::StructStores::kDirect}) {
+      SCOPED_TRACE(testing::Message() << "path " << to_string(c.path) << ", staged "
+                                      << (stores == ClOptions::StructStores::kStaged));
+      ClOptions options;
+      options.struct_stores = stores;
+      ClDeformer d(test::shared_context(), *c.model, options);
+      const bool tangents = c.model->mesh().has_tangents();
+      const std::size_t slots = d.output_vertices(VertexOrder::kSlots);
+      const std::size_t stride = tangents ? 36 : 24;
+      const std::size_t first = tangents ? 12 : 0;
+      OutputLayout l;
+      l.positions = AttributeLayout::packed(AttributeFormat::kFloat32x3, slots, stride, first);
+      l.normals = AttributeLayout::packed(AttributeFormat::kFloat32x3, slots, stride, first + 12);
+      l.tangents = tangents;
+      l.tangent_layout = AttributeLayout::packed(AttributeFormat::kFloat32x3, slots, stride, 0);
+      cl::Buffer one = device_buffer(OutputLayout::required_bytes(l.normals, kInstances, slots));
+      DeviceBatch structs = d.bind(kInstances, l, {one, one, one, {}});
+      DeviceBatch planes = d.allocate(kInstances);
+      ClJob job;
+      job.model = c.model;
+      job.parameters = c.values->view();
+      job.normals = NormalMode::kJacobian;
+      job.path = c.path;
+      job.outputs = &structs;
+      d.enqueue(job);
+      const DeformedBatch<float> got = d.read(structs);
+      job.outputs = &planes;
+      d.enqueue(job);
+      const DeformedBatch<float> want = d.read(planes);
+      EXPECT_EQ(got.positions, want.positions);
+      EXPECT_EQ(got.normals, want.normals);
+      EXPECT_EQ(got.tangents, want.tangents);
+    }
+  }
+}
+
 TEST(Handoff, MeshOrderWritesEveryVertexOnceAndNoPadding) {
   const RigParameters values = frame_values(0.6);
   const DeformedBatch<float> want = planes_of(values);

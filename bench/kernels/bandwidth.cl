@@ -20,6 +20,7 @@
 
 __kernel void write_outputs(FF_OUTPUT_ARGUMENTS, const uint vertices, const uint instances,
                             const float value) {
+  FF_OUTPUT_LOCALS
   const size_t v = FF_FIRST_SLOT;
   const size_t first_instance = get_global_id(1) * FF_INSTANCES_PER_ITEM;
   for (uint k = 0; k < FF_INSTANCES_PER_ITEM; ++k) {
@@ -35,10 +36,17 @@ __kernel void write_outputs(FF_OUTPUT_ARGUMENTS, const uint vertices, const uint
 #endif
     /* Every output as the deformation kernels store it (common/outputs.cl); in mesh
      * order the vertices past the mesh's are padding and write nothing. */
+#if FF_STAGED_STRUCT
+    {
+      const Vec3 p = filler, n = filler, t = filler;
+      FF_STORE_OUTPUTS(instance, v)
+    }
+#else
     if (!FF_MESH_ORDER || v < vertices) {
       store_outputs(out_positions, out_normals, out_tangents, out_previous, out_layout, instance,
                     v, filler, filler, filler, 1.0f);
     }
+#endif
   }
 }
 

@@ -45,7 +45,7 @@ cl::Event enqueue_write_only(Context& context, DeviceBatch& batch, std::size_t v
   const std::string options =
       std::string("-DFF_INSTANCES_PER_ITEM=") + std::to_string(instances_per_item) +
       (values == WriteValues::kVarying ? " -DFF_VARYING_WRITES=1" : "") +
-      output_build_options(batch.outputs) +
+      output_build_options(batch.outputs) + staged_struct_options(batch, context.description().is_gpu()) +
       (lanes > 1 ? " -DFF_LANES=" + std::to_string(lanes) +
                        " -DFF_STREAMING_STORES=" + (streaming ? "1" : "0")
                  : std::string());

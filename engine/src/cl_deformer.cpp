@@ -229,7 +229,8 @@ void ClDeformer::Impl::check_buffer_sizes(const DeviceBatch& batch) {
     batch_options_ = output_build_options(slot_order) +
                      " -DFF_OUTPUT_LIMIT=" + std::to_string(model.vertex_count());
   } else {
-    batch_options_ = output_build_options(batch.outputs);
+    batch_options_ =
+        output_build_options(batch.outputs) + staged_struct_options(batch, stages_structs());
   }
   // Lanes (and their kind of store) for this batch: kernels of more than one lane for
   // FinFlex's float32 planes, the one-lane kernels for any other layout.

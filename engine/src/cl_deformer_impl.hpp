@@ -37,6 +37,12 @@ class ClDeformer::Impl {
   // are FinFlex's float32 planes: ClOptions::lanes); streaming stores for a batch.
   std::size_t lanes(NormalFormat format) const;
   std::size_t lanes(const OutputLayout& outputs) const;
+  // Whether vertex structs are written through local memory (ClOptions::struct_stores).
+  bool stages_structs() const {
+    return options.struct_stores == ClOptions::StructStores::kStaged ||
+           (options.struct_stores == ClOptions::StructStores::kAuto &&
+            context.description().is_gpu());
+  }
   bool streams_outputs(const DeviceBatch& batch) const;
 
   Context& context;

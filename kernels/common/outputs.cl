@@ -179,6 +179,53 @@ FF_INLINE void store_outputs(__global float* out_positions, __global float* out_
 #else
 #define FF_WRITES_SLOT(v, out_v) (!FF_MESH_ORDER || (out_v) != FF_NO_VERTEX)
 #endif
+#ifndef FF_STAGED_STRUCT
+#define FF_STAGED_STRUCT 0
+#endif
+
+#if FF_STAGED_STRUCT
+/* A vertex struct of float32x3 attributes that fill its stride, all in one buffer, in
+ * slot order (the host sets FF_STAGED_STRUCT on GPUs only, finflex/cl_outputs.hpp
+ * staged_struct_options: FF_STAGED_FLOATS floats a vertex, the position, normal and
+ * tangent FF_STAGED_POSITION, FF_STAGED_NORMAL and FF_STAGED_TANGENT floats into it).
+ * Stored one attribute at a time, a warp's stores would land a stride apart; instead
+ * the work-group's 64 structs are put together in local memory and written as the one
+ * contiguous run they are, a float per work-item and step (coalesced). Every
+ * work-item of a group stores the same instances (the groups are one instance row
+ * high), so all of them reach the barriers. */
+#define FF_STAGED_GROUP 64 /* ClDeformer::kGroupSize */
+#define FF_OUTPUT_LOCALS __local float staged_structs[FF_STAGED_GROUP * FF_STAGED_FLOATS];
+
+FF_INLINE void put_staged(__local float* at, Vec3 value) {
+  at[0] = value.x;
+  at[1] = value.y;
+  at[2] = value.z;
+}
+
+FF_INLINE void store_staged(__global float* out, __local float* staged, ulong16 out_layout,
+                            size_t instance, size_t v, Vec3 p, Vec3 n, Vec3 t) {
+  const uint lid = (uint)get_local_id(0);
+  __local float* mine = staged + lid * FF_STAGED_FLOATS;
+  put_staged(mine + FF_STAGED_POSITION, p);
+  put_staged(mine + FF_STAGED_NORMAL, n);
+#if FF_TANGENTS
+  put_staged(mine + FF_STAGED_TANGENT, t);
+#endif
+  barrier(CLK_LOCAL_MEM_FENCE);
+  /* The group's first struct: the positions' offset less the position's place in it. */
+  const size_t first = (size_t)(out_layout.s0 - FF_STAGED_POSITION + instance * out_layout.s2) +
+                       (v - lid) * FF_STAGED_FLOATS;
+  for (uint k = 0; k < FF_STAGED_FLOATS; ++k) {
+    const uint i = k * FF_STAGED_GROUP + lid;
+    out[first + i] = staged[i];
+  }
+  barrier(CLK_LOCAL_MEM_FENCE); /* the next instance reuses the staging */
+}
+
+#define FF_STORE_OUTPUTS(instance, v) \
+  { store_staged(out_positions, staged_structs, out_layout, instance, v, p, n, t); }
+#else
+#define FF_OUTPUT_LOCALS
 #define FF_STORE_OUTPUTS(instance, v)                                                         \
   {                                                                                           \
     const uint out_v = FF_OUTPUT_VERTEX(v);                                                   \
@@ -187,6 +234,7 @@ FF_INLINE void store_outputs(__global float* out_positions, __global float* out_
                     instance, out_v, p, n, t, FF_REST_TANGENT_W(v));                           \
     }                                                                                         \
   }
+#endif
 
 #endif
 

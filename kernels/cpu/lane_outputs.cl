@@ -37,6 +37,7 @@ FF_INLINE void store_outputs(__global float* out_positions, __global float* out_
 #endif
 }
 
+#define FF_OUTPUT_LOCALS
 #define FF_STORE_OUTPUTS(instance, v)                                                      \
   {                                                                                        \
     store_outputs(out_positions, out_normals, out_tangents, out_previous, out_layout,      \

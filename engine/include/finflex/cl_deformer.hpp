@@ -106,6 +106,12 @@ struct ClOptions {
   std::size_t lanes = 0;
   // With more than one lane: how the outputs are stored.
   OutputStores stores = OutputStores::kAuto;
+  // A vertex struct of float32x3 attributes that fill it, in one buffer and slot order
+  // (finflex/cl_outputs.hpp staged_struct_options), is written through local memory as
+  // contiguous runs: true on GPUs (coalesced stores), false on CPUs (PoCL writes it
+  // faster directly). Only a layout of that kind is affected.
+  enum class StructStores { kAuto, kStaged, kDirect };
+  StructStores struct_stores = StructStores::kAuto;
 };
 
 class FINFLEX_API ClDeformer {

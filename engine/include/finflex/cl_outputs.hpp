@@ -9,6 +9,8 @@
 
 #include <CL/opencl.hpp>
 
+#include "finflex/context.hpp"
+#include "finflex/device_batch.hpp"
 #include "finflex/export.hpp"
 #include "finflex/output_layout.hpp"
 
@@ -17,6 +19,14 @@ namespace finflex {
 // -D options of kernels/common/outputs.cl for `layout` (FF_POSITION_FORMAT, ...,
 // FF_TANGENTS, FF_PREVIOUS, FF_MESH_ORDER).
 FINFLEX_API std::string output_build_options(const OutputLayout& layout);
+
+// For a batch whose positions, normals (and tangents) are float32x3 attributes of one
+// vertex struct that they fill (one buffer, one vertex stride of 24 or 36 bytes, slot
+// order, no previous positions): the options (FF_STAGED_STRUCT, ...) with which the
+// kernels put a work-group's structs together in local memory and write them as one
+// contiguous run. Empty for any other layout, or when `staged` is false. Append to
+// output_build_options(batch.outputs). FinFlex stages on GPUs (ClOptions::struct_stores).
+FINFLEX_API std::string staged_struct_options(const DeviceBatch& batch, bool staged);
 
 // The `out_layout` argument; `previous_valid`: the positions' place holds the previous
 // frame (DeviceBatch::frames_written > 0).
