@@ -144,13 +144,16 @@ std::size_t ClDeformer::Impl::per_item(NormalFormat format) const {
 }
 
 // Normals of fewer than 12 bytes (16-bit and octahedral formats) take the work-item
-// shape of half normals. Packed positions (a vertex struct or separate arrays) take one
-// instance per work-item on GPUs: a warp's strided stores then stay within one
-// instance's vertices (measured on the H100, 4,000 fish: interleaved bend 0.64 ms at
-// one, 0.76 at two; docs/handoff.md).
+// shape of half normals. The single-bend kernel writing packed positions (a vertex
+// struct or separate arrays) that are not staged through local memory (stages_structs,
+// detail::fills_vertex_struct) takes one instance per work-item on GPUs: a warp's
+// strided stores then stay within one instance's vertices. Measured on the H100, 4,000
+// fish (docs/handoff.md): the bend's octahedral struct 0.41 ms at one, 0.44 at two; the
+// rig's kernels are faster at their usual four (0.32 against 0.42).
 std::size_t ClDeformer::Impl::per_item(const OutputLayout& outputs) const {
-  if (options.instances_per_item == 0 && context.description().is_gpu() &&
-      outputs.positions.arrangement == Arrangement::kPacked) {
+  const bool staged = stages_structs() && detail::fills_vertex_struct(outputs);
+  if (options.instances_per_item == 0 && context.description().is_gpu() && single_bend &&
+      outputs.positions.arrangement == Arrangement::kPacked && !staged) {
     return 1;
   }
   return per_item(format_bytes(outputs.normals.format) < 12 ? NormalFormat::kHalf

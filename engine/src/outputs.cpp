@@ -40,33 +40,41 @@ std::string output_build_options(const OutputLayout& layout) {
          " -DFF_MESH_ORDER=" + (layout.order == VertexOrder::kMesh ? "1" : "0");
 }
 
-std::string staged_struct_options(const DeviceBatch& batch, bool staged) {
-  const OutputLayout& l = batch.outputs;
-  if (!staged || l.order != VertexOrder::kSlots || l.previous_positions) return "";
-  struct Member {
-    const AttributeLayout* layout;
-    cl_mem buffer;
-  };
-  std::vector<Member> members = {{&l.positions, batch.positions()}, {&l.normals, batch.normals()}};
-  if (l.tangents) members.push_back({&l.tangent_layout, batch.tangents()});
+namespace detail {
+
+bool fills_vertex_struct(const OutputLayout& l) {
+  if (l.order != VertexOrder::kSlots || l.previous_positions) return false;
+  std::vector<const AttributeLayout*> members = {&l.positions, &l.normals};
+  if (l.tangents) members.push_back(&l.tangent_layout);
   const std::size_t stride = l.positions.vertex_stride;
-  if (stride != 12 * members.size()) return "";  // the attributes must fill the struct
+  if (stride != 12 * members.size()) return false;  // the attributes must fill the struct
   std::size_t start = l.positions.offset;
-  for (const Member& m : members) {
-    const AttributeLayout& a = *m.layout;
-    if (a.arrangement != Arrangement::kPacked || a.format != AttributeFormat::kFloat32x3 ||
-        a.vertex_stride != stride || a.instance_stride != l.positions.instance_stride ||
-        m.buffer != batch.positions()) {
-      return "";
+  for (const AttributeLayout* a : members) {
+    if (a->arrangement != Arrangement::kPacked || a->format != AttributeFormat::kFloat32x3 ||
+        a->vertex_stride != stride || a->instance_stride != l.positions.instance_stride) {
+      return false;
     }
-    start = std::min(start, a.offset);
+    start = std::min(start, a->offset);
   }
   // validate_output_layout keeps the members apart, so at these offsets they tile it.
-  for (const Member& m : members) {
-    if (m.layout->offset - start >= stride) return "";
+  for (const AttributeLayout* a : members) {
+    if (a->offset - start >= stride) return false;
   }
+  return true;
+}
+
+}  // namespace detail
+
+std::string staged_struct_options(const DeviceBatch& batch, bool staged) {
+  const OutputLayout& l = batch.outputs;
+  if (!staged || !detail::fills_vertex_struct(l)) return "";
+  const bool one_buffer = batch.normals() == batch.positions() &&
+                          (!l.tangents || batch.tangents() == batch.positions());
+  if (!one_buffer) return "";
+  std::size_t start = std::min(l.positions.offset, l.normals.offset);
+  if (l.tangents) start = std::min(start, l.tangent_layout.offset);
   auto floats_in = [&](const AttributeLayout& a) { return std::to_string((a.offset - start) / 4); };
-  return " -DFF_STAGED_STRUCT=1 -DFF_STAGED_FLOATS=" + std::to_string(stride / 4) +
+  return " -DFF_STAGED_STRUCT=1 -DFF_STAGED_FLOATS=" + std::to_string(l.positions.vertex_stride / 4) +
          " -DFF_STAGED_POSITION=" + floats_in(l.positions) +
          " -DFF_STAGED_NORMAL=" + floats_in(l.normals) +
          " -DFF_STAGED_TANGENT=" + (l.tangents ? floats_in(l.tangent_layout) : std::string("0"));

@@ -23,6 +23,11 @@ OutputLayout planes_outputs(const BatchLayout& layout);
 // kernels of more than one lane store (kernels/cpu/lane_outputs.cl).
 bool writes_default_planes(const OutputLayout& outputs, const BatchLayout& counts);
 
+// Whether positions, normals (and tangents) are float32x3 members that fill one vertex
+// struct (the same vertex and instance strides, 12 bytes a member), in slot order and
+// without previous positions: what staged_struct_options stages, given one buffer.
+bool fills_vertex_struct(const OutputLayout& outputs);
+
 // Checks that `batch` holds `counts.instance_count` instances of `vertices` vertices
 // (slots or mesh vertices, as its order says) in its layout, in buffers large enough,
 // tangents only for a mesh that has them. kInvalidArgument naming `field` (e.g.
