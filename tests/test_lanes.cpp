@@ -207,14 +207,8 @@ TEST(Lanes, PlacedInstancesMatchOneLaneAndTheReference) {
     const RigParameters values = swimming_values(*model, where.size());
     ClDeformer one_lane(test::shared_context(), *model, with_lanes(1));
     for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {
-      ReferenceJob reference_job;
-      DeformedBatch<double> reference;
-      reference_job.model = model;
-      reference_job.parameters = values.view();
-      reference_job.normals = normals;
-      reference_job.placements = where.data();
-      reference_job.outputs = &reference;
-      run_reference(reference_job);
+      const DeformedBatch<double> reference =
+          test::reference_of(*model, values, normals, where.data());
       auto placed_run = [&](ClDeformer& deformer) {
         DeviceBatch batch = deformer.allocate(where.size());
         ClJob job;

@@ -101,14 +101,8 @@ TEST(Placement, DeviceMatchesTheReferenceFromHostAndDeviceBuffers) {
       job.outputs = &batch;
       deformer.enqueue(job);
       const DeformedBatch<float> from_host = deformer.read(batch);
-      ReferenceJob reference_job;
-      DeformedBatch<double> reference;
-      reference_job.model = model;
-      reference_job.parameters = values.view();
-      reference_job.normals = normals;
-      reference_job.placements = where.data();
-      reference_job.outputs = &reference;
-      run_reference(reference_job);
+      const DeformedBatch<double> reference =
+          test::reference_of(*model, values, normals, where.data());
       const AccuracyReport report =
           compare_to_reference(*model, values.view(), normals, from_host, reference, where.data());
       SCOPED_TRACE(std::string(model == &bend ? "bend " : "rig ") + to_string(normals));

@@ -10,6 +10,19 @@
 
 namespace finflex::test {
 
+DeformedBatch<double> reference_of(const RiggedMesh& model, const RigParameters& values,
+                                   NormalMode normals, const Placement* placements) {
+  ReferenceJob job;
+  DeformedBatch<double> reference;
+  job.model = &model;
+  job.parameters = values.view();
+  job.normals = normals;
+  job.placements = placements;
+  job.outputs = &reference;
+  run_reference(job);
+  return reference;
+}
+
 RigParameters values_of(const RiggedMesh& model, const std::vector<float>& rows) {
   const std::size_t per = std::max<std::size_t>(model.values_per_instance(), 1);
   RigParameters values(model, rows.size() / per);

@@ -14,6 +14,11 @@ namespace finflex::test {
 // each, packed): e.g. {m0, m1, m2} for the whole-body bend.
 RigParameters values_of(const RiggedMesh& model, const std::vector<float>& rows);
 
+// The double-precision reference of `values` (with world `placements`, one per
+// instance, or none).
+DeformedBatch<double> reference_of(const RiggedMesh& model, const RigParameters& values,
+                                   NormalMode normals, const Placement* placements = nullptr);
+
 // Enqueues `values` on `batch` and reads the batch back.
 DeformedBatch<float> run_on_device(ClDeformer& deformer, DeviceBatch& batch,
                                    const RigParameters& values, NormalMode normals,
