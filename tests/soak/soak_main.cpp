@@ -2,9 +2,12 @@
 // run forever: resident memory measured at intervals stays flat after a warm-up,
 // and outputs a period apart (identical inputs) are bit-identical on the device.
 //
-//   finflex_soak --frames 100000 [--species MESH RIG INSTANCES]... [--period P]
+//   finflex_soak --frames 100000 [--species MESH RIG INSTANCES]... [--tank] [--period P]
 //                [--digest-every D] [--sample-every S] [--max-growth-mb M]
 //                [--normals rotate|jacobian] [--path auto|fused|passes] [--device NAME]
+//
+// --tank: the species (swim rigs) swim in the tank (tank_scene.hpp) instead of being
+// deformed as a rig batch; INSTANCES are their fish.
 //
 // Prints a line per memory sample and a JSON summary; exit 0 when memory stayed
 // within --max-growth-mb of its level after the warm-up (the first tenth of the
@@ -20,6 +23,7 @@
 #include "finflex/finflex.hpp"
 #include "resident_memory.hpp"
 #include "soak_scene.hpp"
+#include "tank_scene.hpp"
 
 namespace finflex::soak {
 namespace {
@@ -31,6 +35,7 @@ struct Options {
   std::size_t sample_every = 5000;
   double max_growth_mb = 16.0;
   std::vector<RigSpecies> species;
+  bool tank = false;
   std::string normals = "jacobian";
   std::string path = "auto";
   std::string device;
@@ -72,6 +77,8 @@ Options parse(int argc, char** argv) {
       species.rig = next(k);
       species.instances = count(next(k), "--species instances");
       options.species.push_back(species);
+    } else if (option == "--tank") {
+      options.tank = true;
     } else if (option == "--normals") {
       options.normals = next(k);
     } else if (option == "--path") {
@@ -93,8 +100,10 @@ double mib(std::size_t bytes) { return double(bytes) / (1024.0 * 1024.0); }
 
 int run(const Options& options) {
   Context context(options.device);
-  const auto scene = make_rig_batch_scene(context, options.species, options.period,
-                                          parse_normal_mode(options.normals, "--normals"),
+  const NormalMode normals = parse_normal_mode(options.normals, "--normals");
+  const auto scene =
+      options.tank ? make_tank_scene(context, options.species, options.period, normals)
+                   : make_rig_batch_scene(context, options.species, options.period, normals,
                                           parse_rig_path(options.path, "--path"));
   std::printf("soak: %s on %s, %zu frames, period %zu\n", scene->describe().c_str(),
               context.description().device_name.c_str(), options.frames, options.period);

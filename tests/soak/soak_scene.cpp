@@ -3,8 +3,6 @@
 #include <cmath>
 
 namespace finflex::soak {
-namespace {
-
 std::uint64_t fnv1a(std::uint64_t hash, const void* data, std::size_t bytes) {
   const auto* p = static_cast<const unsigned char*>(data);
   for (std::size_t k = 0; k < bytes; ++k) {
@@ -13,6 +11,8 @@ std::uint64_t fnv1a(std::uint64_t hash, const void* data, std::size_t bytes) {
   }
   return hash;
 }
+
+namespace {
 
 class RigBatchScene final : public SoakScene {
  public:
@@ -52,7 +52,7 @@ class RigBatchScene final : public SoakScene {
   }
 
   std::uint64_t digest() override {
-    std::uint64_t hash = 14695981039346656037ull;
+    std::uint64_t hash = kFnvOffset;
     for (std::size_t e = 0; e < frame_.size(); ++e) {
       const DeformedBatch<float> out = deformers_[e]->read(frame_.batch(e));
       hash = fnv1a(hash, out.positions.data(), out.positions.size() * sizeof(float));

@@ -25,6 +25,10 @@ class SoakScene {
   virtual std::uint64_t digest() = 0;
 };
 
+// FNV-1a (64 bits) of `bytes` bytes, continuing `hash` (start with kFnvOffset).
+constexpr std::uint64_t kFnvOffset = 14695981039346656037ull;
+std::uint64_t fnv1a(std::uint64_t hash, const void* data, std::size_t bytes);
+
 struct RigSpecies {
   std::string mesh;  // a mesh file
   std::string rig;   // its rig file
