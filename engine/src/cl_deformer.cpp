@@ -63,8 +63,9 @@ ClDeformer::Impl::Impl(Context& context_in, const RiggedMesh& model_in, const Cl
   for (std::size_t slot = 0; slot < slot_count_; ++slot) {
     const std::int64_t vertex = slots.vertex_of_slot[slot];
     vertex_of_slot[slot] = vertex < 0 ? 0xffffffffu : static_cast<std::uint32_t>(vertex);
-    slots_in_mesh_order_ = slots_in_mesh_order_ &&
-                           (slot < model.vertex_count() ? vertex == std::int64_t(slot) : vertex < 0);
+    slots_in_mesh_order_ =
+        slots_in_mesh_order_ &&
+        (slot < model.vertex_count() ? vertex == std::int64_t(slot) : vertex < 0);
   }
   vertex_of_slot_ = detail::make_buffer(cl_context, CL_MEM_READ_ONLY,
                                         slot_count_ * sizeof(std::uint32_t), vertex_of_slot.data());
@@ -181,8 +182,8 @@ bool ClDeformer::Impl::streams_outputs(const DeviceBatch& batch) const {
   if (lanes(batch.outputs) == 1) return false;
   // FinFlex's float32 planes: 12 bytes per attribute, vertex slot and instance.
   const BatchLayout& counts = batch.layout;
-  const std::size_t bytes = counts.plane_stride * counts.instance_count * 12 *
-                            (batch.outputs.tangents ? 3 : 2);
+  const std::size_t bytes =
+      counts.plane_stride * counts.instance_count * 12 * (batch.outputs.tangents ? 3 : 2);
   return detail::device_streaming_stores(context.description(), options.stores, bytes);
 }
 
@@ -261,9 +262,9 @@ void ClDeformer::Impl::check(const ClJob& job) const {
 
 ClDeformer::Impl::BoundKernel& ClDeformer::Impl::kernel(std::size_t index, const ClJob& job) {
   const bool placed = job.placements != nullptr || job.placement_buffer != nullptr;
-  const detail::KernelVariant variant{index,           job.normals, batch_options_,
-                                      per_item(job.outputs->outputs), placed, batch_lanes_,
-                                      batch_streams_};
+  const detail::KernelVariant variant{
+      index,  job.normals,  batch_options_, per_item(job.outputs->outputs),
+      placed, batch_lanes_, batch_streams_};
   auto found = kernels_.find(variant);
   if (found == kernels_.end()) {
     const std::size_t fused = fused_launches_.size();
@@ -307,8 +308,8 @@ void ClDeformer::Impl::prepare_derived(const ClJob& job, const FrameInputs& inpu
     // From a one-lane build of the program the frame's kernels come from (the same
     // build when they have one lane): it works on instances, not on vertex slots.
     const bool placed = job.placements != nullptr || job.placement_buffer != nullptr;
-    const detail::KernelVariant variant{0, job.normals, batch_options_,
-                                        per_item(job.outputs->outputs), placed, 1};
+    const detail::KernelVariant variant{
+        0, job.normals, batch_options_, per_item(job.outputs->outputs), placed, 1};
     prepare_ = context.kernel("rig_prepare", program_, variant.options());
   }
   cl_uint arg = 0;
@@ -511,10 +512,18 @@ BatchLayout ClDeformer::layout(std::size_t instances, NormalFormat format) const
   return impl_->layout(instances, format);
 }
 
-DeviceBatch ClDeformer::allocate(std::size_t instances, NormalFormat format) const {
-  DeviceBatch batch = detail::allocate_batch(impl_->context, layout(instances, format));
-  batch.model_id = impl_->model.id();
+namespace {
+
+// A batch made for `model`: only its jobs may write it.
+DeviceBatch made_for(const RiggedMesh& model, DeviceBatch batch) {
+  batch.model_id = model.id();
   return batch;
+}
+
+}  // namespace
+
+DeviceBatch ClDeformer::allocate(std::size_t instances, NormalFormat format) const {
+  return made_for(impl_->model, detail::allocate_batch(impl_->context, layout(instances, format)));
 }
 
 std::size_t ClDeformer::output_vertices(VertexOrder order) const {
@@ -526,29 +535,21 @@ OutputLayout ClDeformer::planes_layout(std::size_t instances, NormalFormat forma
 }
 
 DeviceBatch ClDeformer::allocate(std::size_t instances, const OutputLayout& outputs) const {
-  DeviceBatch batch =
-      detail::allocate_outputs(impl_->context, layout(instances, NormalFormat::kFloat32), outputs,
-                               output_vertices(outputs.order));
-  batch.model_id = impl_->model.id();
-  return batch;
+  return made_for(impl_->model, detail::allocate_outputs(impl_->context, layout(instances), outputs,
+                                                         output_vertices(outputs.order)));
 }
 
 DeviceBatch ClDeformer::bind(std::size_t instances, const OutputLayout& outputs,
                              const OutputBuffers& buffers) const {
-  DeviceBatch batch =
-      detail::bind_outputs(impl_->context, layout(instances, NormalFormat::kFloat32), outputs,
-                           buffers, output_vertices(outputs.order));
-  batch.model_id = impl_->model.id();
-  return batch;
+  return made_for(impl_->model, detail::bind_outputs(impl_->context, layout(instances), outputs,
+                                                     buffers, output_vertices(outputs.order)));
 }
 
 DeviceBatch ClDeformer::bind_host(std::size_t instances, const OutputLayout& outputs,
                                   const HostOutputs& host) const {
-  DeviceBatch batch =
-      detail::bind_host_outputs(impl_->context, layout(instances, NormalFormat::kFloat32), outputs,
-                                host, output_vertices(outputs.order));
-  batch.model_id = impl_->model.id();
-  return batch;
+  return made_for(impl_->model,
+                  detail::bind_host_outputs(impl_->context, layout(instances), outputs, host,
+                                            output_vertices(outputs.order)));
 }
 
 void ClDeformer::map_host(DeviceBatch& batch) { detail::map_host_outputs(impl_->context, batch); }

@@ -124,13 +124,7 @@ void ApngWriter::write_chunk(const char* type, const std::uint8_t* data, std::si
 }
 
 void ApngWriter::add_frame(const Image& frame) {
-  frame.validate("frame");
-  if (frame.width != options_.width || frame.height != options_.height) {
-    throw RenderError(ErrorCode::kInvalidArgument, "frame",
-                      "frame: " + std::to_string(frame.width) + "x" + std::to_string(frame.height) +
-                          ", the video is " + std::to_string(options_.width) + "x" +
-                          std::to_string(options_.height));
-  }
+  options_.check_frame(frame);
   if (finished_) throw RenderError(ErrorCode::kInvalidArgument, "frame", "the video is finished");
   filter_rows(frame, filtered_);
   uLongf size = compressBound(static_cast<uLong>(filtered_.size()));

@@ -136,13 +136,7 @@ void FfmpegWriter::fail(const std::string& what) {
 }
 
 void FfmpegWriter::add_frame(const Image& frame) {
-  frame.validate("frame");
-  if (frame.width != options_.width || frame.height != options_.height) {
-    throw RenderError(ErrorCode::kInvalidArgument, "frame",
-                      "frame: " + std::to_string(frame.width) + "x" + std::to_string(frame.height) +
-                          ", the video is " + std::to_string(options_.width) + "x" +
-                          std::to_string(options_.height));
-  }
+  options_.check_frame(frame);
   if (input_ < 0) throw RenderError(ErrorCode::kInvalidArgument, "frame", "the video is finished");
   const auto* next = frame.rgb.data();
   std::size_t left = frame.rgb.size();

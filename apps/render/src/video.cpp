@@ -40,6 +40,15 @@ void VideoOptions::validate() const {
   }
 }
 
+void VideoOptions::check_frame(const Image& frame) const {
+  frame.validate("frame");
+  if (frame.width != width || frame.height != height) {
+    throw RenderError(ErrorCode::kInvalidArgument, "frame",
+                      "frame: " + std::to_string(frame.width) + "x" + std::to_string(frame.height) +
+                          ", the video is " + std::to_string(width) + "x" + std::to_string(height));
+  }
+}
+
 bool ffmpeg_available() { return detail::on_path("ffmpeg"); }
 
 std::unique_ptr<VideoWriter> open_video(const std::string& path, const VideoOptions& options) {

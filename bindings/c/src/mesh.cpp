@@ -18,6 +18,16 @@ void check_count(std::size_t count, std::size_t items, std::size_t per_item, con
   }
 }
 
+// Copies `items` items of three values each from `source` to the caller's `out` of
+// `count` values.
+template <typename Value>
+void copy_out(const Value* source, std::size_t items, Value* out, std::size_t count,
+              const char* field, const char* what) {
+  finflex::c::require(out, field);
+  check_count(count, items, 3, what);
+  if (count > 0) std::memcpy(out, source, count * sizeof(Value));
+}
+
 void to_c(const finflex::BodyFrame& frame, finflex_body_frame* out) {
   for (int c = 0; c < 3; ++c) {
     out->origin[c] = frame.origin[c];
@@ -86,27 +96,23 @@ size_t finflex_mesh_triangle_count(const finflex_mesh* mesh) {
 finflex_status finflex_mesh_get_positions(finflex_mesh* mesh, float* positions, size_t count) {
   return guarded(slot_of(mesh), [&] {
     const finflex::Mesh& m = require(mesh, "mesh")->mesh;
-    require(positions, "positions");
-    check_count(count, m.vertex_count(), 3, "vertices");
-    std::memcpy(positions, m.positions.data(), count * sizeof(float));
+    copy_out(reinterpret_cast<const float*>(m.positions.data()), m.vertex_count(), positions, count,
+             "positions", "vertices");
   });
 }
 
 finflex_status finflex_mesh_get_normals(finflex_mesh* mesh, float* normals, size_t count) {
   return guarded(slot_of(mesh), [&] {
     const finflex::Mesh& m = require(mesh, "mesh")->mesh;
-    require(normals, "normals");
-    check_count(count, m.vertex_count(), 3, "vertices");
-    std::memcpy(normals, m.normals.data(), count * sizeof(float));
+    copy_out(reinterpret_cast<const float*>(m.normals.data()), m.vertex_count(), normals, count,
+             "normals", "vertices");
   });
 }
 
 finflex_status finflex_mesh_get_indices(finflex_mesh* mesh, uint32_t* indices, size_t count) {
   return guarded(slot_of(mesh), [&] {
     const finflex::Mesh& m = require(mesh, "mesh")->mesh;
-    require(indices, "indices");
-    check_count(count, m.triangle_count(), 3, "triangles");
-    std::memcpy(indices, m.indices.data(), count * sizeof(std::uint32_t));
+    copy_out(m.indices.data(), m.triangle_count(), indices, count, "indices", "triangles");
   });
 }
 

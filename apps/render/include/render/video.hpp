@@ -41,6 +41,9 @@ struct VideoOptions {
 
   // Throws RenderError (kInvalidArgument) naming the field ("video.fps", ...).
   void validate() const;
+  // Checks a frame for a video of these options: a valid image of width x height
+  // (kInvalidArgument naming "frame" otherwise).
+  void check_frame(const Image& frame) const;
 };
 
 class VideoWriter {
