@@ -1,6 +1,7 @@
 #include "outputs.hpp"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstdint>
@@ -44,12 +45,14 @@ namespace detail {
 
 bool fills_vertex_struct(const OutputLayout& l) {
   if (l.order != VertexOrder::kSlots || l.previous_positions) return false;
-  std::vector<const AttributeLayout*> members = {&l.positions, &l.normals};
-  if (l.tangents) members.push_back(&l.tangent_layout);
+  // No allocation: ClDeformer asks this every frame (its work-item shape).
+  const std::array<const AttributeLayout*, 3> all = {&l.positions, &l.normals, &l.tangent_layout};
+  const std::size_t count = l.tangents ? 3 : 2;
   const std::size_t stride = l.positions.vertex_stride;
-  if (stride != 12 * members.size()) return false;  // the attributes must fill the struct
+  if (stride != 12 * count) return false;  // the attributes must fill the struct
   std::size_t start = l.positions.offset;
-  for (const AttributeLayout* a : members) {
+  for (std::size_t k = 0; k < count; ++k) {
+    const AttributeLayout* a = all[k];
     if (a->arrangement != Arrangement::kPacked || a->format != AttributeFormat::kFloat32x3 ||
         a->vertex_stride != stride || a->instance_stride != l.positions.instance_stride) {
       return false;
@@ -57,8 +60,8 @@ bool fills_vertex_struct(const OutputLayout& l) {
     start = std::min(start, a->offset);
   }
   // validate_output_layout keeps the members apart, so at these offsets they tile it.
-  for (const AttributeLayout* a : members) {
-    if (a->offset - start >= stride) return false;
+  for (std::size_t k = 0; k < count; ++k) {
+    if (all[k]->offset - start >= stride) return false;
   }
   return true;
 }
