@@ -140,16 +140,20 @@ FF_RIG_PASS_KERNELS
 
 /* Derived values (DeformerType::derived_count, e.g. a spine's running integrals):
  * kernel rig_prepare writes them from every instance's values before the deformation
- * kernels run, one work-item per instance, the stages that have them listed in the
- * generated FF_RIG_PREPARE (calls "<prepare function>(values + <offset>, derived +
- * <offset>, stages + <k>);"). Launched only when the rig has such stages, always from
- * the one-lane build of the program (it works on an instance, not on vertices). */
+ * kernels run, one work-group of FF_PREPARE_GROUP_SIZE work-items per instance (a
+ * spine's table is a running sum: its samples are shared out and summed by a scan in
+ * local memory), the stages that have them listed in the generated FF_RIG_PREPARE
+ * (calls "<prepare function>(values + <offset>, derived + <offset>, stages + <k>,
+ * scratch);", every work-item of the group). Launched only when the rig has such
+ * stages, always from the one-lane build of the program (it works on instances, not
+ * on vertices). */
 #if FF_LANES == 1
-__kernel void rig_prepare(__global const float* restrict params, const uint param_count,
-                          __constant const float* stages, __global float* restrict derived_values,
-                          const uint derived_count, const uint instances) {
-  const size_t instance = get_global_id(0);
-  if (instance >= instances) return;
+__kernel __attribute__((reqd_work_group_size(FF_PREPARE_GROUP_SIZE, 1, 1))) void rig_prepare(
+    __global const float* restrict params, const uint param_count, __constant const float* stages,
+    __global float* restrict derived_values, const uint derived_count, const uint instances) {
+  __local float scratch[2 * FF_PREPARE_GROUP_SIZE + 2];
+  const size_t instance = get_group_id(0);
+  if (instance >= instances) return; /* the whole group: no barrier is left waiting */
   __global const float* values = params + instance * param_count;
   __global float* derived = derived_values + instance * derived_count;
   FF_RIG_PREPARE

@@ -3,6 +3,7 @@
 // angles the paper's series cannot reach, the paper's bend as the special case
 // theta = asin(2 m x)), the OpenCL kernels against the double reference on a
 // synthetic and a real fish, and fold-over refused or clamped.
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -182,6 +183,65 @@ TEST(Spine, DeviceMatchesTheReference) {
         }
       }
     }
+  }
+}
+
+// rig_prepare shares a table's samples out over a work-group of 64 (kernels/deformers/
+// spine.cl): tables smaller than the group, one sample per work-item, more than one
+// (up to the 256 allowed), and x = 0 inside the table or beyond its end.
+TEST(Spine, DeviceMatchesTheReferenceForEveryTableSize) {
+  const Mesh mesh = test::synthetic_fish(64, 32, true);
+  Mesh shifted = mesh;  // in the identity frame, x = 0 lies before the table's start
+  for (glm::vec3& p : shifted.positions) p.x += 2.0f;
+  const auto wave = [](double x) { return 0.4 * std::sin(5.0 * x + 0.3) + 0.2 * x; };
+  for (std::size_t samples : {2u, 3u, 63u, 64u, 65u, 129u, 200u, 256u}) {
+    for (const FrameSpec::Mode frame : {FrameSpec::Mode::kIdentity, FrameSpec::Mode::kAuto}) {
+      SCOPED_TRACE("samples " + std::to_string(samples));
+      const RiggedMesh model = spine_model(mesh, samples, frame);
+      const RigParameters values = angles(model, {wave, [](double x) { return -0.3 * x; }});
+      ClDeformer deformer(test::shared_context(), model);
+      const DeformedBatch<float> device =
+          test::run_on_device(deformer, values, NormalMode::kRotate, RigPath::kFused);
+      const AccuracyReport report =
+          compare_to_reference(model, values.view(), NormalMode::kRotate, device,
+                               run_reference(model, values, NormalMode::kRotate));
+      EXPECT_LE(report.max_position_ratio, 1.0) << report.max_position_error;
+      EXPECT_LE(report.max_normal_ratio, 1.0) << report.max_normal_error;
+    }
+    SCOPED_TRACE("x = 0 beyond the table, samples " + std::to_string(samples));
+    const RiggedMesh model = spine_model(shifted, samples, FrameSpec::Mode::kIdentity);
+    const RigParameters values = angles(model, {[](double x) { return 0.3 * (x - 2.0); }});
+    ClDeformer deformer(test::shared_context(), model);
+    const DeformedBatch<float> device =
+        test::run_on_device(deformer, values, NormalMode::kRotate, RigPath::kFused);
+    const AccuracyReport report =
+        compare_to_reference(model, values.view(), NormalMode::kRotate, device,
+                             run_reference(model, values, NormalMode::kRotate));
+    EXPECT_LE(report.max_position_ratio, 1.0) << report.max_position_error;
+  }
+}
+
+// A spine's component has its slots in the order of x along its frame, so the lanes of
+// a work-item (and a GPU's warp) mostly share a segment; a rig without a table keeps
+// the mesh's order.
+TEST(Spine, SlotsOfASpineComponentFollowX) {
+  const Mesh mesh = load_mesh(test::data_path("barramundi/BarramundiFish.gltf"));
+  const RiggedMesh model = spine_model(mesh, 32, FrameSpec::Mode::kAuto);
+  ClDeformer deformer(test::shared_context(), model);
+  const BodyFrame& frame = model.rig().components.front().chain.front().frame;
+  std::vector<std::pair<std::uint32_t, double>> by_slot;
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+    by_slot.emplace_back(deformer.slot_of_vertex()[v],
+                         frame.point_to_local(glm::dvec3(mesh.positions[v])).x);
+  }
+  std::sort(by_slot.begin(), by_slot.end());
+  for (std::size_t i = 1; i < by_slot.size(); ++i) {
+    ASSERT_LE(by_slot[i - 1].second, by_slot[i].second) << "slot " << by_slot[i].first;
+  }
+  const RiggedMesh bend = RiggedMesh::single_bend(mesh, find_body_frame(mesh), BendMode::kPaper);
+  ClDeformer in_mesh_order(test::shared_context(), bend);
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+    ASSERT_EQ(in_mesh_order.slot_of_vertex()[v], v);
   }
 }
 

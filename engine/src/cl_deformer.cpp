@@ -51,7 +51,7 @@ ClDeformer::Impl::Impl(Context& context_in, const RiggedMesh& model_in, const Cl
   tangents_ = model.mesh().has_tangents();
 
   const detail::SlotLayout slots =
-      detail::make_slot_layout(rig, model.vertex_count(), kWorkGroupSize);
+      detail::make_slot_layout(rig, model.mesh().positions, kWorkGroupSize);
   slot_count_ = slots.slot_count;
   slot_of_vertex = slots.slot_of_vertex;
   remapped_indices.reserve(model.mesh().indices.size());
@@ -304,6 +304,7 @@ void ClDeformer::Impl::ensure_derived(std::size_t instances) {
 void ClDeformer::Impl::prepare_derived(const ClJob& job, const FrameInputs& inputs,
                                        std::vector<cl::Event>* kernel_events) {
   const std::size_t instances = job.parameters.instance_count;
+  if (instances == 0) return;
   if (!prepare_()) {
     // From a one-lane build of the program the frame's kernels come from (the same
     // build when they have one lane): it works on instances, not on vertex slots.
@@ -320,7 +321,8 @@ void ClDeformer::Impl::prepare_derived(const ClJob& job, const FrameInputs& inpu
   set(derived_);
   set(static_cast<cl_uint>(derived_per_instance_));
   set(static_cast<cl_uint>(instances));
-  const std::size_t global = (instances + kWorkGroupSize - 1) / kWorkGroupSize * kWorkGroupSize;
+  // A work-group per instance (kernels/rig.cl; FF_PREPARE_GROUP_SIZE is kWorkGroupSize).
+  const std::size_t global = instances * kWorkGroupSize;
   cl::Event prepared;
   check_cl(context.queue().enqueueNDRangeKernel(prepare_, cl::NullRange, cl::NDRange(global),
                                                 cl::NDRange(kWorkGroupSize), nullptr,

@@ -84,6 +84,7 @@ std::vector<FoundDevice> enumerate_devices() {
       desc.extensions = devices[d].getInfo<CL_DEVICE_EXTENSIONS>();
       desc.native_float_vector_width = devices[d].getInfo<CL_DEVICE_NATIVE_VECTOR_WIDTH_FLOAT>();
       desc.global_memory_cache_bytes = devices[d].getInfo<CL_DEVICE_GLOBAL_MEM_CACHE_SIZE>();
+      desc.compute_units = devices[d].getInfo<CL_DEVICE_MAX_COMPUTE_UNITS>();
       found.push_back(f);
     }
   }

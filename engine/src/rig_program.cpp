@@ -104,15 +104,36 @@ const char* plane_set_name(PlaneSet set) {
   return "REST";
 }
 
+// The component's vertices in slot order: by x in its first stage's frame when that
+// stage reads a table along x (ties by vertex index), else as they are (ascending).
+std::vector<std::uint32_t> vertices_in_slot_order(const RigComponent& component,
+                                                  const std::vector<glm::vec3>& positions) {
+  std::vector<std::uint32_t> order = component.vertices;
+  if (component.chain.empty() || component.chain.front().deformer->derived_count == nullptr) {
+    return order;
+  }
+  const BodyFrame& frame = component.chain.front().frame;
+  std::vector<std::pair<double, std::uint32_t>> keyed;
+  keyed.reserve(order.size());
+  for (std::uint32_t v : order) {
+    keyed.emplace_back(frame.point_to_local(glm::dvec3(positions[v])).x, v);
+  }
+  std::sort(keyed.begin(), keyed.end());
+  for (std::size_t i = 0; i < keyed.size(); ++i) order[i] = keyed[i].second;
+  return order;
+}
+
 }  // namespace
 
-SlotLayout make_slot_layout(const Rig& rig, std::size_t vertex_count, std::size_t group_size) {
+SlotLayout make_slot_layout(const Rig& rig, const std::vector<glm::vec3>& positions,
+                            std::size_t group_size) {
+  const std::size_t vertex_count = positions.size();
   SlotLayout slots;
   slots.slot_of_vertex.assign(vertex_count, 0);
   slots.first_slot.push_back(0);
   for (const RigComponent& component : rig.components) {
     std::size_t slot = slots.first_slot.back();
-    for (std::uint32_t v : component.vertices)
+    for (std::uint32_t v : vertices_in_slot_order(component, positions))
       slots.slot_of_vertex[v] = static_cast<std::uint32_t>(slot++);
     slots.first_slot.push_back(round_up(slot, group_size));
   }
@@ -369,6 +390,7 @@ std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots
   const bool root_has_stages = !rig.components.front().chain.empty();
   if (!root_has_stages) out << "#define FF_ROOT_FRAME " << stage_count(rig) << "u\n";
   out << "#define FF_RIG_GROUP_COUNT " << slots.slot_count / group_size << "u\n";
+  out << "#define FF_PREPARE_GROUP_SIZE " << group_size << "\n";
   // Fused: the group's component's whole path, bottom-up; a kernel per launch, a branch
   // per run of components in it (none when the launch has one).
   for (std::size_t r = 0; r < fused.size(); ++r) {
@@ -436,7 +458,7 @@ std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots
       if (!stage.deformer->cl_prepare_function) continue;
       out << " \\\n  " << stage.deformer->cl_prepare_function << "(values + "
           << values_offset(rig, stage) << ", derived + " << derived_offset(rig, c, k)
-          << ", stages + " << stage_index(rig, c, k) << ");";
+          << ", stages + " << stage_index(rig, c, k) << ", scratch);";
     }
   }
   out << "\n";

@@ -23,8 +23,13 @@ struct SlotLayout {
 };
 
 // Components in rig order (depth-first), each padded to a multiple of group_size. A
-// one-component rig keeps the mesh's order (slot = vertex).
-SlotLayout make_slot_layout(const Rig& rig, std::size_t vertex_count, std::size_t group_size);
+// component whose first stage looks its vertices up in a table along x (a deformer
+// with derived values: the spine's segments) has its vertices sorted by x in that
+// stage's frame, so neighbouring slots read the same table entries (one load for a
+// GPU's warp or a CPU work-item's lanes); any other keeps the mesh's order, so a
+// one-component rig without such a stage has slot = vertex.
+SlotLayout make_slot_layout(const Rig& rig, const std::vector<glm::vec3>& positions,
+                            std::size_t group_size);
 
 // The rest mesh as the rig kernels read it: one instance's planes over slots (x plane,
 // y plane, z plane), each vertex in the frame of its first stage (mesh coordinates for

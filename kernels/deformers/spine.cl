@@ -36,11 +36,26 @@ FF_INLINE SecantSample spine_sample(LaneFloat x, LaneFloat z, __global const flo
   const LaneFloat position = (x - x_first) * inverse_h;
   const LaneFloat segment = clamp(floor(position), 0.0f, last - 1.0f);
 #if FF_LANES > 1
-  /* Each lane's own segment's record, gathered lane by lane (common/lanes.cl). */
+  /* Each lane's own segment's record. The slots of a spine's component are sorted by x
+   * (engine/src/rig_program.hpp, make_slot_layout), so the lanes of most work-items
+   * share one segment: its record is read once; else it is gathered lane by lane
+   * (common/lanes.cl). */
   const LaneInt record = 8 * FF_LANE_INT(segment);
-  const LaneFloat x_j = FF_GATHER(derived, record), z_j = FF_GATHER(derived + 1, record);
-  const LaneFloat sin_j = FF_GATHER(derived + 2, record), cos_j = FF_GATHER(derived + 3, record);
-  const LaneFloat slope = FF_GATHER(derived + 4, record);
+  LaneFloat x_j, z_j, sin_j, cos_j, slope;
+  if (all(record == (LaneInt)record.s0)) {
+    __global const float* shared = derived + record.s0;
+    x_j = (LaneFloat)shared[0];
+    z_j = (LaneFloat)shared[1];
+    sin_j = (LaneFloat)shared[2];
+    cos_j = (LaneFloat)shared[3];
+    slope = (LaneFloat)shared[4];
+  } else {
+    x_j = FF_GATHER(derived, record);
+    z_j = FF_GATHER(derived + 1, record);
+    sin_j = FF_GATHER(derived + 2, record);
+    cos_j = FF_GATHER(derived + 3, record);
+    slope = FF_GATHER(derived + 4, record);
+  }
 #else
   __global const float* record = derived + 8 * (int)segment;
 #if FF_GPU
@@ -83,52 +98,88 @@ FF_INLINE SecantSample spine_stage(Vec3 p, StageFrame f, __global const float* v
   return spine_sample(p.x, p.z, derived, f);
 }
 
-/* The records of one instance's angles (rig_prepare, one-lane programs): the running
- * integrals X_k, Z_k from x = 0, sin theta_k, cos theta_k, and the segment's slope. */
+/* The records of one instance's angles (rig_prepare, one-lane programs; every
+ * work-item of the instance's work-group calls it): the running integrals X_k, Z_k
+ * from x = 0, sin theta_k, cos theta_k, and the segment's slope. Work-item i takes the
+ * samples [i c, (i + 1) c), c = ceil(samples / group size) <= FF_SPINE_CHUNK (samples
+ * are at most 256, spine.cpp): it sums the chords of its segments, a scan over the
+ * group (Hillis-Steele, in scratch) gives each chunk the integral before it, the
+ * work-item holding x = 0 publishes the integral there, and every record is written
+ * once, from x = 0. */
 #if FF_LANES == 1
-FF_INLINE void spine_prepare(__global const float* theta, __global float* derived, StageFrame f) {
+#define FF_SPINE_CHUNK ((256 + FF_PREPARE_GROUP_SIZE - 1) / FF_PREPARE_GROUP_SIZE)
+
+/* The chord of the segment from sample k (theta linear over it): length h sinc(turn/2)
+ * along theta_k + turn / 2. */
+FF_INLINE float2 spine_chord(__global const float* theta, int k, float h) {
+  const float half_turn = 0.5f * (theta[k + 1] - theta[k]);
+  float sin_mid, cos_mid;
+  sin_cos(theta[k] + half_turn, &sin_mid, &cos_mid);
+  return h * sin_over_h(half_turn) * (float2)(cos_mid, sin_mid);
+}
+
+FF_INLINE void spine_prepare(__global const float* theta, __global float* derived, StageFrame f,
+                             __local float* scratch) {
   const float x_first = FF_STAGE_CONSTANT(f, 0);
   const float inverse_h = FF_STAGE_CONSTANT(f, 1);
   const float h = FF_STAGE_CONSTANT(f, 2);
   const int count = (int)FF_STAGE_CONSTANT(f, 3) + 1;
-  /* From the first sample... */
-  float x_sum = 0.0f, z_sum = 0.0f;
-  for (int k = 0; k < count; ++k) {
+  const int item = (int)get_local_id(0);
+  const int group = (int)get_local_size(0);
+  const int chunk = (count + group - 1) / group;
+  const int first = min(item * chunk, count), end = min(first + chunk, count);
+  /* The integrals at this work-item's samples, from its first one. */
+  float2 at[FF_SPINE_CHUNK];
+  float2 sum = (float2)(0.0f, 0.0f);
+  for (int k = first; k < end; ++k) {
+    at[k - first] = sum;
+    if (k + 1 < count) sum += spine_chord(theta, k, h);
+  }
+  /* Inclusive scan of the chunks' sums over the group: scratch[i], scratch[group + i]. */
+  barrier(CLK_LOCAL_MEM_FENCE);
+  scratch[item] = sum.x;
+  scratch[group + item] = sum.y;
+  for (int offset = 1; offset < group; offset <<= 1) {
+    barrier(CLK_LOCAL_MEM_FENCE);
+    const float add_x = item >= offset ? scratch[item - offset] : 0.0f;
+    const float add_z = item >= offset ? scratch[group + item - offset] : 0.0f;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    scratch[item] += add_x;
+    scratch[group + item] += add_z;
+  }
+  const float2 before = (float2)(scratch[item], scratch[group + item]) - sum;
+  /* x = 0 (it may lie outside the table) in segment j; its integral from the first
+   * sample, published by the work-item holding sample j. */
+  const float position = -x_first * inverse_h;
+  const float segment = clamp(floor(position), 0.0f, (float)(count - 2));
+  const int j = (int)segment;
+  if (j >= first && j < end) {
+    const float d = (position - segment) * h;
+    const float inside = clamp(d, 0.0f, h);
+    const float beyond = d - inside;
+    const float half_turn = 0.5f * (theta[j + 1] - theta[j]) * inverse_h * inside;
+    const float chord = inside * sin_over_h(half_turn);
+    float sin_mid, cos_mid, sin_end, cos_end;
+    sin_cos(theta[j] + half_turn, &sin_mid, &cos_mid);
+    sin_cos(theta[j] + 2.0f * half_turn, &sin_end, &cos_end);
+    const float2 origin = before + at[j - first] + chord * (float2)(cos_mid, sin_mid) +
+                          beyond * (float2)(cos_end, sin_end);
+    scratch[2 * group] = origin.x;
+    scratch[2 * group + 1] = origin.y;
+  }
+  barrier(CLK_LOCAL_MEM_FENCE);
+  const float2 origin = (float2)(scratch[2 * group], scratch[2 * group + 1]);
+  for (int k = first; k < end; ++k) {
     __global float* record = derived + 8 * k;
     float sin_k, cos_k;
     sin_cos(theta[k], &sin_k, &cos_k);
-    record[0] = x_sum;
-    record[1] = z_sum;
+    const float2 integral = before + at[k - first] - origin;
+    record[0] = integral.x;
+    record[1] = integral.y;
     record[2] = sin_k;
     record[3] = cos_k;
     record[4] = k + 1 < count ? (theta[k + 1] - theta[k]) * inverse_h : 0.0f;
     record[5] = record[6] = record[7] = 0.0f;
-    if (k + 1 < count) {
-      const float half_turn = 0.5f * (theta[k + 1] - theta[k]);
-      const float chord = h * sin_over_h(half_turn);
-      float sin_mid, cos_mid;
-      sin_cos(theta[k] + half_turn, &sin_mid, &cos_mid);
-      x_sum += chord * cos_mid;
-      z_sum += chord * sin_mid;
-    }
-  }
-  /* ...then from x = 0: subtract the integral up to 0 (0 may lie outside the table). */
-  const float position = -x_first * inverse_h;
-  const float segment = clamp(floor(position), 0.0f, (float)(count - 2));
-  const int j = (int)segment;
-  const float d = (position - segment) * h;
-  const float inside = clamp(d, 0.0f, h);
-  const float beyond = d - inside;
-  const float half_turn = 0.5f * derived[8 * j + 4] * inside;
-  const float chord = inside * sin_over_h(half_turn);
-  float sin_mid, cos_mid, sin_end, cos_end;
-  sin_cos(theta[j] + half_turn, &sin_mid, &cos_mid);
-  sin_cos(theta[j] + 2.0f * half_turn, &sin_end, &cos_end);
-  const float x_origin = derived[8 * j] + chord * cos_mid + beyond * cos_end;
-  const float z_origin = derived[8 * j + 1] + chord * sin_mid + beyond * sin_end;
-  for (int k = 0; k < count; ++k) {
-    derived[8 * k] -= x_origin;
-    derived[8 * k + 1] -= z_origin;
   }
 }
 #endif

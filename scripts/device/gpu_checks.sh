@@ -25,13 +25,7 @@ mkdir -p "$out"
 log="$out/gpu_checks.txt"
 export LD_LIBRARY_PATH="$bundle/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 export FINFLEX_DATA_DIR="$PWD/data" POCL_CACHE_DIR=/tmp/pocl-cache
-if [ ! -e /etc/OpenCL/vendors/nvidia.icd ]; then
-  driver=$(find / -name 'libnvidia-opencl.so.1' -not -path '*/proc/*' 2>/dev/null | head -n 1)
-  if [ -n "$driver" ]; then
-    mkdir -p /etc/OpenCL/vendors
-    echo "$driver" > /etc/OpenCL/vendors/nvidia.icd
-  fi
-fi
+source "$(dirname "$0")/register_nvidia_icd.sh"
 failed=()
 {
   date -u

@@ -15,13 +15,7 @@ bundle=$1
 out=$2
 mkdir -p "$out"
 export LD_LIBRARY_PATH="$bundle/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
-if [ ! -e /etc/OpenCL/vendors/nvidia.icd ]; then
-  driver=$(find / -name 'libnvidia-opencl.so.1' -not -path '*/proc/*' 2>/dev/null | head -n 1)
-  if [ -n "$driver" ]; then
-    mkdir -p /etc/OpenCL/vendors
-    echo "$driver" > /etc/OpenCL/vendors/nvidia.icd
-  fi
-fi
+source "$(dirname "$0")/register_nvidia_icd.sh"
 # GLVND finds NVIDIA's EGL through its vendor file; some images keep it off the default path.
 if ! ls /usr/share/glvnd/egl_vendor.d/*nvidia* >/dev/null 2>&1; then
   vendor=$(find / -name '10_nvidia.json' -path '*egl_vendor.d*' -not -path '*/proc/*' 2>/dev/null | head -n 1)

@@ -76,8 +76,10 @@ enum class RigDispatch {
 
 // How kernels of more than one lane (ClOptions::lanes) write the outputs.
 enum class OutputStores {
-  kAuto,       // kStreaming where a frame's outputs are larger than the device's global
-               // memory cache (CL_DEVICE_GLOBAL_MEM_CACHE_SIZE), else kPlain
+  kAuto,       // kStreaming where a frame's outputs are larger than the caches could
+               // hold: the device's global memory cache (CL_DEVICE_GLOBAL_MEM_CACHE_SIZE),
+               // at most 4 MiB per compute unit (what virtual machines report is not
+               // always the host's cache); else kPlain
   kPlain,      // ordinary stores: the outputs pass through the caches (and stay there
                // for whoever reads them next, when they fit)
   kStreaming,  // streaming (non-temporal) stores: whole cache lines to memory, none read

@@ -33,8 +33,11 @@ struct DeviceDescription {
   // Floats in the device's native vector (CL_DEVICE_NATIVE_VECTOR_WIDTH_FLOAT): e.g. 16
   // on a CPU with AVX-512, 8 with AVX2.
   std::size_t native_float_vector_width = 1;
-  // CL_DEVICE_GLOBAL_MEM_CACHE_SIZE: on CPUs, PoCL reports the last-level cache.
+  // CL_DEVICE_GLOBAL_MEM_CACHE_SIZE: on CPUs, PoCL reports the last-level cache (in a
+  // virtual machine, whatever the hypervisor says it is).
   std::size_t global_memory_cache_bytes = 0;
+  // CL_DEVICE_MAX_COMPUTE_UNITS: on CPUs, the threads PoCL runs work-groups on.
+  std::size_t compute_units = 1;
   bool is_default = false;
 
   bool is_gpu() const { return type == "GPU"; }

@@ -159,7 +159,7 @@ const DeformerType& spine_type() {
       {{"samples",
         {},
         2.0,
-        256.0,
+        256.0,  // kernels/deformers/spine.cl's FF_SPINE_CHUNK holds 256 / 64 samples
         true,
         32.0,
         "the angles per instance, evenly spaced over the stage's extent in x"}},
