@@ -140,20 +140,29 @@ FF_RIG_PASS_KERNELS
 
 /* Derived values (DeformerType::derived_count, e.g. a spine's running integrals):
  * kernel rig_prepare writes them from every instance's values before the deformation
- * kernels run, one work-group of FF_PREPARE_GROUP_SIZE work-items per instance (a
- * spine's table is a running sum: its samples are shared out and summed by a scan in
- * local memory), the stages that have them listed in the generated FF_RIG_PREPARE
+ * kernels run, FF_PREPARE_ITEMS work-items per instance: 1 (a work-group's 64 instances
+ * side by side) or the whole work-group of FF_PREPARE_GROUP_SIZE (a spine's table is
+ * then shared out and summed by a scan in local memory; engine/src/device_profile.hpp
+ * chooses). The stages that have them are listed in the generated FF_RIG_PREPARE
  * (calls "<prepare function>(values + <offset>, derived + <offset>, stages + <k>,
- * scratch);", every work-item of the group). Launched only when the rig has such
- * stages, always from the one-lane build of the program (it works on instances, not
- * on vertices). */
+ * scratch, item);" by every work-item of the instance). Launched only when the rig has
+ * such stages, always from the one-lane build of the program (it works on instances,
+ * not on vertices). Generated with FF_PREPARE_ITEMS: FF_PREPARE_BARRIER(), a barrier
+ * between an instance's work-items (none when it has one). */
 #if FF_LANES == 1
+/* An instance's scratch floats in local memory. */
+#define FF_PREPARE_SCRATCH (2 * FF_PREPARE_ITEMS + 2)
+
 __kernel __attribute__((reqd_work_group_size(FF_PREPARE_GROUP_SIZE, 1, 1))) void rig_prepare(
     __global const float* restrict params, const uint param_count, __constant const float* stages,
     __global float* restrict derived_values, const uint derived_count, const uint instances) {
-  __local float scratch[2 * FF_PREPARE_GROUP_SIZE + 2];
-  const size_t instance = get_group_id(0);
-  if (instance >= instances) return; /* the whole group: no barrier is left waiting */
+  __local float scratches[FF_PREPARE_GROUP_SIZE / FF_PREPARE_ITEMS * FF_PREPARE_SCRATCH];
+  const size_t instance = get_global_id(0) / FF_PREPARE_ITEMS;
+  const int item = (int)(get_local_id(0) % FF_PREPARE_ITEMS);
+  /* Past the last instance: a whole instance's work-items (a whole group when it has
+   * more than one, so no barrier is left waiting). */
+  if (instance >= instances) return;
+  __local float* scratch = scratches + get_local_id(0) / FF_PREPARE_ITEMS * FF_PREPARE_SCRATCH;
   __global const float* values = params + instance * param_count;
   __global float* derived = derived_values + instance * derived_count;
   FF_RIG_PREPARE

@@ -186,10 +186,28 @@ TEST(Spine, DeviceMatchesTheReference) {
   }
 }
 
-// rig_prepare shares a table's samples out over a work-group of 64 (kernels/deformers/
-// spine.cl): tables smaller than the group, one sample per work-item, more than one
-// (up to the 256 allowed), and x = 0 inside the table or beyond its end.
+void expect_every_table_size_matches(std::size_t table_items);
+
+// rig_prepare shares a table's samples out over a work-group of 64 on GPUs, one
+// work-item per instance on CPUs (kernels/deformers/spine.cl): both, on every device,
+// with tables smaller than the group, one sample per work-item, more than one (up to
+// the 256 allowed), and x = 0 inside the table or beyond its end.
 TEST(Spine, DeviceMatchesTheReferenceForEveryTableSize) {
+  for (std::size_t items : {1u, 64u}) {
+    SCOPED_TRACE("table items " + std::to_string(items));
+    expect_every_table_size_matches(items);
+  }
+  ClOptions odd;
+  odd.table_items = 3;
+  try {
+    ClDeformer(test::shared_context(), spine_model(test::synthetic_fish(16, 8), 32), odd);
+    FAIL() << "expected an error naming options.table_items";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.field(), "options.table_items");
+  }
+}
+
+void expect_every_table_size_matches(std::size_t table_items) {
   const Mesh mesh = test::synthetic_fish(64, 32, true);
   Mesh shifted = mesh;  // in the identity frame, x = 0 lies before the table's start
   for (glm::vec3& p : shifted.positions) p.x += 2.0f;
@@ -199,7 +217,9 @@ TEST(Spine, DeviceMatchesTheReferenceForEveryTableSize) {
       SCOPED_TRACE("samples " + std::to_string(samples));
       const RiggedMesh model = spine_model(mesh, samples, frame);
       const RigParameters values = angles(model, {wave, [](double x) { return -0.3 * x; }});
-      ClDeformer deformer(test::shared_context(), model);
+      ClOptions options;
+      options.table_items = table_items;
+      ClDeformer deformer(test::shared_context(), model, options);
       const DeformedBatch<float> device =
           test::run_on_device(deformer, values, NormalMode::kRotate, RigPath::kFused);
       const AccuracyReport report =
@@ -211,7 +231,9 @@ TEST(Spine, DeviceMatchesTheReferenceForEveryTableSize) {
     SCOPED_TRACE("x = 0 beyond the table, samples " + std::to_string(samples));
     const RiggedMesh model = spine_model(shifted, samples, FrameSpec::Mode::kIdentity);
     const RigParameters values = angles(model, {[](double x) { return 0.3 * (x - 2.0); }});
-    ClDeformer deformer(test::shared_context(), model);
+    ClOptions options;
+    options.table_items = table_items;
+    ClDeformer deformer(test::shared_context(), model, options);
     const DeformedBatch<float> device =
         test::run_on_device(deformer, values, NormalMode::kRotate, RigPath::kFused);
     const AccuracyReport report =

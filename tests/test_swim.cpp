@@ -89,6 +89,41 @@ TEST(Swim, DeviceDriverMatchesTheReference) {
   EXPECT_EQ(driver.read_limited_segments(), reference.limited_segments());
 }
 
+// The driver shares a spine's samples out over a work-group of 64 on GPUs (one
+// work-item per fish on CPUs) and clears folding segment by segment with a scan
+// (kernels/swim/driver.cl): both on every device, a table of 150 samples (3 per
+// work-item), fish turning hard enough for segments to be limited.
+TEST(Swim, DeviceDriverMatchesTheReferenceWithLongTablesAndLimitedSegments) {
+  const Mesh mesh = load_mesh(test::data_path("barramundi/BarramundiFish.gltf"));
+  RigSpec spec = load_rig_file(test::data_path("rigs/barramundi_swim.rig.json"));
+  set_option(spec.components.front().chain.front(), "samples", 150.0);
+  const RiggedMesh model(mesh, resolve_rig(spec, mesh));
+  SwimKinematics sharp;
+  sharp.max_turn_curvature = 40.0;  // turning radii far below the body's thickness
+  const SwimModel swim(model, sharp);
+  ASSERT_EQ(swim.samples(), 150u);
+  const std::vector<float> lengths = {0.3f, 0.45f, 0.38f, 0.6f};
+  const float dt = 1.0f / 30.0f;
+  std::vector<SwimInput> inputs = inputs_at(lengths.size(), lengths, 0);
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    inputs[i].speed = 3.0f * lengths[i];
+    inputs[i].turn_rate = i % 2 ? 40.0f : -40.0f;
+  }
+  SwimReference reference(swim, lengths);
+  reference.step(inputs, dt);
+  EXPECT_GT(reference.limited_segments(), 0u);
+  for (std::size_t items : {1u, 64u}) {
+    SCOPED_TRACE("work-items per fish " + std::to_string(items));
+    ClSwimDriver driver(test::shared_context(), swim, lengths, {}, items);
+    driver.enqueue(inputs, dt);
+    EXPECT_EQ(driver.read_limited_segments(), reference.limited_segments());
+    const RigParameters device = driver.read_parameters();
+    for (std::size_t k = 0; k < device.values().size(); ++k)
+      EXPECT_NEAR(device.values()[k], reference.parameters().values()[k], 2e-4) << "value " << k;
+  }
+  EXPECT_THROW(ClSwimDriver(test::shared_context(), swim, lengths, {}, 5), Error);
+}
+
 TEST(Swim, PhasesIntegrateTheFrequencyWithoutJumps) {
   const SwimModel swim(barramundi());
   const std::vector<float> lengths = {0.4f};

@@ -45,6 +45,8 @@ ClDeformer::Impl::Impl(Context& context_in, const RiggedMesh& model_in, const Cl
                 "options.lanes: " + std::to_string(options.lanes) +
                     " is not a number of lanes (expected 0: the device's, 1, 8 or 16)");
   }
+  detail::check_table_items(options.table_items, "options.table_items");
+  options.table_items = detail::device_table_items(device, options.table_items);
   single_bend = options.single_bend_kernel && model.is_single_bend();
   const bool share_code = options.dispatch == RigDispatch::kByPathShape;
   const Rig& rig = model.rig();
@@ -121,7 +123,8 @@ ClDeformer::Impl::Impl(Context& context_in, const RiggedMesh& model_in, const Cl
   automatic_path =
       model.longest_path() <= ClDeformer::kMaxFusedStages ? RigPath::kFused : RigPath::kPasses;
   program_ = {detail::rig_program_files(rig),
-              detail::rig_dispatch_source(model, slots, fused, plan, kWorkGroupSize, share_code),
+              detail::rig_dispatch_source(model, slots, fused, plan, kWorkGroupSize,
+                                          options.table_items, share_code),
               ""};
   derived_per_instance_ = detail::derived_per_instance(rig);
   // A placeholder until the first frame sizes it: every rig kernel takes the buffer.
@@ -321,8 +324,10 @@ void ClDeformer::Impl::prepare_derived(const ClJob& job, const FrameInputs& inpu
   set(derived_);
   set(static_cast<cl_uint>(derived_per_instance_));
   set(static_cast<cl_uint>(instances));
-  // A work-group per instance (kernels/rig.cl; FF_PREPARE_GROUP_SIZE is kWorkGroupSize).
-  const std::size_t global = instances * kWorkGroupSize;
+  // device_table_items work-items per instance (kernels/rig.cl).
+  const std::size_t items = options.table_items;
+  const std::size_t global =
+      (instances * items + kWorkGroupSize - 1) / kWorkGroupSize * kWorkGroupSize;
   cl::Event prepared;
   check_cl(context.queue().enqueueNDRangeKernel(prepare_, cl::NullRange, cl::NDRange(global),
                                                 cl::NDRange(kWorkGroupSize), nullptr,

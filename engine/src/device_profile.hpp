@@ -5,10 +5,12 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <string>
 
 #include "finflex/batch.hpp"
 #include "finflex/cl_deformer.hpp"
 #include "finflex/context.hpp"
+#include "finflex/error.hpp"
 
 namespace finflex::detail {
 
@@ -56,6 +58,26 @@ inline bool device_streaming_stores(const DeviceDescription& device, OutputStore
   const std::size_t cache_bytes =
       std::min(device.global_memory_cache_bytes, units * kCacheBytesPerComputeUnit);
   return output_bytes > cache_bytes;
+}
+
+// Work-items that share one instance's table work (rig_prepare, the swim driver): the
+// whole work-group on GPUs (a table's samples in parallel, summed by a scan in local
+// memory: 10,000 fish of 32 samples took 80 us on an H100 with one work-item per fish,
+// 14 us so), 1 on CPUs (a work-group's 64 instances each one work-item's loop: PoCL runs
+// the work-items of a group between barriers as loops, and most of a 64-item group
+// would idle on a table of 32 samples).
+inline std::size_t device_table_items(const DeviceDescription& device, std::size_t asked = 0) {
+  if (asked != 0) return asked;
+  return device.is_gpu() ? kWorkGroupSize : 1;
+}
+
+// Checks a table_items option (ClOptions, ClSwimDriver): 0, 1 or kWorkGroupSize.
+inline void check_table_items(std::size_t items, const char* field) {
+  if (items == 0 || items == 1 || items == kWorkGroupSize) return;
+  throw Error(ErrorCode::kInvalidArgument, field,
+              std::string(field) + ": " + std::to_string(items) +
+                  " work-items per instance (expected 0: the device's choice, 1 or " +
+                  std::to_string(kWorkGroupSize) + ")");
 }
 
 // kPerComponent on GPUs (fewest instructions), kByPathShape on CPUs (straight-line

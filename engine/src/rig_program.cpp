@@ -381,7 +381,8 @@ std::vector<FusedLaunch> make_fused_plan(const RiggedMesh& model, const SlotLayo
 
 std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots,
                                 const std::vector<FusedLaunch>& fused, const PassPlan& plan,
-                                std::size_t group_size, bool share_code) {
+                                std::size_t group_size, std::size_t prepare_items,
+                                bool share_code) {
   const Rig& rig = model.rig();
   std::ostringstream out;
   out << "/* Generated for one rig by engine/src/rig_program.cpp: which stages apply to\n"
@@ -391,6 +392,9 @@ std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots
   if (!root_has_stages) out << "#define FF_ROOT_FRAME " << stage_count(rig) << "u\n";
   out << "#define FF_RIG_GROUP_COUNT " << slots.slot_count / group_size << "u\n";
   out << "#define FF_PREPARE_GROUP_SIZE " << group_size << "\n";
+  out << "#define FF_PREPARE_ITEMS " << prepare_items << "\n";
+  out << "#define FF_PREPARE_BARRIER() "
+      << (prepare_items > 1 ? "barrier(CLK_LOCAL_MEM_FENCE)" : "/* one work-item */") << "\n";
   // Fused: the group's component's whole path, bottom-up; a kernel per launch, a branch
   // per run of components in it (none when the launch has one).
   for (std::size_t r = 0; r < fused.size(); ++r) {
@@ -458,7 +462,7 @@ std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots
       if (!stage.deformer->cl_prepare_function) continue;
       out << " \\\n  " << stage.deformer->cl_prepare_function << "(values + "
           << values_offset(rig, stage) << ", derived + " << derived_offset(rig, c, k)
-          << ", stages + " << stage_index(rig, c, k) << ", scratch);";
+          << ", stages + " << stage_index(rig, c, k) << ", scratch, item);";
     }
   }
   out << "\n";

@@ -120,10 +120,13 @@ std::vector<FusedLaunch> make_fused_plan(const RiggedMesh& model, const SlotLayo
 
 // The generated macros of kernels/rig.cl for the rig: FF_STAGE_COUNT,
 // FF_RIG_GROUP_COUNT, FF_RIG_FUSED_<r> and FF_RIG_FUSED_KERNELS (kernel rig_fused_<r>
-// for fused[r]), FF_RIG_PASS_<q> and FF_RIG_PASS_KERNELS, FF_RIG_PREPARE.
-// share_code: as for make_pass_plan (RigDispatch::kByPathShape).
+// for fused[r]), FF_RIG_PASS_<q> and FF_RIG_PASS_KERNELS, FF_RIG_PREPARE with
+// FF_PREPARE_GROUP_SIZE (group_size) and FF_PREPARE_ITEMS (prepare_items: 1 or
+// group_size work-items per instance). share_code: as for make_pass_plan
+// (RigDispatch::kByPathShape).
 std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots,
                                 const std::vector<FusedLaunch>& fused, const PassPlan& plan,
-                                std::size_t group_size, bool share_code);
+                                std::size_t group_size, std::size_t prepare_items,
+                                bool share_code);
 
 }  // namespace finflex::detail

@@ -98,16 +98,16 @@ FF_INLINE SecantSample spine_stage(Vec3 p, StageFrame f, __global const float* v
   return spine_sample(p.x, p.z, derived, f);
 }
 
-/* The records of one instance's angles (rig_prepare, one-lane programs; every
- * work-item of the instance's work-group calls it): the running integrals X_k, Z_k
- * from x = 0, sin theta_k, cos theta_k, and the segment's slope. Work-item i takes the
- * samples [i c, (i + 1) c), c = ceil(samples / group size) <= FF_SPINE_CHUNK (samples
- * are at most 256, spine.cpp): it sums the chords of its segments, a scan over the
- * group (Hillis-Steele, in scratch) gives each chunk the integral before it, the
- * work-item holding x = 0 publishes the integral there, and every record is written
- * once, from x = 0. */
+/* The records of one instance's angles (rig_prepare, one-lane programs; each of the
+ * instance's FF_PREPARE_ITEMS work-items calls it, `item` its place): the running
+ * integrals X_k, Z_k from x = 0, sin theta_k, cos theta_k, and the segment's slope.
+ * Work-item i takes the samples [i c, (i + 1) c), c = ceil(samples / FF_PREPARE_ITEMS)
+ * <= FF_SPINE_CHUNK (samples are at most 256, spine.cpp): it sums the chords of its
+ * segments, a scan over the instance's work-items (Hillis-Steele, in scratch) gives
+ * each chunk the integral before it, the work-item holding x = 0 publishes the
+ * integral there, and every record is written once, from x = 0. */
 #if FF_LANES == 1
-#define FF_SPINE_CHUNK ((256 + FF_PREPARE_GROUP_SIZE - 1) / FF_PREPARE_GROUP_SIZE)
+#define FF_SPINE_CHUNK ((256 + FF_PREPARE_ITEMS - 1) / FF_PREPARE_ITEMS)
 
 /* The chord of the segment from sample k (theta linear over it): length h sinc(turn/2)
  * along theta_k + turn / 2. */
@@ -119,14 +119,13 @@ FF_INLINE float2 spine_chord(__global const float* theta, int k, float h) {
 }
 
 FF_INLINE void spine_prepare(__global const float* theta, __global float* derived, StageFrame f,
-                             __local float* scratch) {
+                             __local float* scratch, int item) {
   const float x_first = FF_STAGE_CONSTANT(f, 0);
   const float inverse_h = FF_STAGE_CONSTANT(f, 1);
   const float h = FF_STAGE_CONSTANT(f, 2);
   const int count = (int)FF_STAGE_CONSTANT(f, 3) + 1;
-  const int item = (int)get_local_id(0);
-  const int group = (int)get_local_size(0);
-  const int chunk = (count + group - 1) / group;
+  const int items = FF_PREPARE_ITEMS;
+  const int chunk = (count + items - 1) / items;
   const int first = min(item * chunk, count), end = min(first + chunk, count);
   /* The integrals at this work-item's samples, from its first one. */
   float2 at[FF_SPINE_CHUNK];
@@ -135,19 +134,21 @@ FF_INLINE void spine_prepare(__global const float* theta, __global float* derive
     at[k - first] = sum;
     if (k + 1 < count) sum += spine_chord(theta, k, h);
   }
-  /* Inclusive scan of the chunks' sums over the group: scratch[i], scratch[group + i]. */
-  barrier(CLK_LOCAL_MEM_FENCE);
+  /* Inclusive scan of the chunks' sums over the work-items: scratch[i], scratch[items + i]
+   * (after a barrier: an earlier stage's prepare may still read scratch). */
+  FF_PREPARE_BARRIER();
   scratch[item] = sum.x;
-  scratch[group + item] = sum.y;
-  for (int offset = 1; offset < group; offset <<= 1) {
-    barrier(CLK_LOCAL_MEM_FENCE);
+  scratch[items + item] = sum.y;
+  for (int offset = 1; offset < items; offset <<= 1) {
+    FF_PREPARE_BARRIER();
     const float add_x = item >= offset ? scratch[item - offset] : 0.0f;
-    const float add_z = item >= offset ? scratch[group + item - offset] : 0.0f;
-    barrier(CLK_LOCAL_MEM_FENCE);
+    const float add_z = item >= offset ? scratch[items + item - offset] : 0.0f;
+    FF_PREPARE_BARRIER();
     scratch[item] += add_x;
-    scratch[group + item] += add_z;
+    scratch[items + item] += add_z;
   }
-  const float2 before = (float2)(scratch[item], scratch[group + item]) - sum;
+  FF_PREPARE_BARRIER();
+  const float2 before = (float2)(scratch[item], scratch[items + item]) - sum;
   /* x = 0 (it may lie outside the table) in segment j; its integral from the first
    * sample, published by the work-item holding sample j. */
   const float position = -x_first * inverse_h;
@@ -164,11 +165,11 @@ FF_INLINE void spine_prepare(__global const float* theta, __global float* derive
     sin_cos(theta[j] + 2.0f * half_turn, &sin_end, &cos_end);
     const float2 origin = before + at[j - first] + chord * (float2)(cos_mid, sin_mid) +
                           beyond * (float2)(cos_end, sin_end);
-    scratch[2 * group] = origin.x;
-    scratch[2 * group + 1] = origin.y;
+    scratch[2 * items] = origin.x;
+    scratch[2 * items + 1] = origin.y;
   }
-  barrier(CLK_LOCAL_MEM_FENCE);
-  const float2 origin = (float2)(scratch[2 * group], scratch[2 * group + 1]);
+  FF_PREPARE_BARRIER();
+  const float2 origin = (float2)(scratch[2 * items], scratch[2 * items + 1]);
   for (int k = first; k < end; ++k) {
     __global float* record = derived + 8 * k;
     float sin_k, cos_k;

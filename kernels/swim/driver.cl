@@ -1,12 +1,15 @@
-/* The swim driver (finflex/cl_swim.hpp): one work-item per fish advances its phases
- * by its tail-beat frequency times dt and writes its swim rig's parameters (the
+/* The swim driver (finflex/cl_swim.hpp): FF_SWIM_ITEMS work-items per fish advance its
+ * phases by its tail-beat frequency times dt and write its swim rig's parameters (the
  * spine's angles, the fin angles) and its world placement record, as SwimReference
  * does in double precision (engine/src/swim/kinematics.cpp has the formulas and their
- * sources). Generated before this file (engine/src/swim/cl_swim_driver.cpp):
- *   FF_SWIM_SAMPLES, FF_SWIM_VALUES (values per instance), FF_SWIM_WAVE, FF_SWIM_TAIL,
- *   FF_SWIM_RIGHT, FF_SWIM_LEFT (offsets in a row; -1: not driven), FF_SWIM_X_FIRST,
- *   FF_SWIM_SPACING, FF_SWIM_EXTENT, the kinematics FF_K_* and the per-segment bend
- *   limits swim_max_positive[] and swim_max_negative[].
+ * sources). FF_SWIM_ITEMS is 1 (a work-group's fish side by side) or the whole
+ * work-group of FF_SWIM_GROUP_SIZE (the spine's samples shared out, FF_SWIM_CHUNK each;
+ * engine/src/device_profile.hpp chooses). Generated before this file
+ * (engine/src/swim/cl_swim_driver.cpp):
+ *   FF_SWIM_GROUP_SIZE, FF_SWIM_ITEMS, FF_SWIM_SAMPLES, FF_SWIM_VALUES (values per instance),
+ *   FF_SWIM_WAVE, FF_SWIM_TAIL, FF_SWIM_RIGHT, FF_SWIM_LEFT (offsets in a row; -1: not
+ *   driven), FF_SWIM_X_FIRST, FF_SWIM_SPACING, FF_SWIM_EXTENT, the kinematics FF_K_* and
+ *   the per-segment bend limits swim_max_positive[] and swim_max_negative[].
  *
  * inputs:   7 floats per fish: position (3), yaw, pitch, speed, turn rate (SwimInput)
  * lengths:  the fish's length (m)
@@ -15,16 +18,41 @@
  * placements: 16 floats per fish (kernels/common/placement.cl's record)
  * limited:  per fish, the spine segments bent less than asked (to clear folding) */
 #define FF_TWO_PI 6.28318530717958647692f
+#define FF_SWIM_CHUNK ((FF_SWIM_SAMPLES + FF_SWIM_ITEMS - 1) / FF_SWIM_ITEMS)
+/* Barriers between the work-items of one fish: none when it has one. */
+#if FF_SWIM_ITEMS > 1
+#define FF_SWIM_BARRIER() barrier(CLK_LOCAL_MEM_FENCE)
+#else
+#define FF_SWIM_BARRIER()
+#endif
 
 inline float swim_wrapped(float phase) { return phase - floor(phase); }
 
-__kernel void swim_drive(__global const float* restrict inputs,
-                         __global const float* restrict lengths,
-                         __global float* restrict phases, __global float* restrict params,
-                         __global float* restrict placements, __global uint* restrict limited,
-                         const float dt, const uint fish) {
-  const size_t i = get_global_id(0);
+/* The spine's angle at sample j: the travelling wave's slope and the turning bend. */
+inline float swim_wave_angle(int j, float phase, float scale, float curvature) {
+  const float x = FF_SWIM_X_FIRST + FF_SWIM_SPACING * (float)j;
+  const float x_snout = FF_SWIM_X_FIRST + FF_SWIM_SPACING * (float)(FF_SWIM_SAMPLES - 1);
+  const float wave_number = FF_TWO_PI / FF_K_WAVELENGTH;
+  const float xi = (x_snout - x) / FF_SWIM_EXTENT;
+  const float envelope = FF_K_ENVELOPE0 + xi * (FF_K_ENVELOPE1 + xi * FF_K_ENVELOPE2);
+  const float envelope_slope = FF_K_ENVELOPE1 + 2.0f * xi * FF_K_ENVELOPE2;
+  const float psi = wave_number * xi - FF_TWO_PI * phase;
+  const float dh_dxi = scale * (envelope_slope * sin(psi) + envelope * wave_number * cos(psi));
+  return atan(-dh_dxi / FF_SWIM_EXTENT) + curvature * x;
+}
+
+__kernel __attribute__((reqd_work_group_size(FF_SWIM_GROUP_SIZE, 1, 1))) void swim_drive(
+    __global const float* restrict inputs, __global const float* restrict lengths,
+    __global float* restrict phases, __global float* restrict params,
+    __global float* restrict placements, __global uint* restrict limited, const float dt,
+    const uint fish) {
+  __local float scans[2 * FF_SWIM_GROUP_SIZE];
+  const size_t i = get_global_id(0) / FF_SWIM_ITEMS;
+  const int item = (int)(get_local_id(0) % FF_SWIM_ITEMS);
+  /* Past the last fish: a whole fish's work-items (a whole group when it has more than
+   * one, so no barrier is left waiting). */
   if (i >= fish) return;
+  __local float* scan = scans + get_local_id(0) / FF_SWIM_ITEMS * (2 * FF_SWIM_ITEMS);
   __global const float* in = inputs + i * 7;
   const float length = lengths[i];
   const float speed = in[5];
@@ -34,39 +62,53 @@ __kernel void swim_drive(__global const float* restrict inputs,
       FF_K_FREQUENCY_SIZE * cbrt(1.0f / (100.0f * length)) + FF_K_FREQUENCY_SPEED * body_lengths;
   const float phase = swim_wrapped(phases[2 * i] + frequency * dt);
   const float fin_phase = swim_wrapped(phases[2 * i + 1] + frequency * dt);
-  phases[2 * i] = phase;
-  phases[2 * i + 1] = fin_phase;
   const float scale =
       clamp(FF_K_AMPLITUDE_BASE + FF_K_AMPLITUDE_SPEED * body_lengths, FF_K_AMPLITUDE_MIN, 1.0f);
   const float curvature = clamp(-in[6] * length / fmax(speed, FF_K_MIN_TURN_SPEED),
                                 -FF_K_MAX_TURN_CURVATURE, FF_K_MAX_TURN_CURVATURE);
 
-  /* The spine's angles: the travelling wave's slope and the turning bend. */
-  float theta[FF_SWIM_SAMPLES];
-  const float x_snout = FF_SWIM_X_FIRST + FF_SWIM_SPACING * (float)(FF_SWIM_SAMPLES - 1);
-  const float wave_number = FF_TWO_PI / FF_K_WAVELENGTH;
-  for (int j = 0; j < FF_SWIM_SAMPLES; ++j) {
-    const float x = FF_SWIM_X_FIRST + FF_SWIM_SPACING * (float)j;
-    const float xi = (x_snout - x) / FF_SWIM_EXTENT;
-    const float envelope = FF_K_ENVELOPE0 + xi * (FF_K_ENVELOPE1 + xi * FF_K_ENVELOPE2);
-    const float envelope_slope = FF_K_ENVELOPE1 + 2.0f * xi * FF_K_ENVELOPE2;
-    const float psi = wave_number * xi - FF_TWO_PI * phase;
-    const float dh_dxi = scale * (envelope_slope * sin(psi) + envelope * wave_number * cos(psi));
-    theta[j] = atan(-dh_dxi / FF_SWIM_EXTENT) + curvature * x;
-  }
-  /* Every segment clear of folding (METHOD.md section 6). */
-  uint limited_here = 0;
-  for (int j = 0; j + 1 < FF_SWIM_SAMPLES; ++j) {
-    const float bend = (theta[j + 1] - theta[j]) / FF_SWIM_SPACING;
+  /* This work-item's samples, and every segment from them cleared of folding (METHOD.md
+   * section 6): a segment bent more than allowed turns the samples after it by the
+   * difference, which leaves later segments' bends as they were, so each segment is
+   * cleared on its own and the turns add up (a scan over the group). */
+  const int first = min(item * FF_SWIM_CHUNK, FF_SWIM_SAMPLES);
+  const int end = min(first + FF_SWIM_CHUNK, FF_SWIM_SAMPLES);
+  float theta[FF_SWIM_CHUNK], shift_within[FF_SWIM_CHUNK];
+  float shift = 0.0f, limited_here = 0.0f;
+  float next = first < end ? swim_wave_angle(first, phase, scale, curvature) : 0.0f;
+  for (int j = first; j < end; ++j) {
+    theta[j - first] = next;
+    shift_within[j - first] = shift;
+    if (j + 1 >= FF_SWIM_SAMPLES) continue;
+    next = swim_wave_angle(j + 1, phase, scale, curvature);
+    const float bend = (next - theta[j - first]) / FF_SWIM_SPACING;
     const float allowed = bend > 0.0f ? swim_max_positive[j] : -swim_max_negative[j];
     if (fabs(bend) <= fabs(allowed)) continue;
-    const float shift = (allowed - bend) * FF_SWIM_SPACING;
-    for (int after = j + 1; after < FF_SWIM_SAMPLES; ++after) theta[after] += shift;
-    ++limited_here;
+    shift += (allowed - bend) * FF_SWIM_SPACING;
+    limited_here += 1.0f;
   }
-  limited[i] = limited_here;
+  /* Inclusive scan of (shift, limited) over the fish's work-items (Hillis-Steele). */
+  scan[item] = shift;
+  scan[FF_SWIM_ITEMS + item] = limited_here;
+  for (int offset = 1; offset < FF_SWIM_ITEMS; offset <<= 1) {
+    FF_SWIM_BARRIER();
+    const float add_shift = item >= offset ? scan[item - offset] : 0.0f;
+    const float add_limited = item >= offset ? scan[FF_SWIM_ITEMS + item - offset] : 0.0f;
+    FF_SWIM_BARRIER();
+    scan[item] += add_shift;
+    scan[FF_SWIM_ITEMS + item] += add_limited;
+  }
+  FF_SWIM_BARRIER();
+  const float shift_before = scan[item] - shift;
   __global float* row = params + i * FF_SWIM_VALUES;
-  for (int j = 0; j < FF_SWIM_SAMPLES; ++j) row[FF_SWIM_WAVE + j] = theta[j];
+  for (int j = first; j < end; ++j)
+    row[FF_SWIM_WAVE + j] = theta[j - first] + shift_before + shift_within[j - first];
+  if (item != 0) return;
+  /* The rest is the fish's, once: every work-item read the old phases before the scan's
+   * barriers. */
+  phases[2 * i] = phase;
+  phases[2 * i + 1] = fin_phase;
+  limited[i] = (uint)scan[2 * FF_SWIM_ITEMS - 1];
 #if FF_SWIM_TAIL >= 0
   row[FF_SWIM_TAIL] =
       FF_K_CAUDAL_AMPLITUDE * scale * cos(FF_TWO_PI * (FF_K_PEDUNCLE / FF_K_WAVELENGTH - phase));

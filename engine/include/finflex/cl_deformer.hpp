@@ -114,6 +114,10 @@ struct ClOptions {
   // faster directly). Only a layout of that kind is affected.
   enum class StructStores { kAuto, kStaged, kDirect };
   StructStores struct_stores = StructStores::kAuto;
+  // Work-items per instance for the per-instance tables of the frame (rig_prepare: a
+  // spine's running integrals): 1 or kGroupSize; 0: the device's choice (GPUs
+  // kGroupSize, a table's samples in parallel; CPUs 1).
+  std::size_t table_items = 0;
 };
 
 class FINFLEX_API ClDeformer {

@@ -98,10 +98,11 @@ struct DeformerType {
   // cost every vertex to compute (a spine's running integrals): `derived_count` of
   // them per stage and instance, written each frame before the deformation kernels
   // by `void <cl_prepare_function>(__global const float* values, __global float*
-  // derived, StageFrame f, __local float* scratch)`, called by every work-item of one
-  // work-group of FF_PREPARE_GROUP_SIZE per instance (get_local_id(0) is the caller's
-  // place; scratch holds 2 FF_PREPARE_GROUP_SIZE + 2 floats and may be used between
-  // barriers, the first before any write). Each stage's derived values
+  // derived, StageFrame f, __local float* scratch, int item)`, called by each of the
+  // instance's FF_PREPARE_ITEMS work-items (1 on CPUs, a work-group of 64 on GPUs;
+  // `item` is the caller's place): scratch holds 2 FF_PREPARE_ITEMS + 2 floats of the
+  // instance's, shared between FF_PREPARE_BARRIER()s, the first before any write
+  // (kernels/rig.cl). Each stage's derived values
   // start 32-byte aligned (counts are rounded up to 8 floats), so a deformer may read
   // records of 4 or 8 floats as vectors.
   std::size_t (*derived_count)(const StageOptions& options) = nullptr;

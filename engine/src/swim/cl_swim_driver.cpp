@@ -10,6 +10,7 @@
 #include <string>
 
 #include "device_buffers.hpp"
+#include "device_profile.hpp"
 #include "finflex/error.hpp"
 
 namespace finflex {
@@ -24,22 +25,26 @@ static_assert(sizeof(SwimInput) == kInputFloats * sizeof(float),
 // speed >= 0. Branch-free passes over the bits (they vectorise): a float is finite
 // when its exponent is not all ones, and below 0 when its sign is set and it is not -0.
 bool copy_valid_inputs(const SwimInput* inputs, float* staged, std::size_t fish) {
+  // The checks read the caller's floats, not the staging copy: pinned staging memory
+  // may be write-combined, where reading back is slow (tens of microseconds for 10,000
+  // fish on an H100 machine).
   const std::size_t count = fish * kInputFloats;
-  std::memcpy(staged, inputs, count * sizeof(float));
+  const auto* source = reinterpret_cast<const unsigned char*>(inputs);
   std::uint32_t not_finite = 0, negative_speed = 0;
   for (std::size_t k = 0; k < count; ++k) {
     std::uint32_t b;
-    std::memcpy(&b, staged + k, sizeof b);
+    std::memcpy(&b, source + k * sizeof(float), sizeof b);
     not_finite |= static_cast<std::uint32_t>((b & 0x7f800000u) == 0x7f800000u);
   }
   for (std::size_t i = 0; i < fish; ++i) {
     std::uint32_t b;
-    std::memcpy(&b, staged + i * kInputFloats + 5, sizeof b);
+    std::memcpy(&b, source + (i * kInputFloats + 5) * sizeof(float), sizeof b);
     negative_speed |= static_cast<std::uint32_t>((b >> 31) & ((b & 0x7fffffffu) != 0u));
   }
+  std::memcpy(staged, source, count * sizeof(float));
   return (not_finite | negative_speed) == 0;
 }
-constexpr std::size_t kGroupSize = 64;
+constexpr std::size_t kGroupSize = detail::kWorkGroupSize;
 
 std::string literal(double value) {
   std::ostringstream out;
@@ -53,11 +58,13 @@ long offset_or_none(std::size_t offset) {
 }
 
 // The driver program's generated constants.
-std::string driver_constants(const SwimModel& swim) {
+std::string driver_constants(const SwimModel& swim, std::size_t items) {
   const SwimKinematics& k = swim.kinematics();
   const RiggedMesh& model = swim.model();
   std::ostringstream out;
-  out << "#define FF_SWIM_SAMPLES " << swim.samples() << "\n"
+  out << "#define FF_SWIM_GROUP_SIZE " << kGroupSize << "\n"
+      << "#define FF_SWIM_ITEMS " << items << "\n"
+      << "#define FF_SWIM_SAMPLES " << swim.samples() << "\n"
       << "#define FF_SWIM_VALUES " << model.values_per_instance() << "\n"
       << "#define FF_SWIM_WAVE " << swim.wave_offset() << "\n"
       << "#define FF_SWIM_TAIL " << offset_or_none(swim.tail_offset()) << "\n"
@@ -101,8 +108,11 @@ std::string driver_constants(const SwimModel& swim) {
 class ClSwimDriver::Impl {
  public:
   Impl(Context& context_in, const SwimModel& swim_in, const std::vector<float>& lengths,
-       const std::vector<float>& phases)
-      : context(context_in), swim(swim_in), fish(lengths.size()) {
+       const std::vector<float>& phases, std::size_t items_per_fish)
+      : context(context_in),
+        swim(swim_in),
+        fish(lengths.size()),
+        items(detail::device_table_items(context_in.description(), items_per_fish)) {
     SwimReference check(swim, lengths, phases);  // validates lengths and phases
     const cl::Context& cl_context = context.context();
     lengths_ =
@@ -121,12 +131,13 @@ class ClSwimDriver::Impl {
         detail::make_buffer(cl_context, CL_MEM_READ_WRITE, fish * kPlacementFloats * sizeof(float));
     limited_ = detail::make_buffer(cl_context, CL_MEM_READ_WRITE, fish * sizeof(cl_uint));
     kernel_ = context.kernel("swim_drive",
-                             ProgramSource{{"swim/driver.cl"}, driver_constants(swim), ""}, "");
+                             ProgramSource{{"swim/driver.cl"}, driver_constants(swim, items), ""}, "");
   }
 
   Context& context;
   const SwimModel& swim;
   std::size_t fish;
+  std::size_t items;  // work-items per fish (swim/driver.cl's FF_SWIM_ITEMS)
   cl::Buffer lengths_, phases_, parameters_, placements_, limited_;
   cl::Kernel kernel_;
   detail::ParameterUpload inputs_;
@@ -134,8 +145,10 @@ class ClSwimDriver::Impl {
 };
 
 ClSwimDriver::ClSwimDriver(Context& context, const SwimModel& swim,
-                           const std::vector<float>& lengths, const std::vector<float>& phases)
-    : impl_(std::make_unique<Impl>(context, swim, lengths, phases)) {}
+                           const std::vector<float>& lengths, const std::vector<float>& phases,
+                           std::size_t items_per_fish)
+    : impl_((detail::check_table_items(items_per_fish, "items_per_fish"),
+             std::make_unique<Impl>(context, swim, lengths, phases, items_per_fish))) {}
 
 ClSwimDriver::~ClSwimDriver() = default;
 
@@ -170,7 +183,7 @@ cl::Event ClSwimDriver::enqueue(const std::vector<SwimInput>& inputs, float dt,
   }
   check_cl(kernel.setArg(6, dt), "clSetKernelArg dt");
   cl::Event done;
-  const std::size_t global = (d.fish + kGroupSize - 1) / kGroupSize * kGroupSize;
+  const std::size_t global = (d.fish * d.items + kGroupSize - 1) / kGroupSize * kGroupSize;
   check_cl(d.context.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global),
                                                   cl::NDRange(kGroupSize), nullptr, &done),
            "clEnqueueNDRangeKernel swim_drive");
