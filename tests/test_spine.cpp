@@ -207,6 +207,18 @@ TEST(Spine, DeviceMatchesTheReferenceForEveryTableSize) {
   }
 }
 
+// The fused path with `table_items` work-items per instance against the reference.
+AccuracyReport fused_against_reference(const RiggedMesh& model, const RigParameters& values,
+                                       std::size_t table_items) {
+  ClOptions options;
+  options.table_items = table_items;
+  ClDeformer deformer(test::shared_context(), model, options);
+  const DeformedBatch<float> device =
+      test::run_on_device(deformer, values, NormalMode::kRotate, RigPath::kFused);
+  return compare_to_reference(model, values.view(), NormalMode::kRotate, device,
+                              run_reference(model, values, NormalMode::kRotate));
+}
+
 void expect_every_table_size_matches(std::size_t table_items) {
   const Mesh mesh = test::synthetic_fish(64, 32, true);
   Mesh shifted = mesh;  // in the identity frame, x = 0 lies before the table's start
@@ -216,29 +228,15 @@ void expect_every_table_size_matches(std::size_t table_items) {
     for (const FrameSpec::Mode frame : {FrameSpec::Mode::kIdentity, FrameSpec::Mode::kAuto}) {
       SCOPED_TRACE("samples " + std::to_string(samples));
       const RiggedMesh model = spine_model(mesh, samples, frame);
-      const RigParameters values = angles(model, {wave, [](double x) { return -0.3 * x; }});
-      ClOptions options;
-      options.table_items = table_items;
-      ClDeformer deformer(test::shared_context(), model, options);
-      const DeformedBatch<float> device =
-          test::run_on_device(deformer, values, NormalMode::kRotate, RigPath::kFused);
-      const AccuracyReport report =
-          compare_to_reference(model, values.view(), NormalMode::kRotate, device,
-                               run_reference(model, values, NormalMode::kRotate));
+      const AccuracyReport report = fused_against_reference(
+          model, angles(model, {wave, [](double x) { return -0.3 * x; }}), table_items);
       EXPECT_LE(report.max_position_ratio, 1.0) << report.max_position_error;
       EXPECT_LE(report.max_normal_ratio, 1.0) << report.max_normal_error;
     }
     SCOPED_TRACE("x = 0 beyond the table, samples " + std::to_string(samples));
     const RiggedMesh model = spine_model(shifted, samples, FrameSpec::Mode::kIdentity);
-    const RigParameters values = angles(model, {[](double x) { return 0.3 * (x - 2.0); }});
-    ClOptions options;
-    options.table_items = table_items;
-    ClDeformer deformer(test::shared_context(), model, options);
-    const DeformedBatch<float> device =
-        test::run_on_device(deformer, values, NormalMode::kRotate, RigPath::kFused);
-    const AccuracyReport report =
-        compare_to_reference(model, values.view(), NormalMode::kRotate, device,
-                             run_reference(model, values, NormalMode::kRotate));
+    const AccuracyReport report = fused_against_reference(
+        model, angles(model, {[](double x) { return 0.3 * (x - 2.0); }}), table_items);
     EXPECT_LE(report.max_position_ratio, 1.0) << report.max_position_error;
   }
 }

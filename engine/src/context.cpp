@@ -167,7 +167,7 @@ Context::Context(const std::string& device,
 
 const std::vector<std::string>& common_kernel_files() {
   static const std::vector<std::string> files = {
-      "common/lanes.cl",   "common/vec3.cl",        "common/trig.cl",
+      "common/lanes.cl",   "common/vec3.cl",        "common/trig.cl",    "common/scan.cl",
       "common/secant.cl",  "common/planes.cl",      "cpu/lane_planes.cl",
       "common/outputs.cl", "cpu/lane_outputs.cl",   "common/stage_frame.cl",
       "common/placement.cl"};

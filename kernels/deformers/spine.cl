@@ -103,7 +103,7 @@ FF_INLINE SecantSample spine_stage(Vec3 p, StageFrame f, __global const float* v
  * integrals X_k, Z_k from x = 0, sin theta_k, cos theta_k, and the segment's slope.
  * Work-item i takes the samples [i c, (i + 1) c), c = ceil(samples / FF_PREPARE_ITEMS)
  * <= FF_SPINE_CHUNK (samples are at most 256, spine.cpp): it sums the chords of its
- * segments, a scan over the instance's work-items (Hillis-Steele, in scratch) gives
+ * segments, a scan over the instance's work-items (common/scan.cl, in scratch) gives
  * each chunk the integral before it, the work-item holding x = 0 publishes the
  * integral there, and every record is written once, from x = 0. */
 #if FF_LANES == 1
@@ -134,21 +134,8 @@ FF_INLINE void spine_prepare(__global const float* theta, __global float* derive
     at[k - first] = sum;
     if (k + 1 < count) sum += spine_chord(theta, k, h);
   }
-  /* Inclusive scan of the chunks' sums over the work-items: scratch[i], scratch[items + i]
-   * (after a barrier: an earlier stage's prepare may still read scratch). */
-  FF_PREPARE_BARRIER();
-  scratch[item] = sum.x;
-  scratch[items + item] = sum.y;
-  for (int offset = 1; offset < items; offset <<= 1) {
-    FF_PREPARE_BARRIER();
-    const float add_x = item >= offset ? scratch[item - offset] : 0.0f;
-    const float add_z = item >= offset ? scratch[items + item - offset] : 0.0f;
-    FF_PREPARE_BARRIER();
-    scratch[item] += add_x;
-    scratch[items + item] += add_z;
-  }
-  FF_PREPARE_BARRIER();
-  const float2 before = (float2)(scratch[item], scratch[items + item]) - sum;
+  /* The integral before this work-item's first sample (common/scan.cl). */
+  const float2 before = inclusive_scan2(sum, scratch, item, items) - sum;
   /* x = 0 (it may lie outside the table) in segment j; its integral from the first
    * sample, published by the work-item holding sample j. */
   const float position = -x_first * inverse_h;

@@ -19,12 +19,6 @@
  * limited:  per fish, the spine segments bent less than asked (to clear folding) */
 #define FF_TWO_PI 6.28318530717958647692f
 #define FF_SWIM_CHUNK ((FF_SWIM_SAMPLES + FF_SWIM_ITEMS - 1) / FF_SWIM_ITEMS)
-/* Barriers between the work-items of one fish: none when it has one. */
-#if FF_SWIM_ITEMS > 1
-#define FF_SWIM_BARRIER() barrier(CLK_LOCAL_MEM_FENCE)
-#else
-#define FF_SWIM_BARRIER()
-#endif
 
 inline float swim_wrapped(float phase) { return phase - floor(phase); }
 
@@ -87,19 +81,12 @@ __kernel __attribute__((reqd_work_group_size(FF_SWIM_GROUP_SIZE, 1, 1))) void sw
     shift += (allowed - bend) * FF_SWIM_SPACING;
     limited_here += 1.0f;
   }
-  /* Inclusive scan of (shift, limited) over the fish's work-items (Hillis-Steele). */
-  scan[item] = shift;
-  scan[FF_SWIM_ITEMS + item] = limited_here;
-  for (int offset = 1; offset < FF_SWIM_ITEMS; offset <<= 1) {
-    FF_SWIM_BARRIER();
-    const float add_shift = item >= offset ? scan[item - offset] : 0.0f;
-    const float add_limited = item >= offset ? scan[FF_SWIM_ITEMS + item - offset] : 0.0f;
-    FF_SWIM_BARRIER();
-    scan[item] += add_shift;
-    scan[FF_SWIM_ITEMS + item] += add_limited;
-  }
-  FF_SWIM_BARRIER();
-  const float shift_before = scan[item] - shift;
+  /* The turns and limited segments of the samples before this work-item's
+   * (common/scan.cl), and in all. */
+  const float2 sums = inclusive_scan2((float2)(shift, limited_here), scan, item, FF_SWIM_ITEMS);
+  const float shift_before = sums.x - shift;
+  /* The last work-item's sum: in scratch when the fish has more than one. */
+  const float limited_total = FF_SWIM_ITEMS == 1 ? sums.y : scan[2 * FF_SWIM_ITEMS - 1];
   __global float* row = params + i * FF_SWIM_VALUES;
   for (int j = first; j < end; ++j)
     row[FF_SWIM_WAVE + j] = theta[j - first] + shift_before + shift_within[j - first];
@@ -108,7 +95,7 @@ __kernel __attribute__((reqd_work_group_size(FF_SWIM_GROUP_SIZE, 1, 1))) void sw
    * barriers. */
   phases[2 * i] = phase;
   phases[2 * i + 1] = fin_phase;
-  limited[i] = (uint)scan[2 * FF_SWIM_ITEMS - 1];
+  limited[i] = (uint)limited_total;
 #if FF_SWIM_TAIL >= 0
   row[FF_SWIM_TAIL] =
       FF_K_CAUDAL_AMPLITUDE * scale * cos(FF_TWO_PI * (FF_K_PEDUNCLE / FF_K_WAVELENGTH - phase));

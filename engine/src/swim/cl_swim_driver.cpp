@@ -130,8 +130,11 @@ class ClSwimDriver::Impl {
     placements_ =
         detail::make_buffer(cl_context, CL_MEM_READ_WRITE, fish * kPlacementFloats * sizeof(float));
     limited_ = detail::make_buffer(cl_context, CL_MEM_READ_WRITE, fish * sizeof(cl_uint));
-    kernel_ = context.kernel("swim_drive",
-                             ProgramSource{{"swim/driver.cl"}, driver_constants(swim, items), ""}, "");
+    const ProgramSource source{
+        {"common/lanes.cl", "common/vec3.cl", "common/scan.cl", "swim/driver.cl"},
+        driver_constants(swim, items),
+        ""};
+    kernel_ = context.kernel("swim_drive", source, "");
   }
 
   Context& context;
