@@ -241,9 +241,9 @@ void expect_every_table_size_matches(std::size_t table_items) {
   }
 }
 
-// A spine's component has its slots in the order of x along its frame, so the lanes of
-// a work-item (and a GPU's warp) mostly share a segment; a rig without a table keeps
-// the mesh's order.
+// A spine's component (and a fin under it) has its slots in the order of x along the
+// spine's frame, so the lanes of a work-item (and a GPU's warp) mostly share a segment;
+// a rig without a table keeps the mesh's order.
 TEST(Spine, SlotsOfASpineComponentFollowX) {
   const Mesh mesh = load_mesh(test::data_path("barramundi/BarramundiFish.gltf"));
   const RiggedMesh model = spine_model(mesh, 32, FrameSpec::Mode::kAuto);
@@ -257,6 +257,24 @@ TEST(Spine, SlotsOfASpineComponentFollowX) {
   std::sort(by_slot.begin(), by_slot.end());
   for (std::size_t i = 1; i < by_slot.size(); ++i) {
     ASSERT_LE(by_slot[i - 1].second, by_slot[i].second) << "slot " << by_slot[i].first;
+  }
+  // A fin under the spine (its own chain a hinge) is sorted along the spine too.
+  const Mesh blub = load_mesh(test::data_path("blub/fish.obj"));
+  const RiggedMesh swim(
+      blub, resolve_rig(load_rig_file(test::data_path("rigs/blub_swim.rig.json")), blub));
+  ClDeformer swim_deformer(test::shared_context(), swim);
+  const BodyFrame& spine = swim.rig().components.front().chain.front().frame;
+  ASSERT_GT(swim.rig().components.size(), 1u);
+  for (const RigComponent& component : swim.rig().components) {
+    SCOPED_TRACE(component.name);
+    std::vector<std::pair<std::uint32_t, double>> slots_and_x;
+    for (std::uint32_t v : component.vertices) {
+      slots_and_x.emplace_back(swim_deformer.slot_of_vertex()[v],
+                               spine.point_to_local(glm::dvec3(blub.positions[v])).x);
+    }
+    std::sort(slots_and_x.begin(), slots_and_x.end());
+    for (std::size_t i = 1; i < slots_and_x.size(); ++i)
+      ASSERT_LE(slots_and_x[i - 1].second, slots_and_x[i].second);
   }
   const RiggedMesh bend = RiggedMesh::single_bend(mesh, find_body_frame(mesh), BendMode::kPaper);
   ClDeformer in_mesh_order(test::shared_context(), bend);

@@ -104,19 +104,34 @@ const char* plane_set_name(PlaneSet set) {
   return "REST";
 }
 
-// The component's vertices in slot order: by x in its first stage's frame when that
-// stage reads a table along x (ties by vertex index), else as they are (ascending).
-std::vector<std::uint32_t> vertices_in_slot_order(const RigComponent& component,
-                                                  const std::vector<glm::vec3>& positions) {
-  std::vector<std::uint32_t> order = component.vertices;
-  if (component.chain.empty() || component.chain.front().deformer->derived_count == nullptr) {
-    return order;
+// The first stage on the component's path (its own chain, then its ancestors') that
+// looks vertices up in a table along x (a deformer with derived values), or null.
+const RigStage* first_table_stage(const Rig& rig, std::size_t component) {
+  // A resolved rig is a tree: the walk up ends within the component count.
+  for (std::size_t steps = 0; steps < rig.components.size(); ++steps) {
+    const RigComponent& on_path = rig.components[component];
+    for (const RigStage& stage : on_path.chain) {
+      if (stage.deformer->derived_count != nullptr) return &stage;
+    }
+    if (on_path.parent < 0) break;
+    component = static_cast<std::size_t>(on_path.parent);
   }
-  const BodyFrame& frame = component.chain.front().frame;
+  return nullptr;
+}
+
+// The component's vertices in slot order: by rest x in the frame of the first table
+// stage on its path (ties by vertex index), else as they are (ascending). A fin under
+// a spine is sorted along the spine too: its vertices reach the spine's table after
+// its own hinge, which moves them little along the body.
+std::vector<std::uint32_t> vertices_in_slot_order(const Rig& rig, std::size_t component,
+                                                  const std::vector<glm::vec3>& positions) {
+  std::vector<std::uint32_t> order = rig.components[component].vertices;
+  const RigStage* table = first_table_stage(rig, component);
+  if (table == nullptr) return order;
   std::vector<std::pair<double, std::uint32_t>> keyed;
   keyed.reserve(order.size());
   for (std::uint32_t v : order) {
-    keyed.emplace_back(frame.point_to_local(glm::dvec3(positions[v])).x, v);
+    keyed.emplace_back(table->frame.point_to_local(glm::dvec3(positions[v])).x, v);
   }
   std::sort(keyed.begin(), keyed.end());
   for (std::size_t i = 0; i < keyed.size(); ++i) order[i] = keyed[i].second;
@@ -131,9 +146,9 @@ SlotLayout make_slot_layout(const Rig& rig, const std::vector<glm::vec3>& positi
   SlotLayout slots;
   slots.slot_of_vertex.assign(vertex_count, 0);
   slots.first_slot.push_back(0);
-  for (const RigComponent& component : rig.components) {
+  for (std::size_t c = 0; c < rig.components.size(); ++c) {
     std::size_t slot = slots.first_slot.back();
-    for (std::uint32_t v : vertices_in_slot_order(component, positions))
+    for (std::uint32_t v : vertices_in_slot_order(rig, c, positions))
       slots.slot_of_vertex[v] = static_cast<std::uint32_t>(slot++);
     slots.first_slot.push_back(round_up(slot, group_size));
   }

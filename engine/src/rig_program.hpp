@@ -23,11 +23,12 @@ struct SlotLayout {
 };
 
 // Components in rig order (depth-first), each padded to a multiple of group_size. A
-// component whose first stage looks its vertices up in a table along x (a deformer
-// with derived values: the spine's segments) has its vertices sorted by x in that
-// stage's frame, so neighbouring slots read the same table entries (one load for a
-// GPU's warp or a CPU work-item's lanes); any other keeps the mesh's order, so a
-// one-component rig without such a stage has slot = vertex.
+// component whose path (its chain, then its ancestors') has a stage that looks
+// vertices up in a table along x (a deformer with derived values: the spine's
+// segments) has its vertices sorted by x in the first such stage's frame, so
+// neighbouring slots read the same table entries (one load for a GPU's warp or a CPU
+// work-item's lanes); any other keeps the mesh's order, so a rig without such a stage
+// has slot = vertex when it has one component.
 SlotLayout make_slot_layout(const Rig& rig, const std::vector<glm::vec3>& positions,
                             std::size_t group_size);
 
