@@ -2,6 +2,7 @@
 // default device and through run_reference, written as raw arrays.
 //
 //   python_oracle MESH RIG|- rotate|jacobian INSTANCES VALUES OUT
+//   python_oracle swim MESH RIG FRAMES LENGTHS INPUTS OUT   (swim() below)
 // VALUES: INSTANCES x values_per_instance float32 (the rows). RIG "-": the exact single
 // bend with the automatic frame. Writes OUT.device (float32) and OUT.reference
 // (float64), each positions then normals as (instances, vertices, 3) in mesh order.
@@ -32,9 +33,66 @@ void write(const std::string& path, const Batch& batch) {
 
 }  // namespace
 
+// python_oracle swim MESH RIG FRAMES LENGTHS INPUTS OUT: FRAMES frames of 1/30 s of
+// ClSwimDriver (one fish per float32 of LENGTHS, the float32 (fish, 7) INPUTS every
+// frame) and the placed deformation; writes OUT.device (positions then normals,
+// float32, mesh order).
+int swim(char** argv) {
+  const finflex::Mesh mesh = finflex::load_mesh(argv[2]);
+  const finflex::RiggedMesh model(mesh,
+                                  finflex::resolve_rig(finflex::load_rig_file(argv[3]), mesh));
+  const finflex::SwimModel swim_model(model);
+  const unsigned long frames = std::stoul(argv[4]);
+  auto read_floats = [](const char* path) {
+    std::ifstream in(path, std::ios::binary | std::ios::ate);
+    std::vector<float> values(static_cast<std::size_t>(in.tellg()) / sizeof(float));
+    in.seekg(0);
+    in.read(reinterpret_cast<char*>(values.data()),
+            static_cast<std::streamsize>(values.size() * sizeof(float)));
+    return values;
+  };
+  const std::vector<float> lengths = read_floats(argv[5]);
+  const std::vector<float> rows = read_floats(argv[6]);
+  std::vector<finflex::SwimInput> inputs(lengths.size());
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    const float* row = rows.data() + 7 * i;
+    inputs[i].position = {row[0], row[1], row[2]};
+    inputs[i].yaw = row[3];
+    inputs[i].pitch = row[4];
+    inputs[i].speed = row[5];
+    inputs[i].turn_rate = row[6];
+  }
+  finflex::Context context;
+  finflex::ClSwimDriver driver(context, swim_model, lengths);
+  finflex::ClDeformer deformer(context, swim_model.model());
+  finflex::DeviceBatch batch = deformer.allocate(lengths.size());
+  finflex::ClJob job;
+  job.model = &swim_model.model();
+  job.parameters.instance_count = lengths.size();
+  job.parameter_buffer = &driver.parameter_buffer();
+  job.placement_buffer = &driver.placement_buffer();
+  job.outputs = &batch;
+  for (unsigned long f = 0; f < frames; ++f) {
+    driver.enqueue(inputs, 1.0f / 30.0f);
+    deformer.enqueue(job);
+  }
+  write<float>(std::string(argv[7]) + ".device", deformer.read(batch));
+  return 0;
+}
+
 int main(int argc, char** argv) {
+  if (argc == 8 && std::string(argv[1]) == "swim") {
+    try {
+      return swim(argv);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "python_oracle swim: %s\n", e.what());
+      return 1;
+    }
+  }
   if (argc != 7) {
-    std::fprintf(stderr, "usage: python_oracle MESH RIG|- rotate|jacobian INSTANCES VALUES OUT\n");
+    std::fprintf(stderr,
+                 "usage: python_oracle MESH RIG|- rotate|jacobian INSTANCES VALUES OUT\n"
+                 "       python_oracle swim MESH RIG FRAMES LENGTHS INPUTS OUT\n");
     return 2;
   }
   try {

@@ -56,5 +56,6 @@ void bind_model(nb::module_& m);
 void bind_outputs(nb::module_& m);
 void bind_device(nb::module_& m);
 void bind_job(nb::module_& m);
+void bind_swim(nb::module_& m);
 
 }  // namespace finflex::python

@@ -13,4 +13,5 @@ NB_MODULE(_finflex, m) {
   bind_outputs(m);
   bind_device(m);
   bind_job(m);
+  bind_swim(m);
 }
