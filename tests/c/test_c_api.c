@@ -1,6 +1,6 @@
 /* The C API (bindings/c/include/finflex.h) from C: every function, error paths
  * included, with results checked against the C++ library (oracle.cpp).
- * Usage: test_c_api SECTION   (errors, mesh, model, parameters, reference, device)
+ * Usage: test_c_api SECTION   (errors, mesh, model, parameters, reference, device, swim)
  * Prints "N passed, N failed" and exits nonzero on any failure. */
 #include <math.h>
 #include <stdio.h>
@@ -823,6 +823,154 @@ static void test_device(void) {
   finflex_mesh_destroy(mesh);
 }
 
+/* -------------------------------------------------------------------------- swim */
+
+#define SWIM_RIG_PATH FINFLEX_DATA_DIR "/rigs/blub_low_resolution_swim.rig.json"
+#define FISH 3
+
+static void test_swim(void) {
+  const float lengths[FISH] = {0.3f, 0.45f, 0.25f};
+  const float bad_lengths[2] = {0.3f, -0.2f};
+  finflex_swim_input inputs[FISH];
+  float rows[FISH * 7];
+  finflex_mesh* mesh = NULL;
+  finflex_rig* rig = NULL;
+  finflex_model* model = NULL;
+  finflex_model* bend = NULL;
+  finflex_model* own = NULL;
+  finflex_swim_model* swim = NULL;
+  finflex_swim_model* no_swim = NULL;
+  finflex_context* context = NULL;
+  finflex_swim_driver* driver = NULL;
+  finflex_swim_driver* no_driver = NULL;
+  finflex_deformer* deformer = NULL;
+  finflex_deformer* other = NULL;
+  finflex_batch* batch = NULL;
+  finflex_event* driven = NULL;
+  finflex_event* done = NULL;
+  finflex_host_outputs outputs;
+  float *positions, *normals, *want_positions, *want_normals, *values, *records;
+  size_t vertices, i, frame;
+
+  for (i = 0; i < FISH; ++i) {
+    inputs[i].position[0] = (float)i - 1.0f;
+    inputs[i].position[1] = 0.5f + 0.1f * (float)i;
+    inputs[i].position[2] = 0.2f * (float)i;
+    inputs[i].yaw = 1.1f * (float)i;
+    inputs[i].pitch = 0.05f * (float)i - 0.05f;
+    inputs[i].speed = lengths[i] * (0.6f + 0.5f * (float)i);
+    inputs[i].turn_rate = i % 2 ? 0.4f : -0.3f;
+    memcpy(rows + 7 * i, &inputs[i], sizeof inputs[i]);
+  }
+  CHECK(sizeof(finflex_swim_input) == 7 * sizeof(float));
+  OK(finflex_mesh_load(MESH_PATH, &mesh));
+  OK(finflex_rig_load(SWIM_RIG_PATH, &rig));
+  OK(finflex_model_create(mesh, rig, &model));
+  OK(finflex_model_create_single_bend(mesh, NULL, FINFLEX_BEND_EXACT, &bend));
+  FAILS(finflex_swim_model_create(bend, &no_swim), INVALID, finflex_model_error(bend), "swim.wave",
+        NULL);
+  FAILS(finflex_swim_model_create(NULL, &no_swim), INVALID, NULL, "model", NULL);
+  CHECK(no_swim == NULL);
+  OK(finflex_swim_model_create(model, &swim));
+  CHECK(finflex_swim_model_samples(swim) == 32);
+  CHECK(finflex_swim_model_samples(NULL) == 0);
+  OK(finflex_swim_model_get_model(swim, &own));
+  OK(finflex_context_create(NULL, &context));
+  FAILS(finflex_swim_driver_create(context, swim, bad_lengths, 2, NULL, &no_driver), INVALID,
+        finflex_context_error(context), "lengths[1]", NULL);
+  FAILS(finflex_swim_driver_create(context, NULL, lengths, FISH, NULL, &no_driver), INVALID, NULL,
+        "swim", NULL);
+  FAILS(finflex_swim_driver_create(context, swim, NULL, FISH, NULL, &no_driver), INVALID, NULL,
+        "lengths", NULL);
+  CHECK(no_driver == NULL);
+  OK(finflex_swim_driver_create(context, swim, lengths, FISH, NULL, &driver));
+  CHECK(finflex_swim_driver_fish_count(driver) == FISH);
+  OK(finflex_deformer_create(context, own, &deformer));
+  OK(finflex_deformer_create(context, model, &other));
+  OK(finflex_deformer_allocate(deformer, FISH, FINFLEX_FORMAT_FLOAT32, &batch));
+
+  /* Five frames, the driver's event handed to the deformation. */
+  for (frame = 0; frame < 5; ++frame) {
+    OK(finflex_swim_driver_enqueue(driver, inputs, FISH, 1.0f / 30.0f, NULL, 0, &driven));
+    OK(finflex_deformer_enqueue_swim(deformer, driver, batch, FINFLEX_NORMALS_ROTATE, &driven, 1,
+                                     &done));
+    OK(finflex_event_wait(done));
+    finflex_event_destroy(driven);
+    finflex_event_destroy(done);
+  }
+  vertices = finflex_model_vertex_count(own);
+  positions = (float*)malloc(FISH * vertices * 12);
+  normals = (float*)malloc(FISH * vertices * 12);
+  want_positions = (float*)malloc(FISH * vertices * 12);
+  want_normals = (float*)malloc(FISH * vertices * 12);
+  packed_outputs(positions, normals, vertices, &outputs);
+  OK(finflex_deformer_read(deformer, batch, &outputs));
+  CHECK(oracle_swim(MESH_PATH, SWIM_RIG_PATH, FISH, lengths, rows, 5, want_positions,
+                    want_normals) == 0);
+  CHECK(max_difference(positions, want_positions, FISH * vertices * 3) == 0.0);
+  CHECK(max_difference(normals, want_normals, FISH * vertices * 3) == 0.0);
+
+  /* Reads of the driver's last frame. */
+  values = (float*)malloc(FISH * finflex_model_values_per_instance(own) * sizeof(float));
+  records = (float*)malloc(FISH * 16 * sizeof(float));
+  OK(finflex_swim_driver_read_parameters(driver, values,
+                                         FISH * finflex_model_values_per_instance(own)));
+  OK(finflex_swim_driver_read_placements(driver, records, FISH * 16));
+  for (i = 0; i < FISH; ++i) {
+    CHECK(records[16 * i + 9] == inputs[i].position[0]);
+    CHECK(fabs(records[16 * i + 12] * lengths[i] - 1.0) < 1e-6);
+  }
+  FAILS(finflex_swim_driver_read_placements(driver, records, 16), INVALID,
+        finflex_swim_driver_error(driver), "capacity", NULL);
+  FAILS(finflex_swim_driver_read_parameters(driver, values, 1), INVALID, NULL, "capacity", NULL);
+
+  /* Bad frames: nothing is enqueued, the field is named. */
+  FAILS(finflex_swim_driver_enqueue(driver, inputs, FISH - 1, 1.0f / 30.0f, NULL, 0, NULL), INVALID,
+        finflex_swim_driver_error(driver), "inputs", NULL);
+  FAILS(finflex_swim_driver_enqueue(driver, inputs, FISH, 0.0f, NULL, 0, NULL), INVALID, NULL, "dt",
+        NULL);
+  inputs[1].speed = -1.0f;
+  FAILS(finflex_swim_driver_enqueue(driver, inputs, FISH, 1.0f / 30.0f, NULL, 0, NULL), INVALID,
+        NULL, "inputs[1].speed", NULL);
+  inputs[1].speed = 0.2f;
+  FAILS(finflex_swim_driver_enqueue(driver, NULL, FISH, 1.0f / 30.0f, NULL, 0, NULL), INVALID, NULL,
+        "inputs", NULL);
+  FAILS(finflex_deformer_enqueue_swim(other, driver, batch, FINFLEX_NORMALS_ROTATE, NULL, 0, NULL),
+        INVALID, finflex_deformer_error(other), "driver", NULL);
+  FAILS(finflex_deformer_enqueue_swim(deformer, NULL, batch, FINFLEX_NORMALS_ROTATE, NULL, 0, NULL),
+        INVALID, NULL, "driver", NULL);
+  FAILS(finflex_deformer_enqueue_swim(deformer, driver, batch, (finflex_normal_mode)7, NULL, 0,
+                                      NULL),
+        INVALID, NULL, "job.normals", NULL);
+  FAILS(finflex_deformer_enqueue_swim(deformer, driver, NULL, FINFLEX_NORMALS_ROTATE, NULL, 0,
+                                      NULL),
+        INVALID, NULL, "batch", NULL);
+
+  /* Handles in any order: the swim model, the context and the models go first. */
+  finflex_swim_model_destroy(swim);
+  finflex_context_destroy(context);
+  finflex_model_destroy(own);
+  OK(finflex_swim_driver_enqueue(driver, inputs, FISH, 1.0f / 30.0f, NULL, 0, NULL));
+  OK(finflex_deformer_enqueue_swim(deformer, driver, batch, FINFLEX_NORMALS_JACOBIAN, NULL, 0,
+                                   NULL));
+  OK(finflex_deformer_read(deformer, batch, &outputs));
+
+  free(positions);
+  free(normals);
+  free(want_positions);
+  free(want_normals);
+  free(values);
+  free(records);
+  finflex_batch_destroy(batch);
+  finflex_deformer_destroy(deformer);
+  finflex_deformer_destroy(other);
+  finflex_swim_driver_destroy(driver);
+  finflex_model_destroy(model);
+  finflex_model_destroy(bend);
+  finflex_rig_destroy(rig);
+  finflex_mesh_destroy(mesh);
+}
+
 /* -------------------------------------------------------------------------- main */
 
 int main(int argc, char** argv) {
@@ -835,6 +983,7 @@ int main(int argc, char** argv) {
   if (all || strcmp(section, "parameters") == 0) test_parameters(), ran = 1;
   if (all || strcmp(section, "reference") == 0) test_reference(), ran = 1;
   if (all || strcmp(section, "device") == 0) test_device(), ran = 1;
+  if (all || strcmp(section, "swim") == 0) test_swim(), ran = 1;
   if (!ran) {
     fprintf(stderr, "unknown section '%s'\n", section);
     return 2;

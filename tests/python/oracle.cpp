@@ -6,6 +6,7 @@
 // VALUES: INSTANCES x values_per_instance float32 (the rows). RIG "-": the exact single
 // bend with the automatic frame. Writes OUT.device (float32) and OUT.reference
 // (float64), each positions then normals as (instances, vertices, 3) in mesh order.
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <string>
@@ -53,15 +54,8 @@ int swim(char** argv) {
   };
   const std::vector<float> lengths = read_floats(argv[5]);
   const std::vector<float> rows = read_floats(argv[6]);
-  std::vector<finflex::SwimInput> inputs(lengths.size());
-  for (std::size_t i = 0; i < inputs.size(); ++i) {
-    const float* row = rows.data() + 7 * i;
-    inputs[i].position = {row[0], row[1], row[2]};
-    inputs[i].yaw = row[3];
-    inputs[i].pitch = row[4];
-    inputs[i].speed = row[5];
-    inputs[i].turn_rate = row[6];
-  }
+  std::vector<finflex::SwimInput> inputs;
+  finflex::swim_inputs_from_rows(rows.data(), std::min(lengths.size(), rows.size() / 7), inputs);
   finflex::Context context;
   finflex::ClSwimDriver driver(context, swim_model, lengths);
   finflex::ClDeformer deformer(context, swim_model.model());

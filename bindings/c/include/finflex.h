@@ -389,6 +389,81 @@ FINFLEX_C_API finflex_status finflex_event_is_complete(finflex_event* event, int
 FINFLEX_C_API void finflex_event_destroy(finflex_event* event);
 FINFLEX_C_API const finflex_error* finflex_event_error(const finflex_event* event);
 
+/* ------------------------------------------------------------------- swimming */
+
+/* Swimming fish (finflex/swim.hpp, finflex/cl_swim.hpp): a swim rig made ready to
+ * swim, and the driver kernel that turns each fish's pose, speed and turning rate
+ * into its rig parameters and world placement on the device, for a deformer's frames:
+ *
+ *   finflex_swim_model_create(model, &swim);  finflex_swim_model_get_model(swim, &own);
+ *   finflex_deformer_create(ctx, own, &def);  (the swim model's own model)
+ *   finflex_swim_driver_create(ctx, swim, lengths, fish, NULL, &driver);
+ *   every frame: finflex_swim_driver_enqueue(driver, inputs, fish, dt, NULL, 0, NULL);
+ *                finflex_deformer_enqueue_swim(def, driver, batch, FINFLEX_NORMALS_ROTATE,
+ *                                              NULL, 0, &done);  (world space) */
+typedef struct finflex_swim_model finflex_swim_model;
+typedef struct finflex_swim_driver finflex_swim_driver;
+
+/* One fish's frame (finflex::SwimInput, the same 7 floats). */
+typedef struct finflex_swim_input {
+  float position[3]; /* the pivot, metres, y up */
+  float yaw;         /* about +y, radians: 0 towards +x, pi/2 towards -z */
+  float pitch;       /* nose up, radians */
+  float speed;       /* through the water, m/s, >= 0 */
+  float turn_rate;   /* rad/s, > 0 turns to the fish's left */
+} finflex_swim_input;
+
+/* FINFLEX_ERROR_INVALID_ARGUMENT naming "swim.wave" when the rig has no spine on its
+ * body (its parameter "body_wave"); the fins ("tail_angle", "right_pectoral_angle",
+ * "left_pectoral_angle") are driven when the rig has them. */
+FINFLEX_C_API finflex_status finflex_swim_model_create(const finflex_model* model,
+                                                       finflex_swim_model** swim);
+FINFLEX_C_API void finflex_swim_model_destroy(finflex_swim_model* swim);
+FINFLEX_C_API const finflex_error* finflex_swim_model_error(const finflex_swim_model* swim);
+/* The swim model's own model (a new handle, sharing it): the deformer of its frames is
+ * made from this one. */
+FINFLEX_C_API finflex_status finflex_swim_model_get_model(const finflex_swim_model* swim,
+                                                          finflex_model** model);
+/* Angles in the spine's table (0 for a NULL handle). */
+FINFLEX_C_API size_t finflex_swim_model_samples(const finflex_swim_model* swim);
+
+/* One fish per length (metres, > 0: field "lengths[i]"); phases (cycles, fish_count
+ * values) or NULL for 0. */
+FINFLEX_C_API finflex_status finflex_swim_driver_create(finflex_context* context,
+                                                        const finflex_swim_model* swim,
+                                                        const float* lengths, size_t fish_count,
+                                                        const float* phases,
+                                                        finflex_swim_driver** driver);
+FINFLEX_C_API void finflex_swim_driver_destroy(finflex_swim_driver* driver);
+FINFLEX_C_API const finflex_error* finflex_swim_driver_error(const finflex_swim_driver* driver);
+FINFLEX_C_API size_t finflex_swim_driver_fish_count(const finflex_swim_driver* driver);
+/* One frame of dt seconds (> 0: field "dt"): `count` inputs, one per fish ("inputs"
+ * otherwise; "inputs[i].speed" etc. for a bad value). Nothing is enqueued on error.
+ * `done` (may be NULL) receives the driver kernel's event. */
+FINFLEX_C_API finflex_status finflex_swim_driver_enqueue(finflex_swim_driver* driver,
+                                                         const finflex_swim_input* inputs,
+                                                         size_t count, float dt,
+                                                         finflex_event* const* wait,
+                                                         size_t wait_count, finflex_event** done);
+/* Blocking reads of the last frame: the rig parameters (fish x values_per_instance
+ * floats) and the placement records (fish x 16 floats: the columns of L Q, the
+ * position, 1 / L; finflex/placement.hpp). `capacity` in floats, checked. */
+FINFLEX_C_API finflex_status finflex_swim_driver_read_parameters(finflex_swim_driver* driver,
+                                                                 float* values, size_t capacity);
+FINFLEX_C_API finflex_status finflex_swim_driver_read_placements(finflex_swim_driver* driver,
+                                                                 float* records, size_t capacity);
+/* The deformation of the driver's last frame into `batch` (at least fish_count
+ * instances), reading its parameters and placements on the device: outputs in world
+ * space. The deformer must be made from the swim model's own model (field "driver").
+ * Enqueue it after finflex_swim_driver_enqueue (the queue is in order). */
+FINFLEX_C_API finflex_status finflex_deformer_enqueue_swim(finflex_deformer* deformer,
+                                                           finflex_swim_driver* driver,
+                                                           finflex_batch* batch,
+                                                           finflex_normal_mode normals,
+                                                           finflex_event* const* wait,
+                                                           size_t wait_count,
+                                                           finflex_event** done);
+
 #ifdef __cplusplus
 } /* extern "C" */
 #endif

@@ -71,23 +71,9 @@ finflex_status finflex_deformer_enqueue(finflex_deformer* deformer, const finfle
     cl_job.model = deformer->model.get();
     finflex::c::fill_job(job, cl_job);
     cl_job.outputs = &require(batch, "batch")->batch;
-    std::vector<cl::Event> events;
-    if (wait_count > 0) {
-      require(wait, "wait");
-      for (std::size_t k = 0; k < wait_count; ++k) {
-        const std::string name = "wait[" + std::to_string(k) + "]";
-        events.push_back(require(wait[k], name.c_str())->event);
-      }
-      cl_job.wait = &events;
-    }
-    // Allocated before enqueueing, so that nothing is enqueued when it fails.
-    std::unique_ptr<finflex_event> handle =
-        done == nullptr ? nullptr : std::make_unique<finflex_event>();
-    cl::Event event = d.enqueue(cl_job);
-    if (done != nullptr) {
-      handle->event = std::move(event);
-      *done = handle.release();
-    }
+    const std::vector<cl::Event> events = finflex::c::wait_events(wait, wait_count);
+    if (!events.empty()) cl_job.wait = &events;
+    finflex::c::enqueue_with_event(done, [&] { return d.enqueue(cl_job); });
   });
 }
 

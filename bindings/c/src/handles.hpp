@@ -7,6 +7,7 @@
 #include <new>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <finflex/finflex.hpp>
 
@@ -59,6 +60,20 @@ struct finflex_batch {
 
 struct finflex_event {
   cl::Event event;
+  mutable finflex_error error;
+};
+
+struct finflex_swim_model {
+  std::shared_ptr<const finflex::SwimModel> swim;
+  mutable finflex_error error;
+};
+
+struct finflex_swim_driver {
+  // The context and swim model outlive the driver that refers to them.
+  std::shared_ptr<finflex::Context> context;
+  std::shared_ptr<const finflex::SwimModel> swim;
+  std::unique_ptr<finflex::ClSwimDriver> driver;
+  std::vector<finflex::SwimInput> inputs;  // the frame's, reused
   mutable finflex_error error;
 };
 

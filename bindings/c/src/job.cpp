@@ -36,4 +36,15 @@ finflex::RigPath rig_path(finflex_rig_path path) {
                   "FINFLEX_PATH_PASSES (2)");
 }
 
+std::vector<cl::Event> wait_events(finflex_event* const* wait, std::size_t count) {
+  std::vector<cl::Event> events;
+  if (count == 0) return events;
+  require(wait, "wait");
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::string name = "wait[" + std::to_string(k) + "]";
+    events.push_back(require(wait[k], name.c_str())->event);
+  }
+  return events;
+}
+
 }  // namespace finflex::c

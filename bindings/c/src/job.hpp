@@ -14,6 +14,24 @@ void fill_job(const finflex_job* job, finflex::BasicDeformJob<Outputs, Event, Bu
 finflex::NormalMode normal_mode(finflex_normal_mode mode);
 finflex::RigPath rig_path(finflex_rig_path path);
 
+// The events of a wait list (`count` handles at `wait`; "wait" or "wait[k]" named when
+// null).
+std::vector<cl::Event> wait_events(finflex_event* const* wait, std::size_t count);
+
+// Enqueues through `enqueue` (returning the cl::Event of the work) and hands the event
+// to *done when `done` is not null; the handle is allocated first, so nothing is
+// enqueued when that fails.
+template <typename Enqueue>
+void enqueue_with_event(finflex_event** done, Enqueue&& enqueue) {
+  std::unique_ptr<finflex_event> handle =
+      done == nullptr ? nullptr : std::make_unique<finflex_event>();
+  cl::Event event = std::forward<Enqueue>(enqueue)();
+  if (done != nullptr) {
+    handle->event = std::move(event);
+    *done = handle.release();
+  }
+}
+
 template <typename Outputs, typename Event, typename Buffer>
 void fill_job(const finflex_job* job, finflex::BasicDeformJob<Outputs, Event, Buffer>& out) {
   require(job, "job");

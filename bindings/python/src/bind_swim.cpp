@@ -91,15 +91,7 @@ void bind_swim(nb::module_& m) {
           "enqueue",
           [](PySwimDriver& d, nb::handle inputs, float dt, nb::handle wait) {
             const std::vector<float> rows = float_rows(inputs, "inputs", 7);
-            d.inputs.resize(rows.size() / 7);
-            for (std::size_t i = 0; i < d.inputs.size(); ++i) {
-              const float* row = rows.data() + 7 * i;
-              d.inputs[i].position = {row[0], row[1], row[2]};
-              d.inputs[i].yaw = row[3];
-              d.inputs[i].pitch = row[4];
-              d.inputs[i].speed = row[5];
-              d.inputs[i].turn_rate = row[6];
-            }
+            swim_inputs_from_rows(rows.data(), rows.size() / 7, d.inputs);
             std::vector<cl::Event> events;
             if (!wait.is_none()) {
               for (nb::handle e : wait) events.push_back(nb::cast<const PyEvent&>(e).event);

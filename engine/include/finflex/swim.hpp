@@ -170,4 +170,9 @@ class FINFLEX_API SwimReference {
 FINFLEX_API void check_swim_inputs(const std::vector<SwimInput>& inputs, std::size_t fish,
                                    double dt);
 
+// Swim inputs from rows of 7 floats (x, y, z, yaw, pitch, speed, turning rate: a
+// SwimInput's fields in order), the form arrays and files carry them in; `fish` rows.
+FINFLEX_API void swim_inputs_from_rows(const float* rows, std::size_t fish,
+                                       std::vector<SwimInput>& inputs);
+
 }  // namespace finflex

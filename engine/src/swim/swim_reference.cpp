@@ -19,6 +19,18 @@ double wrapped(double phase) { return phase - std::floor(phase); }
 
 }  // namespace
 
+void swim_inputs_from_rows(const float* rows, std::size_t fish, std::vector<SwimInput>& inputs) {
+  inputs.resize(fish);
+  for (std::size_t i = 0; i < fish; ++i) {
+    const float* row = rows + 7 * i;
+    inputs[i].position = {row[0], row[1], row[2]};
+    inputs[i].yaw = row[3];
+    inputs[i].pitch = row[4];
+    inputs[i].speed = row[5];
+    inputs[i].turn_rate = row[6];
+  }
+}
+
 void check_swim_inputs(const std::vector<SwimInput>& inputs, std::size_t fish, double dt) {
   if (!std::isfinite(dt) || !(dt > 0.0)) fail("dt", "= " + std::to_string(dt) + " must be > 0");
   if (inputs.size() != fish) {
