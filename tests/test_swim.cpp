@@ -222,6 +222,61 @@ TEST(Swim, AFrameFromTheDeviceDriverMatchesTheReference) {
   }
 }
 
+// The driver writes the spine's records itself (ClSwimDriver::derived_buffer): the
+// frame skips rig_prepare and deforms to the same bits as with rig_prepare summing in
+// the same order (one work-item per fish, or 64), on every device. A derived buffer
+// that does not fit is refused by name.
+TEST(Swim, DriverPreparedRecordsDeformAsRigPrepareDoes) {
+  const SwimModel swim(barramundi());
+  const std::vector<float> lengths = {0.3f, 0.45f, 0.38f, 0.5f};
+  for (std::size_t items : {1u, 64u}) {
+    SCOPED_TRACE("work-items per fish " + std::to_string(items));
+    ClSwimDriver driver(test::shared_context(), swim, lengths, {}, items);
+    ASSERT_NE(driver.derived_buffer(), nullptr);
+    ClOptions options;  // rig_prepare sums in the same order as the driver
+    options.table_items = items;
+    ClDeformer deformer(test::shared_context(), swim.model(), options);
+    DeviceBatch prepared = deformer.allocate(lengths.size());
+    DeviceBatch by_rig_prepare = deformer.allocate(lengths.size());
+    ClJob job;
+    job.model = &swim.model();
+    job.parameters.instance_count = lengths.size();
+    job.parameter_buffer = &driver.parameter_buffer();
+    job.placement_buffer = &driver.placement_buffer();
+    for (int frame = 0; frame < 4; ++frame) {
+      driver.enqueue(inputs_at(lengths.size(), lengths, frame), 1.0f / 30.0f);
+      job.derived_buffer = driver.derived_buffer();
+      job.outputs = &prepared;
+      deformer.enqueue(job);
+      job.derived_buffer = nullptr;
+      job.outputs = &by_rig_prepare;
+      deformer.enqueue(job);
+      const DeformedBatch<float> a = deformer.read(prepared), b = deformer.read(by_rig_prepare);
+      ASSERT_EQ(a.positions, b.positions) << "frame " << frame;
+      ASSERT_EQ(a.normals, b.normals) << "frame " << frame;
+    }
+    job.outputs = &prepared;
+    job.parameters.instance_count = lengths.size() + 1;  // more than the buffer holds
+    job.derived_buffer = driver.derived_buffer();
+    DeviceBatch larger = deformer.allocate(lengths.size() + 1);
+    job.outputs = &larger;
+    try {
+      deformer.enqueue(job);
+      FAIL() << "expected an error naming job.derived_buffer";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.field(), "job.derived_buffer") << e.what();
+    }
+  }
+  // A model without derived values takes none.
+  const RiggedMesh bend = RiggedMesh::single_bend(barramundi().mesh(),
+                                                  find_body_frame(barramundi().mesh()),
+                                                  BendMode::kPaper);
+  ClDeformer bend_deformer(test::shared_context(), bend);
+  EXPECT_EQ(bend_deformer.derived_floats_per_instance(), 0u);
+  EXPECT_EQ(ClDeformer(test::shared_context(), swim.model()).derived_floats_per_instance(),
+            8u * swim.samples());
+}
+
 TEST(Swim, BadInputsAreNamed) {
   const SwimModel swim(barramundi());
   SwimReference fish(swim, {0.4f, 0.3f});

@@ -94,6 +94,7 @@ SwimScene::SwimScene(Context& context, const std::vector<SpeciesFiles>& files, s
     sp.job.parameters.instance_count = counts[s];
     sp.job.parameter_buffer = &sp.driver->parameter_buffer();
     sp.job.placement_buffer = &sp.driver->placement_buffer();
+    sp.job.derived_buffer = sp.driver->derived_buffer();  // null: rig_prepare runs
     sp.job.normals = normals;
     sp.job.outputs = &sp.outputs->batch();
   }

@@ -303,6 +303,25 @@ void ClDeformer::Impl::ensure_derived(std::size_t instances) {
   ++generation_;
 }
 
+// A job's own derived values: kInvalidArgument naming "job.derived_buffer" when the
+// model has none or the buffer is smaller than the frame's.
+void ClDeformer::Impl::check_derived_buffer(const cl::Buffer& buffer, std::size_t instances) const {
+  const std::string field = "job.derived_buffer";
+  if (derived_per_instance_ == 0) {
+    throw Error(ErrorCode::kInvalidArgument, field,
+                field + " is set, but the model's rig has no derived values (no spine)");
+  }
+  const std::size_t needed = instances * derived_per_instance_ * sizeof(float);
+  const std::size_t size = buffer.getInfo<CL_MEM_SIZE>();
+  if (size < needed) {
+    throw Error(ErrorCode::kInvalidArgument, field,
+                field + " holds " + std::to_string(size) + " bytes: " +
+                    std::to_string(instances) + " instances of " +
+                    std::to_string(derived_per_instance_) + " floats need " +
+                    std::to_string(needed));
+  }
+}
+
 // rig_prepare over the job's instances: the derived values from the frame's values.
 void ClDeformer::Impl::prepare_derived(const ClJob& job, const FrameInputs& inputs,
                                        std::vector<cl::Event>* kernel_events) {
@@ -358,7 +377,7 @@ cl_uint ClDeformer::Impl::set_arguments(cl::Kernel& kernel, std::size_t index, c
     set(static_cast<cl_uint>(model.values_per_instance()));
     set(stages_);
     set(group_paths_);
-    set(derived_);
+    set(*inputs.derived);
     set(static_cast<cl_uint>(derived_per_instance_));
   }
   set(*inputs.placements);
@@ -458,26 +477,34 @@ cl::Event ClDeformer::Impl::enqueue(const ClJob& job, std::vector<cl::Event>* ke
   check_buffer_sizes(*job.outputs);
   if (job.outputs->host_mapped) detail::unmap_host_outputs(context, *job.outputs);
   const std::size_t instances = job.parameters.instance_count;
-  const FrameInputs inputs = upload_inputs(job, checked);
+  FrameInputs inputs = upload_inputs(job, checked);
 
   RigPath path = job.path == RigPath::kAuto ? automatic_path : job.path;
   if (pass_count == 0) path = RigPath::kFused;  // no stage at all: the fused copy
   if (path == RigPath::kPasses && !single_bend) ensure_scratch(instances);
-  if (derived_per_instance_ > 0) {
-    ensure_derived(instances);
-    prepare_derived(job, inputs, kernel_events);
+  if (job.derived_buffer != nullptr) {
+    check_derived_buffer(*job.derived_buffer, instances);
+    inputs.derived = job.derived_buffer;
+  } else {
+    if (derived_per_instance_ > 0) {
+      ensure_derived(instances);
+      prepare_derived(job, inputs, kernel_events);
+    }
+    inputs.derived = &derived_;
   }
 
   auto run = [&](std::size_t index, std::size_t first_group, std::size_t end_group, bool last,
                  cl::Event* done) {
     BoundKernel& bound = kernel(index, job);
     if (bound.batch_serial != job.outputs->serial || bound.generation != generation_ ||
-        bound.parameters != (*inputs.parameters)() || bound.placements != (*inputs.placements)()) {
+        bound.parameters != (*inputs.parameters)() || bound.placements != (*inputs.placements)() ||
+        bound.derived != (*inputs.derived)()) {
       bound.out_layout_argument = set_arguments(bound.kernel, index, job, inputs);
       bound.batch_serial = job.outputs->serial;
       bound.generation = generation_;
       bound.parameters = (*inputs.parameters)();
       bound.placements = (*inputs.placements)();
+      bound.derived = (*inputs.derived)();
     } else if (job.outputs->outputs.previous_positions) {
       // Whether the positions hold a previous frame changes after the first.
       check_cl(bound.kernel.setArg(
@@ -587,6 +614,9 @@ const std::vector<std::uint32_t>& ClDeformer::remapped_indices() const {
 bool ClDeformer::uses_single_bend_kernel() const { return impl_->single_bend; }
 std::size_t ClDeformer::pass_count() const { return impl_->pass_count; }
 double ClDeformer::scratch_records_per_slot() const { return impl_->scratch_records_per_slot; }
+std::size_t ClDeformer::derived_floats_per_instance() const {
+  return impl_->derived_per_instance();
+}
 RigPath ClDeformer::automatic_path() const { return impl_->automatic_path; }
 std::size_t ClDeformer::instances_per_item(NormalFormat format) const {
   return impl_->per_item(format);

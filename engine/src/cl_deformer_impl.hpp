@@ -44,6 +44,7 @@ class ClDeformer::Impl {
             context.description().is_gpu());
   }
   bool streams_outputs(const DeviceBatch& batch) const;
+  std::size_t derived_per_instance() const { return derived_per_instance_; }
 
   Context& context;
   const RiggedMesh model;
@@ -64,6 +65,7 @@ class ClDeformer::Impl {
     std::uint64_t generation = 0;
     cl_mem parameters = nullptr;
     cl_mem placements = nullptr;
+    cl_mem derived = nullptr;
     cl_uint out_layout_argument = 0;  // its index (reset every frame with previous positions)
   };
 
@@ -71,6 +73,7 @@ class ClDeformer::Impl {
   struct FrameInputs {
     const cl::Buffer* parameters = nullptr;
     const cl::Buffer* placements = nullptr;  // a placeholder when the job places nothing
+    const cl::Buffer* derived = nullptr;     // the deformer's (rig_prepare) or the job's
   };
 
   const detail::ParameterChecker checker_;
@@ -127,6 +130,7 @@ class ClDeformer::Impl {
   BoundKernel& kernel(std::size_t index, const ClJob& job);
   void ensure_scratch(std::size_t instances);
   void ensure_derived(std::size_t instances);
+  void check_derived_buffer(const cl::Buffer& buffer, std::size_t instances) const;
   FrameInputs upload_inputs(const ClJob& job, bool checked);
   void prepare_derived(const ClJob& job, const FrameInputs& inputs,
                        std::vector<cl::Event>* kernel_events);

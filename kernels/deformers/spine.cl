@@ -118,12 +118,12 @@ FF_INLINE float2 spine_chord(__global const float* theta, int k, float h) {
   return h * sin_over_h(half_turn) * (float2)(cos_mid, sin_mid);
 }
 
-FF_INLINE void spine_prepare(__global const float* theta, __global float* derived, StageFrame f,
-                             __local float* scratch, int item) {
-  const float x_first = FF_STAGE_CONSTANT(f, 0);
-  const float inverse_h = FF_STAGE_CONSTANT(f, 1);
-  const float h = FF_STAGE_CONSTANT(f, 2);
-  const int count = (int)FF_STAGE_CONSTANT(f, 3) + 1;
+/* The records from the table's constants (the stage table's, or the same values
+ * generated into the swim driver, which writes them in the same frame's kernel:
+ * kernels/swim/driver.cl). */
+FF_INLINE void spine_records(__global const float* theta, __global float* derived, float x_first,
+                             float inverse_h, float h, int count, __local float* scratch,
+                             int item) {
   const int items = FF_PREPARE_ITEMS;
   const int chunk = (count + items - 1) / items;
   const int first = min(item * chunk, count), end = min(first + chunk, count);
@@ -169,5 +169,11 @@ FF_INLINE void spine_prepare(__global const float* theta, __global float* derive
     record[4] = k + 1 < count ? (theta[k + 1] - theta[k]) * inverse_h : 0.0f;
     record[5] = record[6] = record[7] = 0.0f;
   }
+}
+
+FF_INLINE void spine_prepare(__global const float* theta, __global float* derived, StageFrame f,
+                             __local float* scratch, int item) {
+  spine_records(theta, derived, FF_STAGE_CONSTANT(f, 0), FF_STAGE_CONSTANT(f, 1),
+                FF_STAGE_CONSTANT(f, 2), (int)FF_STAGE_CONSTANT(f, 3) + 1, scratch, item);
 }
 #endif

@@ -16,7 +16,9 @@
  * phases:   2 floats per fish, read and written: the wave's and the pectoral fins'
  * params:   FF_SWIM_VALUES floats per fish (slots not driven keep their values)
  * placements: 16 floats per fish (kernels/common/placement.cl's record)
- * limited:  per fish, the spine segments bent less than asked (to clear folding) */
+ * limited:  per fish, the spine segments bent less than asked (to clear folding)
+ * derived:  with FF_SWIM_DERIVED, FF_SWIM_DERIVED_COUNT floats per fish: the spine's
+ *           records (ClSwimDriver::derived_buffer), so the frame needs no rig_prepare */
 #define FF_TWO_PI 6.28318530717958647692f
 #define FF_SWIM_CHUNK ((FF_SWIM_SAMPLES + FF_SWIM_ITEMS - 1) / FF_SWIM_ITEMS)
 
@@ -38,15 +40,15 @@ inline float swim_wave_angle(int j, float phase, float scale, float curvature) {
 __kernel __attribute__((reqd_work_group_size(FF_SWIM_GROUP_SIZE, 1, 1))) void swim_drive(
     __global const float* restrict inputs, __global const float* restrict lengths,
     __global float* restrict phases, __global float* restrict params,
-    __global float* restrict placements, __global uint* restrict limited, const float dt,
-    const uint fish) {
-  __local float scans[2 * FF_SWIM_GROUP_SIZE];
+    __global float* restrict placements, __global uint* restrict limited,
+    __global float* restrict derived, const float dt, const uint fish) {
+  __local float scans[FF_SWIM_GROUP_SIZE / FF_SWIM_ITEMS * (2 * FF_SWIM_ITEMS + 2)];
   const size_t i = get_global_id(0) / FF_SWIM_ITEMS;
   const int item = (int)(get_local_id(0) % FF_SWIM_ITEMS);
   /* Past the last fish: a whole fish's work-items (a whole group when it has more than
    * one, so no barrier is left waiting). */
   if (i >= fish) return;
-  __local float* scan = scans + get_local_id(0) / FF_SWIM_ITEMS * (2 * FF_SWIM_ITEMS);
+  __local float* scan = scans + get_local_id(0) / FF_SWIM_ITEMS * (2 * FF_SWIM_ITEMS + 2);
   __global const float* in = inputs + i * 7;
   const float length = lengths[i];
   const float speed = in[5];
@@ -90,6 +92,15 @@ __kernel __attribute__((reqd_work_group_size(FF_SWIM_GROUP_SIZE, 1, 1))) void sw
   __global float* row = params + i * FF_SWIM_VALUES;
   for (int j = first; j < end; ++j)
     row[FF_SWIM_WAVE + j] = theta[j - first] + shift_before + shift_within[j - first];
+#if FF_SWIM_DERIVED
+  /* The spine's records of this frame, as rig_prepare would write them from the row
+   * (deformers/spine.cl), once every work-item's angles are in it. */
+#if FF_SWIM_ITEMS > 1
+  barrier(CLK_GLOBAL_MEM_FENCE | CLK_LOCAL_MEM_FENCE);
+#endif
+  spine_records(row + FF_SWIM_WAVE, derived + i * FF_SWIM_DERIVED_COUNT, FF_SWIM_SPINE_X_FIRST,
+                FF_SWIM_SPINE_INVERSE_H, FF_SWIM_SPINE_H, FF_SWIM_SPINE_COUNT, scan, item);
+#endif
   if (item != 0) return;
   /* The rest is the fish's, once: every work-item read the old phases before the scan's
    * barriers. */

@@ -153,6 +153,7 @@ finflex_status finflex_deformer_enqueue_swim(finflex_deformer* deformer,
     job.parameters.instance_count = swim.fish_count();
     job.parameter_buffer = &swim.parameter_buffer();
     job.placement_buffer = &swim.placement_buffer();
+    job.derived_buffer = swim.derived_buffer();
     job.outputs = &require(batch, "batch")->batch;
     const std::vector<cl::Event> events = finflex::c::wait_events(wait, wait_count);
     if (!events.empty()) job.wait = &events;

@@ -182,6 +182,7 @@ void bind_swim(nb::module_& m) {
         job.job.parameters.instance_count = swim.driver->fish_count();
         job.job.parameter_buffer = &swim.driver->parameter_buffer();
         job.job.placement_buffer = &swim.driver->placement_buffer();
+        job.job.derived_buffer = swim.driver->derived_buffer();
         return job;
       },
       nb::is_method(), nb::scope(deformer_class), nb::name("swim_job"), nb::arg("batch"),

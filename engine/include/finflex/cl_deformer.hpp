@@ -187,6 +187,9 @@ class FINFLEX_API ClDeformer {
   // Float32 vertex records the multi-pass path moves through its scratch sets (reads
   // plus writes, all passes), per slot: 0 when no vertex has more than one stage.
   double scratch_records_per_slot() const;
+  // Derived values per instance (a spine's running integrals; 0 when the rig has none):
+  // the floats a ClJob::derived_buffer holds for each instance.
+  std::size_t derived_floats_per_instance() const;
   // The path RigPath::kAuto resolves to for this model.
   RigPath automatic_path() const;
   // Instances one work-item deforms for outputs in `format` (ClOptions).

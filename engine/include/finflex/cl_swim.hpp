@@ -9,6 +9,7 @@
 //   job.parameters.instance_count = lengths.size();
 //   job.parameter_buffer = &driver.parameter_buffer();
 //   job.placement_buffer = &driver.placement_buffer();
+//   job.derived_buffer = driver.derived_buffer();  (null: rig_prepare runs)
 //   each frame: driver.enqueue(inputs, dt); deformer.enqueue(job);
 //
 // The device's state: per fish its wave and pectoral phases (2 floats). Memory per
@@ -49,6 +50,11 @@ class FINFLEX_API ClSwimDriver {
   // What a ClJob reads: rows of the rig's values, and placement records.
   const cl::Buffer& parameter_buffer() const;
   const cl::Buffer& placement_buffer() const;
+  // The rig's derived values of the frame (the body spine's records), written by the
+  // driver kernel itself when the spine is the rig's only stage with derived values,
+  // for ClJob::derived_buffer: the frame then skips rig_prepare (one launch less).
+  // Null otherwise.
+  const cl::Buffer* derived_buffer() const;
 
   // Blocking reads, for tests and tools: the parameters, the wave phases, and the spine
   // segments the last frame bent less than asked (to clear folding), summed.

@@ -76,6 +76,12 @@ struct BasicDeformJob {
   // instance). Null: none.
   const Buffer* parameter_buffer = nullptr;
   const Buffer* placement_buffer = nullptr;
+  // The rig's derived values of this frame (DeformerType::derived_count: a spine's
+  // running integrals), already written by the kernel that wrote parameter_buffer
+  // (ClSwimDriver::derived_buffer()), in the layout rig_prepare writes
+  // (ClDeformer::derived_floats_per_instance() floats per instance): the frame skips
+  // rig_prepare. Null: rig_prepare computes them from the parameters.
+  const Buffer* derived_buffer = nullptr;
 
   // ---- Job output ----
   // Where the deformed positions, normals and tangents go (the backend's kind).

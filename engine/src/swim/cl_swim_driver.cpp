@@ -2,6 +2,7 @@
 // driver program (kernels/swim/driver.cl), per-fish state on the device.
 #include "finflex/cl_swim.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -11,6 +12,7 @@
 
 #include "device_buffers.hpp"
 #include "device_profile.hpp"
+#include "rig_program.hpp"
 #include "finflex/error.hpp"
 
 namespace finflex {
@@ -53,6 +55,35 @@ std::string literal(double value) {
   return out.str();
 }
 
+// A float exactly as the host rounds it (9 significant digits identify a float), so a
+// generated constant equals the stage table's value to the bit.
+std::string float_literal(double value) {
+  std::ostringstream out;
+  out.precision(9);
+  out << std::scientific << static_cast<double>(static_cast<float>(value)) << "f";
+  return out.str();
+}
+
+// The body's spine stage when it is the rig's only stage with derived values (so its
+// records start each instance's derived row, kernels/rig.cl): the driver then writes
+// them itself and the frame skips rig_prepare. Null otherwise.
+const RigStage* driver_prepared_spine(const SwimModel& swim) {
+  const Rig& rig = swim.model().rig();
+  const RigStage* found = nullptr;
+  std::size_t with_derived = 0;
+  for (const RigComponent& component : rig.components) {
+    for (const RigStage& stage : component.chain) {
+      if (stage.deformer->derived_count == nullptr) continue;
+      ++with_derived;
+      if (&component == &rig.components.front() &&
+          rig.parameters[stage.param].offset == swim.wave_offset()) {
+        found = &stage;
+      }
+    }
+  }
+  return with_derived == 1 ? found : nullptr;
+}
+
 long offset_or_none(std::size_t offset) {
   return offset == SwimModel::kNone ? -1L : static_cast<long>(offset);
 }
@@ -64,6 +95,23 @@ std::string driver_constants(const SwimModel& swim, std::size_t items) {
   std::ostringstream out;
   out << "#define FF_SWIM_GROUP_SIZE " << kGroupSize << "\n"
       << "#define FF_SWIM_ITEMS " << items << "\n"
+      << "#define FF_PREPARE_ITEMS " << items << "\n"
+      << "#define FF_PREPARE_BARRIER() "
+      << (items > 1 ? "barrier(CLK_LOCAL_MEM_FENCE)" : "/* one work-item */") << "\n";
+  // The spine's records (kernels/deformers/spine.cl, spine_records) from the stage
+  // table's own constants, when the driver writes them.
+  if (const RigStage* spine = driver_prepared_spine(swim)) {
+    const StageConstants c = spine->deformer->stage_constants(spine->options, spine->geometry);
+    out << "#define FF_SWIM_DERIVED 1\n"
+        << "#define FF_SWIM_DERIVED_COUNT " << detail::derived_per_instance(model.rig()) << "\n"
+        << "#define FF_SWIM_SPINE_X_FIRST " << float_literal(c[0]) << "\n"
+        << "#define FF_SWIM_SPINE_INVERSE_H " << float_literal(c[1]) << "\n"
+        << "#define FF_SWIM_SPINE_H " << float_literal(c[2]) << "\n"
+        << "#define FF_SWIM_SPINE_COUNT " << static_cast<long>(c[3]) + 1 << "\n";
+  } else {
+    out << "#define FF_SWIM_DERIVED 0\n";
+  }
+  out
       << "#define FF_SWIM_SAMPLES " << swim.samples() << "\n"
       << "#define FF_SWIM_VALUES " << model.values_per_instance() << "\n"
       << "#define FF_SWIM_WAVE " << swim.wave_offset() << "\n"
@@ -130,10 +178,17 @@ class ClSwimDriver::Impl {
     placements_ =
         detail::make_buffer(cl_context, CL_MEM_READ_WRITE, fish * kPlacementFloats * sizeof(float));
     limited_ = detail::make_buffer(cl_context, CL_MEM_READ_WRITE, fish * sizeof(cl_uint));
-    const ProgramSource source{
-        {"common/lanes.cl", "common/vec3.cl", "common/scan.cl", "swim/driver.cl"},
-        driver_constants(swim, items),
-        ""};
+    prepares_derived = driver_prepared_spine(swim) != nullptr;
+    derived_ = detail::make_buffer(
+        cl_context, CL_MEM_READ_WRITE,
+        std::max<std::size_t>(prepares_derived ? fish * detail::derived_per_instance(swim.model().rig()) : 0, 1) *
+            sizeof(float));
+    // The spine's records come from kernels/deformers/spine.cl and what it builds on.
+    const ProgramSource source{{"common/lanes.cl", "common/vec3.cl", "common/trig.cl",
+                                "common/scan.cl", "common/secant.cl", "common/stage_frame.cl",
+                                "deformers/spine.cl", "swim/driver.cl"},
+                               driver_constants(swim, items),
+                               ""};
     kernel_ = context.kernel("swim_drive", source, "");
   }
 
@@ -141,6 +196,8 @@ class ClSwimDriver::Impl {
   const SwimModel& swim;
   std::size_t fish;
   std::size_t items;  // work-items per fish (swim/driver.cl's FF_SWIM_ITEMS)
+  bool prepares_derived = false;  // the spine's records too (driver_prepared_spine)
+  cl::Buffer derived_;
   cl::Buffer lengths_, phases_, parameters_, placements_, limited_;
   cl::Kernel kernel_;
   detail::ParameterUpload inputs_;
@@ -180,11 +237,12 @@ cl::Event ClSwimDriver::enqueue(const std::vector<SwimInput>& inputs, float dt,
     set(d.parameters_);
     set(d.placements_);
     set(d.limited_);
+    set(d.derived_);
     set(dt);
     set(static_cast<cl_uint>(d.fish));
     d.bound_ = true;
   }
-  check_cl(kernel.setArg(6, dt), "clSetKernelArg dt");
+  check_cl(kernel.setArg(7, dt), "clSetKernelArg dt");
   cl::Event done;
   const std::size_t global = (d.fish * d.items + kGroupSize - 1) / kGroupSize * kGroupSize;
   check_cl(d.context.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global),
@@ -196,6 +254,9 @@ cl::Event ClSwimDriver::enqueue(const std::vector<SwimInput>& inputs, float dt,
 
 const cl::Buffer& ClSwimDriver::parameter_buffer() const { return impl_->parameters_; }
 const cl::Buffer& ClSwimDriver::placement_buffer() const { return impl_->placements_; }
+const cl::Buffer* ClSwimDriver::derived_buffer() const {
+  return impl_->prepares_derived ? &impl_->derived_ : nullptr;
+}
 
 RigParameters ClSwimDriver::read_parameters() {
   Impl& d = *impl_;
