@@ -144,7 +144,8 @@ BatchLayout ClDeformer::Impl::layout(std::size_t instances, NormalFormat format)
 std::size_t ClDeformer::Impl::per_item(NormalFormat format) const {
   return options.instances_per_item
              ? options.instances_per_item
-             : detail::device_instances_per_item(context.description(), single_bend, format);
+             : detail::device_instances_per_item(context.description(), single_bend,
+                                                 derived_per_instance_ > 0, format);
 }
 
 // Normals of fewer than 12 bytes (16-bit and octahedral formats) take the work-item
