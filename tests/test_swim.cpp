@@ -268,9 +268,8 @@ TEST(Swim, DriverPreparedRecordsDeformAsRigPrepareDoes) {
     }
   }
   // A model without derived values takes none.
-  const RiggedMesh bend = RiggedMesh::single_bend(barramundi().mesh(),
-                                                  find_body_frame(barramundi().mesh()),
-                                                  BendMode::kPaper);
+  const RiggedMesh bend = RiggedMesh::single_bend(
+      barramundi().mesh(), find_body_frame(barramundi().mesh()), BendMode::kPaper);
   ClDeformer bend_deformer(test::shared_context(), bend);
   EXPECT_EQ(bend_deformer.derived_floats_per_instance(), 0u);
   EXPECT_EQ(ClDeformer(test::shared_context(), swim.model()).derived_floats_per_instance(),

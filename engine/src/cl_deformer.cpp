@@ -316,9 +316,8 @@ void ClDeformer::Impl::check_derived_buffer(const cl::Buffer& buffer, std::size_
   const std::size_t size = buffer.getInfo<CL_MEM_SIZE>();
   if (size < needed) {
     throw Error(ErrorCode::kInvalidArgument, field,
-                field + " holds " + std::to_string(size) + " bytes: " +
-                    std::to_string(instances) + " instances of " +
-                    std::to_string(derived_per_instance_) + " floats need " +
+                field + " holds " + std::to_string(size) + " bytes: " + std::to_string(instances) +
+                    " instances of " + std::to_string(derived_per_instance_) + " floats need " +
                     std::to_string(needed));
   }
 }

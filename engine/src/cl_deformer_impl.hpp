@@ -116,7 +116,7 @@ class ClDeformer::Impl {
     std::size_t instances = 0;
   };
   ValidatedBatch validated_;
-  std::string batch_options_;  // output_build_options() of the batch validated last
+  std::string batch_options_;    // output_build_options() of the batch validated last
   std::size_t batch_lanes_ = 1;  // lanes(outputs) of the batch validated last
   bool batch_streams_ = false;   // streams_outputs() of the batch validated last
   // Per slot its mesh vertex (0xffffffff for padding): outputs in mesh order.

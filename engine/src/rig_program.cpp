@@ -394,6 +394,11 @@ std::vector<FusedLaunch> make_fused_plan(const RiggedMesh& model, const SlotLayo
   return launches;
 }
 
+std::string prepare_items_source(std::size_t items) {
+  return "#define FF_PREPARE_ITEMS " + std::to_string(items) + "\n#define FF_PREPARE_BARRIER() " +
+         (items > 1 ? "barrier(CLK_LOCAL_MEM_FENCE)" : "/* one work-item */") + "\n";
+}
+
 std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots,
                                 const std::vector<FusedLaunch>& fused, const PassPlan& plan,
                                 std::size_t group_size, std::size_t prepare_items,
@@ -407,9 +412,7 @@ std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots
   if (!root_has_stages) out << "#define FF_ROOT_FRAME " << stage_count(rig) << "u\n";
   out << "#define FF_RIG_GROUP_COUNT " << slots.slot_count / group_size << "u\n";
   out << "#define FF_PREPARE_GROUP_SIZE " << group_size << "\n";
-  out << "#define FF_PREPARE_ITEMS " << prepare_items << "\n";
-  out << "#define FF_PREPARE_BARRIER() "
-      << (prepare_items > 1 ? "barrier(CLK_LOCAL_MEM_FENCE)" : "/* one work-item */") << "\n";
+  out << prepare_items_source(prepare_items);
   // Fused: the group's component's whole path, bottom-up; a kernel per launch, a branch
   // per run of components in it (none when the launch has one).
   for (std::size_t r = 0; r < fused.size(); ++r) {

@@ -125,9 +125,13 @@ std::vector<FusedLaunch> make_fused_plan(const RiggedMesh& model, const SlotLayo
 // FF_PREPARE_GROUP_SIZE (group_size) and FF_PREPARE_ITEMS (prepare_items: 1 or
 // group_size work-items per instance). share_code: as for make_pass_plan
 // (RigDispatch::kByPathShape).
+// The generated macros of the table-preparing code (DeformerType::cl_prepare_function,
+// kernels/deformers/spine.cl): FF_PREPARE_ITEMS, `items` work-items per instance (1 or a
+// work-group), and FF_PREPARE_BARRIER(), a barrier between them (none for one).
+std::string prepare_items_source(std::size_t items);
+
 std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots,
                                 const std::vector<FusedLaunch>& fused, const PassPlan& plan,
-                                std::size_t group_size, std::size_t prepare_items,
-                                bool share_code);
+                                std::size_t group_size, std::size_t prepare_items, bool share_code);
 
 }  // namespace finflex::detail

@@ -99,7 +99,7 @@ __kernel __attribute__((reqd_work_group_size(FF_SWIM_GROUP_SIZE, 1, 1))) void sw
   barrier(CLK_GLOBAL_MEM_FENCE | CLK_LOCAL_MEM_FENCE);
 #endif
   spine_records(row + FF_SWIM_WAVE, derived + i * FF_SWIM_DERIVED_COUNT, FF_SWIM_SPINE_X_FIRST,
-                FF_SWIM_SPINE_INVERSE_H, FF_SWIM_SPINE_H, FF_SWIM_SPINE_COUNT, scan, item);
+                FF_SWIM_SPINE_INVERSE_H, FF_SWIM_SPINE_H, FF_SWIM_SAMPLES, scan, item);
 #endif
   if (item != 0) return;
   /* The rest is the fish's, once: every work-item read the old phases before the scan's

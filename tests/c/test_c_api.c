@@ -939,12 +939,12 @@ static void test_swim(void) {
         INVALID, finflex_deformer_error(other), "driver", NULL);
   FAILS(finflex_deformer_enqueue_swim(deformer, NULL, batch, FINFLEX_NORMALS_ROTATE, NULL, 0, NULL),
         INVALID, NULL, "driver", NULL);
-  FAILS(finflex_deformer_enqueue_swim(deformer, driver, batch, (finflex_normal_mode)7, NULL, 0,
-                                      NULL),
-        INVALID, NULL, "job.normals", NULL);
-  FAILS(finflex_deformer_enqueue_swim(deformer, driver, NULL, FINFLEX_NORMALS_ROTATE, NULL, 0,
-                                      NULL),
-        INVALID, NULL, "batch", NULL);
+  FAILS(
+      finflex_deformer_enqueue_swim(deformer, driver, batch, (finflex_normal_mode)7, NULL, 0, NULL),
+      INVALID, NULL, "job.normals", NULL);
+  FAILS(
+      finflex_deformer_enqueue_swim(deformer, driver, NULL, FINFLEX_NORMALS_ROTATE, NULL, 0, NULL),
+      INVALID, NULL, "batch", NULL);
 
   /* Handles in any order: the swim model, the context and the models go first. */
   finflex_swim_model_destroy(swim);

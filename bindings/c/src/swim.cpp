@@ -41,8 +41,7 @@ const finflex_error* finflex_swim_model_error(const finflex_swim_model* swim) {
   return slot_of(swim);
 }
 
-finflex_status finflex_swim_model_get_model(const finflex_swim_model* swim,
-                                            finflex_model** model) {
+finflex_status finflex_swim_model_get_model(const finflex_swim_model* swim, finflex_model** model) {
   return create(slot_of(swim), model, "model", [&] {
     const std::shared_ptr<const finflex::SwimModel>& own = require(swim, "swim")->swim;
     auto handle = std::make_unique<finflex_model>();
@@ -85,9 +84,9 @@ size_t finflex_swim_driver_fish_count(const finflex_swim_driver* driver) {
 }
 
 finflex_status finflex_swim_driver_enqueue(finflex_swim_driver* driver,
-                                           const finflex_swim_input* inputs, size_t count,
-                                           float dt, finflex_event* const* wait,
-                                           size_t wait_count, finflex_event** done) {
+                                           const finflex_swim_input* inputs, size_t count, float dt,
+                                           finflex_event* const* wait, size_t wait_count,
+                                           finflex_event** done) {
   return guarded(slot_of(driver), [&] {
     finflex::ClSwimDriver& d = driver_of(driver);
     if (count > 0) require(inputs, "inputs");
@@ -101,9 +100,8 @@ finflex_status finflex_swim_driver_enqueue(finflex_swim_driver* driver,
       in.turn_rate = inputs[i].turn_rate;
     }
     const std::vector<cl::Event> events = finflex::c::wait_events(wait, wait_count);
-    finflex::c::enqueue_with_event(done, [&] {
-      return d.enqueue(driver->inputs, dt, events.empty() ? nullptr : &events);
-    });
+    finflex::c::enqueue_with_event(
+        done, [&] { return d.enqueue(driver->inputs, dt, events.empty() ? nullptr : &events); });
   });
 }
 

@@ -77,11 +77,11 @@ void bind_swim(nb::module_& m) {
           "__init__",
           [](PySwimDriver* self, const PyContext& context, const PySwimModel& swim,
              const std::vector<float>& lengths, const std::optional<std::vector<float>>& phases) {
-            new (self) PySwimDriver{
-                context.context, swim.swim,
-                std::make_unique<ClSwimDriver>(*context.context, *swim.swim, lengths,
-                                               phases.value_or(std::vector<float>{})),
-                std::vector<SwimInput>(lengths.size())};
+            new (self)
+                PySwimDriver{context.context, swim.swim,
+                             std::make_unique<ClSwimDriver>(*context.context, *swim.swim, lengths,
+                                                            phases.value_or(std::vector<float>{})),
+                             std::vector<SwimInput>(lengths.size())};
           },
           nb::arg("context"), nb::arg("swim"), nb::arg("lengths"), nb::arg("phases") = nb::none(),
           "One fish per length (metres, > 0); phases (cycles) per fish or 0. finflex.Error "
@@ -112,8 +112,8 @@ void bind_swim(nb::module_& m) {
           "read_parameters",
           [](PySwimDriver& d) {
             const RigParameters values = d.driver->read_parameters();
-            return owned_array(values.values(), {d.driver->fish_count(),
-                                                 values.values_per_instance()});
+            return owned_array(values.values(),
+                               {d.driver->fish_count(), values.values_per_instance()});
           },
           "Blocking: the rig parameters the last frame wrote, float32 (fish, values).")
       .def(
@@ -174,8 +174,9 @@ void bind_swim(nb::module_& m) {
         const PyDeformer& d = nb::cast<const PyDeformer&>(self);
         const PySwimDriver& swim = nb::cast<const PySwimDriver&>(driver);
         if (&swim.swim->model() != d.model.get()) {
-          reject("driver", "driver: its SwimModel's model is not the deformer's (make the "
-                           "Deformer from swim_model.model)");
+          reject("driver",
+                 "driver: its SwimModel's model is not the deformer's (make the "
+                 "Deformer from swim_model.model)");
         }
         PySwimJob job{nb::borrow(self), nb::borrow(batch), nb::borrow(driver),
                       describe_frames(d, nb::cast<PyBatch&>(batch), normals, false, path)};

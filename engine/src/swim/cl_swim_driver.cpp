@@ -12,8 +12,8 @@
 
 #include "device_buffers.hpp"
 #include "device_profile.hpp"
-#include "rig_program.hpp"
 #include "finflex/error.hpp"
+#include "rig_program.hpp"
 
 namespace finflex {
 namespace {
@@ -48,16 +48,9 @@ bool copy_valid_inputs(const SwimInput* inputs, float* staged, std::size_t fish)
 }
 constexpr std::size_t kGroupSize = detail::kWorkGroupSize;
 
+// A float constant of the kernel, exactly as the host rounds the double (9 significant
+// digits identify a float): the spine's constants then equal the stage table's bits.
 std::string literal(double value) {
-  std::ostringstream out;
-  out.precision(9);
-  out << std::scientific << value << "f";
-  return out.str();
-}
-
-// A float exactly as the host rounds it (9 significant digits identify a float), so a
-// generated constant equals the stage table's value to the bit.
-std::string float_literal(double value) {
   std::ostringstream out;
   out.precision(9);
   out << std::scientific << static_cast<double>(static_cast<float>(value)) << "f";
@@ -88,31 +81,28 @@ long offset_or_none(std::size_t offset) {
   return offset == SwimModel::kNone ? -1L : static_cast<long>(offset);
 }
 
-// The driver program's generated constants.
-std::string driver_constants(const SwimModel& swim, std::size_t items) {
+// The driver program's generated constants; `spine`: the stage whose records the
+// driver writes (driver_prepared_spine), or null.
+std::string driver_constants(const SwimModel& swim, std::size_t items, const RigStage* spine) {
   const SwimKinematics& k = swim.kinematics();
   const RiggedMesh& model = swim.model();
   std::ostringstream out;
   out << "#define FF_SWIM_GROUP_SIZE " << kGroupSize << "\n"
       << "#define FF_SWIM_ITEMS " << items << "\n"
-      << "#define FF_PREPARE_ITEMS " << items << "\n"
-      << "#define FF_PREPARE_BARRIER() "
-      << (items > 1 ? "barrier(CLK_LOCAL_MEM_FENCE)" : "/* one work-item */") << "\n";
+      << detail::prepare_items_source(items);
   // The spine's records (kernels/deformers/spine.cl, spine_records) from the stage
-  // table's own constants, when the driver writes them.
-  if (const RigStage* spine = driver_prepared_spine(swim)) {
+  // table's own constants (its sample count is FF_SWIM_SAMPLES).
+  if (spine != nullptr) {
     const StageConstants c = spine->deformer->stage_constants(spine->options, spine->geometry);
     out << "#define FF_SWIM_DERIVED 1\n"
         << "#define FF_SWIM_DERIVED_COUNT " << detail::derived_per_instance(model.rig()) << "\n"
-        << "#define FF_SWIM_SPINE_X_FIRST " << float_literal(c[0]) << "\n"
-        << "#define FF_SWIM_SPINE_INVERSE_H " << float_literal(c[1]) << "\n"
-        << "#define FF_SWIM_SPINE_H " << float_literal(c[2]) << "\n"
-        << "#define FF_SWIM_SPINE_COUNT " << static_cast<long>(c[3]) + 1 << "\n";
+        << "#define FF_SWIM_SPINE_X_FIRST " << literal(c[0]) << "\n"
+        << "#define FF_SWIM_SPINE_INVERSE_H " << literal(c[1]) << "\n"
+        << "#define FF_SWIM_SPINE_H " << literal(c[2]) << "\n";
   } else {
     out << "#define FF_SWIM_DERIVED 0\n";
   }
-  out
-      << "#define FF_SWIM_SAMPLES " << swim.samples() << "\n"
+  out << "#define FF_SWIM_SAMPLES " << swim.samples() << "\n"
       << "#define FF_SWIM_VALUES " << model.values_per_instance() << "\n"
       << "#define FF_SWIM_WAVE " << swim.wave_offset() << "\n"
       << "#define FF_SWIM_TAIL " << offset_or_none(swim.tail_offset()) << "\n"
@@ -178,24 +168,26 @@ class ClSwimDriver::Impl {
     placements_ =
         detail::make_buffer(cl_context, CL_MEM_READ_WRITE, fish * kPlacementFloats * sizeof(float));
     limited_ = detail::make_buffer(cl_context, CL_MEM_READ_WRITE, fish * sizeof(cl_uint));
-    prepares_derived = driver_prepared_spine(swim) != nullptr;
-    derived_ = detail::make_buffer(
-        cl_context, CL_MEM_READ_WRITE,
-        std::max<std::size_t>(prepares_derived ? fish * detail::derived_per_instance(swim.model().rig()) : 0, 1) *
-            sizeof(float));
+    const RigStage* spine = driver_prepared_spine(swim);
+    prepares_derived = spine != nullptr;
+    // A placeholder float when the driver writes no records: the kernel takes the buffer.
+    const std::size_t per_fish = detail::derived_per_instance(swim.model().rig());
+    const std::size_t derived_floats =
+        prepares_derived ? std::max<std::size_t>(fish * per_fish, 1) : 1;
+    derived_ = detail::make_buffer(cl_context, CL_MEM_READ_WRITE, derived_floats * sizeof(float));
     // The spine's records come from kernels/deformers/spine.cl and what it builds on.
-    const ProgramSource source{{"common/lanes.cl", "common/vec3.cl", "common/trig.cl",
-                                "common/scan.cl", "common/secant.cl", "common/stage_frame.cl",
-                                "deformers/spine.cl", "swim/driver.cl"},
-                               driver_constants(swim, items),
-                               ""};
+    const ProgramSource source{
+        {"common/lanes.cl", "common/vec3.cl", "common/trig.cl", "common/scan.cl",
+         "common/secant.cl", "common/stage_frame.cl", "deformers/spine.cl", "swim/driver.cl"},
+        driver_constants(swim, items, spine),
+        ""};
     kernel_ = context.kernel("swim_drive", source, "");
   }
 
   Context& context;
   const SwimModel& swim;
   std::size_t fish;
-  std::size_t items;  // work-items per fish (swim/driver.cl's FF_SWIM_ITEMS)
+  std::size_t items;              // work-items per fish (swim/driver.cl's FF_SWIM_ITEMS)
   bool prepares_derived = false;  // the spine's records too (driver_prepared_spine)
   cl::Buffer derived_;
   cl::Buffer lengths_, phases_, parameters_, placements_, limited_;
