@@ -208,17 +208,10 @@ TEST(Lanes, PlacedInstancesMatchOneLaneAndTheReference) {
     ClDeformer one_lane(test::shared_context(), *model, with_lanes(1));
     for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {
       const DeformedBatch<double> reference =
-          test::reference_of(*model, values, normals, where.data());
+          run_reference(*model, values, normals, false, where.data());
       auto placed_run = [&](ClDeformer& deformer) {
-        DeviceBatch batch = deformer.allocate(where.size());
-        ClJob job;
-        job.model = model;
-        job.parameters = values.view();
-        job.normals = normals;
-        job.placements = where.data();
-        job.outputs = &batch;
-        deformer.enqueue(job);
-        return deformer.read(batch);
+        return test::run_on_device(deformer, values, normals, RigPath::kAuto, false,
+                                   NormalFormat::kFloat32, where.data());
       };
       const DeformedBatch<float> scalar = placed_run(one_lane);
       for (std::size_t lanes : kVectorLanes) {

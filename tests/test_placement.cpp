@@ -102,7 +102,7 @@ TEST(Placement, DeviceMatchesTheReferenceFromHostAndDeviceBuffers) {
       deformer.enqueue(job);
       const DeformedBatch<float> from_host = deformer.read(batch);
       const DeformedBatch<double> reference =
-          test::reference_of(*model, values, normals, where.data());
+          run_reference(*model, values, normals, false, where.data());
       const AccuracyReport report =
           compare_to_reference(*model, values.view(), normals, from_host, reference, where.data());
       SCOPED_TRACE(std::string(model == &bend ? "bend " : "rig ") + to_string(normals));

@@ -207,14 +207,8 @@ TEST(Swim, AFrameFromTheDeviceDriverMatchesTheReference) {
     // The reference deforms with the device driver's own values (float), so that only
     // the deformation is compared here (the drivers are compared above).
     const RigParameters values = driver.read_parameters();
-    ReferenceJob reference_job;
-    DeformedBatch<double> expected;
-    reference_job.model = &swim.model();
-    reference_job.parameters = values.view();
-    reference_job.placements = reference.placements().data();
-    reference_job.normals = normals;
-    reference_job.outputs = &expected;
-    run_reference(reference_job);
+    const DeformedBatch<double> expected =
+        run_reference(swim.model(), values, normals, false, reference.placements().data());
     const AccuracyReport report = compare_to_reference(swim.model(), values.view(), normals, device,
                                                        expected, reference.placements().data());
     EXPECT_LE(report.max_position_ratio, 1.0) << report.max_position_error;

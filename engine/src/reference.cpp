@@ -59,13 +59,14 @@ void run_reference(const ReferenceJob& job) {
 }
 
 DeformedBatch<double> run_reference(const RiggedMesh& model, const RigParameters& parameters,
-                                    NormalMode normals, bool clamp) {
+                                    NormalMode normals, bool clamp, const Placement* placements) {
   DeformedBatch<double> out;
   ReferenceJob job;
   job.model = &model;
   job.parameters = parameters.view();
   job.normals = normals;
   job.clamp = clamp;
+  job.placements = placements;
   job.outputs = &out;
   run_reference(job);
   return out;

@@ -10,19 +10,6 @@
 
 namespace finflex::test {
 
-DeformedBatch<double> reference_of(const RiggedMesh& model, const RigParameters& values,
-                                   NormalMode normals, const Placement* placements) {
-  ReferenceJob job;
-  DeformedBatch<double> reference;
-  job.model = &model;
-  job.parameters = values.view();
-  job.normals = normals;
-  job.placements = placements;
-  job.outputs = &reference;
-  run_reference(job);
-  return reference;
-}
-
 RigParameters values_of(const RiggedMesh& model, const std::vector<float>& rows) {
   const std::size_t per = std::max<std::size_t>(model.values_per_instance(), 1);
   RigParameters values(model, rows.size() / per);
@@ -32,13 +19,14 @@ RigParameters values_of(const RiggedMesh& model, const std::vector<float>& rows)
 
 DeformedBatch<float> run_on_device(ClDeformer& deformer, DeviceBatch& batch,
                                    const RigParameters& values, NormalMode normals, RigPath path,
-                                   bool clamp) {
+                                   bool clamp, const Placement* placements) {
   ClJob job;
   job.model = &deformer.model();
   job.parameters = values.view();
   job.normals = normals;
   job.path = path;
   job.clamp = clamp;
+  job.placements = placements;
   job.outputs = &batch;
   deformer.enqueue(job);
   return deformer.read(batch);
@@ -46,9 +34,9 @@ DeformedBatch<float> run_on_device(ClDeformer& deformer, DeviceBatch& batch,
 
 DeformedBatch<float> run_on_device(ClDeformer& deformer, const RigParameters& values,
                                    NormalMode normals, RigPath path, bool clamp,
-                                   NormalFormat format) {
+                                   NormalFormat format, const Placement* placements) {
   DeviceBatch batch = deformer.allocate(values.instance_count(), format);
-  return run_on_device(deformer, batch, values, normals, path, clamp);
+  return run_on_device(deformer, batch, values, normals, path, clamp, placements);
 }
 
 RigParameters bend_fractions(const RiggedMesh& model, const std::vector<double>& fractions) {

@@ -14,20 +14,17 @@ namespace finflex::test {
 // each, packed): e.g. {m0, m1, m2} for the whole-body bend.
 RigParameters values_of(const RiggedMesh& model, const std::vector<float>& rows);
 
-// The double-precision reference of `values` (with world `placements`, one per
-// instance, or none).
-DeformedBatch<double> reference_of(const RiggedMesh& model, const RigParameters& values,
-                                   NormalMode normals, const Placement* placements = nullptr);
-
-// Enqueues `values` on `batch` and reads the batch back.
+// Enqueues `values` on `batch` (with world `placements`, one per instance, or none)
+// and reads the batch back.
 DeformedBatch<float> run_on_device(ClDeformer& deformer, DeviceBatch& batch,
                                    const RigParameters& values, NormalMode normals,
-                                   RigPath path = RigPath::kAuto, bool clamp = false);
+                                   RigPath path = RigPath::kAuto, bool clamp = false,
+                                   const Placement* placements = nullptr);
 // The same on a new batch of the deformer's, normals in `format`.
 DeformedBatch<float> run_on_device(ClDeformer& deformer, const RigParameters& values,
                                    NormalMode normals, RigPath path = RigPath::kAuto,
-                                   bool clamp = false,
-                                   NormalFormat format = NormalFormat::kFloat32);
+                                   bool clamp = false, NormalFormat format = NormalFormat::kFloat32,
+                                   const Placement* placements = nullptr);
 
 // The whole-body bend in the limits of its m: fractions of the limit for each instance.
 RigParameters bend_fractions(const RiggedMesh& model, const std::vector<double>& fractions);

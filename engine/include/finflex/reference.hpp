@@ -35,10 +35,12 @@ using ReferenceJob = BasicDeformJob<DeformedBatch<double>, NoEvent, NoBuffer>;
 // On error the outputs are left as they were.
 FINFLEX_API void run_reference(const ReferenceJob& job);
 
-// The same for a whole RigParameters: a convenience for tests and tools.
+// The same for a whole RigParameters (with world `placements`, one per instance, or
+// none): a convenience for tests and tools.
 FINFLEX_API DeformedBatch<double> run_reference(const RiggedMesh& model,
                                                 const RigParameters& parameters, NormalMode normals,
-                                                bool clamp = false);
+                                                bool clamp = false,
+                                                const Placement* placements = nullptr);
 
 // One vertex in a stage's frame: position, unit normal, unit tangent (zero when the
 // mesh has none).
