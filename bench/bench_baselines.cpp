@@ -92,16 +92,9 @@ void BM_OpenMPBaseline(benchmark::State& state) {
   const std::size_t instances = static_cast<std::size_t>(state.range(0));
   const std::vector<float> m = baseline_bend_values(instances, b.x_max);
   std::vector<Float3> positions(instances * b.positions.size()), normals(positions.size());
-  bend_all(b, m, positions, normals);  // warm-up: pages touched, threads started
-  double total = 0.0;
-  for (auto _ : state) {
-    const auto start = std::chrono::steady_clock::now();
-    bend_all(b, m, positions, normals);
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    state.SetIterationTime(seconds);
-    total += seconds;
-  }
+  // The first frame warms up: pages touched, threads started.
+  const double total = time_iterations(
+      state, [&] { return host_seconds([&] { bend_all(b, m, positions, normals); }); });
   benchmark::DoNotOptimize(positions.data());
   set_baseline_counters(state, instances, total);
 }

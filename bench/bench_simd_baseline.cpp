@@ -5,7 +5,6 @@
 // division by |df/dx| done once as a multiplication by its inverse, OpenMP threads over
 // instances. Compiled -O3 -march=native -fno-math-errno (bench/CMakeLists.txt): with
 // errno, GCC keeps a branch around each sqrt and vectorises nothing.
-#include <chrono>
 #include <cmath>
 #include <vector>
 
@@ -115,16 +114,10 @@ void BM_OpenMPSimdBaseline(benchmark::State& state) {
   const std::size_t instances = static_cast<std::size_t>(state.range(0));
   const std::vector<float> m = baseline_bend_values(instances, rest.x_max);
   std::vector<float> positions(instances * 3 * rest.stride), normals(positions.size());
-  bend_all_simd(rest, m, positions.data(), normals.data());  // warm-up: pages, threads
-  double total = 0.0;
-  for (auto _ : state) {
-    const auto start = std::chrono::steady_clock::now();
-    bend_all_simd(rest, m, positions.data(), normals.data());
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    state.SetIterationTime(seconds);
-    total += seconds;
-  }
+  // The first frame warms up: pages touched, threads started.
+  const double total = time_iterations(state, [&] {
+    return host_seconds([&] { bend_all_simd(rest, m, positions.data(), normals.data()); });
+  });
   benchmark::DoNotOptimize(positions.data());
   set_baseline_counters(state, instances, total);
 }

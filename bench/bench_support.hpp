@@ -3,6 +3,8 @@
 // the reference kernels are in support/ (shared with `finflex bench`).
 #pragma once
 
+#include <chrono>
+
 #include <cstdlib>
 #include <map>
 #include <memory>
@@ -72,6 +74,14 @@ std::vector<float> baseline_bend_values(std::size_t instances, double x_max);
 // The counters of set_counters for a baseline's `instances` instances of the mesh
 // (outputs over unpadded arrays) deformed in `seconds`.
 void set_baseline_counters(benchmark::State& state, std::size_t instances, double seconds);
+
+// The host seconds `work` takes (a baseline's frame on the CPU, for time_iterations).
+template <typename Work>
+double host_seconds(Work&& work) {
+  const auto start = std::chrono::steady_clock::now();
+  work();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
 // Runs `launch` (returning the device seconds of one frame) once to warm up (PoCL
 // compiles per work-group shape), then times it; returns the total seconds.
