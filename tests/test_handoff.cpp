@@ -227,9 +227,7 @@ TEST(Handoff, InterleavedAndSeparateArraysHoldTheSameData) {
   DeviceBatch apart = deformer().allocate(kInstances, separate);
   const DeformedBatch<float> a = run(interleaved, values);
   const DeformedBatch<float> b = run(apart, values);
-  EXPECT_EQ(a.positions, b.positions);
-  EXPECT_EQ(a.normals, b.normals);
-  EXPECT_EQ(a.tangents, b.tangents);
+  test::expect_same_outputs(a, b);
 }
 
 // A vertex struct that its float32x3 attributes fill (tangent, position, normal: 36
@@ -279,9 +277,7 @@ TEST(Handoff, StagedVertexStructsHoldWhatThePlanesHold) {
       job.outputs = &planes;
       d.enqueue(job);
       const DeformedBatch<float> want = d.read(planes);
-      EXPECT_EQ(got.positions, want.positions);
-      EXPECT_EQ(got.normals, want.normals);
-      EXPECT_EQ(got.tangents, want.tangents);
+      test::expect_same_outputs(got, want);
     }
   }
 }

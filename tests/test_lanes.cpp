@@ -271,9 +271,7 @@ TEST(Lanes, StreamingPlainAndUnalignedStoresWriteTheSameBits) {
     const DeformedBatch<float> a =
         test::run_on_device(streaming, values, NormalMode::kJacobian, path);
     const DeformedBatch<float> b = test::run_on_device(plain, values, NormalMode::kJacobian, path);
-    EXPECT_EQ(a.positions, b.positions);
-    EXPECT_EQ(a.normals, b.normals);
-    EXPECT_EQ(a.tangents, b.tangents);
+    test::expect_same_outputs(a, b);
 
     // The same outputs in host memory one float past a vector boundary.
     DeviceBatch unaligned = streaming.allocate(values.instance_count());
@@ -288,9 +286,7 @@ TEST(Lanes, StreamingPlainAndUnalignedStoresWriteTheSameBits) {
     }
     const DeformedBatch<float> c =
         test::run_on_device(streaming, unaligned, values, NormalMode::kJacobian, path);
-    EXPECT_EQ(a.positions, c.positions);
-    EXPECT_EQ(a.normals, c.normals);
-    EXPECT_EQ(a.tangents, c.tangents);
+    test::expect_same_outputs(a, c);
   }
 }
 
@@ -350,9 +346,7 @@ TEST(Lanes, OtherOutputLayoutsRunOnOneLaneAndMatchTheReference) {
       if (c.layout.normals.format == AttributeFormat::kFloat32x3) {
         expect_within_reference_bounds(model, values, normals, got, reference);
       }
-      EXPECT_EQ(got.positions, want.positions);
-      EXPECT_EQ(got.normals, want.normals);
-      EXPECT_EQ(got.tangents, want.tangents);
+      test::expect_same_outputs(got, want);
     }
   }
 }
@@ -403,9 +397,7 @@ TEST(Lanes, HalfNormalsRunOnOneLane) {
                                                      RigPath::kFused, false, NormalFormat::kHalf);
   const DeformedBatch<float> b = test::run_on_device(sixteen, values, NormalMode::kRotate,
                                                      RigPath::kFused, false, NormalFormat::kHalf);
-  EXPECT_EQ(a.positions, b.positions);
-  EXPECT_EQ(a.normals, b.normals);
-  EXPECT_EQ(a.tangents, b.tangents);
+  test::expect_same_outputs(a, b);
 }
 
 }  // namespace

@@ -10,6 +10,12 @@
 
 namespace finflex::test {
 
+void expect_same_outputs(const DeformedBatch<float>& got, const DeformedBatch<float>& want) {
+  EXPECT_EQ(got.positions, want.positions);
+  EXPECT_EQ(got.normals, want.normals);
+  EXPECT_EQ(got.tangents, want.tangents);
+}
+
 RigParameters values_of(const RiggedMesh& model, const std::vector<float>& rows) {
   const std::size_t per = std::max<std::size_t>(model.values_per_instance(), 1);
   RigParameters values(model, rows.size() / per);

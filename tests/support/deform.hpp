@@ -14,6 +14,9 @@ namespace finflex::test {
 // each, packed): e.g. {m0, m1, m2} for the whole-body bend.
 RigParameters values_of(const RiggedMesh& model, const std::vector<float>& rows);
 
+// Expects two device results to hold the same bits: positions, normals and tangents.
+void expect_same_outputs(const DeformedBatch<float>& got, const DeformedBatch<float>& want);
+
 // Enqueues `values` on `batch` (with world `placements`, one per instance, or none)
 // and reads the batch back.
 DeformedBatch<float> run_on_device(ClDeformer& deformer, DeviceBatch& batch,
