@@ -29,8 +29,9 @@
  * work-item deforms FF_LANES consecutive slots, a work-group still 64; more than one
  * lane for FinFlex's float32 planes only, kernels/cpu/lane_outputs.cl). Generated
  * before the files:
- * FF_STAGE_COUNT (the stage table's rows), FF_ROOT_FRAME (the root frame's row, when
- * the root has no stage), FF_RIG_GROUP_COUNT and the macros above. */
+ * FF_STAGE_COUNT (the stage table's rows), ff_stage_table (the table itself, a
+ * program-scope constant: common/stage_frame.cl), FF_ROOT_FRAME (the root frame's row,
+ * when the root has no stage), FF_RIG_GROUP_COUNT and the macros above. */
 /* The path table (group_path_table in engine/src/rig_program.cpp): the stage at
  * position j of the path of the work-group's component. Uniform over a work-group. */
 #define FF_PATH_STAGE(j) group_paths[(j) * FF_RIG_GROUP_COUNT + group]
@@ -49,7 +50,7 @@
       __global const float* restrict rest_positions,                                    \
       __global const float* restrict rest_normals,                                      \
       __global const float* restrict rest_tangents, __global const float* restrict params, \
-      const uint param_count, __constant const float* stages,                           \
+      const uint param_count,                                                           \
       __global const uint* restrict group_paths,                                        \
       __global const float* restrict derived_values, const uint derived_count,          \
       __global const float* restrict placements, FF_OUTPUT_ARGUMENTS,                   \
@@ -117,7 +118,7 @@ FF_RIG_FUSED_KERNELS
       __global float* restrict a_normals, __global float* restrict a_tangents,          \
       __global float* restrict b_positions, __global float* restrict b_normals,         \
       __global float* restrict b_tangents, __global const float* restrict params,       \
-      const uint param_count, __constant const float* stages,                           \
+      const uint param_count,                                                           \
       __global const uint* restrict group_paths,                                        \
       __global const float* restrict derived_values, const uint derived_count,          \
       __global const float* restrict placements, FF_OUTPUT_ARGUMENTS,                   \
@@ -154,7 +155,7 @@ FF_RIG_PASS_KERNELS
 #define FF_PREPARE_SCRATCH (2 * FF_PREPARE_ITEMS + 2)
 
 __kernel __attribute__((reqd_work_group_size(FF_PREPARE_GROUP_SIZE, 1, 1))) void rig_prepare(
-    __global const float* restrict params, const uint param_count, __constant const float* stages,
+    __global const float* restrict params, const uint param_count,
     __global float* restrict derived_values, const uint derived_count, const uint instances) {
   __local float scratches[FF_PREPARE_GROUP_SIZE / FF_PREPARE_ITEMS * FF_PREPARE_SCRATCH];
   const size_t instance = get_global_id(0) / FF_PREPARE_ITEMS;

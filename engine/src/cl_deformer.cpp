@@ -106,9 +106,6 @@ ClDeformer::Impl::Impl(Context& context_in, const RiggedMesh& model_in, const Cl
     return;
   }
 
-  const std::vector<float> table = detail::stage_table(rig);
-  stages_ =
-      detail::make_buffer(cl_context, CL_MEM_READ_ONLY, table.size() * sizeof(float), table.data());
   const std::vector<std::uint32_t> paths = detail::group_path_table(model, slots, kWorkGroupSize);
   group_paths_ = detail::make_buffer(cl_context, CL_MEM_READ_ONLY,
                                      paths.size() * sizeof(std::uint32_t), paths.data());
@@ -339,7 +336,6 @@ void ClDeformer::Impl::prepare_derived(const ClJob& job, const FrameInputs& inpu
   auto set = [&](const auto& value) { check_cl(prepare_.setArg(arg++, value), "clSetKernelArg"); };
   set(*inputs.parameters);
   set(static_cast<cl_uint>(model.values_per_instance()));
-  set(stages_);
   set(derived_);
   set(static_cast<cl_uint>(derived_per_instance_));
   set(static_cast<cl_uint>(instances));
@@ -375,7 +371,6 @@ cl_uint ClDeformer::Impl::set_arguments(cl::Kernel& kernel, std::size_t index, c
   set(*inputs.parameters);
   if (!single_bend) {
     set(static_cast<cl_uint>(model.values_per_instance()));
-    set(stages_);
     set(group_paths_);
     set(*inputs.derived);
     set(static_cast<cl_uint>(derived_per_instance_));

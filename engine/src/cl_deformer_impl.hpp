@@ -81,7 +81,7 @@ class ClDeformer::Impl {
   std::size_t slot_count_ = 0;
   bool slots_in_mesh_order_ = true;  // slot s holds mesh vertex s, padding after
   cl::Buffer rest_positions_, rest_normals_, rest_tangents_;
-  cl::Buffer stages_, group_paths_;
+  cl::Buffer group_paths_;
   ProgramSource program_;
   // The single-bend kernel's way back to mesh coordinates: origin, s e_x, s e_y, s e_z,
   // e_x, e_y, e_z of the bend's frame.

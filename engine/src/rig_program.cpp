@@ -25,7 +25,7 @@ std::size_t values_offset(const Rig& rig, const RigStage& stage) {
 
 // Applies the stage at path position j of the group's path to the vertex; a vertex's
 // first stage finds it in its frame already (the rest planes):
-// "{ const StageFrame f = stages + <k>; [enter_frame(&p, &n, &t, f);]
+// "{ const StageFrame f = ff_stage_table + <k>; [enter_frame(&p, &n, &t, f);]
 //    const SecantSample s = <function>(p, f, values + <offset>, derived + <offset>);
 //    leave_frame(&p, &n, &t, f, s); }", with <k> and the offsets compiled in
 // (`literal`: the group range has one stage there) or read from the path and stage
@@ -45,7 +45,7 @@ struct StageCall {
 
 std::string stage_call(const StageCall& c) {
   std::ostringstream call;
-  call << "{ const StageFrame f = stages + ";
+  call << "{ const StageFrame f = ff_stage_table + ";
   if (c.literal) {
     call << c.stage << "; ";
   } else {
@@ -253,6 +253,22 @@ std::vector<float> stage_table(const Rig& rig) {
   return table;
 }
 
+// The stage table as a program-scope constant array (kernels/common/stage_frame.cl):
+// a frame's values fold into the instructions that use them, where a table in a
+// buffer costs a load each (NVIDIA's OpenCL reads __constant arguments as global
+// memory). Hexadecimal literals keep every float exact.
+std::string stage_table_source(const Rig& rig) {
+  const std::vector<float> table = stage_table(rig);
+  std::ostringstream out;
+  out << "__constant float ff_stage_table[" << table.size() << "] = {";
+  out << std::hexfloat;
+  for (std::size_t i = 0; i < table.size(); ++i) {
+    out << (i % 4 == 0 ? "\n  " : " ") << table[i] << "f,";
+  }
+  out << "};\n";
+  return out.str();
+}
+
 std::vector<std::string> rig_program_files(const Rig& rig) {
   std::vector<std::string> files = common_kernel_files();
   for (const DeformerType* type : deformer_types()) {
@@ -408,6 +424,7 @@ std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots
   out << "/* Generated for one rig by engine/src/rig_program.cpp: which stages apply to\n"
          " * which work-groups (kernels/rig.cl). */\n";
   out << "#define FF_STAGE_COUNT " << stage_table_rows(rig) << "u\n";
+  out << stage_table_source(rig);
   const bool root_has_stages = !rig.components.front().chain.empty();
   if (!root_has_stages) out << "#define FF_ROOT_FRAME " << stage_count(rig) << "u\n";
   out << "#define FF_RIG_GROUP_COUNT " << slots.slot_count / group_size << "u\n";
@@ -480,7 +497,7 @@ std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots
       if (!stage.deformer->cl_prepare_function) continue;
       out << " \\\n  " << stage.deformer->cl_prepare_function << "(values + "
           << values_offset(rig, stage) << ", derived + " << derived_offset(rig, c, k)
-          << ", stages + " << stage_index(rig, c, k) << ", scratch, item);";
+          << ", ff_stage_table + " << stage_index(rig, c, k) << ", scratch, item);";
     }
   }
   out << "\n";

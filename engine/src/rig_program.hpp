@@ -52,6 +52,7 @@ std::size_t stage_count(const Rig& rig);
 constexpr std::size_t kStageValues = 20;
 std::size_t stage_table_rows(const Rig& rig);
 std::vector<float> stage_table(const Rig& rig);
+std::string stage_table_source(const Rig& rig);
 
 // Derived values (DeformerType::derived_count) per instance, over all stages, and the
 // offset of stage (component, stage)'s in that row (stages in rig order).

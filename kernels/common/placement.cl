@@ -53,7 +53,7 @@ FF_INLINE void leave_to_world(Vec3* p, Vec3* n, Vec3* t, __global const float* r
 #if FF_PLACEMENT && defined(FF_ROOT_FRAME)
 #define FF_PLACE_FROM_MESH                                   \
   {                                                          \
-    const StageFrame root = stages + FF_ROOT_FRAME;          \
+    const StageFrame root = ff_stage_table + FF_ROOT_FRAME;  \
     enter_frame(&p, &n, &t, root);                           \
     place_local(&p, &n, &t, placements + instance * 16);     \
   }
