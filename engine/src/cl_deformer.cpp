@@ -141,8 +141,7 @@ BatchLayout ClDeformer::Impl::layout(std::size_t instances, NormalFormat format)
 std::size_t ClDeformer::Impl::per_item(NormalFormat format) const {
   return options.instances_per_item
              ? options.instances_per_item
-             : detail::device_instances_per_item(context.description(), single_bend,
-                                                 derived_per_instance_ > 0, format);
+             : detail::device_instances_per_item(context.description(), single_bend, format);
 }
 
 // Normals of fewer than 12 bytes (16-bit and octahedral formats) take the work-item
@@ -234,8 +233,9 @@ void ClDeformer::Impl::check_buffer_sizes(const DeviceBatch& batch) {
     batch_options_ = output_build_options(slot_order) +
                      " -DFF_OUTPUT_LIMIT=" + std::to_string(model.vertex_count());
   } else {
-    batch_options_ =
-        output_build_options(batch.outputs) + staged_struct_options(batch, stages_structs());
+    batch_options_ = output_build_options(batch.outputs) +
+                     staged_struct_options(batch, stages_structs()) +
+                     detail::plane_stride_option(batch.outputs, layout(1, NormalFormat::kFloat32));
   }
   // Lanes (and their kind of store) for this batch: kernels of more than one lane for
   // FinFlex's float32 planes, the one-lane kernels for any other layout.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 
+#include "device_profile.hpp"
 #include "finflex/error.hpp"
 #include "kernel_sources.hpp"
 
@@ -167,10 +168,9 @@ Context::Context(const std::string& device,
 
 const std::vector<std::string>& common_kernel_files() {
   static const std::vector<std::string> files = {
-      "common/lanes.cl",   "common/vec3.cl",        "common/trig.cl",    "common/scan.cl",
-      "common/secant.cl",  "common/planes.cl",      "cpu/lane_planes.cl",
-      "common/outputs.cl", "cpu/lane_outputs.cl",   "common/stage_frame.cl",
-      "common/placement.cl"};
+      "common/lanes.cl",     "common/vec3.cl",        "common/trig.cl",     "common/scan.cl",
+      "common/secant.cl",    "common/planes.cl",      "cpu/lane_planes.cl", "common/outputs.cl",
+      "cpu/lane_outputs.cl", "common/stage_frame.cl", "common/placement.cl"};
   return files;
 }
 
@@ -198,7 +198,10 @@ const cl::Program& Context::program(const ProgramSource& source, const std::stri
   check_cl(status, "clCreateProgramWithSource");
   // FF_GPU: the kernels pick the instructions that are fast on the device's kind
   // (kernels/common/planes.cl's half conversion).
-  const std::string device_options = description_.is_gpu() ? "-DFF_GPU=1 " : "-DFF_GPU=0 ";
+  // FF_NATIVE_TRIG: the hardware's sine and cosine (detail::device_native_trig).
+  const std::string device_options =
+      std::string(description_.is_gpu() ? "-DFF_GPU=1 " : "-DFF_GPU=0 ") +
+      (detail::device_native_trig(description_) ? "-DFF_NATIVE_TRIG=1 " : "-DFF_NATIVE_TRIG=0 ");
   const std::string full_options = "-cl-std=CL1.2 " + device_options + options;
   status = program.build(std::vector<cl::Device>{device_}, full_options.c_str());
   if (status != CL_SUCCESS) {

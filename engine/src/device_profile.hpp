@@ -20,17 +20,27 @@ static_assert(64 % kWorkGroupSize == 0, "padded_plane_stride must be a multiple 
 
 // Instances one work-item deforms. GPUs are limited by the rate of work-items, not of
 // bytes, with one instance per work-item: the single bend takes 2 with float32
-// normals and 4 with half normals (fewer bytes per instance), the rig kernels 4 (their
-// stage frames and parameters are read once for them), but 2 with float32 normals for
-// a rig with a table stage (a spine: each instance's segment record and sums in
-// registers; 10,000 swimming fish deform in 0.947 ms at 2 against 1.003 at 4 on an
-// H100, 0.892 against 0.907 on an H200, docs/benchmarks.md). CPUs take 1.
+// normals and 4 with half normals (fewer bytes per instance), the rig kernels 4 (a
+// vertex's rest values, path and, for a spine, its segment serve four instances).
+// 10,000 swimming fish deform in 0.866 ms at 4 against 0.876 at 2 on an H100, 0.697
+// against 0.748 on an H200 (docs/benchmarks.md). CPUs take 1.
 inline std::size_t device_instances_per_item(const DeviceDescription& device,
-                                             bool single_bend_kernel, bool table_rig,
-                                             NormalFormat format) {
+                                             bool single_bend_kernel, NormalFormat format) {
   if (!device.is_gpu()) return 1;
-  if (!single_bend_kernel) return table_rig && format == NormalFormat::kFloat32 ? 2 : 4;
+  if (!single_bend_kernel) return 4;
   return format == NormalFormat::kHalf ? 4 : 2;
+}
+
+// Whether the kernels take the hardware's sine and cosine (native_sin, native_cos) where
+// a vertex needs one of an angle within [-pi, pi] (kernels/deformers/spine.cl, build
+// option FF_NATIVE_TRIG): on NVIDIA's GPUs, whose special-function unit runs them beside
+// the arithmetic (PTX sin.approx.f32, absolute error about 2^-21 on [-pi, pi]; the
+// spine then deviates from the double-precision reference by less than 1e-6 of a body
+// length, tests/test_spine.cpp). 10,000 swimming fish deform in 0.697 ms against 0.755
+// with the series on an H200 (docs/benchmarks.md). Other devices keep the series: an
+// OpenCL native function's accuracy is the implementation's.
+inline bool device_native_trig(const DeviceDescription& device) {
+  return device.is_gpu() && device.platform_name.find("NVIDIA") != std::string::npos;
 }
 
 // Vertex slots one work-item deforms (kernels/common/lanes.cl). GPUs: 1 (a warp is

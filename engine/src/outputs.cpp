@@ -77,7 +77,8 @@ std::string staged_struct_options(const DeviceBatch& batch, bool staged) {
   std::size_t start = std::min(l.positions.offset, l.normals.offset);
   if (l.tangents) start = std::min(start, l.tangent_layout.offset);
   auto floats_in = [&](const AttributeLayout& a) { return std::to_string((a.offset - start) / 4); };
-  return " -DFF_STAGED_STRUCT=1 -DFF_STAGED_FLOATS=" + std::to_string(l.positions.vertex_stride / 4) +
+  return " -DFF_STAGED_STRUCT=1 -DFF_STAGED_FLOATS=" +
+         std::to_string(l.positions.vertex_stride / 4) +
          " -DFF_STAGED_POSITION=" + floats_in(l.positions) +
          " -DFF_STAGED_NORMAL=" + floats_in(l.normals) +
          " -DFF_STAGED_TANGENT=" + (l.tangents ? floats_in(l.tangent_layout) : std::string("0"));
@@ -263,14 +264,29 @@ OutputLayout planes_outputs(const BatchLayout& layout) {
   return outputs;
 }
 
-bool writes_default_planes(const OutputLayout& outputs, const BatchLayout& counts) {
-  BatchLayout float32 = counts;
-  float32.normal_format = NormalFormat::kFloat32;
-  const OutputLayout planes = planes_outputs(float32);
+namespace {
+
+// `outputs` are FinFlex's planes of `counts`, normals (and tangents) in `format`.
+bool writes_planes_in(const OutputLayout& outputs, const BatchLayout& counts, NormalFormat format) {
+  BatchLayout in_format = counts;
+  in_format.normal_format = format;
+  const OutputLayout planes = planes_outputs(in_format);
   return outputs.order == VertexOrder::kSlots && !outputs.previous_positions &&
          outputs.positions == planes.positions && outputs.normals == planes.normals &&
          outputs.tangents == planes.tangents &&
          (!outputs.tangents || outputs.tangent_layout == planes.tangent_layout);
+}
+
+}  // namespace
+
+bool writes_default_planes(const OutputLayout& outputs, const BatchLayout& counts) {
+  return writes_planes_in(outputs, counts, NormalFormat::kFloat32);
+}
+
+std::string plane_stride_option(const OutputLayout& outputs, const BatchLayout& counts) {
+  const bool planes = writes_planes_in(outputs, counts, NormalFormat::kFloat32) ||
+                      writes_planes_in(outputs, counts, NormalFormat::kHalf);
+  return planes ? " -DFF_PLANE_STRIDE=" + std::to_string(counts.plane_stride) + "u" : "";
 }
 
 void check_outputs(const DeviceBatch& batch, std::size_t vertices, bool mesh_tangents,

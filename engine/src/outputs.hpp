@@ -22,6 +22,9 @@ OutputLayout planes_outputs(const BatchLayout& layout);
 // offsets and strides, in slot order, without previous positions. The only outputs
 // kernels of more than one lane store (kernels/cpu/lane_outputs.cl).
 bool writes_default_planes(const OutputLayout& outputs, const BatchLayout& counts);
+// " -DFF_PLANE_STRIDE=<stride>u" when `outputs` are FinFlex's planes of `counts`, normals
+// in float32 or half (kernels/common/outputs.cl compiles their places in), else "".
+std::string plane_stride_option(const OutputLayout& outputs, const BatchLayout& counts);
 
 // Whether positions, normals (and tangents) are float32x3 members that fill one vertex
 // struct (the same vertex and instance strides, 12 bytes a member), in slot order and
@@ -53,7 +56,6 @@ void unmap_host_outputs(Context& context, DeviceBatch& batch);
 
 // Blocking read of every attribute of `batch` into float planes of `vertices` a plane
 // (the batch's vertex order; the caller sets slot_of_vertex for slot order).
-DeformedBatch<float> read_outputs(Context& context, const DeviceBatch& batch,
-                                  std::size_t vertices);
+DeformedBatch<float> read_outputs(Context& context, const DeviceBatch& batch, std::size_t vertices);
 
 }  // namespace finflex::detail

@@ -1,5 +1,10 @@
 /* Sines and cosines without calls and without branches, so that the kernels that use
- * them vectorise (PoCL's work-group vectoriser stops at a call to sin or cos). */
+ * them vectorise (PoCL's work-group vectoriser stops at a call to sin or cos). Build
+ * option FF_NATIVE_TRIG (the host's, engine/src/device_profile.hpp): 1 where the
+ * kernels may take the hardware's native_sin and native_cos instead. */
+#ifndef FF_NATIVE_TRIG
+#define FF_NATIVE_TRIG 0
+#endif
 
 /* sin(h) / h and cos(h) for |h| <= pi/2 by their Taylor series to h^12 (truncation
  * below 1e-8): no calls and no branches, so it vectorises. */

@@ -17,10 +17,16 @@
 #endif
 
 /* Component c of the lanes of instance i from slot v: FF_LANES consecutive floats at
- * offset + i * instance_stride + c * plane_stride + v. */
+ * offset + i * instance_stride + c * plane_stride + v (with FF_PLANE_STRIDE, the
+ * numbers compiled in: common/outputs.cl). */
 FF_INLINE void store_lane_attribute(__global float* buffer, ulong offset, ulong plane_stride,
                                     ulong instance_stride, size_t i, size_t v, Vec3 value) {
+#ifdef FF_PLANE_STRIDE
+  plane_stride = FF_PLANE_STRIDE;
+  __global float* first = buffer + element_index(0, 0, plane_stride, 0, i, v);
+#else
   __global float* first = buffer + (size_t)(offset + i * instance_stride) + v;
+#endif
   store_lanes(first, value.x);
   store_lanes(first + plane_stride, value.y);
   store_lanes(first + 2 * plane_stride, value.z);

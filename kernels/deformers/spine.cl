@@ -15,18 +15,21 @@
  * Stage table constants (DeformerType::stage_constants): 0 x_0 (the first sample),
  * 1 1 / h, 2 h (the spacing), 3 samples - 1. Derived values: a record of 8 floats per
  * sample k, (X_k, Z_k, sin theta_k, cos theta_k, the slope of theta over segment k,
- * 3 unused), 32-byte aligned: everything a vertex in segment k needs in one memory
- * sector, read on GPUs as one 4-vector and one float. */
+ * theta_k, 2 unused), 32-byte aligned: everything a vertex in segment k needs in one
+ * memory sector, read on GPUs as one 4-vector and one 2-vector. */
 
 /* Trigonometry from kernels/common/trig.cl (no calls: the kernel vectorises). Angles
  * stay within [-pi, pi] (the values' limit); half a segment's turn within pi/2, where
  * sin_over_h holds, as long as no segment turns by more than pi. */
 
-/* The spine at x of a vertex at height z: theta (the angles), derived (X_k, Z_k,
- * sin theta_k, cos theta_k). Within a segment theta = theta_j + 2 delta at its far
- * end, delta = half the turn so far: the sines and cosines at the middle and at the
- * end come from those of theta_j (a table) and of delta (short series) by the
- * angle-addition formulas, the cheapest way on every device. */
+/* The spine at x of a vertex at height z: theta (the angles), derived (the records).
+ * Within a segment theta = theta_j + 2 delta at the vertex, delta = half the turn so
+ * far: the chord to the vertex has length d sinc(delta) along theta_j + delta. The
+ * sines and cosines at the middle and at the end come from those of theta_j (the
+ * record) and of delta (short series) by the angle-addition formulas; with
+ * FF_NATIVE_TRIG (engine/src/device_profile.hpp: NVIDIA's GPUs) from the hardware's
+ * sine and cosine of the two angles instead, fewer instructions on the arithmetic
+ * units. */
 FF_INLINE SecantSample spine_sample(LaneFloat x, LaneFloat z, __global const float* derived,
                                     StageFrame f) {
   const float x_first = FF_STAGE_CONSTANT(f, 0);
@@ -59,27 +62,35 @@ FF_INLINE SecantSample spine_sample(LaneFloat x, LaneFloat z, __global const flo
 #else
   __global const float* record = derived + 8 * (int)segment;
 #if FF_GPU
-  const float4 at_j = *(__global const float4*)record; /* aligned: one load */
+  const float4 at_j = *(__global const float4*)record; /* aligned: two loads */
+  const float2 more_j = *(__global const float2*)(record + 4);
   const float x_j = at_j.x, z_j = at_j.y, sin_j = at_j.z, cos_j = at_j.w;
+  const float slope = more_j.x, theta_j = more_j.y;
 #else
   const float x_j = record[0], z_j = record[1], sin_j = record[2], cos_j = record[3];
+  const float slope = record[4], theta_j = record[5];
 #endif
-  const float slope = record[4];
 #endif
   const LaneFloat d = (position - segment) * h;  /* from x_j; outside the table: < 0 or > h */
   const LaneFloat inside = clamp(d, 0.0f, h);     /* the part of d where theta is linear */
   const LaneFloat beyond = d - inside;            /* beyond the ends theta is constant */
   const LaneFloat delta = 0.5f * slope * inside;
   const LaneFloat sinc_delta = sin_over_h(delta);
+  /* theta_j + delta (the chord's direction) and theta_j + 2 delta (the end). */
+#if FF_NATIVE_TRIG && FF_LANES == 1
+  const float mid = theta_j + delta, end = mid + delta; /* within [-pi, pi] */
+  const float sin_mid = native_sin(mid), cos_mid = native_cos(mid);
+  const float sin_end = native_sin(end), cos_end = native_cos(end);
+#else
   const LaneFloat sin_delta = delta * sinc_delta;
   const LaneFloat cos_delta = cos_of_h(delta);
-  /* theta_j + delta (the chord's direction) and theta_j + 2 delta (the end). */
   const LaneFloat sin_mid = sin_j * cos_delta + cos_j * sin_delta;
   const LaneFloat cos_mid = cos_j * cos_delta - sin_j * sin_delta;
   const LaneFloat sin_two = 2.0f * sin_delta * cos_delta;
   const LaneFloat cos_two = 1.0f - 2.0f * sin_delta * sin_delta;
   const LaneFloat sin_end = sin_j * cos_two + cos_j * sin_two;
   const LaneFloat cos_end = cos_j * cos_two - sin_j * sin_two;
+#endif
   const LaneFloat chord = inside * sinc_delta;
   SecantSample s;
   s.spine_x = x_j + chord * cos_mid + beyond * cos_end;
@@ -167,7 +178,8 @@ FF_INLINE void spine_records(__global const float* theta, __global float* derive
     record[2] = sin_k;
     record[3] = cos_k;
     record[4] = k + 1 < count ? (theta[k + 1] - theta[k]) * inverse_h : 0.0f;
-    record[5] = record[6] = record[7] = 0.0f;
+    record[5] = theta[k];
+    record[6] = record[7] = 0.0f;
   }
 }
 

@@ -12,7 +12,10 @@
 #    test_normal_format, and test_rig_deformer's HeterogeneousFrameEqualsSeparateRuns;
 #  - 2 (float32) or 4 (half normals, rigs) instances per work-item: every test of
 #    test_cl_deformer, test_rig_deformer, test_normal_format and test_geometry;
-#  - RigDispatch::kPerComponent: every rig test.
+#  - RigDispatch::kPerComponent: every rig test;
+#  - the hardware's sine and cosine in the spine (FF_NATIVE_TRIG, NVIDIA's GPUs):
+#    test_spine and test_swim against the double-precision reference, and
+#    `finflex check` of the swim rig.
 # CPUs run these too where they can be forced: the work-item shapes and the dispatch
 # through ClOptions (SeveralInstancesPerWorkItemGiveTheSameResult in test_cl_deformer
 # and test_rig_deformer, the rig tests of both dispatches, HalfNormalsInTheShapesGpusTake),
@@ -43,11 +46,12 @@ failed=()
       failed+=("check $mesh")
     fi
   done
-  echo "== finflex check --rig data/rigs/blub.rig.json --device $device"
-  if ! "$bundle/bin/finflex" check --in data/blub/fish.obj --rig data/rigs/blub.rig.json \
-      --device "$device"; then
-    failed+=("check --rig")
-  fi
+  for rig in data/rigs/blub.rig.json data/rigs/blub_swim.rig.json; do
+    echo "== finflex check --rig $rig --device $device"
+    if ! "$bundle/bin/finflex" check --in data/blub/fish.obj --rig "$rig" --device "$device"; then
+      failed+=("check --rig $rig")
+    fi
+  done
   if [ ${#failed[@]} -eq 0 ]; then
     echo "== all passed"
   else
