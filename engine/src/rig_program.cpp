@@ -1,7 +1,9 @@
 #include "rig_program.hpp"
 
 #include <algorithm>
+#include <array>
 #include <sstream>
+#include <utility>
 
 #include "finflex/context.hpp"
 #include "finflex/error.hpp"
@@ -32,15 +34,22 @@ std::size_t values_offset(const Rig& rig, const RigStage& stage) {
 // tables (FF_PATH_STAGE(j), FF_STAGE_VALUES(f), FF_STAGE_DERIVED(f)). The root's last
 // stage leaves with FF_LEAVE_LAST instead (kernels/common/placement.cl: to the world
 // when placing).
+// Values of a frame link (kernels/common/stage_frame.cl leave_into).
+constexpr std::size_t kLinkValues = 21;
+
 struct StageCall {
   const char* function = nullptr;
   std::size_t position = 0;
-  bool first = false;
+  bool first = false;  // the vertex is in the stage's frame already
   bool last_of_root = false;
   bool literal = false;
   std::size_t stage = 0;    // stage index, when literal
   std::size_t values = 0;   // values offset, when literal
   std::size_t derived = 0;  // derived values offset, when literal
+  // Leaves straight into the next stage's frame through link `link` of ff_link_table
+  // (link_table_source), when literal and not the path's last stage; else kNoLink.
+  std::size_t link = kNoLink;
+  static constexpr std::size_t kNoLink = ~std::size_t{0};
 };
 
 std::string stage_call(const StageCall& c) {
@@ -58,8 +67,13 @@ std::string stage_call(const StageCall& c) {
   } else {
     call << "FF_STAGE_VALUES(f), derived + FF_STAGE_DERIVED(f)";
   }
-  call << "); " << (c.last_of_root ? "FF_LEAVE_LAST(f, s)" : "leave_frame(&p, &n, &t, f, s);")
-       << " }";
+  call << "); ";
+  if (c.link != StageCall::kNoLink) {
+    call << "leave_into(&p, &n, &t, ff_link_table + " << kLinkValues * c.link << ", s);";
+  } else {
+    call << (c.last_of_root ? "FF_LEAVE_LAST(f, s)" : "leave_frame(&p, &n, &t, f, s);");
+  }
+  call << " }";
   return call.str();
 }
 
@@ -269,6 +283,57 @@ std::string stage_table_source(const Rig& rig) {
   return out.str();
 }
 
+// The frames of the stage table's rows, in its order: the stages in rig order, then
+// the root's frame.
+std::vector<BodyFrame> stage_frames(const Rig& rig) {
+  std::vector<BodyFrame> frames;
+  for (const RigComponent& component : rig.components) {
+    for (const RigStage& stage : component.chain) frames.push_back(stage.frame);
+  }
+  frames.push_back(rig.components.front().frame);
+  return frames;
+}
+
+// From frame a straight into frame b, the two transforms of (2) composed (in double,
+// rounded once): point_into(point_out_of(p, a), b) = (s_a / s_b) M p + c and
+// rotate_into(rotate_out_of(d, a), b) = M d, with M = R_b R_a^T and
+// c = R_b (o_a - o_b) / s_b (R's rows: the frame's axes). kernels/common/stage_frame.cl's
+// layout: 0-8 (s_a / s_b) M, 9-11 c, 12-20 M, row-major.
+std::array<float, kLinkValues> link_values(const BodyFrame& a, const BodyFrame& b) {
+  const glm::dvec3 axes_a[3] = {a.axis_x, a.axis_y, a.axis_z};
+  const glm::dvec3 axes_b[3] = {b.axis_x, b.axis_y, b.axis_z};
+  const double scale = a.length / b.length;
+  std::array<float, kLinkValues> values{};
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) {
+      const double m = glm::dot(axes_b[r], axes_a[c]);
+      values[3 * r + c] = static_cast<float>(scale * m);
+      values[12 + 3 * r + c] = static_cast<float>(m);
+    }
+    values[9 + r] = static_cast<float>(glm::dot(axes_b[r], a.origin - b.origin) / b.length);
+  }
+  return values;
+}
+
+// The links a fused path takes, from stage `from` into stage `to` (stage indices), as
+// the program-scope constant array ff_link_table (nothing when there are none).
+std::string link_table_source(const Rig& rig,
+                              const std::vector<std::pair<std::size_t, std::size_t>>& links) {
+  if (links.empty()) return "";
+  const std::vector<BodyFrame> frames = stage_frames(rig);
+  std::ostringstream out;
+  out << "__constant float ff_link_table[" << kLinkValues * links.size() << "] = {";
+  out << std::hexfloat;
+  for (const auto& [from, to] : links) {
+    const std::array<float, kLinkValues> values = link_values(frames[from], frames[to]);
+    for (std::size_t i = 0; i < kLinkValues; ++i) {
+      out << (i % 7 == 0 ? "\n  " : " ") << values[i] << "f,";
+    }
+  }
+  out << "};\n";
+  return out.str();
+}
+
 std::vector<std::string> rig_program_files(const Rig& rig) {
   std::vector<std::string> files = common_kernel_files();
   for (const DeformerType* type : deformer_types()) {
@@ -432,34 +497,48 @@ std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots
   out << prepare_items_source(prepare_items);
   // Fused: the group's component's whole path, bottom-up; a kernel per launch, a branch
   // per run of components in it (none when the launch has one).
+  // With the stages compiled in, a vertex leaves each stage but its path's last straight
+  // into the next one's frame (a link); links[i]: link i's (from, to) stages.
+  std::vector<std::pair<std::size_t, std::size_t>> links;
+  std::ostringstream macros;
   for (std::size_t r = 0; r < fused.size(); ++r) {
     const FusedLaunch& launch = fused[r];
-    out << "#define FF_RIG_FUSED_" << r;
+    macros << "#define FF_RIG_FUSED_" << r;
     const bool branches = launch.branch_ends.size() > 1;
     for (std::size_t b = 0; b < launch.branch_ends.size(); ++b) {
       const std::size_t c = launch.branch_components[b];
-      out << " \\\n  ";
+      macros << " \\\n  ";
       if (branches) {
-        out << (b == 0 ? "if" : "else if") << " (group < " << launch.branch_ends[b] << "u) ";
+        macros << (b == 0 ? "if" : "else if") << " (group < " << launch.branch_ends[b] << "u) ";
       }
-      out << "{";
+      macros << "{";
       const std::vector<const char*> shape = path_functions(model, c);
       const std::vector<StageRef>& path = model.paths()[c];
+      bool linked_in = false;
       for (std::size_t j = 0; j < path.size(); ++j) {
-        const StageCall call{shape[j],
-                             j,
-                             j == 0,
-                             root_has_stages && j + 1 == path.size(),
-                             !share_code,
-                             stage_index(rig, path[j].component, path[j].stage),
-                             values_offset(rig, rig.stage(path[j])),
-                             derived_offset(rig, path[j].component, path[j].stage)};
-        out << " " << stage_call(call);
+        StageCall call{shape[j],
+                       j,
+                       j == 0 || linked_in,
+                       root_has_stages && j + 1 == path.size(),
+                       !share_code,
+                       stage_index(rig, path[j].component, path[j].stage),
+                       values_offset(rig, rig.stage(path[j])),
+                       derived_offset(rig, path[j].component, path[j].stage)};
+        linked_in = call.literal && j + 1 < path.size();
+        if (linked_in) {
+          const std::pair<std::size_t, std::size_t> link{
+              call.stage, stage_index(rig, path[j + 1].component, path[j + 1].stage)};
+          auto found = std::find(links.begin(), links.end(), link);
+          call.link = static_cast<std::size_t>(found - links.begin());
+          if (found == links.end()) links.push_back(link);
+        }
+        macros << " " << stage_call(call);
       }
-      out << " }";
+      macros << " }";
     }
-    out << "\n";
+    macros << "\n";
   }
+  out << link_table_source(rig, links) << macros.str();
   out << "#define FF_RIG_FUSED_KERNELS";
   for (std::size_t r = 0; r < fused.size(); ++r) out << " FF_DEFINE_RIG_FUSED(" << r << ")";
   out << "\n";

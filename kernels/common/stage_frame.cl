@@ -75,3 +75,23 @@ FF_INLINE void leave_frame(Vec3* p, Vec3* n, Vec3* t, StageFrame f, SecantSample
   *n = rotate_out_of(secant_normal(*n, s), f);
   *t = rotate_out_of(secant_tangent(*t, s), f);
 }
+
+/* From a stage's frame straight into the next stage's, where a fused path has both
+ * compiled in: leave_frame and enter_frame composed on the host (link_values() in
+ * engine/src/rig_program.cpp), p' = (s_a / s_b) M p + c, d' = M d, M = R_b R_a^T,
+ * c = R_b (o_a - o_b) / s_b. A link (21 values of the generated ff_link_table): 0-8
+ * (s_a / s_b) M, 9-11 c, 12-20 M, row-major. Half the arithmetic of the two transforms
+ * (a fin's vertices on their way into the body's spine). */
+typedef __constant const float* FrameLink;
+
+FF_INLINE Vec3 link_linear(Vec3 v, FrameLink l) {
+  return vec3(v.x * l[0] + v.y * l[1] + v.z * l[2], v.x * l[3] + v.y * l[4] + v.z * l[5],
+              v.x * l[6] + v.y * l[7] + v.z * l[8]);
+}
+
+FF_INLINE void leave_into(Vec3* p, Vec3* n, Vec3* t, FrameLink l, SecantSample s) {
+  const Vec3 q = link_linear(secant_position(*p, s), l);
+  *p = vec3(q.x + l[9], q.y + l[10], q.z + l[11]);
+  *n = link_linear(secant_normal(*n, s), l + 12);
+  *t = link_linear(secant_tangent(*t, s), l + 12);
+}
