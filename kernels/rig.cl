@@ -35,6 +35,9 @@
 /* The path table (group_path_table in engine/src/rig_program.cpp): the stage at
  * position j of the path of the work-group's component. Uniform over a work-group. */
 #define FF_PATH_STAGE(j) group_paths[(j) * FF_RIG_GROUP_COUNT + group]
+/* Its link rows (FF_PATH_WIDTH rows further): the index in ff_link_table of the link
+ * from the stage at position j into the next one (common/stage_frame.cl leave_into). */
+#define FF_PATH_LINK(j) group_paths[(FF_PATH_WIDTH + (j)) * FF_RIG_GROUP_COUNT + group]
 
 /* The work-group's index among all the rig's work-groups (a launch may start at an
  * offset), from builtins uniform over a work-group. */

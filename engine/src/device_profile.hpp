@@ -95,7 +95,8 @@ inline void check_table_items(std::size_t items, const char* field) {
 }
 
 // kPerComponent on GPUs (fewest instructions), kByPathShape on CPUs (straight-line
-// kernels, which PoCL's work-group vectoriser needs).
+// one-lane kernels, which PoCL's work-group vectoriser needs; their kernels of more
+// than one lane still get each component's stages compiled in, rig_dispatch_source).
 inline RigDispatch device_dispatch(const DeviceDescription& device, RigDispatch asked) {
   if (asked != RigDispatch::kAuto) return asked;
   return device.is_gpu() ? RigDispatch::kPerComponent : RigDispatch::kByPathShape;

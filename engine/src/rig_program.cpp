@@ -47,7 +47,8 @@ struct StageCall {
   std::size_t values = 0;   // values offset, when literal
   std::size_t derived = 0;  // derived values offset, when literal
   // Leaves straight into the next stage's frame through link `link` of ff_link_table
-  // (link_table_source), when literal and not the path's last stage; else kNoLink.
+  // (frame_links; read from the path table's link rows when not literal), when not the
+  // path's last stage; else kNoLink.
   std::size_t link = kNoLink;
   static constexpr std::size_t kNoLink = ~std::size_t{0};
 };
@@ -68,8 +69,11 @@ std::string stage_call(const StageCall& c) {
     call << "FF_STAGE_VALUES(f), derived + FF_STAGE_DERIVED(f)";
   }
   call << "); ";
-  if (c.link != StageCall::kNoLink) {
+  if (c.link != StageCall::kNoLink && c.literal) {
     call << "leave_into(&p, &n, &t, ff_link_table + " << kLinkValues * c.link << ", s);";
+  } else if (c.link != StageCall::kNoLink) {
+    call << "leave_into(&p, &n, &t, ff_link_table + " << kLinkValues << " * FF_PATH_LINK("
+         << c.position << "), s);";
   } else {
     call << (c.last_of_root ? "FF_LEAVE_LAST(f, s)" : "leave_frame(&p, &n, &t, f, s);");
   }
@@ -347,19 +351,48 @@ std::vector<std::string> rig_program_files(const Rig& rig) {
   return files;
 }
 
+std::size_t path_table_width(const RiggedMesh& model) {
+  return std::max<std::size_t>(model.longest_path(), 1);
+}
+
+std::vector<std::pair<std::size_t, std::size_t>> frame_links(const RiggedMesh& model) {
+  const Rig& rig = model.rig();
+  std::vector<std::pair<std::size_t, std::size_t>> links;
+  for (const std::vector<StageRef>& path : model.paths()) {
+    for (std::size_t j = 0; j + 1 < path.size(); ++j) {
+      const std::pair<std::size_t, std::size_t> link{
+          stage_index(rig, path[j].component, path[j].stage),
+          stage_index(rig, path[j + 1].component, path[j + 1].stage)};
+      if (std::find(links.begin(), links.end(), link) == links.end()) links.push_back(link);
+    }
+  }
+  return links;
+}
+
+std::size_t link_index(const std::vector<std::pair<std::size_t, std::size_t>>& links,
+                       std::size_t from, std::size_t to) {
+  return static_cast<std::size_t>(std::find(links.begin(), links.end(), std::make_pair(from, to)) -
+                                  links.begin());
+}
+
 std::vector<std::uint32_t> group_path_table(const RiggedMesh& model, const SlotLayout& slots,
                                             std::size_t group_size) {
   const Rig& rig = model.rig();
   const std::size_t groups = slots.slot_count / group_size;
-  const std::size_t width = std::max<std::size_t>(model.longest_path(), 1);
-  std::vector<std::uint32_t> table(width * groups, 0u);
+  const std::size_t width = path_table_width(model);
+  const std::vector<std::pair<std::size_t, std::size_t>> links = frame_links(model);
+  std::vector<std::uint32_t> table(2 * width * groups, 0u);
   for (std::size_t c = 0; c < rig.components.size(); ++c) {
     const std::vector<StageRef>& path = model.paths()[c];
     for (std::size_t g = slots.first_slot[c] / group_size; g < slots.first_slot[c + 1] / group_size;
          ++g) {
       for (std::size_t j = 0; j < path.size(); ++j) {
-        table[j * groups + g] =
-            static_cast<std::uint32_t>(stage_index(rig, path[j].component, path[j].stage));
+        const std::size_t stage = stage_index(rig, path[j].component, path[j].stage);
+        table[j * groups + g] = static_cast<std::uint32_t>(stage);
+        if (j + 1 == path.size()) continue;
+        const std::size_t next = stage_index(rig, path[j + 1].component, path[j + 1].stage);
+        table[(width + j) * groups + g] =
+            static_cast<std::uint32_t>(link_index(links, stage, next));
       }
     }
   }
@@ -493,50 +526,73 @@ std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots
   const bool root_has_stages = !rig.components.front().chain.empty();
   if (!root_has_stages) out << "#define FF_ROOT_FRAME " << stage_count(rig) << "u\n";
   out << "#define FF_RIG_GROUP_COUNT " << slots.slot_count / group_size << "u\n";
+  out << "#define FF_PATH_WIDTH " << path_table_width(model) << "u\n";
   out << "#define FF_PREPARE_GROUP_SIZE " << group_size << "\n";
   out << prepare_items_source(prepare_items);
   // Fused: the group's component's whole path, bottom-up; a kernel per launch, a branch
   // per run of components in it (none when the launch has one).
-  // With the stages compiled in, a vertex leaves each stage but its path's last straight
-  // into the next one's frame (a link); links[i]: link i's (from, to) stages.
-  std::vector<std::pair<std::size_t, std::size_t>> links;
+  // A vertex leaves each stage but its path's last straight into the next one's frame
+  // (a link); links[i]: link i's (from, to) stages.
+  const std::vector<std::pair<std::size_t, std::size_t>> links = frame_links(model);
+  // Component c's whole path, bottom-up, its stages compiled in (literal) or read from
+  // the path and stage tables.
+  auto path_code = [&](std::size_t c, bool literal) {
+    std::ostringstream code;
+    const std::vector<const char*> shape = path_functions(model, c);
+    const std::vector<StageRef>& path = model.paths()[c];
+    bool linked_in = false;
+    for (std::size_t j = 0; j < path.size(); ++j) {
+      StageCall call{shape[j],
+                     j,
+                     j == 0 || linked_in,
+                     root_has_stages && j + 1 == path.size(),
+                     literal,
+                     stage_index(rig, path[j].component, path[j].stage),
+                     values_offset(rig, rig.stage(path[j])),
+                     derived_offset(rig, path[j].component, path[j].stage)};
+      linked_in = j + 1 < path.size();
+      if (linked_in) {
+        call.link = link_index(links, call.stage,
+                               stage_index(rig, path[j + 1].component, path[j + 1].stage));
+      }
+      code << " " << stage_call(call);
+    }
+    return code.str();
+  };
+  // A branch per component (none when there is one), each path compiled in.
+  auto branches_code = [&](const std::vector<std::size_t>& components,
+                           const std::vector<std::size_t>& ends) {
+    std::ostringstream code;
+    for (std::size_t b = 0; b < components.size(); ++b) {
+      code << " \\\n  ";
+      if (components.size() > 1) {
+        code << (b == 0 ? "if" : "else if") << " (group < " << ends[b] << "u) ";
+      }
+      code << "{" << path_code(components[b], true) << " }";
+    }
+    return code.str();
+  };
   std::ostringstream macros;
   for (std::size_t r = 0; r < fused.size(); ++r) {
     const FusedLaunch& launch = fused[r];
-    macros << "#define FF_RIG_FUSED_" << r;
-    const bool branches = launch.branch_ends.size() > 1;
-    for (std::size_t b = 0; b < launch.branch_ends.size(); ++b) {
-      const std::size_t c = launch.branch_components[b];
-      macros << " \\\n  ";
-      if (branches) {
-        macros << (b == 0 ? "if" : "else if") << " (group < " << launch.branch_ends[b] << "u) ";
-      }
-      macros << "{";
-      const std::vector<const char*> shape = path_functions(model, c);
-      const std::vector<StageRef>& path = model.paths()[c];
-      bool linked_in = false;
-      for (std::size_t j = 0; j < path.size(); ++j) {
-        StageCall call{shape[j],
-                       j,
-                       j == 0 || linked_in,
-                       root_has_stages && j + 1 == path.size(),
-                       !share_code,
-                       stage_index(rig, path[j].component, path[j].stage),
-                       values_offset(rig, rig.stage(path[j])),
-                       derived_offset(rig, path[j].component, path[j].stage)};
-        linked_in = call.literal && j + 1 < path.size();
-        if (linked_in) {
-          const std::pair<std::size_t, std::size_t> link{
-              call.stage, stage_index(rig, path[j + 1].component, path[j + 1].stage)};
-          auto found = std::find(links.begin(), links.end(), link);
-          call.link = static_cast<std::size_t>(found - links.begin());
-          if (found == links.end()) links.push_back(link);
-        }
-        macros << " " << stage_call(call);
-      }
-      macros << " }";
+    if (!share_code) {
+      macros << "#define FF_RIG_FUSED_" << r
+             << branches_code(launch.branch_components, launch.branch_ends) << "\n";
+      continue;
     }
-    macros << "\n";
+    // Shared code for the one-lane kernels (PoCL's work-group vectoriser wants
+    // straight-line kernels); kernels of more than one lane are vector code already, so
+    // they take a branch per component of the launch with its stages compiled in.
+    std::vector<std::size_t> components, ends;
+    for (std::size_t c = launch.branch_components.front();
+         c < rig.components.size() && slots.first_slot[c] / group_size < launch.end_group; ++c) {
+      if (slots.first_slot[c + 1] == slots.first_slot[c]) continue;  // no own vertices
+      components.push_back(c);
+      ends.push_back(slots.first_slot[c + 1] / group_size);
+    }
+    macros << "#if FF_LANES > 1\n#define FF_RIG_FUSED_" << r << branches_code(components, ends)
+           << "\n#else\n#define FF_RIG_FUSED_" << r << " \\\n  {"
+           << path_code(launch.branch_components.front(), false) << " }\n#endif\n";
   }
   out << link_table_source(rig, links) << macros.str();
   out << "#define FF_RIG_FUSED_KERNELS";

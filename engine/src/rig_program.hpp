@@ -65,8 +65,15 @@ std::vector<std::string> rig_program_files(const Rig& rig);
 
 // The path table of kernels/rig.cl: for work-group g and path position j, the stage
 // index of the j-th stage on the path of g's component, at [j * group_count + g]
-// (0 past the path's end). The kernels read their stages from it, so components
-// whose paths have the same deformers share one branch of code.
+// (0 past the path's end), then, W = path_table_width(model) rows further, the index
+// in frame_links(model) of the link from that stage into the next one (0 at the path's
+// last stage). The kernels read their stages and links from it, so components whose
+// paths have the same deformers share one branch of code.
+std::size_t path_table_width(const RiggedMesh& model);
+// Every pair of consecutive stages on the components' paths (from, to: stage indices),
+// once each, in rig order: the frame links of the fused path (kernels/common/stage_frame.cl
+// leave_into), compiled into the program as ff_link_table.
+std::vector<std::pair<std::size_t, std::size_t>> frame_links(const RiggedMesh& model);
 std::vector<std::uint32_t> group_path_table(const RiggedMesh& model, const SlotLayout& slots,
                                             std::size_t group_size);
 
