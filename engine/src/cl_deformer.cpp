@@ -478,7 +478,12 @@ cl::Event ClDeformer::Impl::enqueue(const ClJob& job, std::vector<cl::Event>* ke
   if (pass_count == 0) path = RigPath::kFused;  // no stage at all: the fused copy
   if (path == RigPath::kPasses && !single_bend) ensure_scratch(instances);
   if (job.derived_buffer != nullptr) {
-    check_derived_buffer(*job.derived_buffer, instances);
+    // Checked once per buffer and size (the check queries the buffer's size).
+    if ((*job.derived_buffer)() != checked_derived_() || instances > checked_derived_instances_) {
+      check_derived_buffer(*job.derived_buffer, instances);
+      checked_derived_ = *job.derived_buffer;  // held, so its handle stays this buffer's
+      checked_derived_instances_ = instances;
+    }
     inputs.derived = job.derived_buffer;
   } else {
     if (derived_per_instance_ > 0) {

@@ -131,6 +131,9 @@ class ClDeformer::Impl {
   void ensure_scratch(std::size_t instances);
   void ensure_derived(std::size_t instances);
   void check_derived_buffer(const cl::Buffer& buffer, std::size_t instances) const;
+  // The job's derived buffer checked last, and for how many instances.
+  cl::Buffer checked_derived_;
+  std::size_t checked_derived_instances_ = 0;
   FrameInputs upload_inputs(const ClJob& job, bool checked);
   void prepare_derived(const ClJob& job, const FrameInputs& inputs,
                        std::vector<cl::Event>* kernel_events);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <map>
 #include <sstream>
 #include <utility>
 
@@ -271,20 +272,25 @@ std::vector<float> stage_table(const Rig& rig) {
   return table;
 }
 
-// The stage table as a program-scope constant array (kernels/common/stage_frame.cl):
-// a frame's values fold into the instructions that use them, where a table in a
-// buffer costs a load each (NVIDIA's OpenCL reads __constant arguments as global
-// memory). Hexadecimal literals keep every float exact.
-std::string stage_table_source(const Rig& rig) {
-  const std::vector<float> table = stage_table(rig);
+// A program-scope OpenCL constant array of `values`, `per_line` to a line; hexadecimal
+// literals keep every float exact.
+std::string constant_array_source(const char* name, const std::vector<float>& values,
+                                  std::size_t per_line) {
   std::ostringstream out;
-  out << "__constant float ff_stage_table[" << table.size() << "] = {";
-  out << std::hexfloat;
-  for (std::size_t i = 0; i < table.size(); ++i) {
-    out << (i % 4 == 0 ? "\n  " : " ") << table[i] << "f,";
+  out << "__constant float " << name << "[" << values.size() << "] = {" << std::hexfloat;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    out << (i % per_line == 0 ? "\n  " : " ") << values[i] << "f,";
   }
   out << "};\n";
   return out.str();
+}
+
+// The stage table as a program-scope constant array (kernels/common/stage_frame.cl):
+// a frame's values fold into the instructions that use them, where a table in a
+// buffer costs a load each (NVIDIA's OpenCL reads __constant arguments as global
+// memory).
+std::string stage_table_source(const Rig& rig) {
+  return constant_array_source("ff_stage_table", stage_table(rig), 4);
 }
 
 // The frames of the stage table's rows, in its order: the stages in rig order, then
@@ -321,21 +327,15 @@ std::array<float, kLinkValues> link_values(const BodyFrame& a, const BodyFrame& 
 
 // The links a fused path takes, from stage `from` into stage `to` (stage indices), as
 // the program-scope constant array ff_link_table (nothing when there are none).
-std::string link_table_source(const Rig& rig,
-                              const std::vector<std::pair<std::size_t, std::size_t>>& links) {
-  if (links.empty()) return "";
+std::string link_table_source(const Rig& rig, const FrameLinks& links) {
+  if (links.pairs.empty()) return "";
   const std::vector<BodyFrame> frames = stage_frames(rig);
-  std::ostringstream out;
-  out << "__constant float ff_link_table[" << kLinkValues * links.size() << "] = {";
-  out << std::hexfloat;
-  for (const auto& [from, to] : links) {
-    const std::array<float, kLinkValues> values = link_values(frames[from], frames[to]);
-    for (std::size_t i = 0; i < kLinkValues; ++i) {
-      out << (i % 7 == 0 ? "\n  " : " ") << values[i] << "f,";
-    }
+  std::vector<float> values;
+  for (const auto& [from, to] : links.pairs) {
+    const std::array<float, kLinkValues> link = link_values(frames[from], frames[to]);
+    values.insert(values.end(), link.begin(), link.end());
   }
-  out << "};\n";
-  return out.str();
+  return constant_array_source("ff_link_table", values, 7);
 }
 
 std::vector<std::string> rig_program_files(const Rig& rig) {
@@ -355,24 +355,23 @@ std::size_t path_table_width(const RiggedMesh& model) {
   return std::max<std::size_t>(model.longest_path(), 1);
 }
 
-std::vector<std::pair<std::size_t, std::size_t>> frame_links(const RiggedMesh& model) {
+FrameLinks frame_links(const RiggedMesh& model) {
   const Rig& rig = model.rig();
-  std::vector<std::pair<std::size_t, std::size_t>> links;
-  for (const std::vector<StageRef>& path : model.paths()) {
+  FrameLinks links;
+  std::map<std::pair<std::size_t, std::size_t>, std::size_t> index;  // a pair's link
+  links.of_path.resize(model.paths().size());
+  for (std::size_t c = 0; c < model.paths().size(); ++c) {
+    const std::vector<StageRef>& path = model.paths()[c];
     for (std::size_t j = 0; j + 1 < path.size(); ++j) {
       const std::pair<std::size_t, std::size_t> link{
           stage_index(rig, path[j].component, path[j].stage),
           stage_index(rig, path[j + 1].component, path[j + 1].stage)};
-      if (std::find(links.begin(), links.end(), link) == links.end()) links.push_back(link);
+      const auto [at, added] = index.emplace(link, links.pairs.size());
+      if (added) links.pairs.push_back(link);
+      links.of_path[c].push_back(at->second);
     }
   }
   return links;
-}
-
-std::size_t link_index(const std::vector<std::pair<std::size_t, std::size_t>>& links,
-                       std::size_t from, std::size_t to) {
-  return static_cast<std::size_t>(std::find(links.begin(), links.end(), std::make_pair(from, to)) -
-                                  links.begin());
 }
 
 std::vector<std::uint32_t> group_path_table(const RiggedMesh& model, const SlotLayout& slots,
@@ -380,19 +379,18 @@ std::vector<std::uint32_t> group_path_table(const RiggedMesh& model, const SlotL
   const Rig& rig = model.rig();
   const std::size_t groups = slots.slot_count / group_size;
   const std::size_t width = path_table_width(model);
-  const std::vector<std::pair<std::size_t, std::size_t>> links = frame_links(model);
+  const FrameLinks links = frame_links(model);
   std::vector<std::uint32_t> table(2 * width * groups, 0u);
   for (std::size_t c = 0; c < rig.components.size(); ++c) {
     const std::vector<StageRef>& path = model.paths()[c];
     for (std::size_t g = slots.first_slot[c] / group_size; g < slots.first_slot[c + 1] / group_size;
          ++g) {
       for (std::size_t j = 0; j < path.size(); ++j) {
-        const std::size_t stage = stage_index(rig, path[j].component, path[j].stage);
-        table[j * groups + g] = static_cast<std::uint32_t>(stage);
-        if (j + 1 == path.size()) continue;
-        const std::size_t next = stage_index(rig, path[j + 1].component, path[j + 1].stage);
-        table[(width + j) * groups + g] =
-            static_cast<std::uint32_t>(link_index(links, stage, next));
+        table[j * groups + g] =
+            static_cast<std::uint32_t>(stage_index(rig, path[j].component, path[j].stage));
+        if (j + 1 < path.size()) {
+          table[(width + j) * groups + g] = static_cast<std::uint32_t>(links.of_path[c][j]);
+        }
       }
     }
   }
@@ -501,8 +499,11 @@ std::vector<FusedLaunch> make_fused_plan(const RiggedMesh& model, const SlotLayo
     const std::size_t first_group = slots.first_slot[c] / group_size;
     const std::size_t end_group = slots.first_slot[end] / group_size;
     if (share_code) launches.push_back({first_group, end_group, {}, {}});
-    launches.back().branch_ends.push_back(end_group);
-    launches.back().branch_components.push_back(c);
+    for (std::size_t k = c; k < end; ++k) {
+      if (slots.first_slot[k + 1] == slots.first_slot[k]) continue;
+      launches.back().branch_ends.push_back(slots.first_slot[k + 1] / group_size);
+      launches.back().branch_components.push_back(k);
+    }
     c = end - 1;
   }
   return launches;
@@ -532,8 +533,8 @@ std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots
   // Fused: the group's component's whole path, bottom-up; a kernel per launch, a branch
   // per run of components in it (none when the launch has one).
   // A vertex leaves each stage but its path's last straight into the next one's frame
-  // (a link); links[i]: link i's (from, to) stages.
-  const std::vector<std::pair<std::size_t, std::size_t>> links = frame_links(model);
+  // (a link, frame_links).
+  const FrameLinks links = frame_links(model);
   // Component c's whole path, bottom-up, its stages compiled in (literal) or read from
   // the path and stage tables.
   auto path_code = [&](std::size_t c, bool literal) {
@@ -551,10 +552,7 @@ std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots
                      values_offset(rig, rig.stage(path[j])),
                      derived_offset(rig, path[j].component, path[j].stage)};
       linked_in = j + 1 < path.size();
-      if (linked_in) {
-        call.link = link_index(links, call.stage,
-                               stage_index(rig, path[j + 1].component, path[j + 1].stage));
-      }
+      if (linked_in) call.link = links.of_path[c][j];
       code << " " << stage_call(call);
     }
     return code.str();
@@ -583,14 +581,8 @@ std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots
     // Shared code for the one-lane kernels (PoCL's work-group vectoriser wants
     // straight-line kernels); kernels of more than one lane are vector code already, so
     // they take a branch per component of the launch with its stages compiled in.
-    std::vector<std::size_t> components, ends;
-    for (std::size_t c = launch.branch_components.front();
-         c < rig.components.size() && slots.first_slot[c] / group_size < launch.end_group; ++c) {
-      if (slots.first_slot[c + 1] == slots.first_slot[c]) continue;  // no own vertices
-      components.push_back(c);
-      ends.push_back(slots.first_slot[c + 1] / group_size);
-    }
-    macros << "#if FF_LANES > 1\n#define FF_RIG_FUSED_" << r << branches_code(components, ends)
+    macros << "#if FF_LANES > 1\n#define FF_RIG_FUSED_" << r
+           << branches_code(launch.branch_components, launch.branch_ends)
            << "\n#else\n#define FF_RIG_FUSED_" << r << " \\\n  {"
            << path_code(launch.branch_components.front(), false) << " }\n#endif\n";
   }

@@ -70,10 +70,14 @@ std::vector<std::string> rig_program_files(const Rig& rig);
 // last stage). The kernels read their stages and links from it, so components whose
 // paths have the same deformers share one branch of code.
 std::size_t path_table_width(const RiggedMesh& model);
-// Every pair of consecutive stages on the components' paths (from, to: stage indices),
-// once each, in rig order: the frame links of the fused path (kernels/common/stage_frame.cl
-// leave_into), compiled into the program as ff_link_table.
-std::vector<std::pair<std::size_t, std::size_t>> frame_links(const RiggedMesh& model);
+// The frame links of the fused path (kernels/common/stage_frame.cl leave_into), compiled
+// into the program as ff_link_table: every pair of consecutive stages on the
+// components' paths (from, to: stage indices), once each, in rig order.
+struct FrameLinks {
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;  // link i's stages
+  std::vector<std::vector<std::size_t>> of_path;           // component c's link after path stage j
+};
+FrameLinks frame_links(const RiggedMesh& model);
 std::vector<std::uint32_t> group_path_table(const RiggedMesh& model, const SlotLayout& slots,
                                             std::size_t group_size);
 
@@ -113,11 +117,11 @@ PassPlan make_pass_plan(const RiggedMesh& model, const SlotLayout& slots, std::s
                         bool share_code);
 
 // The fused path's kernels: each covers a range of work-groups and, within it, a
-// branch per run of components (`branch_ends`: the end group of each branch; its
-// code is the path of `branch_components`). share_code: one kernel for each run of
-// components with the same functions along their paths, without branches (PoCL
-// vectorises straight-line kernels best); otherwise one kernel with a branch per
-// component, stages compiled in (one launch: GPUs).
+// branch per component with vertices of its own (`branch_ends`: the end group of each
+// branch; its code is the path of `branch_components`). share_code: one kernel for
+// each run of components with the same functions along their paths, whose one-lane
+// build shares one branch of code (PoCL vectorises straight-line kernels best);
+// otherwise one kernel for all (one launch: GPUs).
 struct FusedLaunch {
   std::size_t first_group = 0;
   std::size_t end_group = 0;
