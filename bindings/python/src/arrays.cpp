@@ -39,8 +39,8 @@ AnyArray as_array(nb::handle object, const std::string& name, const std::string&
 }
 
 template <typename T>
-std::vector<T> copy_rows(nb::handle object, const char* name, std::size_t columns,
-                         const char* dtype) {
+void copy_rows(nb::handle object, const char* name, std::size_t columns, const char* dtype,
+               std::vector<T>& out) {
   const std::string expected =
       std::string("a ") + dtype + " array of shape (n, " + std::to_string(columns) + ")";
   const AnyArray array = as_array(object, name, expected);
@@ -48,14 +48,13 @@ std::vector<T> copy_rows(nb::handle object, const char* name, std::size_t column
     reject(name, std::string(name) + ": expected " + expected + ", got " + describe(object));
   }
   const T* data = static_cast<const T*>(array.data());
-  std::vector<T> out(array.shape(0) * columns);
+  out.resize(array.shape(0) * columns);
   for (std::size_t i = 0; i < array.shape(0); ++i) {
     for (std::size_t c = 0; c < columns; ++c) {
       out[i * columns + c] = data[static_cast<std::int64_t>(i) * array.stride(0) +
                                   static_cast<std::int64_t>(c) * array.stride(1)];
     }
   }
-  return out;
 }
 
 }  // namespace
@@ -117,11 +116,20 @@ ParameterArgument::~ParameterArgument() {
 }
 
 std::vector<float> float_rows(nb::handle array, const char* name, std::size_t columns) {
-  return copy_rows<float>(array, name, columns, "float32");
+  std::vector<float> rows;
+  float_rows_into(array, name, columns, rows);
+  return rows;
+}
+
+void float_rows_into(nb::handle array, const char* name, std::size_t columns,
+                     std::vector<float>& rows) {
+  copy_rows<float>(array, name, columns, "float32", rows);
 }
 
 std::vector<std::uint32_t> index_rows(nb::handle array, const char* name, std::size_t columns) {
-  return copy_rows<std::uint32_t>(array, name, columns, "uint32");
+  std::vector<std::uint32_t> rows;
+  copy_rows<std::uint32_t>(array, name, columns, "uint32", rows);
+  return rows;
 }
 
 }  // namespace finflex::python

@@ -33,6 +33,9 @@ class ParameterArgument {
 
 // A copy of an (n, columns) array of float32 (any strides) as n * columns floats.
 std::vector<float> float_rows(nb::handle array, const char* name, std::size_t columns);
+// The same into `rows` (resized; its memory reused by a frame's call).
+void float_rows_into(nb::handle array, const char* name, std::size_t columns,
+                     std::vector<float>& rows);
 // A copy of an (n, columns) array of uint32 (any strides).
 std::vector<std::uint32_t> index_rows(nb::handle array, const char* name, std::size_t columns);
 

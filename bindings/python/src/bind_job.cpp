@@ -11,13 +11,22 @@
 
 namespace finflex::python {
 
-PyEvent enqueue_frame(PyDeformer& deformer, ClJob& job, nb::handle parameters, nb::handle wait) {
-  const ParameterArgument rows(parameters, *deformer.model);
-  job.parameters = rows.view();
+std::vector<cl::Event> wait_events(nb::handle wait) {
   std::vector<cl::Event> events;
   if (!wait.is_none()) {
     for (nb::handle e : wait) events.push_back(nb::cast<const PyEvent&>(e).event);
   }
+  return events;
+}
+
+PyEvent enqueue_frame(PyDeformer& deformer, ClJob& job, nb::handle parameters, nb::handle wait) {
+  const ParameterArgument rows(parameters, *deformer.model);
+  job.parameters = rows.view();
+  return enqueue_job(deformer, job, wait);
+}
+
+PyEvent enqueue_job(PyDeformer& deformer, ClJob& job, nb::handle wait) {
+  const std::vector<cl::Event> events = wait_events(wait);
   job.wait = events.empty() ? nullptr : &events;
   PyEvent done;
   {

@@ -24,7 +24,8 @@ struct PySwimDriver {
   std::shared_ptr<Context> context;
   std::shared_ptr<const SwimModel> swim;
   std::unique_ptr<ClSwimDriver> driver;
-  std::vector<SwimInput> inputs;  // the frame's, reused
+  std::vector<float> rows;        // the frame's inputs as given, reused
+  std::vector<SwimInput> inputs;  // the same as SwimInputs, reused
 };
 
 // A deformer's frames whose parameters and placements are a driver's device buffers.
@@ -78,9 +79,11 @@ void bind_swim(nb::module_& m) {
           [](PySwimDriver* self, const PyContext& context, const PySwimModel& swim,
              const std::vector<float>& lengths, const std::optional<std::vector<float>>& phases) {
             new (self)
-                PySwimDriver{context.context, swim.swim,
+                PySwimDriver{context.context,
+                             swim.swim,
                              std::make_unique<ClSwimDriver>(*context.context, *swim.swim, lengths,
                                                             phases.value_or(std::vector<float>{})),
+                             {},
                              std::vector<SwimInput>(lengths.size())};
           },
           nb::arg("context"), nb::arg("swim"), nb::arg("lengths"), nb::arg("phases") = nb::none(),
@@ -90,12 +93,9 @@ void bind_swim(nb::module_& m) {
       .def(
           "enqueue",
           [](PySwimDriver& d, nb::handle inputs, float dt, nb::handle wait) {
-            const std::vector<float> rows = float_rows(inputs, "inputs", 7);
-            swim_inputs_from_rows(rows.data(), rows.size() / 7, d.inputs);
-            std::vector<cl::Event> events;
-            if (!wait.is_none()) {
-              for (nb::handle e : wait) events.push_back(nb::cast<const PyEvent&>(e).event);
-            }
+            float_rows_into(inputs, "inputs", 7, d.rows);
+            swim_inputs_from_rows(d.rows.data(), d.rows.size() / 7, d.inputs);
+            const std::vector<cl::Event> events = wait_events(wait);
             PyEvent done;
             nb::gil_scoped_release release;
             done.event = d.driver->enqueue(d.inputs, dt, events.empty() ? nullptr : &events);
@@ -142,19 +142,7 @@ void bind_swim(nb::module_& m) {
       .def(
           "enqueue",
           [](PySwimJob& j, nb::handle wait) {
-            std::vector<cl::Event> events;
-            if (!wait.is_none()) {
-              for (nb::handle e : wait) events.push_back(nb::cast<const PyEvent&>(e).event);
-            }
-            PyDeformer& deformer = nb::cast<PyDeformer&>(j.deformer);
-            j.job.wait = events.empty() ? nullptr : &events;
-            PyEvent done;
-            {
-              nb::gil_scoped_release release;
-              done.event = deformer.deformer->enqueue(j.job);
-            }
-            j.job.wait = nullptr;
-            return done;
+            return enqueue_job(nb::cast<PyDeformer&>(j.deformer), j.job, wait);
           },
           nb::arg("wait") = nb::none(),
           nb::sig("def enqueue(self, wait: collections.abc.Sequence[Event] | None = None) -> "

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "bindings.hpp"
 
@@ -19,8 +20,13 @@ struct PyJob {
 ClJob describe_frames(const PyDeformer& deformer, PyBatch& batch, const std::string& normals,
                       bool clamp, const std::string& path);
 
-// Points `job` at `parameters` (checked: ParameterArgument), waits for the events of
-// `wait` (a sequence of finflex.Event, or None), enqueues it with the GIL released.
+// The events of `wait`: a sequence of finflex.Event, or None.
+std::vector<cl::Event> wait_events(nb::handle wait);
+
+// Enqueues `job` after the events of `wait`, with the GIL released.
+PyEvent enqueue_job(PyDeformer& deformer, ClJob& job, nb::handle wait);
+
+// Points `job` at `parameters` (checked: ParameterArgument), then enqueue_job.
 PyEvent enqueue_frame(PyDeformer& deformer, ClJob& job, nb::handle parameters, nb::handle wait);
 
 }  // namespace finflex::python
