@@ -45,7 +45,7 @@ FF_INLINE SecantSample spine_sample(LaneFloat x, LaneFloat z, __global const flo
    * (common/lanes.cl). */
   const LaneInt record = 8 * FF_LANE_INT(segment);
   LaneFloat x_j, z_j, sin_j, cos_j, slope;
-  if (all(record == (LaneInt)record.s0)) {
+  if (lanes_uniform(record)) {
     __global const float* shared = derived + record.s0;
     x_j = (LaneFloat)shared[0];
     z_j = (LaneFloat)shared[1];
