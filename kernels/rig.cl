@@ -145,9 +145,9 @@ FF_RIG_PASS_KERNELS
 /* Derived values (DeformerType::derived_count, e.g. a spine's running integrals):
  * kernel rig_prepare writes them from every instance's values before the deformation
  * kernels run, FF_PREPARE_ITEMS work-items per instance: 1 (a work-group's 64 instances
- * side by side) or the whole work-group of FF_PREPARE_GROUP_SIZE (a spine's table is
- * then shared out and summed by a scan in local memory; engine/src/device_profile.hpp
- * chooses). The stages that have them are listed in the generated FF_RIG_PREPARE
+ * side by side) or a power of two up to 64, a work-group of FF_PREPARE_GROUP_SIZE =
+ * FF_PREPARE_ITEMS per instance (a spine's table is then shared out and summed by a
+ * scan in local memory; engine/src/device_profile.hpp chooses). The stages that have them are listed in the generated FF_RIG_PREPARE
  * (calls "<prepare function>(values + <offset>, derived + <offset>, stages + <k>,
  * scratch, item);" by every work-item of the instance). Launched only when the rig has
  * such stages, always from the one-lane build of the program (it works on instances,

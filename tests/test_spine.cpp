@@ -188,17 +188,23 @@ TEST(Spine, DeviceMatchesTheReference) {
 
 void expect_every_table_size_matches(std::size_t table_items);
 
-// rig_prepare shares a table's samples out over a work-group of 64 on GPUs, one
-// work-item per instance on CPUs (kernels/deformers/spine.cl): both, on every device,
-// with tables smaller than the group, one sample per work-item, more than one (up to
-// the 256 allowed), and x = 0 inside the table or beyond its end.
+// rig_prepare shares a table's samples out over several work-items per instance on
+// GPUs, one work-item per instance on CPUs (kernels/deformers/spine.cl): 1, 8 and 64,
+// on every device, with tables smaller than the work-items, one sample per work-item,
+// more than one (up to the 256 allowed), and x = 0 inside the table or beyond its end.
+// Only powers of two up to 64 are taken.
 TEST(Spine, DeviceMatchesTheReferenceForEveryTableSize) {
-  for (std::size_t items : {1u, 64u}) {
+  for (std::size_t items : {1u, 8u, 64u}) {
     SCOPED_TRACE("table items " + std::to_string(items));
     expect_every_table_size_matches(items);
   }
   ClOptions odd;
   odd.table_items = 3;
+  ClOptions too_many;
+  too_many.table_items = 128;
+  EXPECT_THROW(
+      ClDeformer(test::shared_context(), spine_model(test::synthetic_fish(16, 8), 32), too_many),
+      Error);
   try {
     ClDeformer(test::shared_context(), spine_model(test::synthetic_fish(16, 8), 32), odd);
     FAIL() << "expected an error naming options.table_items";

@@ -112,7 +112,7 @@ TEST(Swim, DeviceDriverMatchesTheReferenceWithLongTablesAndLimitedSegments) {
   SwimReference reference(swim, lengths);
   reference.step(inputs, dt);
   EXPECT_GT(reference.limited_segments(), 0u);
-  for (std::size_t items : {1u, 64u}) {
+  for (std::size_t items : {1u, 2u, 8u, 32u, 64u}) {
     SCOPED_TRACE("work-items per fish " + std::to_string(items));
     ClSwimDriver driver(test::shared_context(), swim, lengths, {}, items);
     driver.enqueue(inputs, dt);
@@ -122,6 +122,7 @@ TEST(Swim, DeviceDriverMatchesTheReferenceWithLongTablesAndLimitedSegments) {
       EXPECT_NEAR(device.values()[k], reference.parameters().values()[k], 2e-4) << "value " << k;
   }
   EXPECT_THROW(ClSwimDriver(test::shared_context(), swim, lengths, {}, 5), Error);
+  EXPECT_THROW(ClSwimDriver(test::shared_context(), swim, lengths, {}, 128), Error);
 }
 
 TEST(Swim, PhasesIntegrateTheFrequencyWithoutJumps) {
@@ -218,12 +219,12 @@ TEST(Swim, AFrameFromTheDeviceDriverMatchesTheReference) {
 
 // The driver writes the spine's records itself (ClSwimDriver::derived_buffer): the
 // frame skips rig_prepare and deforms to the same bits as with rig_prepare summing in
-// the same order (one work-item per fish, or 64), on every device. A derived buffer
+// the same order (one work-item per fish, 16 or 64), on every device. A derived buffer
 // that does not fit is refused by name.
 TEST(Swim, DriverPreparedRecordsDeformAsRigPrepareDoes) {
   const SwimModel swim(barramundi());
   const std::vector<float> lengths = {0.3f, 0.45f, 0.38f, 0.5f};
-  for (std::size_t items : {1u, 64u}) {
+  for (std::size_t items : {1u, 16u, 64u}) {
     SCOPED_TRACE("work-items per fish " + std::to_string(items));
     ClSwimDriver driver(test::shared_context(), swim, lengths, {}, items);
     ASSERT_NE(driver.derived_buffer(), nullptr);
@@ -313,6 +314,12 @@ TEST(Swim, BadInputsAreNamed) {
   EXPECT_NE(field_of(inputs, 0.1).find("inputs[1].position"), std::string::npos);
   inputs[1].position.y = 0.0f;
   EXPECT_EQ(field_of(inputs, 0.1), "accepted");
+  // The largest finite values pass; a NaN with its sign bit set does not.
+  inputs[0].position.x = std::numeric_limits<float>::max();
+  inputs[0].position.z = -std::numeric_limits<float>::max();
+  EXPECT_EQ(field_of(inputs, 0.1), "accepted");
+  inputs[0].pitch = -std::numeric_limits<float>::quiet_NaN();
+  EXPECT_EQ(field_of(inputs, 0.1), "inputs[0].pitch");
   EXPECT_THROW(SwimReference(swim, {0.4f, 0.0f}), Error);
   EXPECT_THROW(ClSwimDriver(test::shared_context(), swim, {NAN}), Error);
   EXPECT_THROW(SwimReference(swim, {}), Error);

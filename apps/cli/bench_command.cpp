@@ -6,8 +6,8 @@
 //                 [--normals rotate|jacobian] [--normal-format float32|half]
 //                 [--rig RIG.json [--path fused|passes] [--swim]]
 //                 [--layout planes|interleaved|compact|snorm] [--order slots|mesh] [--previous]
-//                 [--host] [--per-item N] [--lanes 0|1|8|16] [--stores auto|plain|streaming]
-//                 [--device NAME] [--json]
+//                 [--host] [--per-item N] [--table-items N] [--lanes 0|1|8|16]
+//                 [--stores auto|plain|streaming] [--device NAME] [--json]
 //
 // --layout, --order, --previous: the outputs in that layout (docs/handoff.md), the
 // write-only kernel writing the same layout. --host: the outputs in host memory
@@ -50,6 +50,7 @@ struct BenchOptions {
   std::string rig;
   std::string path = "auto";
   std::string per_item = "0";
+  std::string table_items = "0";
   std::string lanes = "0";
   std::string stores = "auto";
   std::string dispatch = "auto";
@@ -71,13 +72,16 @@ struct Measured {
   DeviceBatch* batch = nullptr;
   std::size_t per_item = 1;
   std::size_t lanes = 1;
-  bool streaming = false;           // streaming stores (with lanes)
-  std::size_t vertices = 0;         // per instance
-  std::size_t output_vertices = 0;  // the outputs' (slots or mesh vertices)
+  bool streaming = false;            // streaming stores (with lanes)
+  std::size_t vertices = 0;          // per instance
+  std::size_t output_vertices = 0;   // the outputs' (slots or mesh vertices)
   std::size_t bytes_per_vertex = 0;  // written per output vertex and instance
   // --host: the map that hands each frame to the host (ClDeformer::map_host) after the
   // kernels completed, host wall time per frame.
   std::vector<double> host_map_seconds;
+  // --swim: of the host's enqueue, the driver's part (inputs checked, copied, uploaded,
+  // the driver kernel launched).
+  std::vector<double> host_driver_seconds;
 };
 
 // --host: frames whose kernels are waited for, then mapped for the host and timed:
@@ -147,11 +151,19 @@ struct DeformBench {
   DeviceBatch batch;
 };
 
-// --per-item, --lanes, --stores and --dispatch: the backend's choices, for experiments.
+// --per-item, --table-items, --lanes, --stores and --dispatch: the backend's choices, for
+// experiments.
 ClOptions cl_options(const BenchOptions& options) {
   ClOptions cl;
   cl.instances_per_item =
       parse_count(options.per_item, "--per-item", 0, 64, "instances per work-item");
+  cl.table_items =
+      parse_count(options.table_items, "--table-items", 0, 64, "work-items per instance's table");
+  if ((cl.table_items & (cl.table_items - 1)) != 0) {
+    throw Error(ErrorCode::kInvalidArgument, "--table-items",
+                "--table-items '" + options.table_items +
+                    "' is not a power of two (expected 0: the device's, 1, 2, 4, ... 64)");
+  }
   cl.lanes = parse_count(options.lanes, "--lanes", 0, 16, "vertex slots per work-item");
   if (cl.lanes != 0 && cl.lanes != 1 && cl.lanes != 8 && cl.lanes != 16) {
     throw Error(ErrorCode::kInvalidArgument, "--lanes",
@@ -246,8 +258,7 @@ Measured measure_swim(const BenchOptions& options, Context& context, std::size_t
   if (options.rig.empty()) {
     throw Error(ErrorCode::kInvalidArgument, "--swim", "--swim needs --rig (a swim rig)");
   }
-  if (options.layout != "planes" || options.order != "slots" || options.previous ||
-      options.host) {
+  if (options.layout != "planes" || options.order != "slots" || options.previous || options.host) {
     throw Error(ErrorCode::kInvalidArgument, "--swim",
                 "--swim writes the default planes (no --layout, --order, --previous or --host)");
   }
@@ -260,16 +271,18 @@ Measured measure_swim(const BenchOptions& options, Context& context, std::size_t
       normals, format, cl_options(options));
   tank::Species& species = scene->species().front();
   Measured measured;
-  std::vector<double> enqueue;  // per frame, the tank's step excluded
+  std::vector<double> enqueue, driver;  // per frame, the tank's step excluded
   measured.times = bench::time_frames(
       frames, [](std::size_t) {},
       [&](std::vector<cl::Event>& events) {
         const tank::FrameWork work = scene->enqueue_frame(1.0 / 30.0, true);
         enqueue.push_back(work.enqueue_seconds);
+        driver.push_back(work.driver_seconds);
         events = work.kernels;
       });
   // time_frames timed the whole call on the host: keep the timed frames' enqueues.
   measured.times.host.assign(enqueue.begin() + 1, enqueue.end());
+  measured.host_driver_seconds.assign(driver.begin() + 1, driver.end());
   measured.what = std::string("swim ") + to_string(species.deformer->automatic_path());
   measured.batch = &species.batch();
   measured.per_item = species.deformer->instances_per_item(format);
@@ -299,7 +312,7 @@ BenchCounts check_bench(const BenchOptions& options) {
   parse_normal_mode(options.normals, "--normals");
   parse_normal_format(options.normal_format, "--normal-format");
   parse_rig_path(options.path, "--path");
-  cl_options(options);  // --per-item, --lanes, --stores, --dispatch
+  cl_options(options);  // --per-item, --table-items, --lanes, --stores, --dispatch
   check_bench_layout(options.layout, options.order);
   check_input_file("--mesh", options.mesh, mesh_extensions());
   if (options.rig.empty()) {
@@ -363,6 +376,9 @@ int run_bench(const BenchOptions& options) {
     result["write_bandwidth_bytes_per_second"] = written / write_seconds;
     result["write_fraction"] = write_seconds / seconds;
     result["host_enqueue_seconds_median"] = bench::median(m.times.host);
+    if (options.swim) {
+      result["host_driver_seconds_median"] = bench::median(m.host_driver_seconds);
+    }
     result["host_outputs"] = options.host;
     if (options.host) {
       const double map_seconds = bench::median(m.host_map_seconds);
@@ -401,21 +417,30 @@ Command add_bench_command(CLI::App& app) {
   bench->add_option("--rig", options->rig, "Rig file: time the rig instead of the single bend");
   bench->add_option("--path", options->path, "With --rig: auto, fused or passes")
       ->capture_default_str();
-  bench->add_option("--per-item", options->per_item,
-                    "Instances per work-item (0: the device's choice)")
+  bench
+      ->add_option("--per-item", options->per_item,
+                   "Instances per work-item (0: the device's choice)")
       ->capture_default_str();
-  bench->add_option("--lanes", options->lanes,
-                    "Vertex slots per work-item: 1, 8, 16 (0: the device's; FinFlex's float32 "
-                    "planes only, other layouts run with 1)")
+  bench
+      ->add_option("--table-items", options->table_items,
+                   "Work-items per instance's table (spine records, swim driver): a power of "
+                   "two up to 64 (0: the device's choice)")
       ->capture_default_str();
-  bench->add_option("--stores", options->stores,
-                    "With lanes: auto (streaming when the outputs exceed the cache), plain or "
-                    "streaming")
+  bench
+      ->add_option("--lanes", options->lanes,
+                   "Vertex slots per work-item: 1, 8, 16 (0: the device's; FinFlex's float32 "
+                   "planes only, other layouts run with 1)")
+      ->capture_default_str();
+  bench
+      ->add_option("--stores", options->stores,
+                   "With lanes: auto (streaming when the outputs exceed the cache), plain or "
+                   "streaming")
       ->capture_default_str();
   bench->add_option("--dispatch", options->dispatch, "auto, per-component or by-path-shape")
       ->capture_default_str();
-  bench->add_option("--layout", options->layout,
-                    "Output layout: planes, interleaved, compact (octahedral normals) or snorm")
+  bench
+      ->add_option("--layout", options->layout,
+                   "Output layout: planes, interleaved, compact (octahedral normals) or snorm")
       ->capture_default_str();
   bench->add_option("--order", options->order, "Output vertex order: slots or mesh")
       ->capture_default_str();

@@ -12,8 +12,7 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-DeviceOutputs::DeviceOutputs(const ClDeformer& deformer, std::size_t instances,
-                             NormalFormat format)
+DeviceOutputs::DeviceOutputs(const ClDeformer& deformer, std::size_t instances, NormalFormat format)
     : batch_(deformer.allocate(instances, format)) {}
 
 cl::Event DeviceOutputs::enqueue(ClDeformer& deformer, const ClJob& job,
@@ -57,8 +56,7 @@ std::vector<SpeciesFiles> bundled_species(const std::string& data_dir) {
 
 SwimScene::SwimScene(Context& context, const std::vector<SpeciesFiles>& files, std::size_t fish,
                      const TankSettings& settings, std::uint64_t seed, NormalMode normals,
-                     NormalFormat format, const ClOptions& options,
-                     const OutputsFactory& outputs)
+                     NormalFormat format, const ClOptions& options, const OutputsFactory& outputs)
     : context_(context) {
   if (files.empty()) {
     throw Error(ErrorCode::kInvalidArgument, "species", "species: at least one is needed");
@@ -83,7 +81,8 @@ SwimScene::SwimScene(Context& context, const std::vector<SpeciesFiles>& files, s
     Species& sp = species_[s];
     if (counts[s] == 0) continue;
     sp.deformer = std::make_unique<ClDeformer>(context_, sp.swim.model(), options);
-    sp.driver = std::make_unique<ClSwimDriver>(context_, sp.swim, tank_->lengths(s));
+    sp.driver = std::make_unique<ClSwimDriver>(context_, sp.swim, tank_->lengths(s),
+                                               std::vector<float>{}, options.table_items);
     sp.outputs = outputs ? outputs(s, *sp.deformer, counts[s], format)
                          : std::make_unique<DeviceOutputs>(*sp.deformer, counts[s], format);
     if (!sp.outputs) {
@@ -113,7 +112,9 @@ FrameWork SwimScene::enqueue_frame(double dt, bool profile) {
   for (std::size_t s = 0; s < species_.size(); ++s) {
     Species& sp = species_[s];
     if (!sp.driver) continue;
+    const auto driver_start = std::chrono::steady_clock::now();
     const cl::Event driven = sp.driver->enqueue(sp.inputs, static_cast<float>(dt));
+    work.driver_seconds += seconds_since(driver_start);
     sp.outputs->enqueue(*sp.deformer, sp.job, profile ? &events : nullptr);
     work.handoff_seconds += sp.outputs->handoff_seconds();
     if (profile) {
@@ -121,8 +122,7 @@ FrameWork SwimScene::enqueue_frame(double dt, bool profile) {
       work.kernels.insert(work.kernels.end(), events.begin(), events.end());
     }
   }
-  work.enqueue_seconds =
-      std::max(0.0, seconds_since(enqueue_start) - work.handoff_seconds);
+  work.enqueue_seconds = std::max(0.0, seconds_since(enqueue_start) - work.handoff_seconds);
   return work;
 }
 

@@ -72,8 +72,8 @@ using OutputsFactory = std::function<std::unique_ptr<SpeciesOutputs>(
     std::size_t species, ClDeformer& deformer, std::size_t instances, NormalFormat format)>;
 
 struct Species {
-  std::string name;  // the mesh file's stem
-  SwimModel swim;    // its model: swim.model()
+  std::string name;                      // the mesh file's stem
+  SwimModel swim;                        // its model: swim.model()
   std::unique_ptr<ClDeformer> deformer;  // these three: only a species with fish
   std::unique_ptr<ClSwimDriver> driver;
   std::unique_ptr<SpeciesOutputs> outputs;
@@ -101,6 +101,8 @@ struct FrameWork {
   double simulation_seconds = 0.0;  // the tank's step and its swim inputs
   double enqueue_seconds = 0.0;     // the drivers' uploads and every launch (and what
                                     // the hand-off waits for, when it waits)
+  double driver_seconds = 0.0;      // of which the drivers' (inputs checked, copied and
+                                    // uploaded, driver kernels launched)
   double handoff_seconds = 0.0;     // the outputs' hand-off (SpeciesOutputs)
   std::vector<cl::Event> kernels;   // every kernel, in order (profiling)
 };

@@ -31,6 +31,19 @@ cl_float4 to_cl_float4(const glm::dvec3& v) {
   throw Error(ErrorCode::kInvalidArgument, "job.outputs", "job.outputs: " + message);
 }
 
+// The longest table that rig_prepare shares out (the values of a stage with derived
+// values: a spine's samples); 0 when there is none.
+std::size_t longest_prepared_table(const Rig& rig) {
+  std::size_t longest = 0;
+  for (const RigComponent& component : rig.components) {
+    for (const RigStage& stage : component.chain) {
+      if (stage.deformer->derived_count == nullptr) continue;
+      longest = std::max(longest, rig.parameters[stage.param].count);
+    }
+  }
+  return longest;
+}
+
 }  // namespace
 
 // ----------------------------------------------------------------------------------
@@ -46,7 +59,8 @@ ClDeformer::Impl::Impl(Context& context_in, const RiggedMesh& model_in, const Cl
                     " is not a number of lanes (expected 0: the device's, 1, 8 or 16)");
   }
   detail::check_table_items(options.table_items, "options.table_items");
-  options.table_items = detail::device_table_items(device, options.table_items);
+  options.table_items =
+      detail::device_table_items(device, longest_prepared_table(model.rig()), options.table_items);
   single_bend = options.single_bend_kernel && model.is_single_bend();
   const bool share_code = options.dispatch == RigDispatch::kByPathShape;
   const Rig& rig = model.rig();
@@ -339,13 +353,14 @@ void ClDeformer::Impl::prepare_derived(const ClJob& job, const FrameInputs& inpu
   set(derived_);
   set(static_cast<cl_uint>(derived_per_instance_));
   set(static_cast<cl_uint>(instances));
-  // device_table_items work-items per instance (kernels/rig.cl).
+  // device_table_items work-items per instance, in groups of table_group_size
+  // (kernels/rig.cl).
   const std::size_t items = options.table_items;
-  const std::size_t global =
-      (instances * items + kWorkGroupSize - 1) / kWorkGroupSize * kWorkGroupSize;
+  const std::size_t group = detail::table_group_size(items);
+  const std::size_t global = (instances * items + group - 1) / group * group;
   cl::Event prepared;
   check_cl(context.queue().enqueueNDRangeKernel(prepare_, cl::NullRange, cl::NDRange(global),
-                                                cl::NDRange(kWorkGroupSize), nullptr,
+                                                cl::NDRange(group), nullptr,
                                                 kernel_events ? &prepared : nullptr),
            "clEnqueueNDRangeKernel rig_prepare");
   if (kernel_events) kernel_events->push_back(prepared);

@@ -74,24 +74,40 @@ inline bool device_streaming_stores(const DeviceDescription& device, OutputStore
   return output_bytes > cache_bytes;
 }
 
-// Work-items that share one instance's table work (rig_prepare, the swim driver): the
-// whole work-group on GPUs (a table's samples in parallel, summed by a scan in local
-// memory: 10,000 fish of 32 samples took 80 us on an H100 with one work-item per fish,
-// 14 us so), 1 on CPUs (a work-group's 64 instances each one work-item's loop: PoCL runs
-// the work-items of a group between barriers as loops, and most of a 64-item group
-// would idle on a table of 32 samples).
-inline std::size_t device_table_items(const DeviceDescription& device, std::size_t asked = 0) {
+// Work-items that share one instance's table work (rig_prepare, the swim driver) of
+// `samples` samples: on GPUs one per sample, the smallest power of two that holds them
+// and at most a work-group (the samples in parallel, summed by a scan in local memory;
+// the swim driver of 10,000 fish of 32 samples took 0.024 ms on an H100 with 32
+// work-items per fish, 0.033-0.048 with 64, 0.06 with 4 or 8, 0.10 with 1:
+// docs/results/2026-11-24_swim_driver_items.txt); 1 on CPUs (a work-group's 64
+// instances each one work-item's loop: PoCL runs the work-items of a group between
+// barriers as loops).
+inline std::size_t device_table_items(const DeviceDescription& device, std::size_t samples,
+                                      std::size_t asked = 0) {
   if (asked != 0) return asked;
-  return device.is_gpu() ? kWorkGroupSize : 1;
+  if (!device.is_gpu()) return 1;
+  std::size_t items = 1;
+  while (items < samples && items < kWorkGroupSize) items *= 2;
+  return items;
 }
 
-// Checks a table_items option (ClOptions, ClSwimDriver): 0, 1 or kWorkGroupSize.
+// Checks a table_items option (ClOptions, ClSwimDriver): 0, or a power of two up to
+// kWorkGroupSize.
 inline void check_table_items(std::size_t items, const char* field) {
-  if (items == 0 || items == 1 || items == kWorkGroupSize) return;
+  if (items <= kWorkGroupSize && (items & (items - 1)) == 0) return;
   throw Error(ErrorCode::kInvalidArgument, field,
               std::string(field) + ": " + std::to_string(items) +
-                  " work-items per instance (expected 0: the device's choice, 1 or " +
+                  " work-items per instance (expected 0: the device's choice, or a power of "
+                  "two up to " +
                   std::to_string(kWorkGroupSize) + ")");
+}
+
+// The work-group of the kernels that share out a table (rig_prepare, swim_drive):
+// kWorkGroupSize instances side by side with one work-item each, else one instance's
+// `items` work-items, so that a group never holds both an instance and one past the
+// last (which returns before the barriers the others wait at).
+inline std::size_t table_group_size(std::size_t items) {
+  return items == 1 ? kWorkGroupSize : items;
 }
 
 // kPerComponent on GPUs (fewest instructions), kByPathShape on CPUs (straight-line

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <utility>
 
+#include "device_profile.hpp"
 #include "finflex/context.hpp"
 #include "finflex/error.hpp"
 
@@ -510,7 +511,8 @@ std::vector<FusedLaunch> make_fused_plan(const RiggedMesh& model, const SlotLayo
 }
 
 std::string prepare_items_source(std::size_t items) {
-  return "#define FF_PREPARE_ITEMS " + std::to_string(items) + "\n#define FF_PREPARE_BARRIER() " +
+  return "#define FF_PREPARE_ITEMS " + std::to_string(items) + "\n#define FF_PREPARE_GROUP_SIZE " +
+         std::to_string(table_group_size(items)) + "\n#define FF_PREPARE_BARRIER() " +
          (items > 1 ? "barrier(CLK_LOCAL_MEM_FENCE)" : "/* one work-item */") + "\n";
 }
 
@@ -528,7 +530,6 @@ std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots
   if (!root_has_stages) out << "#define FF_ROOT_FRAME " << stage_count(rig) << "u\n";
   out << "#define FF_RIG_GROUP_COUNT " << slots.slot_count / group_size << "u\n";
   out << "#define FF_PATH_WIDTH " << path_table_width(model) << "u\n";
-  out << "#define FF_PREPARE_GROUP_SIZE " << group_size << "\n";
   out << prepare_items_source(prepare_items);
   // Fused: the group's component's whole path, bottom-up; a kernel per launch, a branch
   // per run of components in it (none when the launch has one).

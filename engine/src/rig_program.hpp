@@ -134,12 +134,12 @@ std::vector<FusedLaunch> make_fused_plan(const RiggedMesh& model, const SlotLayo
 // The generated macros of kernels/rig.cl for the rig: FF_STAGE_COUNT,
 // FF_RIG_GROUP_COUNT, FF_RIG_FUSED_<r> and FF_RIG_FUSED_KERNELS (kernel rig_fused_<r>
 // for fused[r]), FF_RIG_PASS_<q> and FF_RIG_PASS_KERNELS, FF_RIG_PREPARE with
-// FF_PREPARE_GROUP_SIZE (group_size) and FF_PREPARE_ITEMS (prepare_items: 1 or
-// group_size work-items per instance). share_code: as for make_pass_plan
+// prepare_items_source(prepare_items). share_code: as for make_pass_plan
 // (RigDispatch::kByPathShape).
 // The generated macros of the table-preparing code (DeformerType::cl_prepare_function,
-// kernels/deformers/spine.cl): FF_PREPARE_ITEMS, `items` work-items per instance (1 or a
-// work-group), and FF_PREPARE_BARRIER(), a barrier between them (none for one).
+// kernels/deformers/spine.cl): FF_PREPARE_ITEMS, `items` work-items per instance (a
+// power of two up to a work-group), FF_PREPARE_GROUP_SIZE (table_group_size, in
+// device_profile.hpp) and FF_PREPARE_BARRIER(), a barrier between them (none for one).
 std::string prepare_items_source(std::size_t items);
 
 std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots,

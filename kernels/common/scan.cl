@@ -2,7 +2,7 @@
  * share one instance's table (rig_prepare's spine records, the swim driver's fold
  * clearing), in local memory: item i gets the sums of the values of items 0..i.
  * scratch: 2 items floats of the instance's. `items` is the same for every work-item
- * of the group (1 or the whole group), so the barriers are reached by all or none;
+ * of the group (1, or the whole group: device_profile.hpp table_group_size), so the barriers are reached by all or none;
  * with one item there is nothing to share and no barrier. The first barrier lets an
  * earlier use of scratch finish before it is written. */
 FF_INLINE float2 inclusive_scan2(float2 value, __local float* scratch, int item, int items) {

@@ -2,9 +2,9 @@
  * phases by its tail-beat frequency times dt and write its swim rig's parameters (the
  * spine's angles, the fin angles) and its world placement record, as SwimReference
  * does in double precision (engine/src/swim/kinematics.cpp has the formulas and their
- * sources). FF_SWIM_ITEMS is 1 (a work-group's fish side by side) or the whole
- * work-group of FF_SWIM_GROUP_SIZE (the spine's samples shared out, FF_SWIM_CHUNK each;
- * engine/src/device_profile.hpp chooses). Generated before this file
+ * sources). FF_SWIM_ITEMS is 1 (a work-group's fish side by side) or a power of two up
+ * to 64, a work-group of FF_SWIM_GROUP_SIZE = FF_SWIM_ITEMS per fish (the spine's
+ * samples shared out, FF_SWIM_CHUNK each; engine/src/device_profile.hpp chooses). Generated before this file
  * (engine/src/swim/cl_swim_driver.cpp):
  *   FF_SWIM_GROUP_SIZE, FF_SWIM_ITEMS, FF_SWIM_SAMPLES, FF_SWIM_VALUES (values per instance),
  *   FF_SWIM_WAVE, FF_SWIM_TAIL, FF_SWIM_RIGHT, FF_SWIM_LEFT (offsets in a row; -1: not

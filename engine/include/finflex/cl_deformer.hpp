@@ -115,8 +115,8 @@ struct ClOptions {
   enum class StructStores { kAuto, kStaged, kDirect };
   StructStores struct_stores = StructStores::kAuto;
   // Work-items per instance for the per-instance tables of the frame (rig_prepare: a
-  // spine's running integrals): 1 or kGroupSize; 0: the device's choice (GPUs
-  // kGroupSize, a table's samples in parallel; CPUs 1).
+  // spine's running integrals): a power of two up to kGroupSize; 0: the device's
+  // choice (GPUs: one per sample, up to kGroupSize; CPUs 1).
   std::size_t table_items = 0;
 };
 
