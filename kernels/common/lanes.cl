@@ -35,6 +35,7 @@ typedef int8 LaneMask;
 typedef int8 LaneInt;
 #define FF_UNIFORM_MASK(condition) ((LaneMask)(-(int)(condition)))
 #define FF_LANE_INT(x) convert_int8(x)
+#define FF_LANE_FLOAT(x) convert_float8(x)
 #define FF_VLOAD vload8
 #define FF_VSTORE vstore8
 #define FF_GATHER(base, index) FF_GATHER8(base, index)
@@ -44,6 +45,7 @@ typedef int16 LaneMask;
 typedef int16 LaneInt;
 #define FF_UNIFORM_MASK(condition) ((LaneMask)(-(int)(condition)))
 #define FF_LANE_INT(x) convert_int16(x)
+#define FF_LANE_FLOAT(x) convert_float16(x)
 #define FF_VLOAD vload16
 #define FF_VSTORE vstore16
 #define FF_GATHER(base, index) \

@@ -37,13 +37,23 @@ FF_INLINE SecantSample spine_sample(LaneFloat x, LaneFloat z, __global const flo
   const float h = FF_STAGE_CONSTANT(f, 2);
   const float last = FF_STAGE_CONSTANT(f, 3);
   const LaneFloat position = (x - x_first) * inverse_h;
-  const LaneFloat segment = clamp(floor(position), 0.0f, last - 1.0f);
+  /* The segment, floor(position) within [0, last - 1]: the conversion to int of the
+   * clamped position, which truncates, the same as floor for values >= 0 (PoCL's
+   * floor() takes a dozen instructions, the conversion one). */
+  const LaneFloat within = clamp(position, 0.0f, last - 1.0f);
+#if FF_LANES > 1
+  const LaneInt segment_index = FF_LANE_INT(within);
+  const LaneFloat segment = FF_LANE_FLOAT(segment_index);
+#else
+  const int segment_index = (int)within;
+  const float segment = (float)segment_index;
+#endif
 #if FF_LANES > 1
   /* Each lane's own segment's record. The slots of a spine's component are sorted by x
    * (engine/src/rig_program.hpp, make_slot_layout), so the lanes of most work-items
    * share one segment: its record is read once; else it is gathered lane by lane
    * (common/lanes.cl). */
-  const LaneInt record = 8 * FF_LANE_INT(segment);
+  const LaneInt record = 8 * segment_index;
   LaneFloat x_j, z_j, sin_j, cos_j, slope;
   if (lanes_uniform(record)) {
     __global const float* shared = derived + record.s0;
@@ -60,7 +70,7 @@ FF_INLINE SecantSample spine_sample(LaneFloat x, LaneFloat z, __global const flo
     slope = FF_GATHER(derived + 4, record);
   }
 #else
-  __global const float* record = derived + 8 * (int)segment;
+  __global const float* record = derived + 8 * segment_index;
 #if FF_GPU
   const float4 at_j = *(__global const float4*)record; /* aligned: two loads */
   const float2 more_j = *(__global const float2*)(record + 4);

@@ -12,7 +12,8 @@
  *   the per-segment bend limits swim_max_positive[] and swim_max_negative[].
  *
  * inputs:   7 floats per fish: position (3), yaw, pitch, speed, turn rate (SwimInput)
- * lengths:  the fish's length (m)
+ * sizes:    2 floats per fish: its length (m) and the size term of its tail-beat
+ *           frequency (Hz), computed on the host (a cube root)
  * phases:   2 floats per fish, read and written: the wave's and the pectoral fins'
  * params:   FF_SWIM_VALUES floats per fish (slots not driven keep their values)
  * placements: 16 floats per fish (kernels/common/placement.cl's record)
@@ -24,7 +25,9 @@
 
 inline float swim_wrapped(float phase) { return phase - floor(phase); }
 
-/* The spine's angle at sample j: the travelling wave's slope and the turning bend. */
+/* The spine's angle at sample j: the travelling wave's slope and the turning bend.
+ * The wave's phase psi = 2 pi (xi / wavelength - phase) is taken in turns, its sine and
+ * cosine and the arctangent without calls (common/trig.cl). */
 inline float swim_wave_angle(int j, float phase, float scale, float curvature) {
   const float x = FF_SWIM_X_FIRST + FF_SWIM_SPACING * (float)j;
   const float x_snout = FF_SWIM_X_FIRST + FF_SWIM_SPACING * (float)(FF_SWIM_SAMPLES - 1);
@@ -32,13 +35,14 @@ inline float swim_wave_angle(int j, float phase, float scale, float curvature) {
   const float xi = (x_snout - x) / FF_SWIM_EXTENT;
   const float envelope = FF_K_ENVELOPE0 + xi * (FF_K_ENVELOPE1 + xi * FF_K_ENVELOPE2);
   const float envelope_slope = FF_K_ENVELOPE1 + 2.0f * xi * FF_K_ENVELOPE2;
-  const float psi = wave_number * xi - FF_TWO_PI * phase;
-  const float dh_dxi = scale * (envelope_slope * sin(psi) + envelope * wave_number * cos(psi));
-  return atan(-dh_dxi / FF_SWIM_EXTENT) + curvature * x;
+  float sin_psi, cos_psi;
+  sin_cos_turns(xi / FF_K_WAVELENGTH - phase, &sin_psi, &cos_psi);
+  const float dh_dxi = scale * (envelope_slope * sin_psi + envelope * wave_number * cos_psi);
+  return arctan(-dh_dxi / FF_SWIM_EXTENT) + curvature * x;
 }
 
 __kernel __attribute__((reqd_work_group_size(FF_SWIM_GROUP_SIZE, 1, 1))) void swim_drive(
-    __global const float* restrict inputs, __global const float* restrict lengths,
+    __global const float* restrict inputs, __global const float* restrict sizes,
     __global float* restrict phases, __global float* restrict params,
     __global float* restrict placements, __global uint* restrict limited,
     __global float* restrict derived, const float dt, const uint fish) {
@@ -50,12 +54,12 @@ __kernel __attribute__((reqd_work_group_size(FF_SWIM_GROUP_SIZE, 1, 1))) void sw
   if (i >= fish) return;
   __local float* scan = scans + get_local_id(0) / FF_SWIM_ITEMS * (2 * FF_SWIM_ITEMS + 2);
   __global const float* in = inputs + i * 7;
-  const float length = lengths[i];
+  const float length = sizes[2 * i];
   const float speed = in[5];
   const float body_lengths = speed / length;
-  /* Tail-beat frequency (Webb, Kostecki & Stevens 1984); phases integrate it. */
-  const float frequency =
-      FF_K_FREQUENCY_SIZE * cbrt(1.0f / (100.0f * length)) + FF_K_FREQUENCY_SPEED * body_lengths;
+  /* Tail-beat frequency (Webb, Kostecki & Stevens 1984): the size term from the host,
+   * the speed term; phases integrate it. */
+  const float frequency = sizes[2 * i + 1] + FF_K_FREQUENCY_SPEED * body_lengths;
   const float phase = swim_wrapped(phases[2 * i] + frequency * dt);
   const float fin_phase = swim_wrapped(phases[2 * i + 1] + frequency * dt);
   const float scale =
@@ -108,12 +112,15 @@ __kernel __attribute__((reqd_work_group_size(FF_SWIM_GROUP_SIZE, 1, 1))) void sw
   phases[2 * i + 1] = fin_phase;
   limited[i] = (uint)limited_total;
 #if FF_SWIM_TAIL >= 0
-  row[FF_SWIM_TAIL] =
-      FF_K_CAUDAL_AMPLITUDE * scale * cos(FF_TWO_PI * (FF_K_PEDUNCLE / FF_K_WAVELENGTH - phase));
+  float sin_tail, cos_tail;
+  sin_cos_turns(FF_K_PEDUNCLE / FF_K_WAVELENGTH - phase, &sin_tail, &cos_tail);
+  row[FF_SWIM_TAIL] = FF_K_CAUDAL_AMPLITUDE * scale * cos_tail;
 #endif
   const float fin_amplitude =
       FF_K_PECTORAL_AMPLITUDE * clamp(1.0f - body_lengths / FF_K_PECTORAL_HOVER_SPEED, 0.0f, 1.0f);
-  const float beat = fin_amplitude * sin(FF_TWO_PI * fin_phase);
+  float sin_fin, cos_fin;
+  sin_cos_turns(fin_phase, &sin_fin, &cos_fin);
+  const float beat = fin_amplitude * sin_fin;
 #if FF_SWIM_RIGHT >= 0
   row[FF_SWIM_RIGHT] = FF_K_PECTORAL_REST + beat;
 #endif
@@ -123,7 +130,9 @@ __kernel __attribute__((reqd_work_group_size(FF_SWIM_GROUP_SIZE, 1, 1))) void sw
 
   /* Placement (common/placement.cl): the columns of L Q with Q = R_y(yaw) R_z(pitch),
    * the position, 1 / L. */
-  const float cy = cos(in[3]), sy = sin(in[3]), cp = cos(in[4]), sp = sin(in[4]);
+  float sy, cy, sp, cp;
+  sin_cos_radians(in[3], &sy, &cy);
+  sin_cos_radians(in[4], &sp, &cp);
   const float q[9] = {cy * cp, -cy * sp, sy, sp, cp, 0.0f, -sy * cp, sy * sp, cy}; /* rows */
   __global float* record = placements + i * 16;
   for (int c = 0; c < 3; ++c) {

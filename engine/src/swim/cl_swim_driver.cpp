@@ -17,6 +17,7 @@
 #include "device_buffers.hpp"
 #include "device_profile.hpp"
 #include "finflex/error.hpp"
+#include "kinematics.hpp"
 #include "rig_program.hpp"
 
 namespace finflex {
@@ -176,8 +177,16 @@ class ClSwimDriver::Impl {
                                          items_per_fish)) {
     SwimReference check(swim, lengths, phases);  // validates lengths and phases
     const cl::Context& cl_context = context.context();
-    lengths_ =
-        detail::make_buffer(cl_context, CL_MEM_READ_ONLY, fish * sizeof(float), lengths.data());
+    // Per fish its length and the size term of its tail-beat frequency
+    // (kernels/swim/driver.cl's sizes): the cube root once, on the host.
+    std::vector<float> sizes(2 * fish);
+    for (std::size_t i = 0; i < fish; ++i) {
+      sizes[2 * i] = lengths[i];
+      sizes[2 * i + 1] =
+          static_cast<float>(detail::tail_beat_frequency(swim.kinematics(), lengths[i], 0.0));
+    }
+    sizes_ = detail::make_buffer(cl_context, CL_MEM_READ_ONLY, sizes.size() * sizeof(float),
+                                 sizes.data());
     std::vector<float> state(2 * fish);
     for (std::size_t i = 0; i < fish; ++i) {
       state[2 * i] = state[2 * i + 1] = static_cast<float>(check.wave_phases()[i]);
@@ -213,7 +222,7 @@ class ClSwimDriver::Impl {
   std::size_t items;              // work-items per fish (swim/driver.cl's FF_SWIM_ITEMS)
   bool prepares_derived = false;  // the spine's records too (driver_prepared_spine)
   cl::Buffer derived_;
-  cl::Buffer lengths_, phases_, parameters_, placements_, limited_;
+  cl::Buffer sizes_, phases_, parameters_, placements_, limited_;
   cl::Kernel kernel_;
   detail::ParameterUpload inputs_;
   bool bound_ = false;
@@ -247,7 +256,7 @@ cl::Event ClSwimDriver::enqueue(const std::vector<SwimInput>& inputs, float dt,
     cl_uint arg = 0;
     auto set = [&](const auto& value) { check_cl(kernel.setArg(arg++, value), "clSetKernelArg"); };
     set(d.inputs_.buffer());
-    set(d.lengths_);
+    set(d.sizes_);
     set(d.phases_);
     set(d.parameters_);
     set(d.placements_);
