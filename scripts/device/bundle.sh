@@ -33,6 +33,6 @@ for binary in "$out"/bin/*; do
 done
 for library in libX11.so.6 libxcb.so.1 libXau.so.6 libXdmcp.so.6 libbsd.so.0 libmd.so.0; do
   found=$(ldconfig -p | awk -v name="$library" '$1 == name && /x86-64/ {print $NF; exit}')
-  [ -n "$found" ] && cp -L "$found" "$out/lib/"
+  if [ -n "$found" ]; then cp -L "$found" "$out/lib/"; fi
 done
 du -sh "$out"
