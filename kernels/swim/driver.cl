@@ -28,7 +28,7 @@ inline float swim_wrapped(float phase) { return phase - floor(phase); }
 /* The spine's angle at sample j: the travelling wave's slope and the turning bend.
  * The wave's phase psi = 2 pi (xi / wavelength - phase) is taken in turns, its sine and
  * cosine and the arctangent without calls (common/trig.cl). */
-inline float swim_wave_angle(int j, float phase, float scale, float curvature) {
+FF_INLINE float swim_wave_angle(int j, float phase, float scale, float curvature) {
   const float x = FF_SWIM_X_FIRST + FF_SWIM_SPACING * (float)j;
   const float x_snout = FF_SWIM_X_FIRST + FF_SWIM_SPACING * (float)(FF_SWIM_SAMPLES - 1);
   const float wave_number = FF_TWO_PI / FF_K_WAVELENGTH;
@@ -70,32 +70,37 @@ __kernel __attribute__((reqd_work_group_size(FF_SWIM_GROUP_SIZE, 1, 1))) void sw
   /* This work-item's samples, and every segment from them cleared of folding (METHOD.md
    * section 6): a segment bent more than allowed turns the samples after it by the
    * difference, which leaves later segments' bends as they were, so each segment is
-   * cleared on its own and the turns add up (a scan over the group). */
+   * cleared on its own and the turns add up (a scan over the group). Each angle is
+   * written with the turns of this work-item's segments before it, then (more than one
+   * work-item per fish) those of the samples before this work-item's added. No private
+   * arrays and no branches: PoCL's vectoriser takes the loop across a group's fish. */
   const int first = min(item * FF_SWIM_CHUNK, FF_SWIM_SAMPLES);
   const int end = min(first + FF_SWIM_CHUNK, FF_SWIM_SAMPLES);
-  float theta[FF_SWIM_CHUNK], shift_within[FF_SWIM_CHUNK];
+  __global float* row = params + i * FF_SWIM_VALUES;
   float shift = 0.0f, limited_here = 0.0f;
-  float next = first < end ? swim_wave_angle(first, phase, scale, curvature) : 0.0f;
+  float here = first < end ? swim_wave_angle(first, phase, scale, curvature) : 0.0f;
   for (int j = first; j < end; ++j) {
-    theta[j - first] = next;
-    shift_within[j - first] = shift;
-    if (j + 1 >= FF_SWIM_SAMPLES) continue;
-    next = swim_wave_angle(j + 1, phase, scale, curvature);
-    const float bend = (next - theta[j - first]) / FF_SWIM_SPACING;
-    const float allowed = bend > 0.0f ? swim_max_positive[j] : -swim_max_negative[j];
-    if (fabs(bend) <= fabs(allowed)) continue;
-    shift += (allowed - bend) * FF_SWIM_SPACING;
-    limited_here += 1.0f;
+    row[FF_SWIM_WAVE + j] = here + shift;
+    /* Segment j, from sample j to j + 1 (none after the last sample). */
+    const int segment = min(j, FF_SWIM_SAMPLES - 2);
+    const float next = swim_wave_angle(segment + 1, phase, scale, curvature);
+    const float bend = (next - here) / FF_SWIM_SPACING;
+    const float allowed =
+        bend > 0.0f ? swim_max_positive[segment] : -swim_max_negative[segment];
+    const int over = j + 1 < FF_SWIM_SAMPLES && fabs(bend) > fabs(allowed);
+    shift += over ? (allowed - bend) * FF_SWIM_SPACING : 0.0f;
+    limited_here += over ? 1.0f : 0.0f;
+    here = next;
   }
   /* The turns and limited segments of the samples before this work-item's
    * (common/scan.cl), and in all. */
   const float2 sums = inclusive_scan2((float2)(shift, limited_here), scan, item, FF_SWIM_ITEMS);
-  const float shift_before = sums.x - shift;
   /* The last work-item's sum: in scratch when the fish has more than one. */
   const float limited_total = FF_SWIM_ITEMS == 1 ? sums.y : scan[2 * FF_SWIM_ITEMS - 1];
-  __global float* row = params + i * FF_SWIM_VALUES;
-  for (int j = first; j < end; ++j)
-    row[FF_SWIM_WAVE + j] = theta[j - first] + shift_before + shift_within[j - first];
+#if FF_SWIM_ITEMS > 1
+  const float shift_before = sums.x - shift;
+  for (int j = first; j < end; ++j) row[FF_SWIM_WAVE + j] += shift_before;
+#endif
 #if FF_SWIM_DERIVED
   /* The spine's records of this frame, as rig_prepare would write them from the row
    * (deformers/spine.cl), once every work-item's angles are in it. */
