@@ -32,7 +32,8 @@ for binary in "$out"/bin/*; do
     grep -E 'libOpenMesh|libtinygltf|libstb|libbenchmark|libgomp|libepoxy' | xargs -r -I{} cp -L {} "$out/lib/"
 done
 for library in libX11.so.6 libxcb.so.1 libXau.so.6 libXdmcp.so.6 libbsd.so.0 libmd.so.0; do
-  found=$(ldconfig -p | awk -v name="$library" '$1 == name && /x86-64/ {print $NF; exit}')
+  # awk stops at the first match, which may end ldconfig with SIGPIPE: not a failure.
+  found=$(ldconfig -p | awk -v name="$library" '$1 == name && /x86-64/ {print $NF; exit}' || true)
   if [ -n "$found" ]; then cp -L "$found" "$out/lib/"; fi
 done
 du -sh "$out"
