@@ -247,6 +247,31 @@ void expect_every_table_size_matches(std::size_t table_items) {
   }
 }
 
+// CPU lane kernels read a spine record once when a work-item's 16 lanes share its
+// segment, blend the records of up to 4 neighbouring segments, and gather beyond
+// (kernels/deformers/spine.cl): thin tubes of 3 vertices a ring put 16 lanes over
+// about 5 rings, so 256 samples over 512 rings spread them over 2-3 segments and over
+// 96 rings over about 14, and 32 samples over 512 rings keep most in one; each against
+// the reference, with a wave and with a bend turning within a few segments.
+TEST(Spine, LanesSharingBlendingOrGatheringRecordsMatchTheReference) {
+  for (const auto& [rings, samples] :
+       {std::pair{512, 256}, std::pair{96, 256}, std::pair{512, 32}}) {
+    SCOPED_TRACE(std::to_string(rings) + " rings, " + std::to_string(samples) + " samples");
+    const RiggedMesh model = spine_model(test::synthetic_fish(rings, 3), std::size_t(samples));
+    const RigParameters values =
+        angles(model, {[](double x) { return 0.5 * std::sin(9.0 * x); },
+                       [](double x) { return 0.8 * std::tanh(20.0 * (x - 0.1)); }});
+    ClDeformer deformer(test::shared_context(), model);
+    const DeformedBatch<float> device =
+        test::run_on_device(deformer, values, NormalMode::kRotate, RigPath::kFused);
+    const AccuracyReport report =
+        compare_to_reference(model, values.view(), NormalMode::kRotate, device,
+                             run_reference(model, values, NormalMode::kRotate));
+    EXPECT_LE(report.max_position_ratio, 1.0) << report.max_position_error;
+    EXPECT_LE(report.max_normal_ratio, 1.0) << report.max_normal_error;
+  }
+}
+
 // A spine's component (and a fin under it) has its slots in the order of x along the
 // spine's frame, so the lanes of a work-item (and a GPU's warp) mostly share a segment;
 // a rig without a table keeps the mesh's order.

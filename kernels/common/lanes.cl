@@ -68,20 +68,19 @@ typedef int16 LaneInt;
             (base)[(index).s3], (base)[(index).s4], (base)[(index).s5],            \
             (base)[(index).s6], (base)[(index).s7]))
 
-/* Whether every lane of v holds the same value: its smallest and largest lanes by
- * halving, a few shuffles and comparisons (all(v == v.s0) compiles to one extract and
- * test per lane on PoCL). */
+/* The smallest and largest lanes of v, by halving: a few shuffles and comparisons
+ * (all(v == v.s0) compiles to one extract and test per lane on PoCL). */
 #if FF_LANES == 8
-inline int lanes_uniform(int8 v) {
+inline int2 lanes_range(int8 v) {
   const int4 low = min(v.lo, v.hi), high = max(v.lo, v.hi);
   const int2 low2 = min(low.lo, low.hi), high2 = max(high.lo, high.hi);
-  return min(low2.x, low2.y) == max(high2.x, high2.y);
+  return (int2)(min(low2.x, low2.y), max(high2.x, high2.y));
 }
 #elif FF_LANES == 16
-inline int lanes_uniform(int16 v) {
+inline int2 lanes_range(int16 v) {
   const int8 low = min(v.lo, v.hi), high = max(v.lo, v.hi);
   const int4 low4 = min(low.lo, low.hi), high4 = max(high.lo, high.hi);
   const int2 low2 = min(low4.lo, low4.hi), high2 = max(high4.lo, high4.hi);
-  return min(low2.x, low2.y) == max(high2.x, high2.y);
+  return (int2)(min(low2.x, low2.y), max(high2.x, high2.y));
 }
 #endif
