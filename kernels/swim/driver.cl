@@ -4,8 +4,8 @@
  * does in double precision (engine/src/swim/kinematics.cpp has the formulas and their
  * sources). FF_SWIM_ITEMS is 1 (a work-group's fish side by side) or a power of two up
  * to 64, a work-group of FF_SWIM_GROUP_SIZE = FF_SWIM_ITEMS per fish (the spine's
- * samples shared out, FF_SWIM_CHUNK each; engine/src/device_profile.hpp chooses). Generated before this file
- * (engine/src/swim/cl_swim_driver.cpp):
+ * samples shared out, FF_SWIM_CHUNK each; engine/src/device_profile.hpp chooses).
+ * Generated before this file (engine/src/swim/cl_swim_driver.cpp):
  *   FF_SWIM_GROUP_SIZE, FF_SWIM_ITEMS, FF_SWIM_SAMPLES, FF_SWIM_VALUES (values per instance),
  *   FF_SWIM_WAVE, FF_SWIM_TAIL, FF_SWIM_RIGHT, FF_SWIM_LEFT (offsets in a row; -1: not
  *   driven), FF_SWIM_X_FIRST, FF_SWIM_SPACING, FF_SWIM_EXTENT, the kinematics FF_K_* and
@@ -73,7 +73,8 @@ __kernel __attribute__((reqd_work_group_size(FF_SWIM_GROUP_SIZE, 1, 1))) void sw
    * cleared on its own and the turns add up (a scan over the group). Each angle is
    * written with the turns of this work-item's segments before it, then (more than one
    * work-item per fish) those of the samples before this work-item's added. No private
-   * arrays and no branches: PoCL's vectoriser takes the loop across a group's fish. */
+   * arrays and no branches: on 2 CPU cores with PoCL the driver took 0.79 ms a frame for
+   * 1,000 fish with them, 0.45 without (its vectoriser still leaves the loop scalar). */
   const int first = min(item * FF_SWIM_CHUNK, FF_SWIM_SAMPLES);
   const int end = min(first + FF_SWIM_CHUNK, FF_SWIM_SAMPLES);
   __global float* row = params + i * FF_SWIM_VALUES;
