@@ -48,11 +48,6 @@ FF_INLINE SecantSample spine_sample(LaneFloat x, LaneFloat z, __global const flo
 #if FF_LANES > 1
   const LaneInt segment_index = FF_LANE_INT(within);
   const LaneFloat segment = FF_LANE_FLOAT(segment_index);
-#else
-  const int segment_index = (int)within;
-  const float segment = (float)segment_index;
-#endif
-#if FF_LANES > 1
   /* Each lane's own segment's record. The slots of a spine's component are sorted by x
    * (engine/src/rig_program.hpp, make_slot_layout), so the lanes of most work-items
    * share one segment, and those of the rest a few neighbouring ones (a fin's vertices
@@ -89,6 +84,8 @@ FF_INLINE SecantSample spine_sample(LaneFloat x, LaneFloat z, __global const flo
     slope = FF_GATHER(derived + 4, record);
   }
 #else
+  const int segment_index = (int)within;
+  const float segment = (float)segment_index;
   __global const float* record = derived + 8 * segment_index;
 #if FF_GPU
   const float4 at_j = *(__global const float4*)record; /* aligned: two loads */
