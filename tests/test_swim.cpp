@@ -89,6 +89,58 @@ TEST(Swim, DeviceDriverMatchesTheReference) {
   EXPECT_EQ(driver.read_limited_segments(), reference.limited_segments());
 }
 
+// On CPUs one work-item drives a vector's worth of fish, one per lane, the lanes past
+// the last fish repeating it (kernels/swim/driver.cl): 37 fish (more than two
+// work-items, the last one partly filled) give what the reference and one fish per
+// work-item (2 work-items per fish: never lanes) give, the spine's records included.
+TEST(Swim, DriverWithAFishPerLaneMatchesOneFishPerWorkItem) {
+  const SwimModel swim(barramundi());
+  std::vector<float> lengths(37);
+  for (std::size_t i = 0; i < lengths.size(); ++i) lengths[i] = 0.25f + 0.01f * float(i);
+  SwimReference reference(swim, lengths);
+  ClSwimDriver lanes(test::shared_context(), swim, lengths, {}, 1);
+  ClSwimDriver items(test::shared_context(), swim, lengths, {}, 2);
+  const float dt = 1.0f / 30.0f;
+  for (int frame = 0; frame < 12; ++frame) {
+    std::vector<SwimInput> inputs = inputs_at(lengths.size(), lengths, frame);
+    for (std::size_t i = 0; i < inputs.size(); ++i)
+      inputs[i].speed = lengths[i] * (0.5f + 0.05f * float(i));
+    reference.step(inputs, dt);
+    lanes.enqueue(inputs, dt);
+    items.enqueue(inputs, dt);
+  }
+  const RigParameters a = lanes.read_parameters(), b = items.read_parameters();
+  ASSERT_EQ(a.values().size(), reference.parameters().values().size());
+  for (std::size_t k = 0; k < a.values().size(); ++k) {
+    EXPECT_NEAR(a.values()[k], reference.parameters().values()[k], 2e-4) << "value " << k;
+    EXPECT_NEAR(a.values()[k], b.values()[k], 1e-5) << "value " << k;
+  }
+  const std::vector<float> phases_a = lanes.read_wave_phases(), phases_b = items.read_wave_phases();
+  const std::vector<PlacementRecord> placed_a = lanes.read_placements(),
+                                     placed_b = items.read_placements();
+  for (std::size_t i = 0; i < lengths.size(); ++i) {
+    EXPECT_NEAR(phases_a[i], reference.wave_phases()[i], 2e-5) << "fish " << i;
+    EXPECT_EQ(phases_a[i], phases_b[i]) << "fish " << i;
+    const PlacementRecord expected = placement_record(reference.placements()[i]);
+    for (std::size_t k = 0; k < 13; ++k) {
+      EXPECT_NEAR(placed_a[i][k], expected[k], 2e-5 * (1.0 + std::fabs(expected[k])))
+          << "fish " << i << " value " << k;
+    }
+  }
+  EXPECT_EQ(lanes.read_limited_segments(), reference.limited_segments());
+  EXPECT_EQ(items.read_limited_segments(), reference.limited_segments());
+  ASSERT_NE(lanes.derived_buffer(), nullptr);
+  const std::size_t floats = lengths.size() * 8 * swim.samples();
+  std::vector<float> records_a(floats), records_b(floats);
+  cl::CommandQueue& queue = test::shared_context().queue();
+  queue.enqueueReadBuffer(*lanes.derived_buffer(), CL_TRUE, 0, floats * sizeof(float),
+                          records_a.data());
+  queue.enqueueReadBuffer(*items.derived_buffer(), CL_TRUE, 0, floats * sizeof(float),
+                          records_b.data());
+  for (std::size_t k = 0; k < floats; ++k)
+    ASSERT_NEAR(records_a[k], records_b[k], 2e-5) << "fish " << k / (8 * swim.samples());
+}
+
 // The driver shares a spine's samples out over a work-group of 64 on GPUs (one
 // work-item per fish on CPUs) and clears folding segment by segment with a scan
 // (kernels/swim/driver.cl): both on every device, a table of 150 samples (3 per

@@ -91,6 +91,19 @@ inline std::size_t device_table_items(const DeviceDescription& device, std::size
   return items;
 }
 
+// Fish one work-item of the swim driver takes, one per lane (kernels/swim/driver.cl):
+// on CPUs, with one work-item per fish, a vector's worth (device_lanes), so the driver
+// is vector code (on 2 cores with PoCL, 1,000 fish: 0.45-0.65 ms a frame one fish per
+// work-item, the trigonometry scalar); else 1.
+inline std::size_t device_driver_lanes(const DeviceDescription& device, std::size_t items) {
+  return items == 1 ? device_lanes(device, NormalFormat::kFloat32) : 1;
+}
+
+// The swim driver's work-group with that many fish per work-item: a few work-items
+// (64 fish) when they are lanes, so 1,000 fish still make 16 groups for the threads
+// to share; else table_group_size.
+constexpr std::size_t kLaneDriverGroupSize = 4;
+
 // Checks a table_items option (ClOptions, ClSwimDriver): 0, or a power of two up to
 // kWorkGroupSize.
 inline void check_table_items(std::size_t items, const char* field) {

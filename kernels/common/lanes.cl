@@ -28,7 +28,10 @@
 #if FF_LANES == 1
 typedef float LaneFloat;
 typedef int LaneMask;
+typedef int LaneInt;
 #define FF_UNIFORM_MASK(condition) (condition)
+#define FF_GATHER(base, index) ((base)[index])
+#define FF_LANE_IDS 0
 #elif FF_LANES == 8
 typedef float8 LaneFloat;
 typedef int8 LaneMask;
@@ -39,6 +42,7 @@ typedef int8 LaneInt;
 #define FF_VLOAD vload8
 #define FF_VSTORE vstore8
 #define FF_GATHER(base, index) FF_GATHER8(base, index)
+#define FF_LANE_IDS ((int8)(0, 1, 2, 3, 4, 5, 6, 7))
 #elif FF_LANES == 16
 typedef float16 LaneFloat;
 typedef int16 LaneMask;
@@ -50,6 +54,7 @@ typedef int16 LaneInt;
 #define FF_VSTORE vstore16
 #define FF_GATHER(base, index) \
   ((float16)(FF_GATHER8(base, (index).lo), FF_GATHER8(base, (index).hi)))
+#define FF_LANE_IDS ((int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15))
 #else
 #error "FF_LANES must be 1, 8 or 16"
 #endif
@@ -62,7 +67,9 @@ typedef int16 LaneInt;
 #endif
 
 /* FF_GATHER(base, index): base[index] lane by lane (index a LaneInt variable): a
- * vertex's own entry of a table, e.g. its spine segment's record. */
+ * vertex's own entry of a table, e.g. its spine segment's record, or an instance's
+ * value when each lane is an instance (the swim driver's fish on CPUs). FF_LANE_IDS:
+ * each lane's place, 0 to FF_LANES - 1. */
 #define FF_GATHER8(base, index)                                                    \
   ((float8)((base)[(index).s0], (base)[(index).s1], (base)[(index).s2],            \
             (base)[(index).s3], (base)[(index).s4], (base)[(index).s5],            \
@@ -82,5 +89,24 @@ inline int2 lanes_range(int16 v) {
   const int4 low4 = min(low.lo, low.hi), high4 = max(high.lo, high.hi);
   const int2 low2 = min(low4.lo, low4.hi), high2 = max(high4.lo, high4.hi);
   return (int2)(min(low2.x, low2.y), max(high2.x, high2.y));
+}
+#endif
+
+/* base[index] = value lane by lane, in lane order (lanes with the same index must hold
+ * the same value): an instance's own values where each lane is an instance;
+ * lanes_scatter_count stores a count (a whole number held as a float) as a uint. */
+#if FF_LANES == 1
+inline void lanes_scatter(__global float* base, int index, float value) { base[index] = value; }
+inline void lanes_scatter_count(__global uint* base, int index, float value) {
+  base[index] = (uint)value;
+}
+#else
+inline void lanes_scatter(__global float* base, LaneInt index, LaneFloat value) {
+  for (int lane = 0; lane < FF_LANES; ++lane)
+    base[((const int*)&index)[lane]] = ((const float*)&value)[lane];
+}
+inline void lanes_scatter_count(__global uint* base, LaneInt index, LaneFloat value) {
+  for (int lane = 0; lane < FF_LANES; ++lane)
+    base[((const int*)&index)[lane]] = (uint)((const float*)&value)[lane];
 }
 #endif

@@ -29,20 +29,20 @@ FF_INLINE LaneFloat cos_of_h(LaneFloat h) {
 
 /* sin(a) and cos(a) for |a| <= pi, from the half angle h = a / 2 (|h| <= pi/2):
  * sin a = 2 sin h cos h, cos a = 1 - 2 sin^2 h; |error| below 2.5e-7 and 7e-7 (the
- * float32 rounding of 1 - 2 sin^2 h, largest near a = +-pi). Of one value
- * (per instance, not per vertex): one-lane programs only. */
-#if FF_LANES == 1
-FF_INLINE void sin_cos(float a, float* s, float* c) {
-  const float h = 0.5f * clamp(a, -M_PI_F, M_PI_F);
-  const float sin_h = h * sin_over_h(h);
+ * float32 rounding of 1 - 2 sin^2 h, largest near a = +-pi). These and the functions
+ * below take lane values (common/lanes.cl): in a program of more than one lane each
+ * lane is an instance's own angle (the swim driver's fish on CPUs). */
+FF_INLINE void sin_cos(LaneFloat a, LaneFloat* s, LaneFloat* c) {
+  const LaneFloat h = 0.5f * clamp(a, -M_PI_F, M_PI_F);
+  const LaneFloat sin_h = h * sin_over_h(h);
   *s = 2.0f * sin_h * cos_of_h(h);
   *c = 1.0f - 2.0f * sin_h * sin_h;
 }
 
 /* sin and cos of 2 pi turns, for any turns: the whole turns taken off exactly (to
  * [-1/2, 1/2]), then sin_cos. */
-FF_INLINE void sin_cos_turns(float turns, float* s, float* c) {
-  const float within = turns - floor(turns + 0.5f);
+FF_INLINE void sin_cos_turns(LaneFloat turns, LaneFloat* s, LaneFloat* c) {
+  const LaneFloat within = turns - floor(turns + 0.5f);
   sin_cos(2.0f * M_PI_F * within, s, c);
 }
 
@@ -50,9 +50,9 @@ FF_INLINE void sin_cos_turns(float turns, float* s, float* c) {
  * Waite: 2 pi = 6.28125 + 1.93500518798828125e-3 + 3.01991598e-7, the first two with
  * few significant bits, so that k times them is exact), then sin_cos. The reduction
  * is exact to float rounding while |a| < 8192. */
-FF_INLINE void sin_cos_radians(float a, float* s, float* c) {
-  const float k = floor(a * (0.5f / M_PI_F) + 0.5f);
-  const float within = ((a - k * 6.28125f) - k * 1.93500518798828125e-3f) - k * 3.01991598e-7f;
+FF_INLINE void sin_cos_radians(LaneFloat a, LaneFloat* s, LaneFloat* c) {
+  const LaneFloat k = floor(a * (0.5f / M_PI_F) + 0.5f);
+  const LaneFloat within = ((a - k * 6.28125f) - k * 1.93500518798828125e-3f) - k * 3.01991598e-7f;
   sin_cos(within, s, c);
 }
 
@@ -61,18 +61,17 @@ FF_INLINE void sin_cos_radians(float a, float* s, float* c) {
  * pi/4 + atan u), so |u| <= tan(pi/8); there atan(u) = u (1 + q P(q)), q = u^2, P a
  * minimax fit of degree 3 (error below 1e-9 before float32 rounding; in float32
  * within 1.4e-7 of atan over all x). */
-FF_INLINE float arctan(float x) {
-  const float a = fabs(x);
-  const int inverted = a > 1.0f;
-  const float t = inverted ? 1.0f / fmax(a, 1.0f) : a;
-  const int shifted = t > 0.41421356f;
-  const float u = shifted ? (t - 1.0f) / (t + 1.0f) : t;
-  const float q = u * u;
-  const float p = -3.333295525e-01f + q * (1.997792603e-01f +
-                  q * (-1.387984938e-01f + q * 8.060306961e-02f));
-  float r = u + u * q * p;
+FF_INLINE LaneFloat arctan(LaneFloat x) {
+  const LaneFloat a = fabs(x);
+  const LaneMask inverted = a > 1.0f;
+  const LaneFloat t = inverted ? 1.0f / fmax(a, 1.0f) : a;
+  const LaneMask shifted = t > 0.41421356f;
+  const LaneFloat u = shifted ? (t - 1.0f) / (t + 1.0f) : t;
+  const LaneFloat q = u * u;
+  const LaneFloat p = -3.333295525e-01f + q * (1.997792603e-01f +
+                      q * (-1.387984938e-01f + q * 8.060306961e-02f));
+  LaneFloat r = u + u * q * p;
   r = shifted ? r + M_PI_4_F : r;
   r = inverted ? M_PI_2_F - r : r;
   return x < 0.0f ? -r : r;
 }
-#endif

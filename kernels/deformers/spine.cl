@@ -136,82 +136,141 @@ FF_INLINE SecantSample spine_stage(Vec3 p, StageFrame f, __global const float* v
 }
 
 /* The records of one instance's angles (rig_prepare, one-lane programs; each of the
- * instance's FF_PREPARE_ITEMS work-items calls it, `item` its place): the running
- * integrals X_k, Z_k from x = 0, sin theta_k, cos theta_k, and the segment's slope.
+ * instance's FF_PREPARE_ITEMS work-items calls it, `item` its place), or of each lane's
+ * instance (the swim driver's fish on CPUs, one work-item per FF_LANES fish): the
+ * running integrals X_k, Z_k from x = 0, sin theta_k, cos theta_k, and the segment's
+ * slope. theta_k is theta_rows[theta_at + k] and record k starts at
+ * derived_rows[derived_at + 8 k], lane by lane.
  * Work-item i takes the samples [i c, (i + 1) c), c = ceil(samples / FF_PREPARE_ITEMS)
- * <= FF_SPINE_CHUNK (samples are at most 256, spine.cpp): it sums the chords of its
- * segments, a scan over the instance's work-items (common/scan.cl, in scratch) gives
- * each chunk the integral before it, the work-item holding x = 0 publishes the
- * integral there, and every record is written once, from x = 0. */
-#if FF_LANES == 1
-#define FF_SPINE_CHUNK ((256 + FF_PREPARE_ITEMS - 1) / FF_PREPARE_ITEMS)
+ * <= FF_SPINE_CHUNK (samples are at most FF_SPINE_MAX_SAMPLES: 256, spine.cpp, unless
+ * the program knows its table): it sums the chords of its segments, a scan over the
+ * instance's work-items (common/scan.cl, in scratch) gives each chunk the integral
+ * before it, the work-item holding x = 0 publishes the integral there, and every
+ * record is written once, from x = 0. */
+/* (An instance per lane takes one work-item per instance: a program of more than one
+ * lane with more work-items per instance, which only deforms, has none of this.) */
+#if defined(FF_PREPARE_ITEMS) && (FF_LANES == 1 || FF_PREPARE_ITEMS == 1)
+#ifndef FF_SPINE_MAX_SAMPLES
+#define FF_SPINE_MAX_SAMPLES 256
+#endif
+#define FF_SPINE_CHUNK ((FF_SPINE_MAX_SAMPLES + FF_PREPARE_ITEMS - 1) / FF_PREPARE_ITEMS)
 
-/* The chord of the segment from sample k (theta linear over it): length h sinc(turn/2)
- * along theta_k + turn / 2. */
-FF_INLINE float2 spine_chord(__global const float* theta, int k, float h) {
-  const float half_turn = 0.5f * (theta[k + 1] - theta[k]);
-  float sin_mid, cos_mid;
-  sin_cos(theta[k] + half_turn, &sin_mid, &cos_mid);
-  return h * sin_over_h(half_turn) * (float2)(cos_mid, sin_mid);
+/* The chord of the segment from theta_k to theta_next (theta linear over it): length
+ * h sinc(turn/2) along theta_k + turn / 2. */
+FF_INLINE void spine_chord(LaneFloat theta_k, LaneFloat theta_next, float h, LaneFloat* x,
+                           LaneFloat* z) {
+  const LaneFloat half_turn = 0.5f * (theta_next - theta_k);
+  LaneFloat sin_mid, cos_mid;
+  sin_cos(theta_k + half_turn, &sin_mid, &cos_mid);
+  const LaneFloat length = h * sin_over_h(half_turn);
+  *x = length * cos_mid;
+  *z = length * sin_mid;
 }
+
+/* Record k's 8 floats at rows + at (lane by lane: each lane's 8 floats in one store). */
+#if FF_LANES == 1
+FF_INLINE void store_spine_record(__global float* rows, int at, float x, float z, float sin_k,
+                                  float cos_k, float slope, float theta_k) {
+  __global float* record = rows + at;
+  record[0] = x;
+  record[1] = z;
+  record[2] = sin_k;
+  record[3] = cos_k;
+  record[4] = slope;
+  record[5] = theta_k;
+  record[6] = record[7] = 0.0f;
+}
+#else
+FF_INLINE void store_spine_record(__global float* rows, LaneInt at, LaneFloat x, LaneFloat z,
+                                  LaneFloat sin_k, LaneFloat cos_k, LaneFloat slope,
+                                  LaneFloat theta_k) {
+#define FF_LANE_OF(v) (((const float*)&(v))[lane])
+  for (int lane = 0; lane < FF_LANES; ++lane) {
+    vstore8((float8)(FF_LANE_OF(x), FF_LANE_OF(z), FF_LANE_OF(sin_k), FF_LANE_OF(cos_k),
+                     FF_LANE_OF(slope), FF_LANE_OF(theta_k), 0.0f, 0.0f),
+            0, rows + ((const int*)&at)[lane]);
+  }
+#undef FF_LANE_OF
+}
+#endif
 
 /* The records from the table's constants (the stage table's, or the same values
  * generated into the swim driver, which writes them in the same frame's kernel:
  * kernels/swim/driver.cl). */
-FF_INLINE void spine_records(__global const float* theta, __global float* derived, float x_first,
+FF_INLINE void spine_records(__global const float* theta_rows, LaneInt theta_at,
+                             __global float* derived_rows, LaneInt derived_at, float x_first,
                              float inverse_h, float h, int count, __local float* scratch,
                              int item) {
   const int items = FF_PREPARE_ITEMS;
   const int chunk = (count + items - 1) / items;
   const int first = min(item * chunk, count), end = min(first + chunk, count);
   /* The integrals at this work-item's samples, from its first one. */
-  float2 at[FF_SPINE_CHUNK];
-  float2 sum = (float2)(0.0f, 0.0f);
+  LaneFloat at_x[FF_SPINE_CHUNK], at_z[FF_SPINE_CHUNK];
+  LaneFloat sum_x = 0.0f, sum_z = 0.0f;
   for (int k = first; k < end; ++k) {
-    at[k - first] = sum;
-    if (k + 1 < count) sum += spine_chord(theta, k, h);
+    at_x[k - first] = sum_x;
+    at_z[k - first] = sum_z;
+    if (k + 1 < count) {
+      LaneFloat chord_x, chord_z;
+      spine_chord(FF_GATHER(theta_rows, theta_at + k), FF_GATHER(theta_rows, theta_at + k + 1),
+                  h, &chord_x, &chord_z);
+      sum_x += chord_x;
+      sum_z += chord_z;
+    }
   }
   /* The integral before this work-item's first sample (common/scan.cl). */
-  const float2 before = inclusive_scan2(sum, scratch, item, items) - sum;
+#if FF_PREPARE_ITEMS > 1
+  const float2 through = inclusive_scan2((float2)(sum_x, sum_z), scratch, item, items);
+  const float before_x = through.x - sum_x, before_z = through.y - sum_z;
+#else
+  const float before_x = 0.0f, before_z = 0.0f;
+#endif
   /* x = 0 (it may lie outside the table) in segment j; its integral from the first
    * sample, published by the work-item holding sample j. */
   const float position = -x_first * inverse_h;
   const float segment = clamp(floor(position), 0.0f, (float)(count - 2));
   const int j = (int)segment;
+  LaneFloat origin_x = 0.0f, origin_z = 0.0f;
   if (j >= first && j < end) {
     const float d = (position - segment) * h;
     const float inside = clamp(d, 0.0f, h);
     const float beyond = d - inside;
-    const float half_turn = 0.5f * (theta[j + 1] - theta[j]) * inverse_h * inside;
-    const float chord = inside * sin_over_h(half_turn);
-    float sin_mid, cos_mid, sin_end, cos_end;
-    sin_cos(theta[j] + half_turn, &sin_mid, &cos_mid);
-    sin_cos(theta[j] + 2.0f * half_turn, &sin_end, &cos_end);
-    const float2 origin = before + at[j - first] + chord * (float2)(cos_mid, sin_mid) +
-                          beyond * (float2)(cos_end, sin_end);
-    scratch[2 * items] = origin.x;
-    scratch[2 * items + 1] = origin.y;
+    const LaneFloat theta_j = FF_GATHER(theta_rows, theta_at + j);
+    const LaneFloat half_turn =
+        0.5f * (FF_GATHER(theta_rows, theta_at + j + 1) - theta_j) * inverse_h * inside;
+    const LaneFloat chord = inside * sin_over_h(half_turn);
+    LaneFloat sin_mid, cos_mid, sin_end, cos_end;
+    sin_cos(theta_j + half_turn, &sin_mid, &cos_mid);
+    sin_cos(theta_j + 2.0f * half_turn, &sin_end, &cos_end);
+    origin_x = before_x + at_x[j - first] + chord * cos_mid + beyond * cos_end;
+    origin_z = before_z + at_z[j - first] + chord * sin_mid + beyond * sin_end;
+#if FF_PREPARE_ITEMS > 1
+    scratch[2 * items] = origin_x;
+    scratch[2 * items + 1] = origin_z;
+#endif
   }
+#if FF_PREPARE_ITEMS > 1
   FF_PREPARE_BARRIER();
-  const float2 origin = (float2)(scratch[2 * items], scratch[2 * items + 1]);
+  origin_x = scratch[2 * items];
+  origin_z = scratch[2 * items + 1];
+#endif
   for (int k = first; k < end; ++k) {
-    __global float* record = derived + 8 * k;
-    float sin_k, cos_k;
-    sin_cos(theta[k], &sin_k, &cos_k);
-    const float2 integral = before + at[k - first] - origin;
-    record[0] = integral.x;
-    record[1] = integral.y;
-    record[2] = sin_k;
-    record[3] = cos_k;
-    record[4] = k + 1 < count ? (theta[k + 1] - theta[k]) * inverse_h : 0.0f;
-    record[5] = theta[k];
-    record[6] = record[7] = 0.0f;
+    const LaneFloat theta_k = FF_GATHER(theta_rows, theta_at + k);
+    LaneFloat sin_k, cos_k;
+    sin_cos(theta_k, &sin_k, &cos_k);
+    const LaneFloat slope =
+        k + 1 < count ? (FF_GATHER(theta_rows, theta_at + k + 1) - theta_k) * inverse_h
+                      : (LaneFloat)0.0f;
+    store_spine_record(derived_rows, derived_at + 8 * k, before_x + at_x[k - first] - origin_x,
+                       before_z + at_z[k - first] - origin_z, sin_k, cos_k, slope, theta_k);
   }
 }
+#endif
 
+#if FF_LANES == 1
 FF_INLINE void spine_prepare(__global const float* theta, __global float* derived, StageFrame f,
                              __local float* scratch, int item) {
-  spine_records(theta, derived, FF_STAGE_CONSTANT(f, 0), FF_STAGE_CONSTANT(f, 1),
+  spine_records(theta, 0, derived, 0, FF_STAGE_CONSTANT(f, 0), FF_STAGE_CONSTANT(f, 1),
                 FF_STAGE_CONSTANT(f, 2), (int)FF_STAGE_CONSTANT(f, 3) + 1, scratch, item);
 }
 #endif

@@ -4,7 +4,9 @@
  * does in double precision (engine/src/swim/kinematics.cpp has the formulas and their
  * sources). FF_SWIM_ITEMS is 1 (a work-group's fish side by side) or a power of two up
  * to 64, a work-group of FF_SWIM_GROUP_SIZE = FF_SWIM_ITEMS per fish (the spine's
- * samples shared out, FF_SWIM_CHUNK each; engine/src/device_profile.hpp chooses).
+ * samples shared out, FF_SWIM_CHUNK each; engine/src/device_profile.hpp chooses); with
+ * one work-item per fish, a program of FF_LANES > 1 (CPUs) takes FF_LANES fish per
+ * work-item, one in each lane (common/lanes.cl), so the driver is vector code there.
  * Generated before this file (engine/src/swim/cl_swim_driver.cpp):
  *   FF_SWIM_GROUP_SIZE, FF_SWIM_ITEMS, FF_SWIM_SAMPLES, FF_SWIM_VALUES (values per instance),
  *   FF_SWIM_WAVE, FF_SWIM_TAIL, FF_SWIM_RIGHT, FF_SWIM_LEFT (offsets in a row; -1: not
@@ -23,21 +25,22 @@
 #define FF_TWO_PI 6.28318530717958647692f
 #define FF_SWIM_CHUNK ((FF_SWIM_SAMPLES + FF_SWIM_ITEMS - 1) / FF_SWIM_ITEMS)
 
-inline float swim_wrapped(float phase) { return phase - floor(phase); }
+FF_INLINE LaneFloat swim_wrapped(LaneFloat phase) { return phase - floor(phase); }
 
 /* The spine's angle at sample j: the travelling wave's slope and the turning bend.
  * The wave's phase psi = 2 pi (xi / wavelength - phase) is taken in turns, its sine and
  * cosine and the arctangent without calls (common/trig.cl). */
-FF_INLINE float swim_wave_angle(int j, float phase, float scale, float curvature) {
+FF_INLINE LaneFloat swim_wave_angle(int j, LaneFloat phase, LaneFloat scale,
+                                    LaneFloat curvature) {
   const float x = FF_SWIM_X_FIRST + FF_SWIM_SPACING * (float)j;
   const float x_snout = FF_SWIM_X_FIRST + FF_SWIM_SPACING * (float)(FF_SWIM_SAMPLES - 1);
   const float wave_number = FF_TWO_PI / FF_K_WAVELENGTH;
   const float xi = (x_snout - x) / FF_SWIM_EXTENT;
   const float envelope = FF_K_ENVELOPE0 + xi * (FF_K_ENVELOPE1 + xi * FF_K_ENVELOPE2);
   const float envelope_slope = FF_K_ENVELOPE1 + 2.0f * xi * FF_K_ENVELOPE2;
-  float sin_psi, cos_psi;
+  LaneFloat sin_psi, cos_psi;
   sin_cos_turns(xi / FF_K_WAVELENGTH - phase, &sin_psi, &cos_psi);
-  const float dh_dxi = scale * (envelope_slope * sin_psi + envelope * wave_number * cos_psi);
+  const LaneFloat dh_dxi = scale * (envelope_slope * sin_psi + envelope * wave_number * cos_psi);
   return arctan(-dh_dxi / FF_SWIM_EXTENT) + curvature * x;
 }
 
@@ -46,6 +49,7 @@ __kernel __attribute__((reqd_work_group_size(FF_SWIM_GROUP_SIZE, 1, 1))) void sw
     __global float* restrict phases, __global float* restrict params,
     __global float* restrict placements, __global uint* restrict limited,
     __global float* restrict derived, const float dt, const uint fish) {
+#if FF_LANES == 1
   __local float scans[FF_SWIM_GROUP_SIZE / FF_SWIM_ITEMS * (2 * FF_SWIM_ITEMS + 2)];
   const size_t i = get_global_id(0) / FF_SWIM_ITEMS;
   const int item = (int)(get_local_id(0) % FF_SWIM_ITEMS);
@@ -53,19 +57,29 @@ __kernel __attribute__((reqd_work_group_size(FF_SWIM_GROUP_SIZE, 1, 1))) void sw
    * one, so no barrier is left waiting). */
   if (i >= fish) return;
   __local float* scan = scans + get_local_id(0) / FF_SWIM_ITEMS * (2 * FF_SWIM_ITEMS + 2);
-  __global const float* in = inputs + i * 7;
-  const float length = sizes[2 * i];
-  const float speed = in[5];
-  const float body_lengths = speed / length;
+  const int at = (int)i; /* the fish */
+#else
+  /* FF_LANES fish, one per lane; lanes past the last fish repeat it: the same inputs
+   * give the same values, stored after its own lane's to the same places. */
+  if (get_global_id(0) * FF_LANES >= fish) return;
+  const int item = 0;
+  __local float* scan = 0;
+  const LaneInt at = min((int)(get_global_id(0) * FF_LANES) + FF_LANE_IDS, (int)fish - 1);
+#endif
+  const LaneInt in = 7 * at; /* the fish's SwimInput */
+  const LaneFloat length = FF_GATHER(sizes, 2 * at);
+  const LaneFloat speed = FF_GATHER(inputs, in + 5);
+  const LaneFloat body_lengths = speed / length;
   /* Tail-beat frequency (Webb, Kostecki & Stevens 1984): the size term from the host,
    * the speed term; phases integrate it. */
-  const float frequency = sizes[2 * i + 1] + FF_K_FREQUENCY_SPEED * body_lengths;
-  const float phase = swim_wrapped(phases[2 * i] + frequency * dt);
-  const float fin_phase = swim_wrapped(phases[2 * i + 1] + frequency * dt);
-  const float scale =
+  const LaneFloat frequency = FF_GATHER(sizes, 2 * at + 1) + FF_K_FREQUENCY_SPEED * body_lengths;
+  const LaneFloat phase = swim_wrapped(FF_GATHER(phases, 2 * at) + frequency * dt);
+  const LaneFloat fin_phase = swim_wrapped(FF_GATHER(phases, 2 * at + 1) + frequency * dt);
+  const LaneFloat scale =
       clamp(FF_K_AMPLITUDE_BASE + FF_K_AMPLITUDE_SPEED * body_lengths, FF_K_AMPLITUDE_MIN, 1.0f);
-  const float curvature = clamp(-in[6] * length / fmax(speed, FF_K_MIN_TURN_SPEED),
-                                -FF_K_MAX_TURN_CURVATURE, FF_K_MAX_TURN_CURVATURE);
+  const LaneFloat curvature = clamp(-FF_GATHER(inputs, in + 6) * length /
+                                        fmax(speed, FF_K_MIN_TURN_SPEED),
+                                    -FF_K_MAX_TURN_CURVATURE, FF_K_MAX_TURN_CURVATURE);
 
   /* This work-item's samples, and every segment from them cleared of folding (METHOD.md
    * section 6): a segment bent more than allowed turns the samples after it by the
@@ -74,33 +88,36 @@ __kernel __attribute__((reqd_work_group_size(FF_SWIM_GROUP_SIZE, 1, 1))) void sw
    * written with the turns of this work-item's segments before it, then (more than one
    * work-item per fish) those of the samples before this work-item's added. No private
    * arrays and no branches: on 2 CPU cores with PoCL the driver took 0.79 ms a frame for
-   * 1,000 fish with them, 0.45 without (its vectoriser still leaves the loop scalar). */
+   * 1,000 fish with them, 0.45 without, when it was one lane (its vectoriser still left
+   * the loop scalar). */
   const int first = min(item * FF_SWIM_CHUNK, FF_SWIM_SAMPLES);
   const int end = min(first + FF_SWIM_CHUNK, FF_SWIM_SAMPLES);
-  __global float* row = params + i * FF_SWIM_VALUES;
-  float shift = 0.0f, limited_here = 0.0f;
-  float here = first < end ? swim_wave_angle(first, phase, scale, curvature) : 0.0f;
+  const LaneInt row = FF_SWIM_VALUES * at; /* the fish's parameters */
+  LaneFloat shift = 0.0f, limited_here = 0.0f;
+  LaneFloat here = first < end ? swim_wave_angle(first, phase, scale, curvature) : 0.0f;
   for (int j = first; j < end; ++j) {
-    row[FF_SWIM_WAVE + j] = here + shift;
+    lanes_scatter(params, row + (FF_SWIM_WAVE + j), here + shift);
     /* Segment j, from sample j to j + 1 (none after the last sample). */
     const int segment = min(j, FF_SWIM_SAMPLES - 2);
-    const float next = swim_wave_angle(segment + 1, phase, scale, curvature);
-    const float bend = (next - here) / FF_SWIM_SPACING;
-    const float allowed =
-        bend > 0.0f ? swim_max_positive[segment] : -swim_max_negative[segment];
-    const int over = j + 1 < FF_SWIM_SAMPLES && fabs(bend) > fabs(allowed);
-    shift += over ? (allowed - bend) * FF_SWIM_SPACING : 0.0f;
-    limited_here += over ? 1.0f : 0.0f;
+    const LaneFloat next = swim_wave_angle(segment + 1, phase, scale, curvature);
+    const LaneFloat bend = (next - here) / FF_SWIM_SPACING;
+    const LaneFloat allowed = bend > 0.0f ? (LaneFloat)swim_max_positive[segment]
+                                          : (LaneFloat)(-swim_max_negative[segment]);
+    const LaneMask over =
+        FF_UNIFORM_MASK(j + 1 < FF_SWIM_SAMPLES) & (fabs(bend) > fabs(allowed));
+    shift += over ? (allowed - bend) * FF_SWIM_SPACING : (LaneFloat)0.0f;
+    limited_here += over ? (LaneFloat)1.0f : (LaneFloat)0.0f;
     here = next;
   }
-  /* The turns and limited segments of the samples before this work-item's
-   * (common/scan.cl), and in all. */
-  const float2 sums = inclusive_scan2((float2)(shift, limited_here), scan, item, FF_SWIM_ITEMS);
-  /* The last work-item's sum: in scratch when the fish has more than one. */
-  const float limited_total = FF_SWIM_ITEMS == 1 ? sums.y : scan[2 * FF_SWIM_ITEMS - 1];
 #if FF_SWIM_ITEMS > 1
+  /* The turns and limited segments of the samples before this work-item's
+   * (common/scan.cl), and in all (the last work-item's sum, in scratch). */
+  const float2 sums = inclusive_scan2((float2)(shift, limited_here), scan, item, FF_SWIM_ITEMS);
+  const float limited_total = scan[2 * FF_SWIM_ITEMS - 1];
   const float shift_before = sums.x - shift;
-  for (int j = first; j < end; ++j) row[FF_SWIM_WAVE + j] += shift_before;
+  for (int j = first; j < end; ++j) params[row + FF_SWIM_WAVE + j] += shift_before;
+#else
+  const LaneFloat limited_total = limited_here;
 #endif
 #if FF_SWIM_DERIVED
   /* The spine's records of this frame, as rig_prepare would write them from the row
@@ -108,44 +125,43 @@ __kernel __attribute__((reqd_work_group_size(FF_SWIM_GROUP_SIZE, 1, 1))) void sw
 #if FF_SWIM_ITEMS > 1
   barrier(CLK_GLOBAL_MEM_FENCE | CLK_LOCAL_MEM_FENCE);
 #endif
-  spine_records(row + FF_SWIM_WAVE, derived + i * FF_SWIM_DERIVED_COUNT, FF_SWIM_SPINE_X_FIRST,
-                FF_SWIM_SPINE_INVERSE_H, FF_SWIM_SPINE_H, FF_SWIM_SAMPLES, scan, item);
+  spine_records(params, row + FF_SWIM_WAVE, derived, FF_SWIM_DERIVED_COUNT * at,
+                FF_SWIM_SPINE_X_FIRST, FF_SWIM_SPINE_INVERSE_H, FF_SWIM_SPINE_H, FF_SWIM_SAMPLES,
+                scan, item);
 #endif
   if (item != 0) return;
   /* The rest is the fish's, once: every work-item read the old phases before the scan's
    * barriers. */
-  phases[2 * i] = phase;
-  phases[2 * i + 1] = fin_phase;
-  limited[i] = (uint)limited_total;
+  lanes_scatter(phases, 2 * at, phase);
+  lanes_scatter(phases, 2 * at + 1, fin_phase);
+  lanes_scatter_count(limited, at, limited_total);
 #if FF_SWIM_TAIL >= 0
-  float sin_tail, cos_tail;
+  LaneFloat sin_tail, cos_tail;
   sin_cos_turns(FF_K_PEDUNCLE / FF_K_WAVELENGTH - phase, &sin_tail, &cos_tail);
-  row[FF_SWIM_TAIL] = FF_K_CAUDAL_AMPLITUDE * scale * cos_tail;
+  lanes_scatter(params, row + FF_SWIM_TAIL, FF_K_CAUDAL_AMPLITUDE * scale * cos_tail);
 #endif
-  const float fin_amplitude =
+  const LaneFloat fin_amplitude =
       FF_K_PECTORAL_AMPLITUDE * clamp(1.0f - body_lengths / FF_K_PECTORAL_HOVER_SPEED, 0.0f, 1.0f);
-  float sin_fin, cos_fin;
+  LaneFloat sin_fin, cos_fin;
   sin_cos_turns(fin_phase, &sin_fin, &cos_fin);
-  const float beat = fin_amplitude * sin_fin;
+  const LaneFloat beat = fin_amplitude * sin_fin;
 #if FF_SWIM_RIGHT >= 0
-  row[FF_SWIM_RIGHT] = FF_K_PECTORAL_REST + beat;
+  lanes_scatter(params, row + FF_SWIM_RIGHT, FF_K_PECTORAL_REST + beat);
 #endif
 #if FF_SWIM_LEFT >= 0
-  row[FF_SWIM_LEFT] = FF_K_PECTORAL_REST - beat;
+  lanes_scatter(params, row + FF_SWIM_LEFT, FF_K_PECTORAL_REST - beat);
 #endif
 
   /* Placement (common/placement.cl): the columns of L Q with Q = R_y(yaw) R_z(pitch),
    * the position, 1 / L. */
-  float sy, cy, sp, cp;
-  sin_cos_radians(in[3], &sy, &cy);
-  sin_cos_radians(in[4], &sp, &cp);
-  const float q[9] = {cy * cp, -cy * sp, sy, sp, cp, 0.0f, -sy * cp, sy * sp, cy}; /* rows */
-  __global float* record = placements + i * 16;
+  LaneFloat sy, cy, sp, cp;
+  sin_cos_radians(FF_GATHER(inputs, in + 3), &sy, &cy);
+  sin_cos_radians(FF_GATHER(inputs, in + 4), &sp, &cp);
+  const LaneFloat q[9] = {cy * cp, -cy * sp, sy, sp, cp, (LaneFloat)0.0f, -sy * cp, sy * sp, cy}; /* rows */
+  const LaneInt record = 16 * at;
   for (int c = 0; c < 3; ++c) {
-    for (int r = 0; r < 3; ++r) record[3 * c + r] = length * q[3 * r + c];
+    for (int r = 0; r < 3; ++r) lanes_scatter(placements, record + (3 * c + r), length * q[3 * r + c]);
   }
-  record[9] = in[0];
-  record[10] = in[1];
-  record[11] = in[2];
-  record[12] = 1.0f / length;
+  for (int c = 0; c < 3; ++c) lanes_scatter(placements, record + (9 + c), FF_GATHER(inputs, in + c));
+  lanes_scatter(placements, record + 12, 1.0f / length);
 }

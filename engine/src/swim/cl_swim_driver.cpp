@@ -106,13 +106,17 @@ long offset_or_none(std::size_t offset) {
 
 // The driver program's generated constants; `spine`: the stage whose records the
 // driver writes (driver_prepared_spine), or null.
-std::string driver_constants(const SwimModel& swim, std::size_t items, const RigStage* spine) {
+// `lanes`: fish per work-item (device_driver_lanes), `group`: work-items per group.
+std::string driver_constants(const SwimModel& swim, std::size_t items, std::size_t lanes,
+                             std::size_t group, const RigStage* spine) {
   const SwimKinematics& k = swim.kinematics();
   const RiggedMesh& model = swim.model();
   std::ostringstream out;
-  out << "#define FF_SWIM_GROUP_SIZE " << detail::table_group_size(items) << "\n"
+  out << "#define FF_LANES " << lanes << "\n"
+      << "#define FF_SWIM_GROUP_SIZE " << group << "\n"
       << "#define FF_SWIM_ITEMS " << items << "\n"
-      << detail::prepare_items_source(items);
+      << detail::prepare_items_source(items) << "#define FF_SPINE_MAX_SAMPLES " << swim.samples()
+      << "\n";
   // The spine's records (kernels/deformers/spine.cl, spine_records) from the stage
   // table's own constants (its sample count is FF_SWIM_SAMPLES).
   if (spine != nullptr) {
@@ -174,7 +178,9 @@ class ClSwimDriver::Impl {
         swim(swim_in),
         fish(lengths.size()),
         items(detail::device_table_items(context_in.description(), swim_in.samples(),
-                                         items_per_fish)) {
+                                         items_per_fish)),
+        lanes(detail::device_driver_lanes(context_in.description(), items)),
+        group(lanes > 1 ? detail::kLaneDriverGroupSize : detail::table_group_size(items)) {
     SwimReference check(swim, lengths, phases);  // validates lengths and phases
     const cl::Context& cl_context = context.context();
     // Per fish its length and the size term of its tail-beat frequency
@@ -211,7 +217,7 @@ class ClSwimDriver::Impl {
     const ProgramSource source{
         {"common/lanes.cl", "common/vec3.cl", "common/trig.cl", "common/scan.cl",
          "common/secant.cl", "common/stage_frame.cl", "deformers/spine.cl", "swim/driver.cl"},
-        driver_constants(swim, items, spine),
+        driver_constants(swim, items, lanes, group, spine),
         ""};
     kernel_ = context.kernel("swim_drive", source, "");
   }
@@ -220,6 +226,8 @@ class ClSwimDriver::Impl {
   const SwimModel& swim;
   std::size_t fish;
   std::size_t items;              // work-items per fish (swim/driver.cl's FF_SWIM_ITEMS)
+  std::size_t lanes;              // fish per work-item (its FF_LANES)
+  std::size_t group;              // work-items per group (its FF_SWIM_GROUP_SIZE)
   bool prepares_derived = false;  // the spine's records too (driver_prepared_spine)
   cl::Buffer derived_;
   cl::Buffer sizes_, phases_, parameters_, placements_, limited_;
@@ -268,10 +276,10 @@ cl::Event ClSwimDriver::enqueue(const std::vector<SwimInput>& inputs, float dt,
   }
   check_cl(kernel.setArg(7, dt), "clSetKernelArg dt");
   cl::Event done;
-  const std::size_t group = detail::table_group_size(d.items);
-  const std::size_t global = (d.fish * d.items + group - 1) / group * group;
+  const std::size_t work_items = (d.fish * d.items + d.lanes - 1) / d.lanes;
+  const std::size_t global = (work_items + d.group - 1) / d.group * d.group;
   check_cl(d.context.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global),
-                                                  cl::NDRange(group), nullptr, &done),
+                                                  cl::NDRange(d.group), nullptr, &done),
            "clEnqueueNDRangeKernel swim_drive");
   d.inputs_.used(done);
   return done;
