@@ -206,6 +206,13 @@ class FINFLEX_API ClDeformer {
 
   // The work-group size along the slots (every plane stride is a multiple of it).
   static constexpr std::size_t kGroupSize = 64;
+  // Instances (NDRange rows) a work-group of the kernels of more than one lane covers
+  // (CPUs; one-lane kernels: 1): PoCL runs a work-group as one call, which loads the
+  // instance's values and placement and the kernel's constants before its loop over
+  // the work-items, so 4 rows share that among 16 lane work-items instead of 4 (the
+  // swim's body kernel on 2 cores, 1,000 fish: 7.5-8.3 ms a frame against 8.1-9.1 with
+  // one row; the write-only kernel alike either way).
+  static constexpr std::size_t kLaneGroupRows = 4;
   // Most stages on one vertex's path that the fused kernel is generated for.
   static constexpr std::size_t kMaxFusedStages = 64;
 
