@@ -150,12 +150,15 @@ void expect_bench_json(const std::string& arguments, const RiggedMesh& model, Ri
                                                   "kernel_seconds_median",
                                                   "instances_per_item",
                                                   "lanes",
-                                                  "streaming_stores"};
+                                                  "streaming_stores",
+                                                  "frames_ahead"};
   EXPECT_EQ(keys, expected_keys);  // in this order, none missing, none extra
 
   ClDeformer deformer(test::shared_context(), model);
   const bool passes = path == RigPath::kPasses;
   EXPECT_EQ(j.at("device").get<std::string>(), test::shared_context().description().device_name);
+  // Frames run ahead of the device on GPUs only (bench::time_frames).
+  EXPECT_EQ(j.at("frames_ahead").get<bool>(), test::shared_context().description().is_gpu());
   EXPECT_EQ(j.at("mesh").get<std::string>(), mesh);
   EXPECT_EQ(j.at("deformation").get<std::string>(), deformation);
   EXPECT_EQ(j.at("normals").get<std::string>(), "rotate");
@@ -237,10 +240,11 @@ TEST(Cli, BenchMeasuresOutputLayouts) {
   EXPECT_EQ(j.at("previous_positions"), true);
   EXPECT_EQ(j.at("host_outputs"), true);
   const bool tangents = load_mesh(test::data_path("blub/fish_low_resolution.obj")).has_tangents();
-  EXPECT_EQ(j.at("moved_bytes_per_vertex").get<double>(), 12.0 + 4.0 + (tangents ? 4.0 : 0.0) + 12.0);
+  EXPECT_EQ(j.at("moved_bytes_per_vertex").get<double>(),
+            12.0 + 4.0 + (tangents ? 4.0 : 0.0) + 12.0);
   EXPECT_GT(j.at("host_map_seconds_median").get<double>(), 0.0);
-  for (const auto& [option, value] : {std::pair<std::string, std::string>{"--layout", "soa"},
-                                      {"--order", "random"}}) {
+  for (const auto& [option, value] :
+       {std::pair<std::string, std::string>{"--layout", "soa"}, {"--order", "random"}}) {
     const RunResult bad = run_cli("bench --mesh " + mesh + " " + option + " " + value);
     EXPECT_EQ(bad.exit_code, 2);
     EXPECT_EQ(line_count(bad.err), 1) << bad.err;
@@ -256,7 +260,8 @@ TEST(Cli, BenchLanesApplyToThePlanesOnly) {
     SCOPED_TRACE(layout);
     const RunResult r = run_cli("bench --mesh " + mesh +
                                 " --instances 8 --frames 2 --json --lanes 16 --stores streaming"
-                                " --layout " + layout);
+                                " --layout " +
+                                layout);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const nlohmann::json j = nlohmann::json::parse(r.out);
     const bool planes = std::string(layout) == "planes";
@@ -305,7 +310,8 @@ TEST(Cli, BadInputsExitTwoWithOneLineAndWriteNothing) {
       {"--in " + in + " --m 0.1 --normals smooth", "--normals", "smooth"},
       {"--in " + in + " --m 0.1 --frame body", "--frame", "body"},
       {"--in " + in + " --m 0.1 --device no-such-device", "device", "no-such-device"},
-      {"--in '/nonexistent/fish.obj' --m 0.1", "/nonexistent/fish.obj", "No such file or directory"},
+      {"--in '/nonexistent/fish.obj' --m 0.1", "/nonexistent/fish.obj",
+       "No such file or directory"},
       {"--in " + fish("blub/README.md") + " --m 0.1", "README.md", "unsupported extension '.md'"},
       {"--in " + in + " --m 0.1 --head 1,2", "--head", "X,Y,Z"},
       {"--in " + in + " --m 0.1 --pivot 0,0,nan", "--pivot", "not finite"},
@@ -666,7 +672,8 @@ TEST(Cli, SubdivideBadInputsExitTwoAndWriteNothing) {
   const std::pair<std::string, std::pair<std::string, std::string>> cases[] = {
       {"--in " + in + " --levels 9", {"levels", "above the limit 8"}},
       {"--in " + in + " --levels -1", {"levels", "[0, 8]"}},
-      {"--in '/nonexistent/cage.obj' --levels 1", {"/nonexistent/cage.obj", "No such file or directory"}},
+      {"--in '/nonexistent/cage.obj' --levels 1",
+       {"/nonexistent/cage.obj", "No such file or directory"}},
   };
   for (const auto& [arguments, expected] : cases) {
     const std::string out = test::temp_path("never.obj");

@@ -31,10 +31,22 @@ struct FrameTimes {
 // ones. `prepare(frame)` sets the frame's parameters (not timed: that is the
 // application's animation); `enqueue(kernels)` enqueues the frame and fills `kernels`
 // with its kernels' events (timed on the host, then on the device).
+// `ahead`: the host prepares and enqueues frame f + 1 before it waits for frame f, as a
+// frame loop that runs ahead of the device does, so a frame's kernels are all queued
+// before the first of them starts and the device never waits for the host between
+// them (GPUs: a frame waited for one by one holds the gap between its driver's end
+// and the launch of its deformation). Off, each frame is waited for before the next
+// is prepared (CPUs: the host's work would share the cores the kernels run on).
 template <typename Prepare, typename Enqueue>
-FrameTimes time_frames(std::size_t frames, Prepare prepare, Enqueue enqueue) {
+FrameTimes time_frames(std::size_t frames, Prepare prepare, Enqueue enqueue, bool ahead = false) {
   FrameTimes times;
-  std::vector<cl::Event> kernels;
+  std::vector<cl::Event> kernels, in_flight;
+  auto record = [&times](const std::vector<cl::Event>& frame) {
+    times.device.push_back(span_seconds(frame.front(), frame.back()));
+    std::vector<double> own;
+    for (const cl::Event& kernel : frame) own.push_back(event_seconds(kernel));
+    times.kernels.push_back(own);
+  };
   prepare(0);
   enqueue(kernels);
   span_seconds(kernels.front(), kernels.back());
@@ -44,11 +56,14 @@ FrameTimes time_frames(std::size_t frames, Prepare prepare, Enqueue enqueue) {
     enqueue(kernels);
     const auto end = std::chrono::steady_clock::now();
     times.host.push_back(std::chrono::duration<double>(end - start).count());
-    times.device.push_back(span_seconds(kernels.front(), kernels.back()));
-    std::vector<double> own;
-    for (const cl::Event& kernel : kernels) own.push_back(event_seconds(kernel));
-    times.kernels.push_back(own);
+    if (!ahead) {
+      record(kernels);
+      continue;
+    }
+    if (!in_flight.empty()) record(in_flight);
+    in_flight = kernels;
   }
+  if (!in_flight.empty()) record(in_flight);
   return times;
 }
 
