@@ -3,8 +3,10 @@
 // frequency (no jump when the speed changes), a wave that travels from head to tail,
 // and a whole frame (driver, then the deformation reading its buffers) against the
 // reference.
+#include <chrono>
 #include <cmath>
 #include <limits>
+#include <thread>
 
 #include <gtest/gtest.h>
 
@@ -321,6 +323,44 @@ TEST(Swim, DriverPreparedRecordsDeformAsRigPrepareDoes) {
   EXPECT_EQ(bend_deformer.derived_floats_per_instance(), 0u);
   EXPECT_EQ(ClDeformer(test::shared_context(), swim.model()).derived_floats_per_instance(),
             8u * swim.samples());
+}
+
+// A frame behind a FrameGate: nothing of it runs until the gate opens, then it gives
+// what the same frame without a gate gives; a gate left closed opens as it goes.
+TEST(Swim, AFrameBehindAGateRunsWhenTheGateOpens) {
+  const SwimModel swim(barramundi());
+  const std::vector<float> lengths = {0.3f, 0.45f, 0.38f};
+  const std::vector<SwimInput> inputs = inputs_at(lengths.size(), lengths, 3);
+  ClSwimDriver open_driver(test::shared_context(), swim, lengths);
+  open_driver.enqueue(inputs, 1.0f / 30.0f);
+  const RigParameters expected = open_driver.read_parameters();
+
+  // Two drivers behind one gate (two species of a tank): the second one's first
+  // enqueue sets up its staging memory while the first one's upload waits.
+  ClSwimDriver gated(test::shared_context(), swim, lengths);
+  ClSwimDriver second(test::shared_context(), swim, lengths);
+  {
+    FrameGate gate(test::shared_context());
+    EXPECT_FALSE(gate.is_open());
+    const cl::Event driven = gated.enqueue(inputs, 1.0f / 30.0f, gate.wait_list());
+    const cl::Event driven_second = second.enqueue(inputs, 1.0f / 30.0f, gate.wait_list());
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    EXPECT_NE(driven.getInfo<CL_EVENT_COMMAND_EXECUTION_STATUS>(), CL_COMPLETE);
+    EXPECT_NE(driven_second.getInfo<CL_EVENT_COMMAND_EXECUTION_STATUS>(), CL_COMPLETE);
+    gate.open();
+    gate.open();  // once is enough
+    EXPECT_TRUE(gate.is_open());
+    ASSERT_EQ(driven_second.wait(), CL_SUCCESS);
+  }
+  EXPECT_EQ(gated.read_parameters().values(), expected.values());
+  EXPECT_EQ(second.read_parameters().values(), expected.values());
+
+  ClSwimDriver left_closed(test::shared_context(), swim, lengths);
+  {
+    FrameGate gate(test::shared_context());
+    left_closed.enqueue(inputs, 1.0f / 30.0f, gate.wait_list());
+  }  // not opened: the destructor does
+  EXPECT_EQ(left_closed.read_parameters().values(), expected.values());
 }
 
 TEST(Swim, BadInputsAreNamed) {

@@ -44,6 +44,8 @@ class GlSpeciesOutputs : public tank::SpeciesOutputs {
   cl::Event enqueue(ClDeformer& deformer, const ClJob& job,
                     std::vector<cl::Event>* kernel_events) override;
   double handoff_seconds() const override { return outputs_.last_handoff_seconds(); }
+  // The copy path waits for the frame's kernels before copying to GL.
+  bool waits_for_device() const override { return path() == GlPath::kCopy; }
   void begin_reading() override;
   void end_reading() override;
 

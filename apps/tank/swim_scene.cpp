@@ -109,12 +109,15 @@ FrameWork SwimScene::enqueue_frame(double dt, bool profile) {
   work.simulation_seconds = seconds_since(start);
   const auto enqueue_start = std::chrono::steady_clock::now();
   std::vector<cl::Event> events;
+  FrameGate gate(context_);  // the frame goes to the device once all of it is enqueued
   for (std::size_t s = 0; s < species_.size(); ++s) {
     Species& sp = species_[s];
     if (!sp.driver) continue;
     const auto driver_start = std::chrono::steady_clock::now();
-    const cl::Event driven = sp.driver->enqueue(sp.inputs, static_cast<float>(dt));
+    const cl::Event driven =
+        sp.driver->enqueue(sp.inputs, static_cast<float>(dt), gate.wait_list());
     work.driver_seconds += seconds_since(driver_start);
+    if (sp.outputs->waits_for_device()) gate.open();
     sp.outputs->enqueue(*sp.deformer, sp.job, profile ? &events : nullptr);
     work.handoff_seconds += sp.outputs->handoff_seconds();
     if (profile) {
@@ -122,6 +125,7 @@ FrameWork SwimScene::enqueue_frame(double dt, bool profile) {
       work.kernels.insert(work.kernels.end(), events.begin(), events.end());
     }
   }
+  gate.open();
   work.enqueue_seconds = std::max(0.0, seconds_since(enqueue_start) - work.handoff_seconds);
   return work;
 }

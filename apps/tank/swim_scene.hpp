@@ -47,6 +47,9 @@ class SpeciesOutputs {
   // Host seconds the last enqueue spent handing the frame over to its consumer
   // (0: the batch is where the deformation wrote it).
   virtual double handoff_seconds() const { return 0.0; }
+  // Whether enqueue waits for the device (a copy to another API): the frame's gate
+  // (FrameGate) is then opened before it. No by default.
+  virtual bool waits_for_device() const { return false; }
   // Blocking OpenCL reads of batch() between frames go between these (BatchReading):
   // outputs that another API owns between frames (GL buffers shared with OpenCL) are
   // lent to OpenCL meanwhile. Nothing by default.
@@ -118,8 +121,9 @@ class SwimScene {
             const OutputsFactory& outputs = {});
 
   // One frame: the tank steps by dt, then each species' driver and deformation are
-  // enqueued (nothing waits, unless the outputs' hand-off does). With `profile`, every
-  // kernel's event goes to the result.
+  // enqueued behind a FrameGate, opened once all are (or before outputs that wait for
+  // the device); nothing waits, unless the outputs' hand-off does. With `profile`,
+  // every kernel's event goes to the result.
   FrameWork enqueue_frame(double dt, bool profile = false);
 
   Tank& tank() { return *tank_; }

@@ -61,7 +61,12 @@ float* ParameterUpload::acquire(Context& context, std::size_t values) {
     // Grown by half again, so frames of slowly growing sizes do not map every time.
     const std::size_t capacity = std::max(values, staging.capacity + staging.capacity / 2);
     release(staging);
-    staging.queue = context.queue();
+    if (!staging_queue_()) {
+      cl_int created = CL_SUCCESS;
+      staging_queue_ = cl::CommandQueue(context.context(), context.device(), 0, &created);
+      check_cl(created, "clCreateCommandQueue (staging)");
+    }
+    staging.queue = staging_queue_;
     staging.pinned = make_buffer(context.context(), CL_MEM_READ_WRITE | CL_MEM_ALLOC_HOST_PTR,
                                  capacity * sizeof(float));
     cl_int status = CL_SUCCESS;

@@ -69,10 +69,12 @@ class ParameterUpload {
   static void release(Staging& staging);
 
   std::array<Staging, kSlots> staging_;
+  // The queue the staging areas are mapped and unmapped on: not the context's, whose
+  // commands may wait behind a closed FrameGate while the next area is mapped.
+  cl::CommandQueue staging_queue_;
   std::size_t next_ = 0;
   cl::Buffer device_;
   std::size_t device_values_ = 0;
 };
-
 
 }  // namespace finflex::detail

@@ -28,6 +28,7 @@
 #include "finflex/device_batch.hpp"
 #include "finflex/error.hpp"
 #include "finflex/file_kind.hpp"
+#include "finflex/frame_gate.hpp"
 #include "finflex/instance_mesh.hpp"
 #include "finflex/job.hpp"
 #include "finflex/mesh.hpp"
