@@ -46,10 +46,12 @@ ParameterUpload::~ParameterUpload() {
 
 void ParameterUpload::release(Staging& staging) {
   if (staging.mapped) {
-    // Nothing may throw from a destructor: a failed unmap leaves the driver to reclaim
-    // the buffer with its context.
+    // Unmapped on the frames' queue, in order after every upload from it, without
+    // waiting (a frame may still wait behind a closed FrameGate); the queued unmap
+    // holds the buffer until it runs. Nothing may throw from a destructor: a failed
+    // unmap leaves the driver to reclaim the buffer with its context.
     staging.queue.enqueueUnmapMemObject(staging.pinned, staging.mapped);
-    staging.queue.finish();
+    staging.queue.flush();
   }
   staging = Staging{};
 }
@@ -61,18 +63,18 @@ float* ParameterUpload::acquire(Context& context, std::size_t values) {
     // Grown by half again, so frames of slowly growing sizes do not map every time.
     const std::size_t capacity = std::max(values, staging.capacity + staging.capacity / 2);
     release(staging);
-    if (!staging_queue_()) {
+    if (!map_queue_()) {
       cl_int created = CL_SUCCESS;
-      staging_queue_ = cl::CommandQueue(context.context(), context.device(), 0, &created);
-      check_cl(created, "clCreateCommandQueue (staging)");
+      map_queue_ = cl::CommandQueue(context.context(), context.device(), 0, &created);
+      check_cl(created, "clCreateCommandQueue (staging maps)");
     }
-    staging.queue = staging_queue_;
+    staging.queue = context.queue();
     staging.pinned = make_buffer(context.context(), CL_MEM_READ_WRITE | CL_MEM_ALLOC_HOST_PTR,
                                  capacity * sizeof(float));
     cl_int status = CL_SUCCESS;
     staging.mapped = static_cast<float*>(
-        staging.queue.enqueueMapBuffer(staging.pinned, CL_TRUE, CL_MAP_WRITE, 0,
-                                       capacity * sizeof(float), nullptr, nullptr, &status));
+        map_queue_.enqueueMapBuffer(staging.pinned, CL_TRUE, CL_MAP_WRITE, 0,
+                                    capacity * sizeof(float), nullptr, nullptr, &status));
     check_cl(status, "clEnqueueMapBuffer (staging)");
     staging.capacity = capacity;
   }

@@ -59,7 +59,7 @@ class ParameterUpload {
 
  private:
   struct Staging {
-    cl::CommandQueue queue;  // the one it was mapped on, to unmap it
+    cl::CommandQueue queue;  // the frames' queue, which uploads from it and unmaps it
     cl::Buffer pinned;
     float* mapped = nullptr;
     std::size_t capacity = 0;  // floats
@@ -69,9 +69,10 @@ class ParameterUpload {
   static void release(Staging& staging);
 
   std::array<Staging, kSlots> staging_;
-  // The queue the staging areas are mapped and unmapped on: not the context's, whose
-  // commands may wait behind a closed FrameGate while the next area is mapped.
-  cl::CommandQueue staging_queue_;
+  // The queue the staging areas are mapped on (a blocking map, which returns at once
+  // there): not the frames' queue, whose commands may wait behind a closed FrameGate
+  // while the next area is mapped.
+  cl::CommandQueue map_queue_;
   std::size_t next_ = 0;
   cl::Buffer device_;
   std::size_t device_values_ = 0;

@@ -848,6 +848,7 @@ static void test_swim(void) {
   finflex_batch* batch = NULL;
   finflex_event* driven = NULL;
   finflex_event* done = NULL;
+  finflex_frame_gate* no_gate = NULL;
   finflex_host_outputs outputs;
   float *positions, *normals, *want_positions, *want_normals, *values, *records;
   size_t vertices, i, frame;
@@ -889,11 +890,34 @@ static void test_swim(void) {
   OK(finflex_deformer_create(context, model, &other));
   OK(finflex_deformer_allocate(deformer, FISH, FINFLEX_FORMAT_FLOAT32, &batch));
 
-  /* Five frames, the driver's event handed to the deformation. */
+  /* Five frames, the driver's event handed to the deformation; the last two behind a
+   * frame gate: nothing of them runs before it opens (frame 3: opened, frame 4: by its
+   * destruction). */
+  FAILS(finflex_frame_gate_create(NULL, &no_gate), INVALID, NULL, "context", NULL);
+  CHECK(no_gate == NULL);
+  CHECK(finflex_frame_gate_event_list(NULL) == NULL);
+  CHECK(finflex_frame_gate_is_open(NULL) == 0);
+  finflex_frame_gate_destroy(NULL);
   for (frame = 0; frame < 5; ++frame) {
-    OK(finflex_swim_driver_enqueue(driver, inputs, FISH, 1.0f / 30.0f, NULL, 0, &driven));
+    finflex_frame_gate* gate = NULL;
+    int complete = 1;
+    if (frame >= 3) OK(finflex_frame_gate_create(context, &gate));
+    OK(finflex_swim_driver_enqueue(driver, inputs, FISH, 1.0f / 30.0f,
+                                   gate ? finflex_frame_gate_event_list(gate) : NULL, gate ? 1 : 0,
+                                   &driven));
     OK(finflex_deformer_enqueue_swim(deformer, driver, batch, FINFLEX_NORMALS_ROTATE, &driven, 1,
                                      &done));
+    if (gate) {
+      OK(finflex_event_is_complete(driven, &complete));
+      CHECK(complete == 0);
+      CHECK(finflex_frame_gate_is_open(gate) == 0);
+      if (frame == 3) {
+        OK(finflex_frame_gate_open(gate));
+        OK(finflex_frame_gate_open(gate));
+        CHECK(finflex_frame_gate_is_open(gate) == 1);
+      }
+      finflex_frame_gate_destroy(gate);
+    }
     OK(finflex_event_wait(done));
     finflex_event_destroy(driven);
     finflex_event_destroy(done);

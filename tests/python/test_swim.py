@@ -80,6 +80,28 @@ def test_fish_are_placed_where_the_inputs_say(context, swim):
     assert driver.limited_segments() >= 0
 
 
+def test_a_frame_behind_a_gate_runs_when_it_opens(context, swim):
+    deformer, batch, _ = run_frames(context, swim, 3)
+    expected = deformer.read(batch).positions
+    gated_deformer = finflex.Deformer(context, swim.model)
+    gated_batch = gated_deformer.allocate(len(LENGTHS))
+    driver = finflex.SwimDriver(context, swim, LENGTHS)
+    job = gated_deformer.swim_job(gated_batch, driver)
+    for frame in range(3):
+        gate = finflex.FrameGate(context)
+        driven = driver.enqueue(inputs(), DT, wait=[gate.event])
+        done = job.enqueue()
+        assert not driven.complete and not gate.is_open
+        if frame == 2:
+            with gate:  # opened on leaving
+                pass
+        else:
+            gate.open()
+        assert gate.is_open
+        done.wait()
+    np.testing.assert_array_equal(gated_deformer.read(gated_batch).positions, expected)
+
+
 def test_bad_inputs_name_their_field(context, swim, mesh):
     driver = finflex.SwimDriver(context, swim, LENGTHS)
     with pytest.raises(finflex.Error) as e:

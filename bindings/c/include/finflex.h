@@ -400,7 +400,12 @@ FINFLEX_C_API const finflex_error* finflex_event_error(const finflex_event* even
  *   finflex_swim_driver_create(ctx, swim, lengths, fish, NULL, &driver);
  *   every frame: finflex_swim_driver_enqueue(driver, inputs, fish, dt, NULL, 0, NULL);
  *                finflex_deformer_enqueue_swim(def, driver, batch, FINFLEX_NORMALS_ROTATE,
- *                                              NULL, 0, &done);  (world space) */
+ *                                              NULL, 0, &done);  (world space)
+ * or, the frame handed to the device whole (finflex_frame_gate, below):
+ *                finflex_frame_gate_create(ctx, &gate);
+ *                finflex_swim_driver_enqueue(driver, inputs, fish, dt,
+ *                                            finflex_frame_gate_event_list(gate), 1, NULL);
+ *                finflex_deformer_enqueue_swim(...);  finflex_frame_gate_destroy(gate); */
 typedef struct finflex_swim_model finflex_swim_model;
 typedef struct finflex_swim_driver finflex_swim_driver;
 
@@ -463,6 +468,22 @@ FINFLEX_C_API finflex_status finflex_deformer_enqueue_swim(finflex_deformer* def
                                                            finflex_event* const* wait,
                                                            size_t wait_count,
                                                            finflex_event** done);
+
+/* A gate that holds a frame's device work back until all of it is enqueued
+ * (finflex::FrameGate): put its event in the wait list of the frame's first command
+ * (finflex_frame_gate_event_list: an array of one), enqueue the rest, then open it or
+ * destroy it (which opens it). On NVIDIA's OpenCL the frame then goes to the device
+ * whole: no wait between its kernels, and shorter enqueue calls. Nothing may wait for
+ * the device (finflex_event_wait, a blocking read) while it is closed: that would
+ * wait for ever. The gate's event belongs to the gate. */
+typedef struct finflex_frame_gate finflex_frame_gate;
+FINFLEX_C_API finflex_status finflex_frame_gate_create(finflex_context* context,
+                                                       finflex_frame_gate** gate);
+FINFLEX_C_API finflex_event* const* finflex_frame_gate_event_list(finflex_frame_gate* gate);
+FINFLEX_C_API finflex_status finflex_frame_gate_open(finflex_frame_gate* gate);
+FINFLEX_C_API int finflex_frame_gate_is_open(const finflex_frame_gate* gate);
+FINFLEX_C_API void finflex_frame_gate_destroy(finflex_frame_gate* gate); /* opens it if closed */
+FINFLEX_C_API const finflex_error* finflex_frame_gate_error(const finflex_frame_gate* gate);
 
 #ifdef __cplusplus
 } /* extern "C" */

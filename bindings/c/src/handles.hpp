@@ -63,6 +63,14 @@ struct finflex_event {
   mutable finflex_error error;
 };
 
+struct finflex_frame_gate {
+  std::shared_ptr<finflex::Context> context;  // outlives the gate's event
+  std::unique_ptr<finflex::FrameGate> gate;
+  finflex_event event;           // the gate's user event, for wait lists
+  finflex_event* event_list[1];  // {&event}: finflex_frame_gate_event_list
+  mutable finflex_error error;
+};
+
 struct finflex_swim_model {
   std::shared_ptr<const finflex::SwimModel> swim;
   mutable finflex_error error;

@@ -28,6 +28,12 @@ struct PySwimDriver {
   std::vector<SwimInput> inputs;  // the same as SwimInputs, reused
 };
 
+// A frame's device work held back until all of it is enqueued (finflex::FrameGate).
+struct PyFrameGate {
+  std::shared_ptr<Context> context;  // outlives the gate
+  std::unique_ptr<FrameGate> gate;
+};
+
 // A deformer's frames whose parameters and placements are a driver's device buffers.
 struct PySwimJob {
   nb::object deformer, batch, driver;  // kept alive
@@ -153,6 +159,40 @@ void bind_swim(nb::module_& m) {
           "batch",
           [](const PySwimJob& j) -> const PyBatch& { return nb::cast<const PyBatch&>(j.batch); },
           nb::rv_policy::reference_internal, "The batch the job writes.");
+
+  nb::class_<PyFrameGate>(
+      m, "FrameGate",
+      "Holds a frame's device work back until all of it is enqueued: pass [gate.event] "
+      "as the wait list of the frame's first command (driver.enqueue(..., wait=...)), "
+      "enqueue the rest, then gate.open() (or use it as a context manager, which opens "
+      "it on leaving). On NVIDIA's OpenCL the frame then goes to the device whole. "
+      "Nothing may wait for the device (Event.wait(), a read) while it is closed.")
+      .def(
+          "__init__",
+          [](PyFrameGate* self, const PyContext& context) {
+            new (self) PyFrameGate{context.context, std::make_unique<FrameGate>(*context.context)};
+          },
+          nb::arg("context"))
+      .def_prop_ro(
+          "event",
+          [](const PyFrameGate& g) {
+            PyEvent event;
+            event.event = g.gate->wait_list()->front();
+            return event;
+          },
+          "The gate's event, complete once it is open.")
+      .def(
+          "open", [](PyFrameGate& g) { g.gate->open(); },
+          "Lets the work behind the gate run (again: nothing).")
+      .def_prop_ro("is_open", [](const PyFrameGate& g) { return g.gate->is_open(); })
+      .def("__enter__", [](nb::handle self) { return nb::borrow(self); })
+      .def(
+          "__exit__",
+          [](PyFrameGate& g, nb::handle, nb::handle, nb::handle) {
+            g.gate->open();
+            return false;
+          },
+          nb::arg("type").none(), nb::arg("value").none(), nb::arg("traceback").none());
 
   // Deformer.swim_job (the Deformer class is bound before this file's classes).
   nb::handle deformer_class = m.attr("Deformer");
