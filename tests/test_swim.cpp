@@ -414,6 +414,16 @@ TEST(Swim, BadInputsAreNamed) {
   EXPECT_EQ(field_of(inputs, 0.1), "inputs[0].pitch");
   EXPECT_THROW(SwimReference(swim, {0.4f, 0.0f}), Error);
   EXPECT_THROW(ClSwimDriver(test::shared_context(), swim, {NAN}), Error);
+  // More fish than the kernel's 32-bit indices reach (256 floats of spine records a
+  // fish): refused before anything is allocated.
+  ASSERT_EQ(8u * swim.samples(), 256u);
+  try {
+    ClSwimDriver(test::shared_context(), swim, std::vector<float>(8388608, 0.3f));
+    FAIL() << "expected an error naming lengths";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.field(), "lengths") << e.what();
+    EXPECT_NE(std::string(e.what()).find("8388607"), std::string::npos) << e.what();
+  }
   EXPECT_THROW(SwimReference(swim, {}), Error);
 }
 

@@ -168,6 +168,22 @@ std::string driver_constants(const SwimModel& swim, std::size_t items, std::size
   return out.str();
 }
 
+// The kernel indexes a fish's floats in 32-bit ints (kernels/swim/driver.cl: an index
+// vector per lane on CPUs): `fish` fish whose widest row (the spine's records, the
+// rig's values, the placement or the inputs) ends past INT32_MAX are refused, naming
+// `lengths`, before anything is allocated.
+void check_fish_count(const SwimModel& swim, std::size_t fish) {
+  const std::size_t widest =
+      std::max({kInputFloats, kPlacementFloats, swim.model().values_per_instance(),
+                detail::derived_per_instance(swim.model().rig())});
+  const std::size_t most = static_cast<std::size_t>(INT32_MAX) / widest;
+  if (fish <= most) return;
+  throw Error(ErrorCode::kInvalidArgument, "lengths",
+              "lengths: " + std::to_string(fish) + " fish are more than one driver takes (" +
+                  std::to_string(most) + " for this rig: " + std::to_string(widest) +
+                  " floats a fish in its largest table); split them over several drivers");
+}
+
 }  // namespace
 
 class ClSwimDriver::Impl {
@@ -181,6 +197,7 @@ class ClSwimDriver::Impl {
                                          items_per_fish)),
         lanes(detail::device_driver_lanes(context_in.description(), items)),
         group(lanes > 1 ? detail::kLaneDriverGroupSize : detail::table_group_size(items)) {
+    check_fish_count(swim, fish);
     SwimReference check(swim, lengths, phases);  // validates lengths and phases
     const cl::Context& cl_context = context.context();
     // Per fish its length and the size term of its tail-beat frequency
