@@ -20,18 +20,16 @@ ProgramSource bandwidth_program() {
 }
 
 // The deformation kernels' NDRange: work-groups of kGroupSize slots, `lanes` slots per
-// work-item, and with lanes as many instance rows as theirs (ClDeformer's launch).
+// work-item, and their instance rows (ClDeformer::group_rows).
 cl::Event launch(Context& context, cl::Kernel& kernel, std::size_t vertices, std::size_t instances,
                  std::size_t per_item, std::size_t lanes) {
   const std::size_t group = ClDeformer::kGroupSize;
-  const std::size_t rows = lanes > 1 ? ClDeformer::kLaneGroupRows : 1;
-  const std::size_t items_high = (instances + per_item - 1) / per_item;
   cl::Event done;
   check_cl(context.queue().enqueueNDRangeKernel(
                kernel, cl::NullRange,
                cl::NDRange((vertices + group - 1) / group * group / lanes,
-                           (items_high + rows - 1) / rows * rows),
-               cl::NDRange(group / lanes, rows), nullptr, &done),
+                           ClDeformer::launch_rows((instances + per_item - 1) / per_item, lanes)),
+               cl::NDRange(group / lanes, ClDeformer::group_rows(lanes)), nullptr, &done),
            "clEnqueueNDRangeKernel");
   return done;
 }
@@ -39,19 +37,18 @@ cl::Event launch(Context& context, cl::Kernel& kernel, std::size_t vertices, std
 }  // namespace
 
 cl::Event enqueue_write_only(Context& context, DeviceBatch& batch, std::size_t vertices,
-                             std::size_t instances_per_item, WriteValues values, std::size_t lanes,
-                             bool streaming) {
+                             std::size_t instances_per_item, WriteValues values,
+                             std::size_t lanes, bool streaming) {
   if (values == WriteValues::kDeviceDefault) {
     values = context.description().is_gpu() ? WriteValues::kVarying : WriteValues::kConstant;
   }
-  const std::string options = std::string("-DFF_INSTANCES_PER_ITEM=") +
-                              std::to_string(instances_per_item) +
-                              (values == WriteValues::kVarying ? " -DFF_VARYING_WRITES=1" : "") +
-                              output_build_options(batch.outputs) +
-                              staged_struct_options(batch, context.description().is_gpu()) +
-                              (lanes > 1 ? " -DFF_LANES=" + std::to_string(lanes) +
-                                               " -DFF_STREAMING_STORES=" + (streaming ? "1" : "0")
-                                         : std::string());
+  const std::string options =
+      std::string("-DFF_INSTANCES_PER_ITEM=") + std::to_string(instances_per_item) +
+      (values == WriteValues::kVarying ? " -DFF_VARYING_WRITES=1" : "") +
+      output_build_options(batch.outputs) + staged_struct_options(batch, context.description().is_gpu()) +
+      (lanes > 1 ? " -DFF_LANES=" + std::to_string(lanes) +
+                       " -DFF_STREAMING_STORES=" + (streaming ? "1" : "0")
+                 : std::string());
   cl::Kernel kernel = context.kernel("write_outputs", bandwidth_program(), options);
   cl_uint arg = 0;
   auto set = [&](const auto& value) { check_cl(kernel.setArg(arg++, value), "clSetKernelArg"); };

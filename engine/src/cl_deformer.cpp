@@ -419,13 +419,13 @@ void ClDeformer::Impl::launch(BoundKernel& bound, const ClJob& job, std::size_t 
   // With lanes, kLaneGroupRows instance rows (the kernels skip those past the
   // last instance).
   const std::size_t items_per_group = kWorkGroupSize / batch_lanes_;
-  const std::size_t rows = batch_lanes_ > 1 ? kLaneGroupRows : 1;
-  const std::size_t items_high = (job.parameters.instance_count + per - 1) / per;
   const cl::NDRange offset(first_group * items_per_group, 0);
-  const cl::NDRange global((end_group - first_group) * items_per_group,
-                           (items_high + rows - 1) / rows * rows);
-  check_cl(context.queue().enqueueNDRangeKernel(bound.kernel, offset, global,
-                                                cl::NDRange(items_per_group, rows), nullptr, event),
+  const cl::NDRange global(
+      (end_group - first_group) * items_per_group,
+      launch_rows((job.parameters.instance_count + per - 1) / per, batch_lanes_));
+  check_cl(context.queue().enqueueNDRangeKernel(
+               bound.kernel, offset, global, cl::NDRange(items_per_group, group_rows(batch_lanes_)),
+               nullptr, event),
            "clEnqueueNDRangeKernel");
   if (kernel_events) kernel_events->push_back(*event);
 }

@@ -164,6 +164,8 @@ Context::Context(const std::string& device,
   check_cl(status, "clCreateContext");
   queue_ = cl::CommandQueue(context_, device_, CL_QUEUE_PROFILING_ENABLE, &status);
   check_cl(status, "clCreateCommandQueue");
+  map_queue_ = cl::CommandQueue(context_, device_, 0, &status);
+  check_cl(status, "clCreateCommandQueue (maps)");
 }
 
 const std::vector<std::string>& common_kernel_files() {

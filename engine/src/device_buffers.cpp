@@ -63,18 +63,13 @@ float* ParameterUpload::acquire(Context& context, std::size_t values) {
     // Grown by half again, so frames of slowly growing sizes do not map every time.
     const std::size_t capacity = std::max(values, staging.capacity + staging.capacity / 2);
     release(staging);
-    if (!map_queue_()) {
-      cl_int created = CL_SUCCESS;
-      map_queue_ = cl::CommandQueue(context.context(), context.device(), 0, &created);
-      check_cl(created, "clCreateCommandQueue (staging maps)");
-    }
     staging.queue = context.queue();
     staging.pinned = make_buffer(context.context(), CL_MEM_READ_WRITE | CL_MEM_ALLOC_HOST_PTR,
                                  capacity * sizeof(float));
     cl_int status = CL_SUCCESS;
     staging.mapped = static_cast<float*>(
-        map_queue_.enqueueMapBuffer(staging.pinned, CL_TRUE, CL_MAP_WRITE, 0,
-                                    capacity * sizeof(float), nullptr, nullptr, &status));
+        context.map_queue().enqueueMapBuffer(staging.pinned, CL_TRUE, CL_MAP_WRITE, 0,
+                                             capacity * sizeof(float), nullptr, nullptr, &status));
     check_cl(status, "clEnqueueMapBuffer (staging)");
     staging.capacity = capacity;
   }

@@ -68,11 +68,7 @@ class ParameterUpload {
   };
   static void release(Staging& staging);
 
-  std::array<Staging, kSlots> staging_;
-  // The queue the staging areas are mapped on (a blocking map, which returns at once
-  // there): not the frames' queue, whose commands may wait behind a closed FrameGate
-  // while the next area is mapped.
-  cl::CommandQueue map_queue_;
+  std::array<Staging, kSlots> staging_;  // mapped on Context::map_queue()
   std::size_t next_ = 0;
   cl::Buffer device_;
   std::size_t device_values_ = 0;

@@ -210,9 +210,17 @@ class FINFLEX_API ClDeformer {
   // (CPUs; one-lane kernels: 1): PoCL runs a work-group as one call, which loads the
   // instance's values and placement and the kernel's constants before its loop over
   // the work-items, so 4 rows share that among 16 lane work-items instead of 4 (the
-  // swim's body kernel on 2 cores, 1,000 fish: 7.5-8.3 ms a frame against 8.1-9.1 with
-  // one row; the write-only kernel alike either way).
+  // swim's body kernel on 2 threads of a Xeon, 1,000 fish: 8.57-8.91 ms a frame against
+  // 8.71-9.70 with one row; the write-only kernel alike either way).
   static constexpr std::size_t kLaneGroupRows = 4;
+  // The NDRange rows of a launch of `lanes`-lane kernels over `items_high` rows of
+  // work-items: a whole number of work-groups of group_rows(lanes) rows.
+  static constexpr std::size_t group_rows(std::size_t lanes) {
+    return lanes > 1 ? kLaneGroupRows : 1;
+  }
+  static constexpr std::size_t launch_rows(std::size_t items_high, std::size_t lanes) {
+    return (items_high + group_rows(lanes) - 1) / group_rows(lanes) * group_rows(lanes);
+  }
   // Most stages on one vertex's path that the fused kernel is generated for.
   static constexpr std::size_t kMaxFusedStages = 64;
 

@@ -88,6 +88,9 @@ class FINFLEX_API Context {
   // The extra context properties it was made with (pairs; empty for none).
   const std::vector<cl_context_properties>& extra_properties() const { return extra_properties_; }
   cl::CommandQueue& queue() { return queue_; }
+  // A second queue of the device for blocking maps of staging memory, which return at
+  // once there: the frames' queue may hold work behind a closed FrameGate.
+  cl::CommandQueue& map_queue() { return map_queue_; }
 
   // The program of `source`, built once per (source, options) and cached. Every build
   // gets -cl-std=CL1.2 and FF_GPU (1 on GPUs: kernels pick the instructions that are
@@ -102,6 +105,7 @@ class FINFLEX_API Context {
   cl::Device device_;
   cl::Context context_;
   cl::CommandQueue queue_;
+  cl::CommandQueue map_queue_;
   std::vector<cl_context_properties> extra_properties_;
   std::mutex cache_mutex_;
   std::map<std::string, cl::Program> programs_;
