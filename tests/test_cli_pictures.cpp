@@ -299,6 +299,12 @@ TEST(CliPictures, BadPictureInputsExitTwoAndWriteNothing) {
       {" --image-frames 99", "--image-frames '99'"},
       {" --annotate --image-frames none", "--annotate annotates the frames written as images"},
       {" --no-render --video apng", "--video draws frames"},
+      // Errors found once the renderer is up (test_cli has them without it).
+      {" --tank 0.5,0.5", "tank.diameter"},
+      {" --species " + fish(kLowResolutionBlub) + ":" +
+           test::data_path("rigs/blub_low_resolution.rig.json"),
+       "needs a body"},
+      {" --device no-such-device", "no-such-device"},
   };
   for (const auto& [arguments, expected] : cases) {
     const std::string out = test::temp_path("never");

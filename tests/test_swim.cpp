@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <thread>
 
 #include <gtest/gtest.h>
@@ -361,6 +362,24 @@ TEST(Swim, AFrameBehindAGateRunsWhenTheGateOpens) {
     left_closed.enqueue(inputs, 1.0f / 30.0f, gate.wait_list());
   }  // not opened: the destructor does
   EXPECT_EQ(left_closed.read_parameters().values(), expected.values());
+}
+
+TEST(Swim, AContextWaitsForItsQueuesAndOpensAGateThatOutlivesIt) {
+  const SwimModel swim(barramundi());
+  const std::vector<float> lengths = {0.3f, 0.45f, 0.38f};
+  const std::vector<SwimInput> inputs = inputs_at(lengths.size(), lengths, 3);
+  auto context = std::make_unique<Context>();
+  std::unique_ptr<FrameGate> gate;
+  cl::Event driven;
+  {
+    ClSwimDriver driver(*context, swim, lengths);
+    gate = std::make_unique<FrameGate>(*context);
+    driven = driver.enqueue(inputs, 1.0f / 30.0f, gate->wait_list());
+  }  // the driver goes, its frame still behind the gate
+  EXPECT_NE(driven.getInfo<CL_EVENT_COMMAND_EXECUTION_STATUS>(), CL_COMPLETE);
+  context.reset();  // opens the gate, then waits for the frame
+  EXPECT_EQ(driven.getInfo<CL_EVENT_COMMAND_EXECUTION_STATUS>(), CL_COMPLETE);
+  gate.reset();  // already opened: nothing left to do
 }
 
 TEST(Swim, BadInputsAreNamed) {

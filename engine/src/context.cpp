@@ -168,6 +168,30 @@ Context::Context(const std::string& device,
   check_cl(status, "clCreateCommandQueue (maps)");
 }
 
+Context::~Context() {
+  // Nothing may throw here: failures are ignored.
+  for (cl::UserEvent& gate : gates_) {
+    cl_int state = CL_COMPLETE;
+    gate.getInfo(CL_EVENT_COMMAND_EXECUTION_STATUS, &state);
+    if (state != CL_COMPLETE) gate.setStatus(CL_COMPLETE);
+  }
+  queue_.finish();
+  map_queue_.finish();
+}
+
+void Context::track_gate(const cl::UserEvent& gate) {
+  std::lock_guard<std::mutex> lock(gates_mutex_);
+  // The gates seen open are dropped, so the list holds the few of the frames in flight.
+  gates_.erase(std::remove_if(gates_.begin(), gates_.end(),
+                              [](const cl::UserEvent& g) {
+                                cl_int state = CL_SUBMITTED;
+                                g.getInfo(CL_EVENT_COMMAND_EXECUTION_STATUS, &state);
+                                return state == CL_COMPLETE;
+                              }),
+               gates_.end());
+  gates_.push_back(gate);
+}
+
 const std::vector<std::string>& common_kernel_files() {
   static const std::vector<std::string> files = {
       "common/lanes.cl",     "common/vec3.cl",        "common/trig.cl",     "common/scan.cl",

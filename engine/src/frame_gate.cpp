@@ -11,6 +11,7 @@ FrameGate::FrameGate(Context& context) {
   gate_ = cl::UserEvent(context.context(), &status);
   check_cl(status, "clCreateUserEvent");
   wait_.push_back(gate_);
+  context.track_gate(gate_);
 }
 
 FrameGate::~FrameGate() {

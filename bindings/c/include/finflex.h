@@ -111,6 +111,8 @@ typedef struct finflex_context finflex_context;
  * the device's or platform's name ("pocl", "H100"). FINFLEX_ERROR_DEVICE naming it
  * when nothing matches. */
 FINFLEX_C_API finflex_status finflex_context_create(const char* device, finflex_context** context);
+/* Waits for the work enqueued on the context (opening its frame gates still closed
+ * first), then frees it. */
 FINFLEX_C_API void finflex_context_destroy(finflex_context* context);
 FINFLEX_C_API const finflex_error* finflex_context_error(const finflex_context* context);
 FINFLEX_C_API finflex_status finflex_context_device(finflex_context* context,

@@ -79,6 +79,11 @@ class FINFLEX_API Context {
   // closing 0), e.g. an OpenGL context to share buffers with (finflex/gl_outputs.hpp):
   // kOpenCL when the platform refuses them.
   Context(const std::string& device, const std::vector<cl_context_properties>& extra_properties);
+  // Waits for the work on its queues, so that none is still running when the OpenCL
+  // implementation shuts down with the process (PoCL compiles a kernel on its first
+  // launch, in a thread of its own); opens every FrameGate of the context still closed
+  // first, which nothing could open after it.
+  ~Context();
   Context(const Context&) = delete;
   Context& operator=(const Context&) = delete;
 
@@ -101,6 +106,10 @@ class FINFLEX_API Context {
                     const std::string& options);
 
  private:
+  friend class FrameGate;
+  // A FrameGate's user event, to be opened by ~Context if it is still closed then.
+  void track_gate(const cl::UserEvent& gate);
+
   DeviceDescription description_;
   cl::Device device_;
   cl::Context context_;
@@ -109,6 +118,8 @@ class FINFLEX_API Context {
   std::vector<cl_context_properties> extra_properties_;
   std::mutex cache_mutex_;
   std::map<std::string, cl::Program> programs_;
+  std::mutex gates_mutex_;
+  std::vector<cl::UserEvent> gates_;  // the gates not yet seen open
 };
 
 // Throws finflex::Error (kOpenCL) "what: CL_... (code)" when status != CL_SUCCESS.

@@ -15,7 +15,8 @@
 //
 // Nothing may wait for work behind a closed gate (a blocking read or map, finish(),
 // an event's wait()): that would wait forever. Open it first. The destructor opens a
-// gate still closed, so an exception between never leaves the queue waiting.
+// gate still closed, so an exception between never leaves the queue waiting; so does
+// the Context's destructor (which waits for its queues) for a gate that outlives it.
 #pragma once
 
 #include <vector>
