@@ -101,12 +101,15 @@ inline void lanes_scatter_count(__global uint* base, int index, float value) {
   base[index] = (uint)value;
 }
 #else
+/* Lane `lane` of a LaneFloat or LaneInt variable, read through its memory. */
+#define FF_FLOAT_LANE(v, lane) (((const float*)&(v))[lane])
+#define FF_INT_LANE(v, lane) (((const int*)&(v))[lane])
 inline void lanes_scatter(__global float* base, LaneInt index, LaneFloat value) {
   for (int lane = 0; lane < FF_LANES; ++lane)
-    base[((const int*)&index)[lane]] = ((const float*)&value)[lane];
+    base[FF_INT_LANE(index, lane)] = FF_FLOAT_LANE(value, lane);
 }
 inline void lanes_scatter_count(__global uint* base, LaneInt index, LaneFloat value) {
   for (int lane = 0; lane < FF_LANES; ++lane)
-    base[((const int*)&index)[lane]] = (uint)((const float*)&value)[lane];
+    base[FF_INT_LANE(index, lane)] = (uint)FF_FLOAT_LANE(value, lane);
 }
 #endif

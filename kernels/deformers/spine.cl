@@ -184,13 +184,12 @@ FF_INLINE void store_spine_record(__global float* rows, int at, float x, float z
 FF_INLINE void store_spine_record(__global float* rows, LaneInt at, LaneFloat x, LaneFloat z,
                                   LaneFloat sin_k, LaneFloat cos_k, LaneFloat slope,
                                   LaneFloat theta_k) {
-#define FF_LANE_OF(v) (((const float*)&(v))[lane])
   for (int lane = 0; lane < FF_LANES; ++lane) {
-    vstore8((float8)(FF_LANE_OF(x), FF_LANE_OF(z), FF_LANE_OF(sin_k), FF_LANE_OF(cos_k),
-                     FF_LANE_OF(slope), FF_LANE_OF(theta_k), 0.0f, 0.0f),
-            0, rows + ((const int*)&at)[lane]);
+    vstore8((float8)(FF_FLOAT_LANE(x, lane), FF_FLOAT_LANE(z, lane), FF_FLOAT_LANE(sin_k, lane),
+                     FF_FLOAT_LANE(cos_k, lane), FF_FLOAT_LANE(slope, lane),
+                     FF_FLOAT_LANE(theta_k, lane), 0.0f, 0.0f),
+            0, rows + FF_INT_LANE(at, lane));
   }
-#undef FF_LANE_OF
 }
 #endif
 

@@ -157,11 +157,14 @@ __kernel __attribute__((reqd_work_group_size(FF_SWIM_GROUP_SIZE, 1, 1))) void sw
   LaneFloat sy, cy, sp, cp;
   sin_cos_radians(FF_GATHER(inputs, in + 3), &sy, &cy);
   sin_cos_radians(FF_GATHER(inputs, in + 4), &sp, &cp);
-  const LaneFloat q[9] = {cy * cp, -cy * sp, sy, sp, cp, (LaneFloat)0.0f, -sy * cp, sy * sp, cy}; /* rows */
+  const LaneFloat q[9] = {cy * cp,  -cy * sp, sy,      sp, cp, (LaneFloat)0.0f,
+                          -sy * cp, sy * sp,  cy}; /* rows */
   const LaneInt record = 16 * at;
   for (int c = 0; c < 3; ++c) {
-    for (int r = 0; r < 3; ++r) lanes_scatter(placements, record + (3 * c + r), length * q[3 * r + c]);
+    for (int r = 0; r < 3; ++r)
+      lanes_scatter(placements, record + (3 * c + r), length * q[3 * r + c]);
   }
-  for (int c = 0; c < 3; ++c) lanes_scatter(placements, record + (9 + c), FF_GATHER(inputs, in + c));
+  for (int c = 0; c < 3; ++c)
+    lanes_scatter(placements, record + (9 + c), FF_GATHER(inputs, in + c));
   lanes_scatter(placements, record + 12, 1.0f / length);
 }
