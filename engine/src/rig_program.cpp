@@ -17,8 +17,11 @@ std::size_t round_up(std::size_t value, std::size_t multiple) {
   return (value + multiple - 1) / multiple * multiple;
 }
 
-// The deformer's OpenCL function that applies one stage in its frame.
-const char* stage_function(const RigStage& stage) {
+// The deformer's OpenCL function that applies one stage in its frame; for vertices that
+// come straight from the rest planes (the stage is first on their path), its rest
+// function where it has one (DeformerType::cl_rest_function).
+const char* stage_function(const RigStage& stage, bool from_rest) {
+  if (from_rest && stage.deformer->cl_rest_function) return stage.deformer->cl_rest_function;
   return stage.deformer->cl_function(stage.options);
 }
 
@@ -87,7 +90,7 @@ std::string stage_call(const StageCall& c) {
 std::vector<const char*> path_functions(const RiggedMesh& model, std::size_t c) {
   std::vector<const char*> functions;
   for (const StageRef& ref : model.paths()[c])
-    functions.push_back(stage_function(model.rig().stage(ref)));
+    functions.push_back(stage_function(model.rig().stage(ref), functions.empty()));
   return functions;
 }
 
@@ -215,6 +218,14 @@ RestPlanes make_rest_planes(const RiggedMesh& model, const SlotLayout& slots) {
             first.vector_to_local(glm::normalize(glm::dvec3(mesh.tangents[v]))));
         rest.tangents[3 * n + slot] = mesh.tangents[v].w;
       }
+    }
+    // The component's padding repeats its last slot's position, so that its slots stay
+    // sorted by x where they are (make_slot_layout; DeformerType::cl_rest_function).
+    const std::size_t end = slots.first_slot[c + 1];
+    for (std::size_t slot = slots.first_slot[c] + rig.components[c].vertices.size();
+         slot > slots.first_slot[c] && slot < end; ++slot) {
+      for (std::size_t axis = 0; axis < 3; ++axis)
+        rest.positions[axis * n + slot] = rest.positions[axis * n + slot - 1];
     }
   }
   return rest;
@@ -457,9 +468,10 @@ PassPlan make_pass_plan(const RiggedMesh& model, const SlotLayout& slots, std::s
                                   : location[d] == PlaneSet::kScratchA ? PlaneSet::kScratchB
                                                                        : PlaneSet::kScratchA;
           const RigStage& stage = rig.components[c].chain[position];
-          add_step(steps, {first, end, location[d], target, stage_function(stage), path_position,
-                           stage_index(rig, c, position), values_offset(rig, stage),
-                           derived_offset(rig, c, position)});
+          add_step(steps,
+                   {first, end, location[d], target, stage_function(stage, path_position == 0),
+                    path_position, stage_index(rig, c, position), values_offset(rig, stage),
+                    derived_offset(rig, c, position)});
           location[d] = target;
         }
       }

@@ -34,7 +34,8 @@ SlotLayout make_slot_layout(const Rig& rig, const std::vector<glm::vec3>& positi
 
 // The rest mesh as the rig kernels read it: one instance's planes over slots (x plane,
 // y plane, z plane), each vertex in the frame of its first stage (mesh coordinates for
-// components without stages); padding slots hold the origin, e_z and e_x.
+// components without stages); a component's padding slots repeat its last slot's
+// position, with normal e_z and tangent e_x.
 struct RestPlanes {
   std::vector<float> positions, normals, tangents;  // tangents empty without them
 };

@@ -92,6 +92,13 @@ inline int2 lanes_range(int16 v) {
 }
 #endif
 
+/* The first and last lanes of v: its smallest and largest where the lanes ascend. */
+#if FF_LANES == 8
+inline int2 lanes_ends(int8 v) { return (int2)(v.s0, v.s7); }
+#elif FF_LANES == 16
+inline int2 lanes_ends(int16 v) { return (int2)(v.s0, v.sf); }
+#endif
+
 /* base[index] = value lane by lane, in lane order (lanes with the same index must hold
  * the same value): an instance's own values where each lane is an instance;
  * lanes_scatter_count stores a count (a whole number held as a float) as a uint. */

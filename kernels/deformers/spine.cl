@@ -26,7 +26,9 @@
  * stay within [-pi, pi] (the values' limit); half a segment's turn within pi/2, where
  * sin_over_h holds, as long as no segment turns by more than pi. */
 
-/* The spine at x of a vertex at height z: theta (the angles), derived (the records).
+/* The spine at x of a vertex at height z: theta (the angles), derived (the records);
+ * ascending: the lanes hold ascending x (vertices straight from the rest planes,
+ * spine_stage_from_rest), so their segments range from the first lane's to the last's.
  * Within a segment theta = theta_j + 2 delta at the vertex, delta = half the turn so
  * far: the chord to the vertex has length d sinc(delta) along theta_j + delta. The
  * sines and cosines at the middle and at the end come from those of theta_j (the
@@ -35,7 +37,7 @@
  * sine and cosine of the two angles instead, fewer instructions on the arithmetic
  * units. */
 FF_INLINE SecantSample spine_sample(LaneFloat x, LaneFloat z, __global const float* derived,
-                                    StageFrame f) {
+                                    StageFrame f, int ascending) {
   const float x_first = FF_STAGE_CONSTANT(f, 0);
   const float inverse_h = FF_STAGE_CONSTANT(f, 1);
   const float h = FF_STAGE_CONSTANT(f, 2);
@@ -58,7 +60,7 @@ FF_INLINE SecantSample spine_sample(LaneFloat x, LaneFloat z, __global const flo
    * more than reading and blending a few records (the fins' kernel 2.8 -> 2.6 ms a
    * frame for 1,000 fish on 2 cores; blending up to 2, 4 or 8 records, alike). */
   const LaneInt record = 8 * segment_index;
-  const int2 range = lanes_range(record);
+  const int2 range = ascending ? lanes_ends(record) : lanes_range(record);
   LaneFloat x_j, z_j, sin_j, cos_j, slope;
   if (range.y - range.x < 8 * FF_SPINE_BLEND) {
     __global const float* first = derived + range.x;
@@ -112,10 +114,9 @@ FF_INLINE SecantSample spine_sample(LaneFloat x, LaneFloat z, __global const flo
   const LaneFloat cos_delta = cos_of_h(delta);
   const LaneFloat sin_mid = sin_j * cos_delta + cos_j * sin_delta;
   const LaneFloat cos_mid = cos_j * cos_delta - sin_j * sin_delta;
-  const LaneFloat sin_two = 2.0f * sin_delta * cos_delta;
-  const LaneFloat cos_two = 1.0f - 2.0f * sin_delta * sin_delta;
-  const LaneFloat sin_end = sin_j * cos_two + cos_j * sin_two;
-  const LaneFloat cos_end = cos_j * cos_two - sin_j * sin_two;
+  /* The end: the middle turned by delta again. */
+  const LaneFloat sin_end = sin_mid * cos_delta + cos_mid * sin_delta;
+  const LaneFloat cos_end = cos_mid * cos_delta - sin_mid * sin_delta;
 #endif
   const LaneFloat chord = inside * sinc_delta;
   SecantSample s;
@@ -129,10 +130,17 @@ FF_INLINE SecantSample spine_sample(LaneFloat x, LaneFloat z, __global const flo
   return s;
 }
 
-/* Stage function (kernels/common/stage_frame.cl): the angles' records (derived). */
+/* Stage functions (kernels/common/stage_frame.cl): the angles' records (derived). The
+ * second for vertices straight from the rest planes, whose slots are sorted by x in the
+ * spine's frame (DeformerType::cl_rest_function): a work-item's lanes hold ascending x. */
 FF_INLINE SecantSample spine_stage(Vec3 p, StageFrame f, __global const float* values,
                                    __global const float* derived) {
-  return spine_sample(p.x, p.z, derived, f);
+  return spine_sample(p.x, p.z, derived, f, 0);
+}
+
+FF_INLINE SecantSample spine_stage_from_rest(Vec3 p, StageFrame f, __global const float* values,
+                                             __global const float* derived) {
+  return spine_sample(p.x, p.z, derived, f, 1);
 }
 
 /* The records of one instance's angles (rig_prepare, one-lane programs; each of the

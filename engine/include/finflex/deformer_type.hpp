@@ -109,6 +109,13 @@ struct DeformerType {
   const char* cl_prepare_function = nullptr;
   // Measures the stage's rest vertices (in its frame) once, for value checks beyond
   // the range (StageGeometry::measurements).
+  // The OpenCL function for vertices that come to the stage straight from the rest
+  // planes (the stage is first on their path), when it can do better there; same
+  // signature as cl_function's. A component's slots are sorted by x in the frame of the
+  // first stage on its path that has derived values, padding included
+  // (detail::make_slot_layout), so there the lanes of a CPU work-item hold ascending x
+  // (the spine takes its lanes' segments from the first and the last lane).
+  const char* cl_rest_function = nullptr;
   std::vector<double> (*measure)(const StageOptions& options,
                                  const std::vector<glm::dvec3>& local_positions) = nullptr;
   // Checks one instance's values beyond their range (a spine that would fold the

@@ -174,6 +174,7 @@ const DeformerType& spine_type() {
       },
       [](const StageOptions& options) { return 8 * samples_of(options); },  // spine.cl's records
       "spine_prepare",
+      "spine_stage_from_rest",
       measure_spine,
       check_spine,
   };
