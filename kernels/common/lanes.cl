@@ -92,11 +92,16 @@ inline int2 lanes_range(int16 v) {
 }
 #endif
 
-/* The first and last lanes of v: its smallest and largest where the lanes ascend. */
+/* The first and last lanes of a lane variable; lanes_ends: both, the smallest and the
+ * largest where the lanes ascend. */
+#if FF_LANES > 1
+#define FF_FIRST_LANE(v) ((v).s0)
 #if FF_LANES == 8
-inline int2 lanes_ends(int8 v) { return (int2)(v.s0, v.s7); }
-#elif FF_LANES == 16
-inline int2 lanes_ends(int16 v) { return (int2)(v.s0, v.sf); }
+#define FF_LAST_LANE(v) ((v).s7)
+#else
+#define FF_LAST_LANE(v) ((v).sf)
+#endif
+inline int2 lanes_ends(LaneInt v) { return (int2)(FF_FIRST_LANE(v), FF_LAST_LANE(v)); }
 #endif
 
 /* base[index] = value lane by lane, in lane order (lanes with the same index must hold

@@ -26,9 +26,12 @@
  * stay within [-pi, pi] (the values' limit); half a segment's turn within pi/2, where
  * sin_over_h holds, as long as no segment turns by more than pi. */
 
-/* The spine at x of a vertex at height z: theta (the angles), derived (the records);
- * ascending: the lanes hold ascending x (vertices straight from the rest planes,
- * spine_stage_from_rest), so their segments range from the first lane's to the last's.
+/* The spine at a vertex at height z, `position` its x in samples from the first
+ * (x - x_0) / h: derived (the angles' records); ascending: the lanes hold ascending x
+ * (vertices straight from the rest planes, spine_stage_from_rest), so their segments
+ * range from the first lane's to the last's; within_table: every lane lies within the
+ * table (0 <= position <= samples - 1), none beyond its ends (spine_sample knows it for
+ * ascending lanes from the first and the last).
  * Within a segment theta = theta_j + 2 delta at the vertex, delta = half the turn so
  * far: the chord to the vertex has length d sinc(delta) along theta_j + delta. The
  * sines and cosines at the middle and at the end come from those of theta_j (the
@@ -36,17 +39,15 @@
  * FF_NATIVE_TRIG (engine/src/device_profile.hpp: NVIDIA's GPUs) from the hardware's
  * sine and cosine of the two angles instead, fewer instructions on the arithmetic
  * units. */
-FF_INLINE SecantSample spine_sample(LaneFloat x, LaneFloat z, __global const float* derived,
-                                    StageFrame f, int ascending) {
-  const float x_first = FF_STAGE_CONSTANT(f, 0);
-  const float inverse_h = FF_STAGE_CONSTANT(f, 1);
+FF_INLINE SecantSample spine_at(LaneFloat position, LaneFloat z, __global const float* derived,
+                                StageFrame f, int ascending, int within_table) {
   const float h = FF_STAGE_CONSTANT(f, 2);
   const float last = FF_STAGE_CONSTANT(f, 3);
-  const LaneFloat position = (x - x_first) * inverse_h;
   /* The segment, floor(position) within [0, last - 1]: the conversion to int of the
    * clamped position, which truncates, the same as floor for values >= 0 (PoCL's
    * floor() takes a dozen instructions, the conversion one). */
-  const LaneFloat within = clamp(position, 0.0f, last - 1.0f);
+  const LaneFloat within =
+      within_table ? fmin(position, last - 1.0f) : clamp(position, 0.0f, last - 1.0f);
 #if FF_LANES > 1
   const LaneInt segment_index = FF_LANE_INT(within);
   const LaneFloat segment = FF_LANE_FLOAT(segment_index);
@@ -99,9 +100,12 @@ FF_INLINE SecantSample spine_sample(LaneFloat x, LaneFloat z, __global const flo
   const float slope = record[4], theta_j = record[5];
 #endif
 #endif
-  const LaneFloat d = (position - segment) * h;  /* from x_j; outside the table: < 0 or > h */
-  const LaneFloat inside = clamp(d, 0.0f, h);     /* the part of d where theta is linear */
-  const LaneFloat beyond = d - inside;            /* beyond the ends theta is constant */
+  /* d from x_j (outside the table: < 0 or > h); inside, the part of d where theta is
+   * linear; beyond, the rest (beyond the ends theta is constant). Written out for
+   * within_table, where beyond is 0: the compiler may not drop a product with 0. */
+  const LaneFloat d = (position - segment) * h;
+  const LaneFloat inside = within_table ? d : clamp(d, 0.0f, h);
+  const LaneFloat beyond = within_table ? (LaneFloat)0.0f : d - inside;
   const LaneFloat delta = 0.5f * slope * inside;
   const LaneFloat sinc_delta = sin_over_h(delta);
   /* theta_j + delta (the chord's direction) and theta_j + 2 delta (the end). */
@@ -120,14 +124,32 @@ FF_INLINE SecantSample spine_sample(LaneFloat x, LaneFloat z, __global const flo
 #endif
   const LaneFloat chord = inside * sinc_delta;
   SecantSample s;
-  s.spine_x = x_j + chord * cos_mid + beyond * cos_end;
-  s.spine_z = z_j + chord * sin_mid + beyond * sin_end;
+  s.spine_x = x_j + chord * cos_mid;
+  s.spine_z = z_j + chord * sin_mid;
+  if (!within_table) {
+    s.spine_x += beyond * cos_end;
+    s.spine_z += beyond * sin_end;
+  }
   s.sin_t = sin_end;
   s.cos_t = cos_end;
   /* |df/dx| = 1; k = slope within the table, 0 beyond it (METHOD.md section 6). */
   s.along = 1.0f;
-  s.across = 1.0f - z * (beyond == 0.0f ? slope : (LaneFloat)0.0f);
+  s.across = 1.0f - z * (within_table || beyond == 0.0f ? slope : (LaneFloat)0.0f);
   return s;
+}
+
+/* The spine at x of a vertex at height z (spine_at), a branch per work-item: ascending
+ * lanes all within the table leave out what beyond it costs. */
+FF_INLINE SecantSample spine_sample(LaneFloat x, LaneFloat z, __global const float* derived,
+                                    StageFrame f, int ascending) {
+  const LaneFloat position = (x - FF_STAGE_CONSTANT(f, 0)) * FF_STAGE_CONSTANT(f, 1);
+#if FF_LANES > 1
+  if (ascending && FF_FIRST_LANE(position) >= 0.0f &&
+      FF_LAST_LANE(position) <= FF_STAGE_CONSTANT(f, 3)) {
+    return spine_at(position, z, derived, f, 1, 1);
+  }
+#endif
+  return spine_at(position, z, derived, f, ascending, 0);
 }
 
 /* Stage functions (kernels/common/stage_frame.cl): the angles' records (derived). The
