@@ -2,8 +2,9 @@
 # Run on the GPU machine from the repository root with a bundle made by bundle.sh:
 #   scripts/device/pocl_swim_ab.sh BUNDLE_DIR OUT_FILE BINARY [BINARY ...]
 # PoCL on its CPU: the swim of 1,000 fish (driver, placed deformation) with 2 and 16
-# threads, each binary in turn, three rounds, so that builds are compared side by side
-# on the same machine. One JSON line per run: {"binary", "threads", "round", "result"}.
+# threads, each binary in turn, ROUNDS rounds (default 3), so that builds are compared
+# side by side on the same machine. One JSON line per run: {"binary", "threads",
+# "round", "result"}.
 set -uo pipefail
 bundle=$1
 out=$2
@@ -14,7 +15,7 @@ cp /etc/OpenCL/vendors/*pocl*.icd "$icds"/
 export OCL_ICD_VENDORS=$icds
 export OCL_ICD_FILENAMES=$(cat "$icds"/*.icd | head -n 1) POCL_CACHE_DIR=$(mktemp -d)
 : > "$out"
-for round in 1 2 3; do
+for round in $(seq "${ROUNDS:-3}"); do
   for threads in 2 16; do
     for binary in "$@"; do
       result=$(POCL_MAX_PTHREAD_COUNT=$threads POCL_CPU_MAX_CU_COUNT=$threads "$binary" bench \
