@@ -252,10 +252,11 @@ void expect_every_table_size_matches(std::size_t table_items) {
 // (kernels/deformers/spine.cl): thin tubes of 3 vertices a ring put 16 lanes over
 // about 5 rings, so 256 samples over 512 rings spread them over 2-3 segments and over
 // 98 rings over about 14, and 32 samples over 512 rings keep most in one; each against
-// the reference, with a wave and with a bend turning within a few segments. The body's lanes come
-// from the rest planes, sorted by x, and take their segments from the first and last
-// lane: 98 rings leave the last work-item 2 rings in 2 segments and 10 lanes of
-// padding, which must repeat the last vertex to keep them sorted.
+// the reference, with a wave and with a bend turning within a few segments. The
+// body's lanes come from the rest planes, sorted by x, and take their segments from
+// the first and last lane: 98 rings (290 vertices) leave the last work-item 2 vertices
+// in 2 segments and 14 lanes of padding, which must repeat the last vertex to keep
+// them sorted.
 TEST(Spine, LanesSharingBlendingOrGatheringRecordsMatchTheReference) {
   for (const auto& [rings, samples] :
        {std::pair{512, 256}, std::pair{98, 256}, std::pair{512, 32}}) {

@@ -221,9 +221,9 @@ RestPlanes make_rest_planes(const RiggedMesh& model, const SlotLayout& slots) {
     }
     // The component's padding repeats its last slot's position, so that its slots stay
     // sorted by x where they are (make_slot_layout; DeformerType::cl_rest_function).
-    const std::size_t end = slots.first_slot[c + 1];
-    for (std::size_t slot = slots.first_slot[c] + rig.components[c].vertices.size();
-         slot > slots.first_slot[c] && slot < end; ++slot) {
+    const std::size_t count = rig.components[c].vertices.size();
+    for (std::size_t slot = slots.first_slot[c] + count;
+         count > 0 && slot < slots.first_slot[c + 1]; ++slot) {
       for (std::size_t axis = 0; axis < 3; ++axis)
         rest.positions[axis * n + slot] = rest.positions[axis * n + slot - 1];
     }

@@ -134,7 +134,7 @@ FF_INLINE SecantSample spine_at(LaneFloat position, LaneFloat z, __global const 
   s.cos_t = cos_end;
   /* |df/dx| = 1; k = slope within the table, 0 beyond it (METHOD.md section 6). */
   s.along = 1.0f;
-  s.across = 1.0f - z * (within_table || beyond == 0.0f ? slope : (LaneFloat)0.0f);
+  s.across = 1.0f - z * (beyond == 0.0f ? slope : (LaneFloat)0.0f);
   return s;
 }
 

@@ -107,8 +107,6 @@ struct DeformerType {
   // records of 4 or 8 floats as vectors.
   std::size_t (*derived_count)(const StageOptions& options) = nullptr;
   const char* cl_prepare_function = nullptr;
-  // Measures the stage's rest vertices (in its frame) once, for value checks beyond
-  // the range (StageGeometry::measurements).
   // The OpenCL function for vertices that come to the stage straight from the rest
   // planes (the stage is first on their path), when it can do better there; same
   // signature as cl_function's. A component's slots are sorted by x in the frame of the
@@ -116,6 +114,8 @@ struct DeformerType {
   // (detail::make_slot_layout), so there the lanes of a CPU work-item hold ascending x
   // (the spine takes its lanes' segments from the first and the last lane).
   const char* cl_rest_function = nullptr;
+  // Measures the stage's rest vertices (in its frame) once, for value checks beyond
+  // the range (StageGeometry::measurements).
   std::vector<double> (*measure)(const StageOptions& options,
                                  const std::vector<glm::dvec3>& local_positions) = nullptr;
   // Checks one instance's values beyond their range (a spine that would fold the
