@@ -584,25 +584,37 @@ std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots
     return code.str();
   };
   std::ostringstream macros;
-  for (std::size_t r = 0; r < fused.size(); ++r) {
-    const FusedLaunch& launch = fused[r];
-    if (!share_code) {
-      macros << "#define FF_RIG_FUSED_" << r
-             << branches_code(launch.branch_components, launch.branch_ends) << "\n";
-      continue;
+  if (share_code) {
+    // Kernels of more than one lane are vector code already: one kernel, rig_fused_0,
+    // over every work-group, a branch per component with its stages compiled in (the
+    // host launches it once: ClDeformer::Impl::fused_launches). A CPU thread then runs
+    // fins, whose arithmetic is twice a body vertex's, between body work-groups that
+    // wait on memory: 2.17 -> 1.97 ms a frame for 1,000 swimming fish on 16 PoCL threads
+    // (docs/benchmarks.md).
+    std::vector<std::size_t> components, ends;
+    for (const FusedLaunch& launch : fused) {
+      components.insert(components.end(), launch.branch_components.begin(),
+                        launch.branch_components.end());
+      ends.insert(ends.end(), launch.branch_ends.begin(), launch.branch_ends.end());
     }
-    // Shared code for the one-lane kernels (PoCL's work-group vectoriser wants
-    // straight-line kernels); kernels of more than one lane are vector code already, so
-    // they take a branch per component of the launch with its stages compiled in.
-    macros << "#if FF_LANES > 1\n#define FF_RIG_FUSED_" << r
-           << branches_code(launch.branch_components, launch.branch_ends)
-           << "\n#else\n#define FF_RIG_FUSED_" << r << " \\\n  {"
-           << path_code(launch.branch_components.front(), false) << " }\n#endif\n";
+    macros << "#if FF_LANES > 1\n#define FF_RIG_FUSED_0" << branches_code(components, ends)
+           << "\n#define FF_RIG_FUSED_KERNELS FF_DEFINE_RIG_FUSED(0)\n#else\n";
+    // Shared code for the one-lane kernels, a kernel per launch (PoCL's work-group
+    // vectoriser wants straight-line kernels).
+    for (std::size_t r = 0; r < fused.size(); ++r) {
+      macros << "#define FF_RIG_FUSED_" << r << " \\\n  {"
+             << path_code(fused[r].branch_components.front(), false) << " }\n";
+    }
+  } else {
+    for (std::size_t r = 0; r < fused.size(); ++r) {
+      macros << "#define FF_RIG_FUSED_" << r
+             << branches_code(fused[r].branch_components, fused[r].branch_ends) << "\n";
+    }
   }
+  macros << "#define FF_RIG_FUSED_KERNELS";
+  for (std::size_t r = 0; r < fused.size(); ++r) macros << " FF_DEFINE_RIG_FUSED(" << r << ")";
+  macros << (share_code ? "\n#endif\n" : "\n");
   out << link_table_source(rig, links) << macros.str();
-  out << "#define FF_RIG_FUSED_KERNELS";
-  for (std::size_t r = 0; r < fused.size(); ++r) out << " FF_DEFINE_RIG_FUSED(" << r << ")";
-  out << "\n";
   // Passes: a branch per step, loading from its source set and storing to its target.
   for (std::size_t q = 0; q < plan.passes.size(); ++q) {
     out << "#define FF_RIG_PASS_" << q;

@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # Run on the GPU machine from the repository root with a bundle made by bundle.sh:
-#   scripts/device/pocl_swim_ab.sh BUNDLE_DIR OUT_FILE BINARY [BINARY ...]
+#   scripts/device/pocl_swim_ab.sh BUNDLE_DIR OUT_FILE BINARY[|OPTIONS] ...
 # PoCL on its CPU: the swim of 1,000 fish (driver, placed deformation) with 2 and 16
-# threads, each binary in turn, ROUNDS rounds (default 3), so that builds are compared
-# side by side on the same machine. One JSON line per run: {"binary", "threads",
-# "round", "result"}.
+# threads (THREADS, default "2 16"), each binary in turn, ROUNDS rounds (default 3), so
+# that builds are compared side by side on the same machine; OPTIONS, bench options
+# for that entry (e.g. "bin/finflex|--dispatch per-component"). One JSON line per run:
+# {"binary" (the binary's name and its options), "threads", "round", "result"}.
 set -uo pipefail
 bundle=$1
 out=$2
@@ -16,12 +17,16 @@ export OCL_ICD_VENDORS=$icds
 export OCL_ICD_FILENAMES=$(cat "$icds"/*.icd | head -n 1) POCL_CACHE_DIR=$(mktemp -d)
 : > "$out"
 for round in $(seq "${ROUNDS:-3}"); do
-  for threads in 2 16; do
-    for binary in "$@"; do
+  for threads in ${THREADS:-2 16}; do
+    for entry in "$@"; do
+      binary=${entry%%|*}
+      options=""
+      [[ $entry == *"|"* ]] && options=${entry#*|}
+      # shellcheck disable=SC2086 # the options are words
       result=$(POCL_MAX_PTHREAD_COUNT=$threads POCL_CPU_MAX_CU_COUNT=$threads "$binary" bench \
         --mesh data/blub/fish.obj --rig data/rigs/blub_swim.rig.json --swim --device cpu \
-        --instances 1000 --frames 30 --json) || result=null
-      echo "{\"binary\": \"$(basename "$binary")\", \"threads\": $threads, \"round\": $round, \"result\": $result}" >> "$out"
+        --instances 1000 --frames 30 --json $options) || result=null
+      echo "{\"binary\": \"$(basename "$binary")${options:+ $options}\", \"threads\": $threads, \"round\": $round, \"result\": $result}" >> "$out"
     done
   done
 done
