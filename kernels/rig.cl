@@ -10,7 +10,9 @@
  * s = <function>(p, f, values + <offset of the stage's values>, ...) and
  * leave_frame, or FF_LEAVE_LAST at the root's last stage):
  *   FF_RIG_FUSED_<r>     the whole bottom-up path of the group's component, for the
- *                        fused kernel rig_fused_<r>; FF_RIG_FUSED_KERNELS defines them;
+ *                        fused kernel rig_fused_<r>; FF_RIG_FUSED_KERNELS defines them
+ *                        (kernels of more than one lane: rig_fused_0 alone, over
+ *                        every work-group, a branch per component);
  *   FF_RIG_PASS_<q>      the stage pass q applies to the group, if any;
  *   FF_RIG_PASS_KERNELS  FF_DEFINE_RIG_PASS(q) for every pass.
  * Their conditions are on the work-group's index only (FF_GROUP), so every

@@ -125,7 +125,8 @@ inline std::size_t table_group_size(std::size_t items) {
 
 // kPerComponent on GPUs (fewest instructions), kByPathShape on CPUs (straight-line
 // one-lane kernels, which PoCL's work-group vectoriser needs; their kernels of more
-// than one lane still get each component's stages compiled in, rig_dispatch_source).
+// than one lane are one kernel with each component's stages compiled in,
+// rig_dispatch_source).
 inline RigDispatch device_dispatch(const DeviceDescription& device, RigDispatch asked) {
   if (asked != RigDispatch::kAuto) return asked;
   return device.is_gpu() ? RigDispatch::kPerComponent : RigDispatch::kByPathShape;

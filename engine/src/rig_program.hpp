@@ -134,7 +134,8 @@ std::vector<FusedLaunch> make_fused_plan(const RiggedMesh& model, const SlotLayo
 
 // The generated macros of kernels/rig.cl for the rig: FF_STAGE_COUNT,
 // FF_RIG_GROUP_COUNT, FF_RIG_FUSED_<r> and FF_RIG_FUSED_KERNELS (kernel rig_fused_<r>
-// for fused[r]), FF_RIG_PASS_<q> and FF_RIG_PASS_KERNELS, FF_RIG_PREPARE with
+// for fused[r]; with share_code and more than one lane, rig_fused_0 alone, over every
+// work-group), FF_RIG_PASS_<q> and FF_RIG_PASS_KERNELS, FF_RIG_PREPARE with
 // prepare_items_source(prepare_items). share_code: as for make_pass_plan
 // (RigDispatch::kByPathShape).
 // The generated macros of the table-preparing code (DeformerType::cl_prepare_function,

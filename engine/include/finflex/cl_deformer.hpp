@@ -71,7 +71,8 @@ enum class RigDispatch {
   kPerComponent,  // a branch per component, its stages compiled in: fewest instructions
   kByPathShape,   // a kernel per run of components with the same deformers along their
                   // paths, stages read from a table: straight-line kernels, which
-                  // PoCL's work-group vectoriser needs
+                  // PoCL's work-group vectoriser needs; kernels of more than one lane
+                  // (vector code already): one kernel, a branch per component
 };
 
 // How kernels of more than one lane (ClOptions::lanes) write the outputs.
