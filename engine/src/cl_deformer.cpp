@@ -63,14 +63,12 @@ ClDeformer::Impl::Impl(Context& context_in, const RiggedMesh& model_in, const Cl
       detail::device_table_items(device, longest_prepared_table(model.rig()), options.table_items);
   single_bend = options.single_bend_kernel && model.is_single_bend();
   const bool share_code = options.dispatch == RigDispatch::kByPathShape;
-  share_code_ = share_code;
   const Rig& rig = model.rig();
   tangents_ = model.mesh().has_tangents();
 
   const detail::SlotLayout slots =
       detail::make_slot_layout(rig, model.mesh().positions, kWorkGroupSize);
   slot_count_ = slots.slot_count;
-  lanes_launches_ = {{0, slot_count_ / kWorkGroupSize}};
   slot_of_vertex = slots.slot_of_vertex;
   remapped_indices.reserve(model.mesh().indices.size());
   for (std::uint32_t index : model.mesh().indices)
@@ -142,13 +140,6 @@ ClDeformer::Impl::Impl(Context& context_in, const RiggedMesh& model_in, const Cl
   derived_per_instance_ = detail::derived_per_instance(rig);
   // A placeholder until the first frame sizes it: every rig kernel takes the buffer.
   derived_ = detail::make_buffer(cl_context, CL_MEM_READ_WRITE, sizeof(float));
-}
-
-// Shared code (RigDispatch::kByPathShape) has a kernel per launch of the plan for one
-// lane, and one kernel, rig_fused_0, over every work-group for more
-// (detail::rig_dispatch_source).
-const std::vector<std::pair<std::size_t, std::size_t>>& ClDeformer::Impl::fused_launches() const {
-  return share_code_ && !single_bend && batch_lanes_ > 1 ? lanes_launches_ : fused_launches_;
 }
 
 BatchLayout ClDeformer::Impl::layout(std::size_t instances, NormalFormat format) const {
@@ -544,9 +535,16 @@ cl::Event ClDeformer::Impl::enqueue(const ClJob& job, std::vector<cl::Event>* ke
   };
   cl::Event done;
   if (path == RigPath::kFused || single_bend) {
-    const std::vector<std::pair<std::size_t, std::size_t>>& launches = fused_launches();
-    for (std::size_t r = 0; r < launches.size(); ++r) {
-      run(r, launches[r].first, launches[r].second, r + 1 == launches.size(), &done);
+    // Shared code (RigDispatch::kByPathShape) has a kernel per launch of the plan for
+    // one lane, and for more one kernel, rig_fused_0, over every work-group
+    // (detail::rig_dispatch_source; the single bend's one launch is that already).
+    if (options.dispatch == RigDispatch::kByPathShape && batch_lanes_ > 1) {
+      run(0, 0, slot_count_ / kWorkGroupSize, true, &done);
+    } else {
+      for (std::size_t r = 0; r < fused_launches_.size(); ++r) {
+        run(r, fused_launches_[r].first, fused_launches_[r].second, r + 1 == fused_launches_.size(),
+            &done);
+      }
     }
   } else {
     for (std::size_t q = 0; q < pass_count; ++q) {

@@ -86,11 +86,9 @@ class ClDeformer::Impl {
   // The single-bend kernel's way back to mesh coordinates: origin, s e_x, s e_y, s e_z,
   // e_x, e_y, e_z of the bend's frame.
   std::array<cl_float4, 7> back_transform_{};
-  // The fused path's kernels rig_fused_<r>: the work-groups each covers, for one lane;
-  // with shared code (RigDispatch::kByPathShape) and more lanes, lanes_launches_: one
-  // kernel over every work-group (fused_launches() picks for the batch's lanes).
-  std::vector<std::pair<std::size_t, std::size_t>> fused_launches_, lanes_launches_;
-  bool share_code_ = false;
+  // The fused path's kernels rig_fused_<r>: the work-groups each covers (with shared
+  // code and more than one lane, rig_fused_0 alone covers them all: enqueue).
+  std::vector<std::pair<std::size_t, std::size_t>> fused_launches_;
   std::size_t scratch_sets_ = 0;
 
   // The per-frame state below (staging ring, device parameter buffer, scratch sets,
@@ -131,7 +129,6 @@ class ClDeformer::Impl {
   void check_outputs(const ClJob& job) const;
   void check_buffer_sizes(const DeviceBatch& batch);
   BoundKernel& kernel(std::size_t index, const ClJob& job);
-  const std::vector<std::pair<std::size_t, std::size_t>>& fused_launches() const;
   void ensure_scratch(std::size_t instances);
   void ensure_derived(std::size_t instances);
   void check_derived_buffer(const cl::Buffer& buffer, std::size_t instances) const;

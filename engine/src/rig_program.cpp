@@ -587,7 +587,7 @@ std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots
   if (share_code) {
     // Kernels of more than one lane are vector code already: one kernel, rig_fused_0,
     // over every work-group, a branch per component with its stages compiled in (the
-    // host launches it once: ClDeformer::Impl::fused_launches). A CPU thread then runs
+    // host launches it once: ClDeformer::Impl::enqueue). A CPU thread then runs
     // fins, whose arithmetic is twice a body vertex's, while other threads' body
     // work-groups wait on memory: 2.26 -> 2.03 ms a frame for 1,000 swimming fish on 16
     // PoCL threads, alike on 2 (docs/benchmarks.md).
