@@ -590,7 +590,7 @@ std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots
     // host launches it once: ClDeformer::Impl::enqueue). A CPU thread then runs
     // fins, whose arithmetic is twice a body vertex's, while other threads' body
     // work-groups wait on memory: 2.26 -> 2.03 ms a frame for 1,000 swimming fish on 16
-    // PoCL threads, alike on 2 (docs/benchmarks.md).
+    // PoCL threads, alike or a little slower on 2 (docs/benchmarks.md).
     std::vector<std::size_t> components, ends;
     for (const FusedLaunch& launch : fused) {
       components.insert(components.end(), launch.branch_components.begin(),
