@@ -588,7 +588,7 @@ std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots
     // Kernels of more than one lane are vector code already: one kernel, rig_fused_0,
     // over every work-group, a branch per component with its stages compiled in (the
     // host launches it once: ClDeformer::Impl::enqueue). A CPU thread then runs
-    // fins, whose arithmetic is twice a body vertex's, while other threads' body
+    // fins, whose arithmetic is two to four times a body vertex's, while other threads' body
     // work-groups wait on memory: 2.26 -> 2.03 ms a frame for 1,000 swimming fish on 16
     // PoCL threads, alike or a little slower on 2 (docs/benchmarks.md).
     std::vector<std::size_t> components, ends;
