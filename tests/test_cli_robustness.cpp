@@ -104,11 +104,11 @@ TEST(CliNumbers, HugeAndMalformedCountsAreRefusedWithTheLimit) {
 // --lanes and --stores go through bench's checks like every option: strict counts
 // with their limit, then the lane counts the kernels have, then the kinds of store.
 TEST(CliNumbers, BenchLanesAndStoresAreCheckedStrictly) {
-  expect_refused("bench --mesh " + kMesh + " --lanes -1", {"--lanes '-1'", "[0, 16]"});
-  expect_refused("bench --mesh " + kMesh + " --lanes 32",
-                 {"--lanes '32'", "above the limit 16 (vertex slots per work-item)"});
+  expect_refused("bench --mesh " + kMesh + " --lanes -1", {"--lanes '-1'", "[0, 32]"});
+  expect_refused("bench --mesh " + kMesh + " --lanes 64",
+                 {"--lanes '64'", "above the limit 32 (vertex slots per work-item)"});
   expect_refused("bench --mesh " + kMesh + " --lanes 8.0", {"--lanes '", "whole number"});
-  expect_refused("bench --mesh " + kMesh + " --lanes 4", {"--lanes '4'", "1, 8 or 16"});
+  expect_refused("bench --mesh " + kMesh + " --lanes 4", {"--lanes '4'", "1, 8, 16 or 32"});
   expect_refused("bench --mesh " + kMesh + " --stores fast",
                  {"--stores 'fast'", "auto, plain or streaming"});
 }

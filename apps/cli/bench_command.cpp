@@ -6,7 +6,7 @@
 //                 [--normals rotate|jacobian] [--normal-format float32|half]
 //                 [--rig RIG.json [--path fused|passes] [--swim]]
 //                 [--layout planes|interleaved|compact|snorm] [--order slots|mesh] [--previous]
-//                 [--host] [--per-item N] [--table-items N] [--lanes 0|1|8|16]
+//                 [--host] [--per-item N] [--table-items N] [--lanes 0|1|8|16|32]
 //                 [--stores auto|plain|streaming] [--device NAME] [--json]
 //
 // --layout, --order, --previous: the outputs in that layout (docs/handoff.md), the
@@ -173,11 +173,11 @@ ClOptions cl_options(const BenchOptions& options) {
                 "--table-items '" + options.table_items +
                     "' is not a power of two (expected 0: the device's, 1, 2, 4, ... 64)");
   }
-  cl.lanes = parse_count(options.lanes, "--lanes", 0, 16, "vertex slots per work-item");
-  if (cl.lanes != 0 && cl.lanes != 1 && cl.lanes != 8 && cl.lanes != 16) {
+  cl.lanes = parse_count(options.lanes, "--lanes", 0, 32, "vertex slots per work-item");
+  if (cl.lanes != 0 && cl.lanes != 1 && cl.lanes != 8 && cl.lanes != 16 && cl.lanes != 32) {
     throw Error(ErrorCode::kInvalidArgument, "--lanes",
                 "--lanes '" + options.lanes +
-                    "' is not a number of lanes (expected 0: the device's, 1, 8 or 16)");
+                    "' is not a number of lanes (expected 0: the device's, 1, 8, 16 or 32)");
   }
   if (options.stores == "plain") {
     cl.stores = OutputStores::kPlain;
@@ -440,7 +440,7 @@ Command add_bench_command(CLI::App& app) {
       ->capture_default_str();
   bench
       ->add_option("--lanes", options->lanes,
-                   "Vertex slots per work-item: 1, 8, 16 (0: the device's; FinFlex's float32 "
+                   "Vertex slots per work-item: 1, 8, 16, 32 (0: the device's; FinFlex's float32 "
                    "planes only, other layouts run with 1)")
       ->capture_default_str();
   bench

@@ -53,10 +53,17 @@ ClDeformer::Impl::Impl(Context& context_in, const RiggedMesh& model_in, const Cl
     : context(context_in), model(model_in), options(options_in), checker_(model_in.rig()) {
   const DeviceDescription& device = context.description();
   options.dispatch = detail::device_dispatch(device, options.dispatch);
-  if (options.lanes != 0 && options.lanes != 1 && options.lanes != 8 && options.lanes != 16) {
+  if (options.lanes != 0 && options.lanes != 1 && options.lanes != 8 && options.lanes != 16 &&
+      options.lanes != 32) {
     throw Error(ErrorCode::kInvalidArgument, "options.lanes",
                 "options.lanes: " + std::to_string(options.lanes) +
-                    " is not a number of lanes (expected 0: the device's, 1, 8 or 16)");
+                    " is not a number of lanes (expected 0: the device's, 1, 8, 16 or 32)");
+  }
+  if (options.lanes == 32 && !detail::device_is_pocl(device)) {
+    throw Error(ErrorCode::kInvalidArgument, "options.lanes",
+                "options.lanes: 32 lanes are built by PoCL only (a vector type of clang's); "
+                "the device's platform is '" +
+                    device.platform_name + "' (expected 0, 1, 8 or 16)");
   }
   detail::check_table_items(options.table_items, "options.table_items");
   options.table_items =

@@ -43,14 +43,29 @@ inline bool device_native_trig(const DeviceDescription& device) {
   return device.is_gpu() && device.platform_name.find("NVIDIA") != std::string::npos;
 }
 
+// Whether the device's OpenCL C compiler is PoCL's (clang): the only one the kernels of
+// 32 lanes are built with (kernels/common/lanes.cl: a vector type of clang's).
+inline bool device_is_pocl(const DeviceDescription& device) {
+  return device.platform_name.find("Portable Computing Language") != std::string::npos;
+}
+
+// A CPU's vector of floats as the kernels take it: 16 where the native one has 16 lanes
+// (AVX-512), else 8 (two native vectors of 4 on older CPUs).
+inline std::size_t device_vector_lanes(const DeviceDescription& device) {
+  return device.native_float_vector_width >= 16 ? 16 : 8;
+}
+
 // Vertex slots one work-item deforms (kernels/common/lanes.cl). GPUs: 1 (a warp is
-// their vector). CPUs: a vector of 16 floats where the native one has 16 lanes, else
-// 8 (two native vectors of 4 on older CPUs), so the kernels are vector code whatever
-// the OpenCL compiler's work-group vectoriser does. Half normals: 1 (their stores are
-// the one-lane kernels').
+// their vector). CPUs: vectors, so the kernels are vector code whatever the OpenCL
+// compiler's work-group vectoriser does: on PoCL with native vectors of 16, two of them
+// (32 lanes, a clang vector type: two independent chains of steps per work-item; 1,000
+// swimming fish on a Xeon in a median 0.86 of the time of 16 lanes on 2 threads, 0.93
+// on 16, 0.97 on a 2-core AMD EPYC: docs/benchmarks.md), else one vector
+// (device_vector_lanes). Half normals: 1 (their stores are the one-lane kernels').
 inline std::size_t device_lanes(const DeviceDescription& device, NormalFormat format) {
   if (device.is_gpu() || format == NormalFormat::kHalf) return 1;
-  return device.native_float_vector_width >= 16 ? 16 : 8;
+  const std::size_t vector = device_vector_lanes(device);
+  return vector == 16 && device_is_pocl(device) ? 32 : vector;
 }
 
 // A CPU's cache that a frame's outputs could stay in, per thread: server CPUs have 1.5
@@ -92,11 +107,11 @@ inline std::size_t device_table_items(const DeviceDescription& device, std::size
 }
 
 // Fish one work-item of the swim driver takes, one per lane (kernels/swim/driver.cl):
-// on CPUs, with one work-item per fish, a vector's worth (device_lanes), so the driver
+// on CPUs, with one work-item per fish, a vector's worth (device_vector_lanes), so the driver
 // is vector code (on 2 cores with PoCL, 1,000 fish: 0.45-0.65 ms a frame one fish per
 // work-item, the trigonometry scalar); else 1.
 inline std::size_t device_driver_lanes(const DeviceDescription& device, std::size_t items) {
-  return items == 1 ? device_lanes(device, NormalFormat::kFloat32) : 1;
+  return items == 1 && !device.is_gpu() ? device_vector_lanes(device) : 1;
 }
 
 // The swim driver's work-group with that many fish per work-item: a few work-items

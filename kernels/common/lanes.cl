@@ -1,5 +1,5 @@
 /* Lanes: the vertex slots one work-item deforms. Build option FF_LANES (the host's
- * choice, finflex/cl_deformer.hpp ClOptions::lanes): 1 on GPUs, 8 or 16 on CPUs.
+ * choice, finflex/cl_deformer.hpp ClOptions::lanes): 1 on GPUs, 8, 16 or 32 on CPUs.
  * Work-item w deforms the FF_LANES consecutive slots from w * FF_LANES, one in each
  * lane of an OpenCL vector, so a kernel of more than one lane is vector code by
  * construction: no compiler has to vectorise it across work-items (PoCL 3.1's
@@ -8,7 +8,8 @@
  *
  * The per-vertex code (common/, deformers/) is written once, over LaneFloat and
  * LaneMask: float and int with one lane (the kernels are then the scalar ones,
- * token for token but for these names), float8/int8 or float16/int16 with more.
+ * token for token but for these names), float8/int8, float16/int16 or vectors of 32
+ * with more.
  * What keeps one text right for both:
  *  - a comparison of lane values is a LaneMask (1 or 0 in a scalar, -1 or 0 in each
  *    lane of a vector); masks are combined only with & and |, and used only as the
@@ -55,8 +56,49 @@ typedef int16 LaneInt;
 #define FF_GATHER(base, index) \
   ((float16)(FF_GATHER8(base, (index).lo), FF_GATHER8(base, (index).hi)))
 #define FF_LANE_IDS ((int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15))
+#elif FF_LANES == 32
+/* 32 lanes: a clang extended vector (OpenCL C has no vector of 32; the host asks for
+ * it from PoCL only, engine/src/device_profile.hpp). On AVX-512 each operation is two
+ * independent ones on native vectors of 16: a work-item's long chain of dependent
+ * steps becomes two side by side, which the processor overlaps. OpenCL's builtins have
+ * no overloads for it: those the per-vertex code takes are added here, half by half.
+ * No FF_LANE_IDS: its one user, the swim driver, takes one native vector. */
+typedef float LaneFloat __attribute__((ext_vector_type(32)));
+typedef int LaneMask __attribute__((ext_vector_type(32)));
+typedef int LaneInt __attribute__((ext_vector_type(32)));
+#define FF_UNIFORM_MASK(condition) ((LaneMask)(-(int)(condition)))
+#define FF_LANE_INT(x) __builtin_convertvector((x), LaneInt)
+#define FF_LANE_FLOAT(x) __builtin_convertvector((x), LaneFloat)
+#define FF_VSTORE lanes_vstore32
+#define FF_GATHER(base, index)                                                       \
+  ((LaneFloat)(FF_GATHER8(base, (index).lo.lo), FF_GATHER8(base, (index).lo.hi),    \
+               FF_GATHER8(base, (index).hi.lo), FF_GATHER8(base, (index).hi.hi)))
+#define FF_LANE_UNARY(name)                                                          \
+  inline LaneFloat __attribute__((overloadable)) name(LaneFloat a) {                 \
+    return (LaneFloat)(name(a.lo), name(a.hi));                                      \
+  }
+#define FF_LANE_BINARY(name)                                                         \
+  inline LaneFloat __attribute__((overloadable)) name(LaneFloat a, LaneFloat b) {    \
+    return (LaneFloat)(name(a.lo, b.lo), name(a.hi, b.hi));                          \
+  }                                                                                  \
+  inline LaneFloat __attribute__((overloadable)) name(LaneFloat a, float b) {        \
+    return (LaneFloat)(name(a.lo, b), name(a.hi, b));                                \
+  }
+FF_LANE_UNARY(fabs)
+FF_LANE_UNARY(floor)
+FF_LANE_UNARY(sqrt)
+FF_LANE_UNARY(rsqrt)
+FF_LANE_BINARY(fmin)
+FF_LANE_BINARY(fmax)
+inline LaneFloat __attribute__((overloadable)) clamp(LaneFloat a, float low, float high) {
+  return (LaneFloat)(clamp(a.lo, low, high), clamp(a.hi, low, high));
+}
+inline void lanes_vstore32(LaneFloat value, size_t offset, __global float* p) {
+  vstore16(value.lo, 2 * offset, p);
+  vstore16(value.hi, 2 * offset + 1, p);
+}
 #else
-#error "FF_LANES must be 1, 8 or 16"
+#error "FF_LANES must be 1, 8, 16 or 32"
 #endif
 
 /* The first slot of the work-item's lanes. */
@@ -83,9 +125,14 @@ inline int2 lanes_range(int8 v) {
   const int2 low2 = min(low.lo, low.hi), high2 = max(high.lo, high.hi);
   return (int2)(min(low2.x, low2.y), max(high2.x, high2.y));
 }
-#elif FF_LANES == 16
-inline int2 lanes_range(int16 v) {
-  const int8 low = min(v.lo, v.hi), high = max(v.lo, v.hi);
+#elif FF_LANES == 16 || FF_LANES == 32
+inline int2 lanes_range(LaneInt v) {
+#if FF_LANES == 32
+  const int16 low16 = min(v.lo, v.hi), high16 = max(v.lo, v.hi);
+#else
+  const int16 low16 = v, high16 = v;
+#endif
+  const int8 low = min(low16.lo, low16.hi), high = max(high16.lo, high16.hi);
   const int4 low4 = min(low.lo, low.hi), high4 = max(high.lo, high.hi);
   const int2 low2 = min(low4.lo, low4.hi), high2 = max(high4.lo, high4.hi);
   return (int2)(min(low2.x, low2.y), max(high2.x, high2.y));
@@ -98,6 +145,8 @@ inline int2 lanes_range(int16 v) {
 #define FF_FIRST_LANE(v) ((v).s0)
 #if FF_LANES == 8
 #define FF_LAST_LANE(v) ((v).s7)
+#elif FF_LANES == 32
+#define FF_LAST_LANE(v) ((v)[31])
 #else
 #define FF_LAST_LANE(v) ((v).sf)
 #endif
