@@ -69,7 +69,7 @@ typedef int LaneInt __attribute__((ext_vector_type(32)));
 #define FF_UNIFORM_MASK(condition) ((LaneMask)(-(int)(condition)))
 #define FF_LANE_INT(x) __builtin_convertvector((x), LaneInt)
 #define FF_LANE_FLOAT(x) __builtin_convertvector((x), LaneFloat)
-#define FF_VSTORE lanes_vstore32
+#define FF_VSTORE vstore16 /* of one half: kernels/cpu/lane_planes.cl */
 #define FF_GATHER(base, index)                                                       \
   ((LaneFloat)(FF_GATHER8(base, (index).lo.lo), FF_GATHER8(base, (index).lo.hi),    \
                FF_GATHER8(base, (index).hi.lo), FF_GATHER8(base, (index).hi.hi)))
@@ -92,10 +92,6 @@ FF_LANE_BINARY(fmin)
 FF_LANE_BINARY(fmax)
 inline LaneFloat __attribute__((overloadable)) clamp(LaneFloat a, float low, float high) {
   return (LaneFloat)(clamp(a.lo, low, high), clamp(a.hi, low, high));
-}
-inline void lanes_vstore32(LaneFloat value, size_t offset, __global float* p) {
-  vstore16(value.lo, 2 * offset, p);
-  vstore16(value.hi, 2 * offset + 1, p);
 }
 #else
 #error "FF_LANES must be 1, 8, 16 or 32"

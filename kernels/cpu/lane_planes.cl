@@ -28,16 +28,34 @@ FF_INLINE LaneFloat load_lanes(__global const float* first) {
   return *(__global const LaneFloat*)first;
 }
 
-FF_INLINE void store_lanes(__global float* first, LaneFloat value) {
-  if (((size_t)first & (sizeof(LaneFloat) - 1)) == 0) {
-#if FF_STREAMING_STORES && defined(__clang__)
-    __builtin_nontemporal_store(value, (__global LaneFloat*)first);
+/* A store is one native vector (StoreVector): 32 lanes store their two halves, each
+ * streamed where it is aligned to its 64 bytes, so a caller's buffer aligned to 64
+ * bytes takes streaming stores whatever the lanes. */
+#if FF_LANES == 32
+typedef float16 StoreVector;
 #else
-    *(__global LaneFloat*)first = value;
+typedef LaneFloat StoreVector;
+#endif
+
+FF_INLINE void store_vector(__global float* first, StoreVector value) {
+  if (((size_t)first & (sizeof(StoreVector) - 1)) == 0) {
+#if FF_STREAMING_STORES && defined(__clang__)
+    __builtin_nontemporal_store(value, (__global StoreVector*)first);
+#else
+    *(__global StoreVector*)first = value;
 #endif
   } else {
     FF_VSTORE(value, 0, first);
   }
+}
+
+FF_INLINE void store_lanes(__global float* first, LaneFloat value) {
+#if FF_LANES == 32
+  store_vector(first, value.lo);
+  store_vector(first + 16, value.hi);
+#else
+  store_vector(first, value);
+#endif
 }
 
 FF_INLINE Vec3 load_plane3(__global const float* planes, size_t first_plane, size_t stride,
