@@ -32,8 +32,7 @@ bool device_is_pocl() {
   return platform.find("Portable Computing Language") != std::string::npos;
 }
 
-// The lane counts of more than one that the shared context's device builds: 32 on
-// PoCL only.
+// Those of `lanes` that the shared context's device builds (32 on PoCL only).
 std::vector<std::size_t> vector_lanes(std::vector<std::size_t> lanes = {8, 16, 32}) {
   if (!device_is_pocl()) lanes.erase(std::remove(lanes.begin(), lanes.end(), 32), lanes.end());
   return lanes;
