@@ -10,9 +10,9 @@
  * on a vector boundary of their plane; a plane is so aligned when its buffer is, as
  * buffers of the library's own always are (CL_DEVICE_MEM_BASE_ADDR_ALIGN, 128 bytes
  * on PoCL, covers the 64 of a float16 and the 128 of 32 lanes). The rest planes and
- * scratch sets are the library's own: loaded as aligned vectors. Outputs may be a caller's buffers (PoCL
- * uses a CL_MEM_USE_HOST_PTR buffer's memory as it is): each store checks, and an
- * unaligned plane is stored with vstoren.
+ * scratch sets are the library's own: loaded as aligned vectors. Outputs may be a
+ * caller's buffers (PoCL uses a CL_MEM_USE_HOST_PTR buffer's memory as it is): each
+ * store checks, and an unaligned plane is stored with vstoren.
  *
  * Build option FF_STREAMING_STORES (0/1, the host's choice: ClOptions::stores): 1,
  * aligned outputs are written with streaming (non-temporal) stores, which send whole
