@@ -50,22 +50,28 @@ inline bool device_is_pocl(const DeviceDescription& device) {
 }
 
 // A CPU's vector of floats as the kernels take it: 16 where the native one has 16 lanes
-// (AVX-512), else 8 (two native vectors of 4 on older CPUs).
+// (AVX-512), else 8 (AVX2's native vector; two of SSE's).
 inline std::size_t device_vector_lanes(const DeviceDescription& device) {
   return device.native_float_vector_width >= 16 ? 16 : 8;
 }
 
 // Vertex slots one work-item deforms (kernels/common/lanes.cl). GPUs: 1 (a warp is
 // their vector). CPUs: vectors, so the kernels are vector code whatever the OpenCL
-// compiler's work-group vectoriser does: on PoCL with native vectors of 16, two of them
-// (32 lanes, a clang vector type: two independent chains of steps per work-item; 1,000
-// swimming fish on a Xeon in a median 0.86 of the time of 16 lanes on 2 threads, 0.93
-// on 16, 0.97 on a 2-core AMD EPYC: docs/benchmarks.md), else one vector
+// compiler's work-group vectoriser does. On PoCL, two native vectors: two independent
+// chains of steps per work-item for one work-item's scalar work. 32 lanes where the
+// native vector has 16 (AVX-512; a clang vector type): 1,000 swimming fish on a Xeon
+// in a median 0.86 of the time of 16 lanes on 2 threads, 0.93 on 16, 0.97 on a 2-core
+// AMD EPYC. 16 where it has 8 (AVX2; PoCL's AVX2 code on those machines): the swim
+// in 0.74 of the time of 8 lanes on the Xeon's 2 threads, 0.54 on 16 (8 lanes' stores
+// of half a cache line stream slowly there), 0.88 on the AMD EPYC (docs/benchmarks.md,
+// "16 lanes on AVX2"). Four native vectors spill: 32 lanes of AVX2 took 1.3 times
+// as long as 16, 64 lanes of AVX-512 3 times as long as 32. Elsewhere one vector
 // (device_vector_lanes). Half normals: 1 (their stores are the one-lane kernels').
 inline std::size_t device_lanes(const DeviceDescription& device, NormalFormat format) {
   if (device.is_gpu() || format == NormalFormat::kHalf) return 1;
-  const std::size_t vector = device_vector_lanes(device);
-  return vector == 16 && device_is_pocl(device) ? 32 : vector;
+  if (!device_is_pocl(device)) return device_vector_lanes(device);
+  const std::size_t native = device.native_float_vector_width;
+  return native >= 16 ? 32 : native >= 8 ? 16 : 8;
 }
 
 // A CPU's cache that a frame's outputs could stay in, per thread: server CPUs have 1.5

@@ -4,8 +4,10 @@
 # PoCL on its CPU: the swim of 1,000 fish (driver, placed deformation) with 2 and 16
 # threads (THREADS, default "2 16"), each binary in turn, ROUNDS rounds (default 3), so
 # that builds are compared side by side on the same machine; OPTIONS, bench options
-# for that entry (e.g. "bin/finflex|--dispatch per-component"). One JSON line per run:
-# {"binary" (the binary's name and its options), "threads", "round", "result"}.
+# for that entry (e.g. "bin/finflex|--dispatch per-component"). MODE (default swim):
+# swim; rig, the swim rig's deformation without the driver; bend, the whole-body bend.
+# One JSON line per run: {"binary" (the binary's name and its options), "mode",
+# "threads", "round", "result"}.
 set -uo pipefail
 bundle=$1
 out=$2
@@ -15,6 +17,13 @@ icds=$(mktemp -d)
 cp /etc/OpenCL/vendors/*pocl*.icd "$icds"/
 export OCL_ICD_VENDORS=$icds
 export OCL_ICD_FILENAMES=$(cat "$icds"/*.icd | head -n 1) POCL_CACHE_DIR=$(mktemp -d)
+mode=${MODE:-swim}
+case $mode in
+  swim) mode_options=(--rig data/rigs/blub_swim.rig.json --swim) ;;
+  rig) mode_options=(--rig data/rigs/blub_swim.rig.json) ;;
+  bend) mode_options=() ;;
+  *) echo "MODE: '$mode' is not swim, rig or bend" >&2; exit 2 ;;
+esac
 : > "$out"
 for round in $(seq "${ROUNDS:-3}"); do
   for threads in ${THREADS:-2 16}; do
@@ -24,9 +33,9 @@ for round in $(seq "${ROUNDS:-3}"); do
       [[ $entry == *"|"* ]] && options=${entry#*|}
       # shellcheck disable=SC2086 # the options are words
       result=$(POCL_MAX_PTHREAD_COUNT=$threads POCL_CPU_MAX_CU_COUNT=$threads "$binary" bench \
-        --mesh data/blub/fish.obj --rig data/rigs/blub_swim.rig.json --swim --device cpu \
+        --mesh data/blub/fish.obj "${mode_options[@]}" --device cpu \
         --instances 1000 --frames 30 --json $options) || result=null
-      echo "{\"binary\": \"$(basename "$binary")${options:+ $options}\", \"threads\": $threads, \"round\": $round, \"result\": $result}" >> "$out"
+      echo "{\"binary\": \"$(basename "$binary")${options:+ $options}\", \"mode\": \"$mode\", \"threads\": $threads, \"round\": $round, \"result\": $result}" >> "$out"
     done
   done
 done

@@ -98,8 +98,9 @@ struct ClOptions {
   bool single_bend_kernel = true;
   // Vertex slots one work-item deforms, one per lane of OpenCL vectors over the output
   // planes (kernels/common/lanes.cl): 1, 8, 16 or 32; 0: the device's choice (GPUs 1;
-  // CPUs 8 or 16, a native float vector, or 32 on PoCL where the native one has 16
-  // lanes: vector code by construction, whatever the OpenCL compiler vectorises). 32
+  // CPUs vector code by construction, whatever the OpenCL compiler vectorises: on PoCL
+  // two native float vectors, 32 lanes with AVX-512 and 16 with AVX2; elsewhere one,
+  // 8 or 16). 32
   // lanes are a vector type of clang's, not OpenCL C's: PoCL only (refused elsewhere).
   // Lanes apply per batch, only to outputs in FinFlex's default planes: a batch whose
   // OutputLayout equals planes_layout(instances, NormalFormat::kFloat32) (float32
