@@ -29,7 +29,7 @@
  * FF_INSTANCES_PER_ITEM (common/planes.cl), the outputs' formats and arrangement
  * (common/outputs.cl; scratch sets stay float32 planes), FF_LANES (common/lanes.cl: a
  * work-item deforms FF_LANES consecutive slots, a work-group still 64; more than one
- * lane for FinFlex's float32 planes only, kernels/cpu/lane_outputs.cl). Generated
+ * lane for FinFlex's planes only, kernels/cpu/lane_outputs.cl). Generated
  * before the files:
  * FF_STAGE_COUNT (the stage table's rows), ff_stage_table (the table itself, a
  * program-scope constant: common/stage_frame.cl), FF_ROOT_FRAME (the root frame's row,

@@ -20,7 +20,7 @@
  * Build options: FF_BEND_EXACT (deformers/bend.cl), FF_NORMALS_JACOBIAN, those of
  * common/planes.cl and common/outputs.cl, and FF_LANES (common/lanes.cl: FF_LANES
  * consecutive slots per work-item, NDRange (plane_stride / FF_LANES, ...); more than
- * one lane for FinFlex's float32 planes only, kernels/cpu/lane_outputs.cl). No branch
+ * one lane for FinFlex's planes only, kernels/cpu/lane_outputs.cl). No branch
  * depends on the vertex: the planes are padded to the
  * work-group size, and the instance bound is the same for a whole work-group. */
 

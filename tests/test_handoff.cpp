@@ -417,6 +417,33 @@ TEST(Handoff, BadBindingsAreNamedAndNothingIsWritten) {
   host.positions_bytes = host.tangents_bytes = bytes;
   host.normals_bytes = bytes + 4;
   EXPECT_EQ(field_of([&] { deformer().bind_host(kInstances, l, host); }), "outputs.normals_bytes");
+  // Host memory that is not aligned to a float (vertices 2 bytes past a multiple of 4):
+  // refused, whatever the format, as the kernels take every output buffer as floats.
+  // FinFlex's planes with half normals: 4 bytes past a vector boundary are accepted,
+  // 2 are not, for the positions or the halves.
+  HostOutputs shifted = host;
+  shifted.normals_bytes = bytes;
+  shifted.positions = shifted.normals = shifted.tangents =
+      reinterpret_cast<unsigned char*>(memory.data()) + 2;
+  shifted.positions_bytes = shifted.normals_bytes = shifted.tangents_bytes = bytes - 2;
+  EXPECT_EQ(field_of([&] { deformer().bind_host(kInstances, l, shifted); }), "outputs.positions");
+  const OutputLayout half_planes = deformer().planes_layout(kInstances, NormalFormat::kHalf);
+  const std::size_t plane_floats = deformer().layout(kInstances).attribute_elements();
+  std::vector<float> positions(plane_floats + 1), directions(plane_floats + 1);
+  HostOutputs planes;
+  planes.positions = positions.data();
+  planes.positions_bytes = plane_floats * 4;
+  planes.normals = reinterpret_cast<unsigned char*>(directions.data()) + 4;
+  planes.tangents = reinterpret_cast<unsigned char*>(directions.data()) + 4 + 2 * plane_floats;
+  planes.normals_bytes = planes.tangents_bytes = 2 * plane_floats;
+  EXPECT_EQ(field_of([&] { deformer().bind_host(kInstances, half_planes, planes); }), "accepted");
+  planes.positions = reinterpret_cast<unsigned char*>(positions.data()) + 2;
+  EXPECT_EQ(field_of([&] { deformer().bind_host(kInstances, half_planes, planes); }),
+            "outputs.positions");
+  planes.positions = positions.data();
+  planes.tangents = reinterpret_cast<unsigned char*>(directions.data()) + 2 + 2 * plane_floats;
+  EXPECT_EQ(field_of([&] { deformer().bind_host(kInstances, half_planes, planes); }),
+            "outputs.tangents");
   // A batch changed by hand after binding is checked again: its buffer is now too small
   // for the layout, and nothing is written.
   DeviceBatch batch = deformer().bind(kInstances, l, {enough, enough, enough, {}});

@@ -95,7 +95,7 @@ void expect_close_to_one_lane(const DeformedBatch<float>& lanes,
   EXPECT_LT(d.tangent, 1e-5);
 }
 
-TEST(Lanes, CpusTakeVectorsGpusOneLaneHalfNormalsOneLane) {
+TEST(Lanes, CpusTakeVectorsGpusOneLaneWhateverTheNormalFormat) {
   const Mesh mesh = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
   const RiggedMesh model = RiggedMesh::single_bend(mesh, find_body_frame(mesh), BendMode::kPaper);
   const DeviceDescription& device = test::shared_context().description();
@@ -106,11 +106,11 @@ TEST(Lanes, CpusTakeVectorsGpusOneLaneHalfNormalsOneLane) {
   if (device_is_pocl()) expected = native >= 16 ? 32 : native >= 8 ? 16 : 8;
   if (device.is_gpu()) expected = 1;
   EXPECT_EQ(automatic.lanes(NormalFormat::kFloat32), expected);
-  EXPECT_EQ(automatic.lanes(NormalFormat::kHalf), 1u);
+  EXPECT_EQ(automatic.lanes(NormalFormat::kHalf), expected);
   for (std::size_t lanes : vector_lanes({1, 8, 16, 32})) {
     ClDeformer forced(test::shared_context(), model, with_lanes(lanes));
     EXPECT_EQ(forced.lanes(NormalFormat::kFloat32), lanes);
-    EXPECT_EQ(forced.lanes(NormalFormat::kHalf), 1u);
+    EXPECT_EQ(forced.lanes(NormalFormat::kHalf), lanes);
   }
 }
 
@@ -310,11 +310,11 @@ TEST(Lanes, StreamingPlainAndUnalignedStoresWriteTheSameBits) {
   }
 }
 
-// Lanes apply per batch, only to FinFlex's float32 planes in slot order: any other
-// output layout on a deformer asked for 16 lanes runs the one-lane kernels with the
-// store epilogue (kernels/common/outputs.cl), so it matches the reference and a
-// one-lane deformer's outputs in that layout bit for bit; the default planes on the
-// same deformer still take 16 lanes.
+// Lanes apply per batch, only to FinFlex's planes in slot order (normals float32 or
+// half): any other output layout on a deformer asked for 16 lanes runs the one-lane
+// kernels with the store epilogue (kernels/common/outputs.cl), so it matches the
+// reference and a one-lane deformer's outputs in that layout bit for bit; FinFlex's
+// planes on the same deformer still take 16 lanes.
 TEST(Lanes, OtherOutputLayoutsRunOnOneLaneAndMatchTheReference) {
   const Mesh mesh = load_mesh(test::data_path("barramundi/BarramundiFish.gltf"));
   const RiggedMesh model(
@@ -325,6 +325,7 @@ TEST(Lanes, OtherOutputLayoutsRunOnOneLaneAndMatchTheReference) {
   ClDeformer one_lane(test::shared_context(), model, with_lanes(1));
   const OutputLayout planes = sixteen.planes_layout(instances);
   EXPECT_EQ(sixteen.lanes(planes), 16u);
+  EXPECT_EQ(sixteen.lanes(sixteen.planes_layout(instances, NormalFormat::kHalf)), 16u);
 
   struct Case {
     const char* name;
@@ -337,7 +338,6 @@ TEST(Lanes, OtherOutputLayoutsRunOnOneLaneAndMatchTheReference) {
   packed.normals = AttributeLayout::packed(AttributeFormat::kFloat32x3, slots);
   packed.tangent_layout = AttributeLayout::packed(AttributeFormat::kFloat32x4, slots);
   cases.push_back({"packed float32", packed});
-  cases.push_back({"half normals", sixteen.planes_layout(instances, NormalFormat::kHalf)});
   OutputLayout mesh_order = planes;
   mesh_order.order = VertexOrder::kMesh;
   const std::size_t vertices = sixteen.output_vertices(VertexOrder::kMesh);
@@ -404,20 +404,74 @@ TEST(Lanes, AutomaticStoresStreamOutputsLargerThanTheCache) {
   EXPECT_FALSE(ClDeformer(test::shared_context(), model, streaming).streams_outputs(small));
 }
 
-// Half normals are stored by the one-lane kernels whatever ClOptions::lanes asks: the
-// same kernels, so the same bits.
-TEST(Lanes, HalfNormalsRunOnOneLane) {
+// Expects `half` to hold `full`'s positions and its directions rounded to the nearest
+// half (the bits of a half read back as floats are their own nearest half).
+void expect_rounded_to_half(const DeformedBatch<float>& half, const DeformedBatch<float>& full) {
+  EXPECT_EQ(half.positions, full.positions);
+  const std::vector<float>* pairs[][2] = {{&half.normals, &full.normals},
+                                          {&half.tangents, &full.tangents}};
+  for (const auto& pair : pairs) {
+    ASSERT_EQ(pair[0]->size(), pair[1]->size());
+    for (std::size_t k = 0; k < pair[0]->size(); ++k) {
+      ASSERT_EQ(test::nearest_half((*pair[0])[k]), test::nearest_half((*pair[1])[k]))
+          << "element " << k << ": " << (*pair[1])[k] << " -> " << (*pair[0])[k];
+    }
+  }
+}
+
+// Half-precision normals and tangents in FinFlex's planes take the lanes too
+// (kernels/cpu/lane_planes.cl store_half_lanes; its rounding against the format's
+// definition: test_normal_format's EveryHalfStoreWritesTheNearestHalf): with every lane
+// count, on both paths and in both normal modes, the same deformer's float32 positions
+// and its directions rounded to the nearest half; streamed, plain, and into a caller's
+// host memory that is not aligned to the vectors, the same bits.
+TEST(Lanes, HalfNormalPlanesTakeLanesAndRoundTheFloat32Outputs) {
   const Mesh mesh = load_mesh(test::data_path("barramundi/BarramundiFish.gltf"));
   const RiggedMesh model(
-      mesh, resolve_rig(load_rig_file(test::data_path("rigs/barramundi.rig.json")), mesh));
-  const RigParameters values = swimming_values(model, 3);
-  ClDeformer one_lane(test::shared_context(), model, with_lanes(1));
-  ClDeformer sixteen(test::shared_context(), model, with_lanes(16));
-  const DeformedBatch<float> a = test::run_on_device(one_lane, values, NormalMode::kRotate,
-                                                     RigPath::kFused, false, NormalFormat::kHalf);
-  const DeformedBatch<float> b = test::run_on_device(sixteen, values, NormalMode::kRotate,
-                                                     RigPath::kFused, false, NormalFormat::kHalf);
-  test::expect_same_outputs(a, b);
+      mesh, resolve_rig(load_rig_file(test::data_path("rigs/barramundi_swim.rig.json")), mesh));
+  ASSERT_TRUE(mesh.has_tangents());
+  const RigParameters values = swimming_values(model, 5);
+  const std::size_t instances = values.instance_count();
+  for (std::size_t lanes : vector_lanes()) {
+    ClOptions streaming = with_lanes(lanes), plain = with_lanes(lanes);
+    streaming.stores = OutputStores::kStreaming;
+    plain.stores = OutputStores::kPlain;
+    ClDeformer streamed(test::shared_context(), model, streaming);
+    ClDeformer unstreamed(test::shared_context(), model, plain);
+    for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {
+      for (RigPath path : {RigPath::kFused, RigPath::kPasses}) {
+        SCOPED_TRACE(std::to_string(lanes) + " lanes, " + to_string(normals) + ", " +
+                     to_string(path));
+        DeviceBatch batch = streamed.allocate(instances, NormalFormat::kHalf);
+        EXPECT_EQ(streamed.lanes(batch.outputs), lanes);
+        const DeformedBatch<float> half =
+            test::run_on_device(streamed, batch, values, normals, path);
+        expect_rounded_to_half(half, test::run_on_device(streamed, values, normals, path));
+        test::expect_same_outputs(
+            test::run_on_device(unstreamed, values, normals, path, false, NormalFormat::kHalf),
+            half);
+      }
+    }
+    // A caller's host memory one float past a vector boundary (host memory is aligned
+    // to a float at least: the kernels take every output buffer as floats): the
+    // unaligned stores.
+    DeviceBatch unaligned = streamed.allocate(instances, NormalFormat::kHalf);
+    const std::size_t elements = unaligned.layout.attribute_elements();
+    std::vector<std::vector<std::uint16_t>> memory(3,
+                                                   std::vector<std::uint16_t>(2 * elements + 32));
+    cl::Buffer* buffers[] = {&unaligned.positions, &unaligned.normals, &unaligned.tangents};
+    const std::size_t bytes[] = {elements * sizeof(float), elements * 2, elements * 2};
+    for (std::size_t k = 0; k < 3; ++k) {
+      std::uint16_t* first = memory[k].data() + 2;
+      ASSERT_NE(reinterpret_cast<std::uintptr_t>(first) % 64, 0u);
+      *buffers[k] =
+          cl::Buffer(test::shared_context().context(), CL_MEM_USE_HOST_PTR, bytes[k], first);
+    }
+    test::expect_same_outputs(
+        test::run_on_device(streamed, unaligned, values, NormalMode::kRotate, RigPath::kFused),
+        test::run_on_device(streamed, values, NormalMode::kRotate, RigPath::kFused, false,
+                            NormalFormat::kHalf));
+  }
 }
 
 }  // namespace

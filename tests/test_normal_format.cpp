@@ -108,32 +108,13 @@ TEST(NormalFormat, HalfRigOnBothPathsKeepsFloatIntermediates) {
   }
 }
 
-// The nearest IEEE half to `value` (ties to even), as bits, from the format's
-// definition: the candidates are the halves around it, found by scaling to the
-// half's 11-bit significand (subnormal below 2^-14). Values here are in [-1, 1].
-std::uint16_t nearest_half(float value) {
-  const double v = std::fabs(static_cast<double>(value));
-  const std::uint16_t sign = std::signbit(value) ? 0x8000 : 0;
-  if (v == 0.0) return sign;
-  const int exponent = v >= std::ldexp(1.0, -14) ? std::ilogb(v) : -15;  // -15: subnormal
-  const double unit = exponent >= -14 ? std::ldexp(1.0, exponent - 10) : std::ldexp(1.0, -24);
-  const double scaled = v / unit;  // exact: a power of two
-  double lower = std::floor(scaled);
-  const double above = scaled - lower;
-  if (above > 0.5 || (above == 0.5 && std::fmod(lower, 2.0) != 0.0)) lower += 1.0;
-  const double rounded = lower * unit;
-  if (rounded < std::ldexp(1.0, -14))
-    return sign | static_cast<std::uint16_t>(rounded / std::ldexp(1.0, -24));
-  const int e = std::ilogb(rounded);
-  const auto fraction = static_cast<std::uint16_t>(rounded / std::ldexp(1.0, e - 10) - 1024.0);
-  return sign | static_cast<std::uint16_t>((e + 15) << 10) | fraction;
-}
-
-TEST(NormalFormat, BothHalfStoresWriteTheNearestHalf) {
+TEST(NormalFormat, EveryHalfStoreWritesTheNearestHalf) {
   // kernels/common/outputs.cl's store of float16x3 planes in a kernel of the test's own, built
   // once with the GPUs' branch (vstore_half) and once with the CPUs' (half_bits),
-  // whatever the device: values across [-1, 1] with ties between two halves, values
-  // that become subnormal halves, zeros of both signs.
+  // whatever the device, and on CPUs the store of kernels of 8, 16 and 32 lanes (32 on
+  // PoCL: kernels/cpu/lane_outputs.cl, half_bits on vectors): values across [-1, 1]
+  // with ties between two halves, values that become subnormal halves, zeros of both
+  // signs.
   std::vector<float> values = {0.0f,   -0.0f, 1.0f,  -1.0f,    0.5f,        1e-8f,
                                -3e-8f, 6e-8f, 1e-5f, -6.1e-5f, 0.33333334f, -0.7071068f};
   // Exact ties: half-way between two neighbouring halves in [0.5, 1) (spacing 2^-11),
@@ -155,18 +136,37 @@ TEST(NormalFormat, BothHalfStoresWriteTheNearestHalf) {
   source.files = common_kernel_files();
   source.appended = R"(
 __kernel void store_halves(__global const float* in, __global float* out, const uint stride) {
-  const size_t v = get_global_id(0);
   /* Instance 1 of float16x3 planes of `stride` halves. */
+#if FF_LANES == 1
+  const size_t v = get_global_id(0);
   store_attribute(out, FF_F16X3, 0, 0, stride, 3 * stride, 1, v, load_plane3(in, 0, stride, v), 0.0f);
+#else
+  const size_t v = FF_FIRST_SLOT;
+  store_lane_attribute(out, FF_F16X3, 0, stride, 3 * stride, 1, v, load_plane3(in, 0, stride, v));
+#endif
 }
 )";
   Context& context = test::shared_context();
-  for (int gpu : {1, 0}) {
-    SCOPED_TRACE(gpu ? "vstore_half (GPUs)" : "half_bits (CPUs)");
+  struct Store {
+    const char* name;
+    int gpu;
+    std::size_t lanes;
+  };
+  std::vector<Store> stores = {{"vstore_half (GPUs)", 1, 1}, {"half_bits (CPUs)", 0, 1}};
+  if (!context.description().is_gpu()) {
+    stores.insert(stores.end(), {{"8 lanes", 0, 8}, {"16 lanes", 0, 16}});
+    if (context.description().platform_name.find("Portable Computing Language") !=
+        std::string::npos) {
+      stores.push_back({"32 lanes", 0, 32});
+    }
+  }
+  for (const Store& store : stores) {
+    SCOPED_TRACE(store.name);
     // The device's FF_GPU comes as a build option; the source replaces it before
     // planes.cl reads it.
-    source.generated = "#undef FF_GPU\n#define FF_GPU " + std::to_string(gpu) + "\n";
-    cl::Kernel kernel = context.kernel("store_halves", source, "");
+    source.generated = "#undef FF_GPU\n#define FF_GPU " + std::to_string(store.gpu) + "\n";
+    cl::Kernel kernel =
+        context.kernel("store_halves", source, "-DFF_LANES=" + std::to_string(store.lanes));
     cl_int status = CL_SUCCESS;
     cl::Buffer in(context.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
                   planes.size() * sizeof(float), planes.data(), &status);
@@ -180,8 +180,9 @@ __kernel void store_halves(__global const float* in, __global float* out, const 
     check_cl(kernel.setArg(0, in), "clSetKernelArg");
     check_cl(kernel.setArg(1, out), "clSetKernelArg");
     check_cl(kernel.setArg(2, static_cast<cl_uint>(stride)), "clSetKernelArg");
-    check_cl(context.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(stride),
-                                                  cl::NDRange(64)),
+    check_cl(context.queue().enqueueNDRangeKernel(kernel, cl::NullRange,
+                                                  cl::NDRange(stride / store.lanes),
+                                                  cl::NDRange(64 / store.lanes)),
              "clEnqueueNDRangeKernel");
     check_cl(context.queue().enqueueReadBuffer(
                  out, CL_TRUE, 0, halves.size() * sizeof(std::uint16_t), halves.data()),
@@ -190,7 +191,7 @@ __kernel void store_halves(__global const float* in, __global float* out, const 
     for (std::size_t c = 0; c < 3; ++c) {
       for (std::size_t v = 0; v < stride; ++v) {
         const float value = planes[c * stride + v];
-        ASSERT_EQ(halves[(3 + c) * stride + v], nearest_half(value))
+        ASSERT_EQ(halves[(3 + c) * stride + v], test::nearest_half(value))
             << "component " << c << " slot " << v << ": " << value;
       }
     }

@@ -186,25 +186,26 @@ std::size_t ClDeformer::Impl::output_vertices(VertexOrder order) const {
   return order == VertexOrder::kMesh ? model.vertex_count() : slot_count_;
 }
 
-std::size_t ClDeformer::Impl::lanes(NormalFormat format) const {
-  if (format == NormalFormat::kHalf) return 1;
-  return options.lanes ? options.lanes : detail::device_lanes(context.description(), format);
+std::size_t ClDeformer::Impl::lanes() const {
+  return options.lanes ? options.lanes : detail::device_lanes(context.description());
 }
 
-// Lanes store FinFlex's float32 planes only (kernels/cpu/lane_outputs.cl): any other
-// layout takes the one-lane kernels and their store epilogue.
+// Lanes store FinFlex's planes only, normals in float32 or half
+// (kernels/cpu/lane_outputs.cl): any other layout takes the one-lane kernels and their
+// store epilogue.
 std::size_t ClDeformer::Impl::lanes(const OutputLayout& outputs) const {
-  return detail::writes_default_planes(outputs, layout(1, NormalFormat::kFloat32))
-             ? lanes(NormalFormat::kFloat32)
-             : 1;
+  return detail::writes_finflex_planes(outputs, layout(1, NormalFormat::kFloat32)) ? lanes() : 1;
 }
 
 bool ClDeformer::Impl::streams_outputs(const DeviceBatch& batch) const {
   if (lanes(batch.outputs) == 1) return false;
-  // FinFlex's float32 planes: 12 bytes per attribute, vertex slot and instance.
+  // FinFlex's planes: 12 bytes per position, 12 or 6 per direction (float32 or half),
+  // per vertex slot and instance.
   const BatchLayout& counts = batch.layout;
-  const std::size_t bytes =
-      counts.plane_stride * counts.instance_count * 12 * (batch.outputs.tangents ? 3 : 2);
+  const std::size_t direction_bytes =
+      batch.outputs.normals.format == AttributeFormat::kFloat16x3 ? 6 : 12;
+  const std::size_t bytes = counts.plane_stride * counts.instance_count *
+                            (12 + direction_bytes * (batch.outputs.tangents ? 2 : 1));
   return detail::device_streaming_stores(context.description(), options.stores, bytes);
 }
 
@@ -657,7 +658,7 @@ std::size_t ClDeformer::instances_per_item(NormalFormat format) const {
 std::size_t ClDeformer::instances_per_item(const OutputLayout& outputs) const {
   return impl_->per_item(outputs);
 }
-std::size_t ClDeformer::lanes(NormalFormat format) const { return impl_->lanes(format); }
+std::size_t ClDeformer::lanes(NormalFormat) const { return impl_->lanes(); }
 std::size_t ClDeformer::lanes(const OutputLayout& outputs) const { return impl_->lanes(outputs); }
 bool ClDeformer::streams_outputs(const DeviceBatch& batch) const {
   return impl_->streams_outputs(batch);

@@ -66,9 +66,9 @@ inline std::size_t device_vector_lanes(const DeviceDescription& device) {
 // of half a cache line stream slowly there), 0.88 on the AMD EPYC (docs/benchmarks.md,
 // "16 lanes on AVX2"). Four native vectors spill: 32 lanes of AVX2 took 1.3 times
 // as long as 16, 64 lanes of AVX-512 3 times as long as 32. Elsewhere one vector
-// (device_vector_lanes). Half normals: 1 (their stores are the one-lane kernels').
-inline std::size_t device_lanes(const DeviceDescription& device, NormalFormat format) {
-  if (device.is_gpu() || format == NormalFormat::kHalf) return 1;
+// (device_vector_lanes).
+inline std::size_t device_lanes(const DeviceDescription& device) {
+  if (device.is_gpu()) return 1;
   if (!device_is_pocl(device)) return device_vector_lanes(device);
   const std::size_t native = device.native_float_vector_width;
   return native >= 16 ? 32 : native >= 8 ? 16 : 8;

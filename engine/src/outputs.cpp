@@ -111,6 +111,14 @@ std::size_t buffer_bytes(const cl::Buffer& buffer) {
   return bytes;
 }
 
+// The caller's memory a CL_MEM_USE_HOST_PTR buffer was made from (PoCL's kernels then
+// write it as it is), else 0.
+std::uintptr_t buffer_host_memory(const cl::Buffer& buffer) {
+  void* host = nullptr;
+  if (buffer()) check_cl(buffer.getInfo(CL_MEM_HOST_PTR, &host), "clGetMemObjectInfo");
+  return reinterpret_cast<std::uintptr_t>(host);
+}
+
 [[noreturn]] void fail(const std::string& field, const std::string& message) {
   throw Error(ErrorCode::kInvalidArgument, field, field + ": " + message);
 }
@@ -279,14 +287,15 @@ bool writes_planes_in(const OutputLayout& outputs, const BatchLayout& counts, No
 
 }  // namespace
 
-bool writes_default_planes(const OutputLayout& outputs, const BatchLayout& counts) {
-  return writes_planes_in(outputs, counts, NormalFormat::kFloat32);
+bool writes_finflex_planes(const OutputLayout& outputs, const BatchLayout& counts) {
+  return writes_planes_in(outputs, counts, NormalFormat::kFloat32) ||
+         writes_planes_in(outputs, counts, NormalFormat::kHalf);
 }
 
 std::string plane_stride_option(const OutputLayout& outputs, const BatchLayout& counts) {
-  const bool planes = writes_planes_in(outputs, counts, NormalFormat::kFloat32) ||
-                      writes_planes_in(outputs, counts, NormalFormat::kHalf);
-  return planes ? " -DFF_PLANE_STRIDE=" + std::to_string(counts.plane_stride) + "u" : "";
+  return writes_finflex_planes(outputs, counts)
+             ? " -DFF_PLANE_STRIDE=" + std::to_string(counts.plane_stride) + "u"
+             : "";
 }
 
 void check_outputs(const DeviceBatch& batch, std::size_t vertices, bool mesh_tangents,
@@ -317,6 +326,16 @@ void check_outputs(const DeviceBatch& batch, std::size_t vertices, bool mesh_tan
                                      std::to_string(batch.layout.instance_count) +
                                      " instances of " + std::to_string(vertices) +
                                      " vertices in this layout need " + std::to_string(need));
+    }
+    // The kernels take every output buffer as floats and store whole scalars, or
+    // vectors of them where the address is aligned to the vector
+    // (kernels/cpu/lane_planes.cl): host memory must be aligned to a float.
+    const std::uintptr_t host = buffer_host_memory(*a.buffer);
+    if (host % sizeof(float) != 0) {
+      fail(field + "." + a.name, "the buffer's host memory starts " +
+                                     std::to_string(host % sizeof(float)) +
+                                     " bytes past a multiple of 4 (the kernels take every "
+                                     "output buffer as floats, whatever its format)");
     }
   }
 }

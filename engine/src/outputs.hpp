@@ -17,13 +17,14 @@ namespace finflex::detail {
 // FinFlex's planes for `layout` (its plane stride, normal format and tangents).
 OutputLayout planes_outputs(const BatchLayout& layout);
 
-// True when `outputs` writes what planes_outputs(counts) writes, where it does: float32
-// planes for positions, normals (and tangents when `counts` has them) at FinFlex's
-// offsets and strides, in slot order, without previous positions. The only outputs
-// kernels of more than one lane store (kernels/cpu/lane_outputs.cl).
-bool writes_default_planes(const OutputLayout& outputs, const BatchLayout& counts);
-// " -DFF_PLANE_STRIDE=<stride>u" when `outputs` are FinFlex's planes of `counts`, normals
-// in float32 or half (kernels/common/outputs.cl compiles their places in), else "".
+// True when `outputs` writes what planes_outputs(counts) writes with normals in float32
+// or half, where it does: float32 planes for positions, normals (and tangents when
+// `counts` has them) in float32 or half planes, at FinFlex's offsets and strides, in slot order,
+// without previous positions. The only outputs kernels of more than one lane store
+// (kernels/cpu/lane_outputs.cl).
+bool writes_finflex_planes(const OutputLayout& outputs, const BatchLayout& counts);
+// " -DFF_PLANE_STRIDE=<stride>u" when `outputs` are FinFlex's planes of `counts`
+// (kernels/common/outputs.cl compiles their places in), else "".
 std::string plane_stride_option(const OutputLayout& outputs, const BatchLayout& counts);
 
 // Whether positions, normals (and tangents) are float32x3 members that fill one vertex

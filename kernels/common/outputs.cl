@@ -106,7 +106,7 @@ FF_INLINE size_t element_index(const int packed, ulong offset, ulong step, ulong
 #endif
 
 /* One vertex slot per work-item from here to FF_STORE_OUTPUTS; kernels of more than one
- * lane store FinFlex's float32 planes only, with the same names
+ * lane store FinFlex's planes only (normals float32 or half), with the same names
  * (kernels/cpu/lane_outputs.cl). */
 #if FF_LANES == 1
 /* Writes (x, y, z, w) as `format`, `packed` or planes (compile-time constants). */

@@ -1,45 +1,59 @@
 /* The outputs of kernels of more than one lane (kernels/common/lanes.cl): FinFlex's
- * float32 planes in slot order (finflex/batch.hpp), the only output layout the host
- * builds them for (ClDeformer::lanes, finflex/cl_deformer.hpp); every other layout
- * runs the one-lane kernels and their store epilogue (common/outputs.cl).
+ * planes in slot order (finflex/batch.hpp), normals (and tangents) in float32 or half,
+ * the only output layouts the host builds them for (ClDeformer::lanes,
+ * finflex/cl_deformer.hpp); every other layout runs the one-lane kernels and their
+ * store epilogue (common/outputs.cl).
  *
  * store_outputs and FF_STORE_OUTPUTS keep the names and arguments of
  * common/outputs.cl, so the kernels end alike whatever their lanes. The attributes'
  * places still come from out_layout (offset, plane stride and instance stride, in
- * floats); each component's FF_LANES slots are stored as one vector
- * (kernels/cpu/lane_planes.cl: streaming or plain stores, vstoren where a caller's
- * buffer is not aligned to the vectors). */
+ * scalars of the attribute's format); each component's FF_LANES slots are stored as
+ * one vector (kernels/cpu/lane_planes.cl: streaming or plain stores, vstoren where a
+ * caller's buffer is not aligned to the vectors). */
 #if FF_LANES > 1
-#if FF_POSITION_FORMAT != FF_F32X3 || FF_POSITION_PACKED || FF_NORMAL_FORMAT != FF_F32X3 || \
-    FF_NORMAL_PACKED || (FF_TANGENTS && (FF_TANGENT_FORMAT != FF_F32X3 || FF_TANGENT_PACKED)) || \
+#define FF_LANE_PLANE_FORMAT(format) ((format) == FF_F32X3 || (format) == FF_F16X3)
+#if FF_POSITION_FORMAT != FF_F32X3 || FF_POSITION_PACKED ||                        \
+    !FF_LANE_PLANE_FORMAT(FF_NORMAL_FORMAT) || FF_NORMAL_PACKED ||                 \
+    (FF_TANGENTS && (!FF_LANE_PLANE_FORMAT(FF_TANGENT_FORMAT) || FF_TANGENT_PACKED)) || \
     FF_PREVIOUS || FF_MESH_ORDER || defined(FF_OUTPUT_LIMIT)
-#error "kernels of more than one lane store FinFlex's float32 planes in slot order only"
+#error "kernels of more than one lane store FinFlex's planes in slot order only"
 #endif
 
-/* Component c of the lanes of instance i from slot v: FF_LANES consecutive floats at
- * offset + i * instance_stride + c * plane_stride + v (with FF_PLANE_STRIDE, the
- * numbers compiled in: common/outputs.cl). */
-FF_INLINE void store_lane_attribute(__global float* buffer, ulong offset, ulong plane_stride,
-                                    ulong instance_stride, size_t i, size_t v, Vec3 value) {
+/* Component c of the lanes of instance i from slot v, in `format` (float32 or half):
+ * FF_LANES consecutive scalars at offset + i * instance_stride + c * plane_stride + v
+ * (with FF_PLANE_STRIDE, the numbers compiled in: common/outputs.cl). */
+FF_INLINE void store_lane_attribute(__global float* buffer, const int format, ulong offset,
+                                    ulong plane_stride, ulong instance_stride, size_t i,
+                                    size_t v, Vec3 value) {
 #ifdef FF_PLANE_STRIDE
   plane_stride = FF_PLANE_STRIDE;
-  __global float* first = buffer + element_index(0, 0, plane_stride, 0, i, v);
+  const size_t first = element_index(0, 0, plane_stride, 0, i, v);
 #else
-  __global float* first = buffer + (size_t)(offset + i * instance_stride) + v;
+  const size_t first = (size_t)(offset + i * instance_stride) + v;
 #endif
-  store_lanes(first, value.x);
-  store_lanes(first + plane_stride, value.y);
-  store_lanes(first + 2 * plane_stride, value.z);
+  if (format == FF_F16X3) {
+    __global ushort* halves = (__global ushort*)buffer + first;
+    store_half_lanes(halves, value.x);
+    store_half_lanes(halves + plane_stride, value.y);
+    store_half_lanes(halves + 2 * plane_stride, value.z);
+  } else {
+    store_lanes(buffer + first, value.x);
+    store_lanes(buffer + first + plane_stride, value.y);
+    store_lanes(buffer + first + 2 * plane_stride, value.z);
+  }
 }
 
 FF_INLINE void store_outputs(__global float* out_positions, __global float* out_normals,
                              __global float* out_tangents, __global float* out_previous,
                              ulong16 out_layout, size_t instance, size_t v, Vec3 p, Vec3 n,
                              Vec3 t, float rest_tangent_w) {
-  store_lane_attribute(out_positions, out_layout.s0, out_layout.s1, out_layout.s2, instance, v, p);
-  store_lane_attribute(out_normals, out_layout.s3, out_layout.s4, out_layout.s5, instance, v, n);
+  store_lane_attribute(out_positions, FF_F32X3, out_layout.s0, out_layout.s1, out_layout.s2,
+                       instance, v, p);
+  store_lane_attribute(out_normals, FF_NORMAL_FORMAT, out_layout.s3, out_layout.s4,
+                       out_layout.s5, instance, v, n);
 #if FF_TANGENTS
-  store_lane_attribute(out_tangents, out_layout.s6, out_layout.s7, out_layout.s8, instance, v, t);
+  store_lane_attribute(out_tangents, FF_TANGENT_FORMAT, out_layout.s6, out_layout.s7,
+                       out_layout.s8, instance, v, t);
 #endif
 }
 

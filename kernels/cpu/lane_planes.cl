@@ -2,9 +2,10 @@
  * FF_LANES > 1 lanes (kernels/common/lanes.cl): v is the work-item's first slot, a
  * multiple of FF_LANES, and component c of its lanes is the FF_LANES consecutive
  * floats from planes[(first_plane + c) * stride + v], loaded and stored as one vector.
- * Planes of float32 only: the rest planes, the scratch sets and outputs in FinFlex's
- * float32 planes (kernels/cpu/lane_outputs.cl); any other output layout runs with one
- * lane (the host's choice, engine/src/device_profile.hpp).
+ * Planes of float32 (the rest planes, the scratch sets and outputs in FinFlex's planes)
+ * and of half (normals and tangents of NormalFormat::kHalf, store_half_lanes below):
+ * kernels/cpu/lane_outputs.cl; any other output layout runs with one lane (the host's
+ * choice, ClDeformer::lanes).
  *
  * Alignment: plane strides are multiples of 64 floats, so a work-item's lanes start
  * on a vector boundary of their plane; a plane is so aligned when its buffer is, as
@@ -30,23 +31,29 @@ FF_INLINE LaneFloat load_lanes(__global const float* first) {
 
 /* A store is one native vector (StoreVector): 32 lanes store their two halves, each
  * streamed where it is aligned to its 64 bytes, so a caller's buffer aligned to 64
- * bytes takes streaming stores whatever the lanes. */
+ * bytes takes streaming stores whatever the lanes. FF_STORE_VECTOR(type, first, value,
+ * vstoren): the store of one vector of `type` at `first`. */
 #if FF_LANES == 32
 typedef float16 StoreVector;
 #else
 typedef LaneFloat StoreVector;
 #endif
 
-FF_INLINE void store_vector(__global float* first, StoreVector value) {
-  if (((size_t)first & (sizeof(StoreVector) - 1)) == 0) {
 #if FF_STREAMING_STORES && defined(__clang__)
-    __builtin_nontemporal_store(value, (__global StoreVector*)first);
+#define FF_STORE_ALIGNED(type, first, value) \
+  __builtin_nontemporal_store(value, (__global type*)(first))
 #else
-    *(__global StoreVector*)first = value;
+#define FF_STORE_ALIGNED(type, first, value) (*(__global type*)(first) = (value))
 #endif
-  } else {
-    FF_VSTORE(value, 0, first);
+#define FF_STORE_VECTOR(type, first, value, vstoren)        \
+  if (((size_t)(first) & (sizeof(type) - 1)) == 0) {        \
+    FF_STORE_ALIGNED(type, first, value);                   \
+  } else {                                                  \
+    vstoren(value, 0, first);                               \
   }
+
+FF_INLINE void store_vector(__global float* first, StoreVector value) {
+  FF_STORE_VECTOR(StoreVector, first, value, FF_VSTORE)
 }
 
 FF_INLINE void store_lanes(__global float* first, LaneFloat value) {
@@ -55,6 +62,48 @@ FF_INLINE void store_lanes(__global float* first, LaneFloat value) {
   store_vector(first + 16, value.hi);
 #else
   store_vector(first, value);
+#endif
+}
+
+/* Half planes (normals and tangents of NormalFormat::kHalf): each lane's float as the
+ * bits of a half, rounded to nearest even as the one-lane kernels round it
+ * (common/planes.cl half_bits, here on a vector of n lanes: integer operations that
+ * stay vector code), n consecutive halves stored as one vector of ushorts. */
+#define FF_DEFINE_HALF_STORE(n)                                                          \
+  FF_INLINE ushort##n half_bits##n(float##n f) {                                         \
+    const uint##n sign = as_uint##n(f) & 0x80000000u;                                    \
+    const uint##n magnitude = as_uint##n(f) ^ sign;                                      \
+    const uint denormal_magic = ((127u - 15u) + (23u - 10u) + 1u) << 23;                 \
+    const uint##n small =                                                                \
+        as_uint##n(as_float##n(magnitude) + as_float(denormal_magic)) - denormal_magic;  \
+    const uint##n odd = (magnitude >> 13) & 1u;                                          \
+    const uint##n normal = (magnitude + (((uint)(15 - 127)) << 23) + 0xfffu + odd) >> 13; \
+    const uint##n special =                                                              \
+        magnitude > (255u << 23) ? (uint##n)0x7e00u : (uint##n)0x7c00u; /* NaN : Inf */  \
+    const uint##n bits = magnitude >= ((127u + 16u) << 23) ? special                     \
+                         : magnitude < (113u << 23)        ? small                       \
+                                                           : normal;                     \
+    return convert_ushort##n(bits | (sign >> 16));                                       \
+  }                                                                                      \
+  FF_INLINE void store_half_vector##n(__global ushort* first, float##n value) {          \
+    const ushort##n bits = half_bits##n(value);                                          \
+    FF_STORE_VECTOR(ushort##n, first, bits, vstore##n)                                   \
+  }
+
+#if FF_LANES == 8
+FF_DEFINE_HALF_STORE(8)
+#else
+FF_DEFINE_HALF_STORE(16)
+#endif
+
+FF_INLINE void store_half_lanes(__global ushort* first, LaneFloat value) {
+#if FF_LANES == 8
+  store_half_vector8(first, value);
+#elif FF_LANES == 16
+  store_half_vector16(first, value);
+#else
+  store_half_vector16(first, value.lo);
+  store_half_vector16(first + 16, value.hi);
 #endif
 }
 

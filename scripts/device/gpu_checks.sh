@@ -19,7 +19,7 @@
 # CPUs run these too where they can be forced: the work-item shapes and the dispatch
 # through ClOptions (SeveralInstancesPerWorkItemGiveTheSameResult in test_cl_deformer
 # and test_rig_deformer, the rig tests of both dispatches, HalfNormalsInTheShapesGpusTake),
-# vstore_half in a kernel of the test's own (BothHalfStoresWriteTheNearestHalf).
+# vstore_half in a kernel of the test's own (EveryHalfStoreWritesTheNearestHalf).
 set -uo pipefail
 bundle=$1
 out=$2

@@ -16,6 +16,26 @@ void expect_same_outputs(const DeformedBatch<float>& got, const DeformedBatch<fl
   EXPECT_EQ(got.tangents, want.tangents);
 }
 
+// The candidates are the halves around the value, found by scaling to the half's
+// 11-bit significand (subnormal below 2^-14).
+std::uint16_t nearest_half(float value) {
+  const double v = std::fabs(static_cast<double>(value));
+  const std::uint16_t sign = std::signbit(value) ? 0x8000 : 0;
+  if (v == 0.0) return sign;
+  const int exponent = v >= std::ldexp(1.0, -14) ? std::ilogb(v) : -15;  // -15: subnormal
+  const double unit = exponent >= -14 ? std::ldexp(1.0, exponent - 10) : std::ldexp(1.0, -24);
+  const double scaled = v / unit;  // exact: a power of two
+  double lower = std::floor(scaled);
+  const double above = scaled - lower;
+  if (above > 0.5 || (above == 0.5 && std::fmod(lower, 2.0) != 0.0)) lower += 1.0;
+  const double rounded = lower * unit;
+  if (rounded < std::ldexp(1.0, -14))
+    return sign | static_cast<std::uint16_t>(rounded / std::ldexp(1.0, -24));
+  const int e = std::ilogb(rounded);
+  const auto fraction = static_cast<std::uint16_t>(rounded / std::ldexp(1.0, e - 10) - 1024.0);
+  return sign | static_cast<std::uint16_t>((e + 15) << 10) | fraction;
+}
+
 RigParameters values_of(const RiggedMesh& model, const std::vector<float>& rows) {
   const std::size_t per = std::max<std::size_t>(model.values_per_instance(), 1);
   RigParameters values(model, rows.size() / per);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "finflex/finflex.hpp"
@@ -16,6 +17,10 @@ RigParameters values_of(const RiggedMesh& model, const std::vector<float>& rows)
 
 // Expects two device results to hold the same bits: positions, normals and tangents.
 void expect_same_outputs(const DeformedBatch<float>& got, const DeformedBatch<float>& want);
+
+// The nearest IEEE half to `value` (ties to even), as bits, from the format's
+// definition. Values in [-1, 1].
+std::uint16_t nearest_half(float value);
 
 // Enqueues `values` on `batch` (with world `placements`, one per instance, or none)
 // and reads the batch back.

@@ -100,14 +100,14 @@ struct ClOptions {
   // planes (kernels/common/lanes.cl): 1, 8, 16 or 32; 0: the device's choice (GPUs 1;
   // CPUs vector code by construction, whatever the OpenCL compiler vectorises: on PoCL
   // two native float vectors, 32 lanes with AVX-512 and 16 with AVX2; elsewhere one,
-  // 8 or 16). 32
-  // lanes are a vector type of clang's, not OpenCL C's: PoCL only (refused elsewhere).
-  // Lanes apply per batch, only to outputs in FinFlex's default planes: a batch whose
-  // OutputLayout equals planes_layout(instances, NormalFormat::kFloat32) (float32
-  // planes, slot order, no previous positions; allocate(instances) makes one). Any
-  // other output layout (half normals, packed or 16-bit attributes, mesh order,
-  // previous positions, ...) runs the one-lane kernels with the store epilogue of
-  // kernels/common/outputs.cl, whatever this asks: lanes(outputs) says which.
+  // 8 or 16). 32 lanes are a vector type of clang's, not OpenCL C's: PoCL only
+  // (refused elsewhere). Lanes apply per batch, only to outputs in FinFlex's planes: a
+  // batch whose OutputLayout equals planes_layout(instances, format) for either
+  // NormalFormat (float32 positions, normals and tangents in float32 or half, slot
+  // order, no previous positions; allocate(instances[, format]) makes one). Any other
+  // output layout (packed or snorm16 attributes, mesh order, previous positions, ...)
+  // runs the one-lane kernels with the store epilogue of kernels/common/outputs.cl,
+  // whatever this asks: lanes(outputs) says which.
   std::size_t lanes = 0;
   // With more than one lane: how the outputs are stored.
   OutputStores stores = OutputStores::kAuto;
@@ -198,9 +198,9 @@ class FINFLEX_API ClDeformer {
   // Instances one work-item deforms for outputs in `format` (ClOptions).
   std::size_t instances_per_item(NormalFormat format) const;
   std::size_t instances_per_item(const OutputLayout& outputs) const;
-  // Vertex slots one work-item deforms for outputs in FinFlex's planes in `format`, and
-  // for outputs in `outputs` (ClOptions::lanes: 1 for any layout but FinFlex's float32
-  // planes in slot order).
+  // Vertex slots one work-item deforms for outputs in FinFlex's planes (the same for
+  // both normal formats), and for outputs in `outputs` (ClOptions::lanes: 1 for any
+  // layout but FinFlex's planes in slot order).
   std::size_t lanes(NormalFormat format) const;
   std::size_t lanes(const OutputLayout& outputs) const;
   // True when a frame on `batch` writes it with streaming stores (ClOptions::stores;

@@ -70,7 +70,8 @@ struct OutputBuffers {
 // The caller's host memory for ClDeformer::bind_host: a pointer and its size in bytes
 // per attribute (the same pointer for attributes interleaved in one array). On CPU
 // devices the kernels write into it directly (CL_MEM_USE_HOST_PTR; keep it aligned to
-// 64 bytes, or the OpenCL implementation may copy); on GPUs the driver copies it
+// 64 bytes, or the OpenCL implementation may copy; memory not aligned to 4 bytes is
+// refused: the kernels take every output buffer as floats); on GPUs the driver copies it
 // back when it is mapped (docs/handoff.md measures both).
 struct HostOutputs {
   void* positions = nullptr;
