@@ -37,22 +37,30 @@ FF_INLINE void store_plane3(__global float* planes, size_t first_plane, size_t s
 
 /* The IEEE half nearest to f (ties to even), as bits: F. Giesen's
  * float_to_half_fast3_rtne with its branches as selects, so it vectorises (PoCL's
- * vstore_half converts element by element). Overflow gives Inf, NaN stays NaN. */
-FF_INLINE ushort half_bits(float f) {
-  const uint sign = as_uint(f) & 0x80000000u;
-  const uint magnitude = as_uint(f) ^ sign;
-  /* Subnormal or zero half: add 0.5 (magic) so the FPU rounds the low bits away. */
-  const uint denormal_magic = ((127u - 15u) + (23u - 10u) + 1u) << 23;
-  const uint small = as_uint(as_float(magnitude) + as_float(denormal_magic)) - denormal_magic;
-  /* Normal half: rebias the exponent, round to nearest even on bit 13. */
-  const uint odd = (magnitude >> 13) & 1u;
-  const uint normal = (magnitude + (((uint)(15 - 127)) << 23) + 0xfffu + odd) >> 13;
-  const uint special = magnitude > (255u << 23) ? 0x7e00u : 0x7c00u; /* NaN : Inf */
-  const uint bits = magnitude >= ((127u + 16u) << 23) ? special
-                    : magnitude < (113u << 23)        ? small
-                                                      : normal;
-  return (ushort)(bits | (sign >> 16));
-}
+ * vstore_half converts element by element). Overflow gives Inf, NaN stays NaN.
+ * FF_DEFINE_HALF_BITS(n) defines half_bits##n on float##n: half_bits on a float here,
+ * half_bits8 and half_bits16 on the lanes' vectors (kernels/cpu/lane_planes.cl), one
+ * rounding for every kernel. */
+#define FF_DEFINE_HALF_BITS(n)                                                           \
+  FF_INLINE ushort##n half_bits##n(float##n f) {                                         \
+    const uint##n sign = as_uint##n(f) & 0x80000000u;                                    \
+    const uint##n magnitude = as_uint##n(f) ^ sign;                                      \
+    /* Subnormal or zero half: add 0.5 (magic) so the FPU rounds the low bits away. */   \
+    const uint denormal_magic = ((127u - 15u) + (23u - 10u) + 1u) << 23;                 \
+    const uint##n small =                                                                \
+        as_uint##n(as_float##n(magnitude) + as_float(denormal_magic)) - denormal_magic;  \
+    /* Normal half: rebias the exponent, round to nearest even on bit 13. */             \
+    const uint##n odd = (magnitude >> 13) & 1u;                                          \
+    const uint##n normal = (magnitude + (((uint)(15 - 127)) << 23) + 0xfffu + odd) >> 13; \
+    const uint##n special =                                                              \
+        magnitude > (255u << 23) ? (uint##n)0x7e00u : (uint##n)0x7c00u; /* NaN : Inf */  \
+    const uint##n bits = magnitude >= ((127u + 16u) << 23) ? special                     \
+                         : magnitude < (113u << 23)        ? small                       \
+                                                           : normal;                     \
+    return convert_ushort##n(bits | (sign >> 16));                                       \
+  }
+
+FF_DEFINE_HALF_BITS()
 
 /* Tangents only when the batch has them (the placeholder direction otherwise). */
 #if FF_TANGENTS

@@ -66,28 +66,14 @@ FF_INLINE void store_lanes(__global float* first, LaneFloat value) {
 }
 
 /* Half planes (normals and tangents of NormalFormat::kHalf): each lane's float as the
- * bits of a half, rounded to nearest even as the one-lane kernels round it
- * (common/planes.cl half_bits, here on a vector of n lanes: integer operations that
- * stay vector code), n consecutive halves stored as one vector of ushorts. */
-#define FF_DEFINE_HALF_STORE(n)                                                          \
-  FF_INLINE ushort##n half_bits##n(float##n f) {                                         \
-    const uint##n sign = as_uint##n(f) & 0x80000000u;                                    \
-    const uint##n magnitude = as_uint##n(f) ^ sign;                                      \
-    const uint denormal_magic = ((127u - 15u) + (23u - 10u) + 1u) << 23;                 \
-    const uint##n small =                                                                \
-        as_uint##n(as_float##n(magnitude) + as_float(denormal_magic)) - denormal_magic;  \
-    const uint##n odd = (magnitude >> 13) & 1u;                                          \
-    const uint##n normal = (magnitude + (((uint)(15 - 127)) << 23) + 0xfffu + odd) >> 13; \
-    const uint##n special =                                                              \
-        magnitude > (255u << 23) ? (uint##n)0x7e00u : (uint##n)0x7c00u; /* NaN : Inf */  \
-    const uint##n bits = magnitude >= ((127u + 16u) << 23) ? special                     \
-                         : magnitude < (113u << 23)        ? small                       \
-                                                           : normal;                     \
-    return convert_ushort##n(bits | (sign >> 16));                                       \
-  }                                                                                      \
-  FF_INLINE void store_half_vector##n(__global ushort* first, float##n value) {          \
-    const ushort##n bits = half_bits##n(value);                                          \
-    FF_STORE_VECTOR(ushort##n, first, bits, vstore##n)                                   \
+ * bits of the nearest half, rounded as the one-lane kernels round it
+ * (common/planes.cl FF_DEFINE_HALF_BITS, on a vector of n lanes: integer operations
+ * that stay vector code), n consecutive halves stored as one vector of ushorts. */
+#define FF_DEFINE_HALF_STORE(n)                                                 \
+  FF_DEFINE_HALF_BITS(n)                                                        \
+  FF_INLINE void store_half_vector##n(__global ushort* first, float##n value) { \
+    const ushort##n bits = half_bits##n(value);                                 \
+    FF_STORE_VECTOR(ushort##n, first, bits, vstore##n)                          \
   }
 
 #if FF_LANES == 8
