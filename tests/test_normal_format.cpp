@@ -126,6 +126,12 @@ TEST(NormalFormat, EveryHalfStoreWritesTheNearestHalf) {
   }
   for (int k = 0; k < 200; ++k) values.push_back(std::sin(0.37f * float(k)));
   while (values.size() % 64) values.push_back(0.25f);
+  // A block of normal halves only, ties among them: whole vectors of the lanes' store
+  // with no zero, subnormal or special value.
+  for (int k = 0; k < 64; ++k) {
+    const float tie = std::ldexp(1024.0f + float(3 * k) + 0.5f, -11 - k % 9);
+    values.push_back(k % 2 ? tie : -tie);
+  }
   const std::size_t stride = values.size();
   // One vector per slot: x, y and z take the values rotated by 0, 1 and 2 slots.
   std::vector<float> planes(3 * stride);
