@@ -28,8 +28,8 @@
  * Build options: FF_NORMALS_JACOBIAN (common/secant.cl), FF_TANGENTS and
  * FF_INSTANCES_PER_ITEM (common/planes.cl), the outputs' formats and arrangement
  * (common/outputs.cl; scratch sets stay float32 planes), FF_LANES (common/lanes.cl: a
- * work-item deforms FF_LANES consecutive slots, a work-group still 64; more than one
- * lane for FinFlex's planes only, kernels/cpu/lane_outputs.cl). Generated
+ * work-item deforms FF_LANES consecutive slots, a work-group still 64; FinFlex's planes
+ * stored as vectors, kernels/cpu/lane_outputs.cl, other layouts lane by lane). Generated
  * before the files:
  * FF_STAGE_COUNT (the stage table's rows), ff_stage_table (the table itself, a
  * program-scope constant: common/stage_frame.cl), FF_ROOT_FRAME (the root frame's row,

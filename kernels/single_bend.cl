@@ -19,10 +19,10 @@
  *
  * Build options: FF_BEND_EXACT (deformers/bend.cl), FF_NORMALS_JACOBIAN, those of
  * common/planes.cl and common/outputs.cl, and FF_LANES (common/lanes.cl: FF_LANES
- * consecutive slots per work-item, NDRange (plane_stride / FF_LANES, ...); more than
- * one lane for FinFlex's planes only, kernels/cpu/lane_outputs.cl). No branch
- * depends on the vertex: the planes are padded to the
- * work-group size, and the instance bound is the same for a whole work-group. */
+ * consecutive slots per work-item, NDRange (plane_stride / FF_LANES, ...); FinFlex's
+ * planes stored as vectors, kernels/cpu/lane_outputs.cl, other layouts lane by lane).
+ * No branch depends on the vertex: the planes are padded to the work-group size, and
+ * the instance bound is the same for a whole work-group. */
 
 /* x a_x + y a_y + z a_z (+ origin): the way back to mesh coordinates, M^-1 of (2). */
 FF_INLINE Vec3 to_mesh(Vec3 v, float4 axis_x, float4 axis_y, float4 axis_z, float4 origin) {

@@ -6,7 +6,7 @@
  * deformation kernels, so PoCL vectorises them alike; write_outputs honours the
  * output layout's options (kernels/common/outputs.cl), FF_INSTANCES_PER_ITEM and
  * FF_LANES (kernels/common/lanes.cl: vector stores of FF_LANES slots for FinFlex's
- * float32 planes, kernels/cpu/lane_outputs.cl) as they do
+ * planes, kernels/cpu/lane_outputs.cl, any other layout lane by lane) as they do
  * (NDRange (output vertices / FF_LANES, ceil(instances / FF_INSTANCES_PER_ITEM))).
  * Built after the library's common kernel files.
  *
@@ -41,10 +41,18 @@ __kernel void write_outputs(FF_OUTPUT_ARGUMENTS, const uint vertices, const uint
       const Vec3 p = filler, n = filler, t = filler;
       FF_STORE_OUTPUTS(instance, v)
     }
-#else
+#elif FF_LANES == 1 || FF_LANE_PLANES
     if (!FF_MESH_ORDER || v < vertices) {
       store_outputs(out_positions, out_normals, out_tangents, out_previous, out_layout, instance,
                     v, filler, filler, filler, 1.0f);
+    }
+#else
+    for (int lane = 0; lane < FF_LANES; ++lane) {
+      if (!FF_MESH_ORDER || v + lane < vertices) {
+        const StoreVec3 one = lane_of(filler, lane);
+        store_outputs(out_positions, out_normals, out_tangents, out_previous, out_layout,
+                      instance, v + lane, one, one, one, 1.0f);
+      }
     }
 #endif
   }

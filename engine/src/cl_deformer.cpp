@@ -190,15 +190,35 @@ std::size_t ClDeformer::Impl::lanes() const {
   return options.lanes ? options.lanes : detail::device_lanes(context.description());
 }
 
-// Lanes store FinFlex's planes only, normals in float32 or half
-// (kernels/cpu/lane_outputs.cl): any other layout takes the one-lane kernels and their
-// store epilogue.
+// Lanes store FinFlex's planes (normals float32 or half) as vectors
+// (kernels/cpu/lane_outputs.cl) and, on CPUs, any other layout lane by lane through the
+// one-slot stores (kernels/common/outputs.cl): the arithmetic stays vector code. 1,000
+// instances on a Xeon with PoCL 5 (which does not vectorise one-lane kernels), 16
+// threads: the interleaved struct 10.0 ms a frame against 17.0 with one lane (bend),
+// 11.6 against 30.7 (rig); on 2 AMD EPYC cores with PoCL 3.1, 22.6 against 45.7 and
+// 25.6 against 84.9 (docs/benchmarks.md, "Every output layout on CPUs"). But the
+// single bend in mesh order or with previous positions: one lane, which PoCL 3.1's
+// work-group vectoriser makes faster there (14.8 ms against 27 lane by lane, mesh
+// order). GPUs: one lane for any layout but the planes, whatever ClOptions::lanes asks;
+// and so does a vertex struct staged through local memory (ClOptions::struct_stores,
+// a work-item a vertex).
 std::size_t ClDeformer::Impl::lanes(const OutputLayout& outputs) const {
-  return detail::writes_finflex_planes(outputs, layout(1, NormalFormat::kFloat32)) ? lanes() : 1;
+  if (writes_planes(outputs)) return lanes();
+  if (context.description().is_gpu()) return 1;
+  if (stages_structs() && detail::fills_vertex_struct(outputs)) return 1;
+  if (single_bend && (outputs.order == VertexOrder::kMesh || outputs.previous_positions)) {
+    return 1;
+  }
+  return lanes();
+}
+
+bool ClDeformer::Impl::writes_planes(const OutputLayout& outputs) const {
+  return detail::writes_finflex_planes(outputs, layout(1, NormalFormat::kFloat32));
 }
 
 bool ClDeformer::Impl::streams_outputs(const DeviceBatch& batch) const {
-  if (lanes(batch.outputs) == 1) return false;
+  // Streaming stores: FinFlex's planes, stored as vectors.
+  if (lanes(batch.outputs) == 1 || !writes_planes(batch.outputs)) return false;
   // FinFlex's planes: 12 bytes per position, 12 or 6 per direction (float32 or half),
   // per vertex slot and instance.
   const BatchLayout& counts = batch.layout;

@@ -33,10 +33,12 @@ class ClDeformer::Impl {
   std::size_t per_item(const OutputLayout& outputs) const;
   // The outputs' vertex count in `order`: slots, or the mesh's vertices.
   std::size_t output_vertices(VertexOrder order) const;
-  // Lanes for FinFlex's planes (ClOptions::lanes), and for a batch's outputs (1 unless
-  // they are FinFlex's planes, float32 or half); streaming stores for a batch.
+  // Lanes (ClOptions::lanes), and for a batch's outputs (1 on GPUs unless they are
+  // FinFlex's planes); whether outputs are FinFlex's planes (float32 or half normals);
+  // streaming stores for a batch.
   std::size_t lanes() const;
   std::size_t lanes(const OutputLayout& outputs) const;
+  bool writes_planes(const OutputLayout& outputs) const;
   // Whether vertex structs are written through local memory (ClOptions::struct_stores).
   bool stages_structs() const {
     return options.struct_stores == ClOptions::StructStores::kStaged ||

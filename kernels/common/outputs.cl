@@ -47,6 +47,22 @@
 #ifndef FF_MESH_ORDER
 #define FF_MESH_ORDER 0
 #endif
+#ifdef FF_OUTPUT_LIMIT
+#define FF_HAS_OUTPUT_LIMIT 1
+#else
+#define FF_HAS_OUTPUT_LIMIT 0
+#endif
+
+/* FF_LANE_PLANES: kernels of more than one lane (common/lanes.cl) writing FinFlex's
+ * planes in slot order (float32 positions, normals and tangents float32 or half), which
+ * they store as vectors (kernels/cpu/lane_outputs.cl). Kernels of more than one lane
+ * store any other layout lane by lane through this file's stores of one slot. */
+#define FF_LANE_PLANE_FORMAT(format) ((format) == FF_F32X3 || (format) == FF_F16X3)
+#define FF_LANE_PLANES                                                                   \
+  (FF_LANES > 1 && FF_POSITION_FORMAT == FF_F32X3 && !FF_POSITION_PACKED &&              \
+   FF_LANE_PLANE_FORMAT(FF_NORMAL_FORMAT) && !FF_NORMAL_PACKED &&                        \
+   (!FF_TANGENTS || (FF_LANE_PLANE_FORMAT(FF_TANGENT_FORMAT) && !FF_TANGENT_PACKED)) &&  \
+   !FF_PREVIOUS && !FF_MESH_ORDER && !FF_HAS_OUTPUT_LIMIT)
 
 /* The tangents' w (handedness) is written by the 4-component formats. */
 #define FF_TANGENT_W                                                          \
@@ -105,14 +121,28 @@ FF_INLINE size_t element_index(const int packed, ulong offset, ulong step, ulong
 #define FF_COMPONENT_DISTANCE(packed, step) ((packed) ? (size_t)1 : (size_t)(step))
 #endif
 
-/* One vertex slot per work-item from here to FF_STORE_OUTPUTS; kernels of more than one
- * lane store FinFlex's planes only (normals float32 or half), with the same names
- * (kernels/cpu/lane_outputs.cl). */
+/* The stores of one vertex slot, from here to FF_STORE_OUTPUTS: a one-lane kernel's
+ * work-item stores its slot through them, a kernel of more than one lane each of its
+ * lanes in turn (but FinFlex's planes: kernels/cpu/lane_outputs.cl, with the same
+ * names). StoreVec3: one slot's vector (Vec3 itself with one lane). */
+#if !FF_LANE_PLANES
 #if FF_LANES == 1
+typedef Vec3 StoreVec3;
+#define store_vec3 vec3
+#else
+typedef struct {
+  float x, y, z;
+} StoreVec3;
+FF_INLINE StoreVec3 store_vec3(float x, float y, float z) {
+  StoreVec3 v = {x, y, z};
+  return v;
+}
+#endif
+
 /* Writes (x, y, z, w) as `format`, `packed` or planes (compile-time constants). */
 FF_INLINE void store_attribute(__global float* buffer, const int format, const int packed,
                                ulong offset, ulong step, ulong instance_stride, size_t i, size_t v,
-                               Vec3 value, float w) {
+                               StoreVec3 value, float w) {
   const size_t first = element_index(packed, offset, step, instance_stride, i, v);
   const size_t apart = FF_COMPONENT_DISTANCE(packed, step);
   if (format == FF_F32X3 || format == FF_F32X4) {
@@ -137,12 +167,12 @@ FF_INLINE void store_attribute(__global float* buffer, const int format, const i
 }
 
 /* A float32 position (float32x3 or float32x4, packed or planes). */
-FF_INLINE Vec3 load_position_attribute(__global const float* buffer, const int packed,
-                                       ulong offset, ulong step, ulong instance_stride, size_t i,
-                                       size_t v) {
+FF_INLINE StoreVec3 load_position_attribute(__global const float* buffer, const int packed,
+                                            ulong offset, ulong step, ulong instance_stride,
+                                            size_t i, size_t v) {
   const size_t first = element_index(packed, offset, step, instance_stride, i, v);
   const size_t apart = FF_COMPONENT_DISTANCE(packed, step);
-  return vec3(buffer[first], buffer[first + apart], buffer[first + 2 * apart]);
+  return store_vec3(buffer[first], buffer[first + apart], buffer[first + 2 * apart]);
 }
 
 /* Every output of one vertex and instance: the previous position first (read where
@@ -150,10 +180,10 @@ FF_INLINE Vec3 load_position_attribute(__global const float* buffer, const int p
  * tangent. rest_tangent_w: the rest mesh's handedness (FF_TANGENT_W). */
 FF_INLINE void store_outputs(__global float* out_positions, __global float* out_normals,
                              __global float* out_tangents, __global float* out_previous,
-                             ulong16 out_layout, size_t instance, size_t v, Vec3 p, Vec3 n,
-                             Vec3 t, float rest_tangent_w) {
+                             ulong16 out_layout, size_t instance, size_t v, StoreVec3 p,
+                             StoreVec3 n, StoreVec3 t, float rest_tangent_w) {
 #if FF_PREVIOUS
-  const Vec3 before = out_layout.sc ? load_position_attribute(out_positions, FF_POSITION_PACKED,
+  const StoreVec3 before = out_layout.sc ? load_position_attribute(out_positions, FF_POSITION_PACKED,
                                                               out_layout.s0, out_layout.s1,
                                                               out_layout.s2, instance, v)
                                     : p;
@@ -239,7 +269,7 @@ FF_INLINE void store_staged(__global float* out, __local float* staged, ulong16 
 
 #define FF_STORE_OUTPUTS(instance, v) \
   { store_staged(out_positions, staged_structs, out_layout, instance, v, p, n, t); }
-#else
+#elif FF_LANES == 1
 #define FF_OUTPUT_LOCALS
 #define FF_STORE_OUTPUTS(instance, v)                                                         \
   {                                                                                           \
@@ -247,6 +277,24 @@ FF_INLINE void store_staged(__global float* out, __local float* staged, ulong16 
     if (FF_WRITES_SLOT(v, out_v)) {                                                           \
       store_outputs(out_positions, out_normals, out_tangents, out_previous, out_layout,       \
                     instance, out_v, p, n, t, FF_REST_TANGENT_W(v));                           \
+    }                                                                                         \
+  }
+#else
+/* Lane `lane` of a lanes' vector, as one slot's. */
+FF_INLINE StoreVec3 lane_of(Vec3 v, int lane) {
+  return store_vec3(FF_FLOAT_LANE(v.x, lane), FF_FLOAT_LANE(v.y, lane), FF_FLOAT_LANE(v.z, lane));
+}
+/* Each lane's slot v + lane in turn, as a one-lane kernel stores its slot: the
+ * arithmetic stays vector code, the stores are the layout's own. */
+#define FF_OUTPUT_LOCALS
+#define FF_STORE_OUTPUTS(instance, v)                                                         \
+  for (int lane = 0; lane < FF_LANES; ++lane) {                                               \
+    const size_t slot = (v) + lane;                                                           \
+    const uint out_v = FF_OUTPUT_VERTEX(slot);                                                \
+    if (FF_WRITES_SLOT(slot, out_v)) {                                                        \
+      store_outputs(out_positions, out_normals, out_tangents, out_previous, out_layout,       \
+                    instance, out_v, lane_of(p, lane), lane_of(n, lane), lane_of(t, lane),    \
+                    FF_REST_TANGENT_W(slot));                                                 \
     }                                                                                         \
   }
 #endif

@@ -1,8 +1,7 @@
-/* The outputs of kernels of more than one lane (kernels/common/lanes.cl): FinFlex's
- * planes in slot order (finflex/batch.hpp), normals (and tangents) in float32 or half,
- * the only output layouts the host builds them for (ClDeformer::lanes,
- * finflex/cl_deformer.hpp); every other layout runs the one-lane kernels and their
- * store epilogue (common/outputs.cl).
+/* The outputs of kernels of more than one lane (kernels/common/lanes.cl) in FinFlex's
+ * planes in slot order (finflex/batch.hpp), normals (and tangents) in float32 or half:
+ * FF_LANE_PLANES (common/outputs.cl), stored as vectors. Kernels of more than one lane
+ * store every other layout lane by lane through common/outputs.cl's stores of one slot.
  *
  * store_outputs and FF_STORE_OUTPUTS keep the names and arguments of
  * common/outputs.cl, so the kernels end alike whatever their lanes. The attributes'
@@ -10,14 +9,7 @@
  * scalars of the attribute's format); each component's FF_LANES slots are stored as
  * one vector (kernels/cpu/lane_planes.cl: streaming or plain stores, vstoren where a
  * caller's buffer is not aligned to the vectors). */
-#if FF_LANES > 1
-#define FF_LANE_PLANE_FORMAT(format) ((format) == FF_F32X3 || (format) == FF_F16X3)
-#if FF_POSITION_FORMAT != FF_F32X3 || FF_POSITION_PACKED ||                        \
-    !FF_LANE_PLANE_FORMAT(FF_NORMAL_FORMAT) || FF_NORMAL_PACKED ||                 \
-    (FF_TANGENTS && (!FF_LANE_PLANE_FORMAT(FF_TANGENT_FORMAT) || FF_TANGENT_PACKED)) || \
-    FF_PREVIOUS || FF_MESH_ORDER || defined(FF_OUTPUT_LIMIT)
-#error "kernels of more than one lane store FinFlex's planes in slot order only"
-#endif
+#if FF_LANE_PLANES
 
 /* Component c of the lanes of instance i from slot v, in `format` (float32 or half):
  * FF_LANES consecutive scalars at offset + i * instance_stride + c * plane_stride + v

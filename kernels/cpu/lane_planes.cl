@@ -4,8 +4,8 @@
  * floats from planes[(first_plane + c) * stride + v], loaded and stored as one vector.
  * Planes of float32 (the rest planes, the scratch sets and outputs in FinFlex's planes)
  * and of half (normals and tangents of NormalFormat::kHalf, store_half_lanes below):
- * kernels/cpu/lane_outputs.cl; any other output layout runs with one lane (the host's
- * choice, ClDeformer::lanes).
+ * kernels/cpu/lane_outputs.cl; any other output layout is stored lane by lane
+ * (common/outputs.cl).
  *
  * Alignment: plane strides are multiples of 64 floats, so a work-item's lanes start
  * on a vector boundary of their plane; a plane is so aligned when its buffer is, as

@@ -101,13 +101,14 @@ struct ClOptions {
   // CPUs vector code by construction, whatever the OpenCL compiler vectorises: on PoCL
   // two native float vectors, 32 lanes with AVX-512 and 16 with AVX2; elsewhere one,
   // 8 or 16). 32 lanes are a vector type of clang's, not OpenCL C's: PoCL only
-  // (refused elsewhere). Lanes apply per batch, only to outputs in FinFlex's planes: a
-  // batch whose OutputLayout equals planes_layout(instances, format) for either
-  // NormalFormat (float32 positions, normals and tangents in float32 or half, slot
-  // order, no previous positions; allocate(instances[, format]) makes one). Any other
-  // output layout (packed or snorm16 attributes, mesh order, previous positions, ...)
-  // runs the one-lane kernels with the store epilogue of kernels/common/outputs.cl,
-  // whatever this asks: lanes(outputs) says which.
+  // (refused elsewhere). Lanes apply per batch: outputs in FinFlex's planes (a batch
+  // whose OutputLayout equals planes_layout(instances, format) for either NormalFormat:
+  // float32 positions, normals and tangents in float32 or half, slot order, no previous
+  // positions; allocate(instances[, format]) makes one) are stored as vectors; on CPUs
+  // any other layout lane by lane through the one-slot stores of
+  // kernels/common/outputs.cl, but the single bend's in mesh order or with previous
+  // positions, and on GPUs every other layout, with one lane whatever this asks:
+  // lanes(outputs) says which.
   std::size_t lanes = 0;
   // With more than one lane: how the outputs are stored.
   OutputStores stores = OutputStores::kAuto;
@@ -199,8 +200,7 @@ class FINFLEX_API ClDeformer {
   std::size_t instances_per_item(NormalFormat format) const;
   std::size_t instances_per_item(const OutputLayout& outputs) const;
   // Vertex slots one work-item deforms for outputs in FinFlex's planes (the same for
-  // both normal formats), and for outputs in `outputs` (ClOptions::lanes: 1 for any
-  // layout but FinFlex's planes in slot order).
+  // both normal formats), and for outputs in `outputs` (ClOptions::lanes).
   std::size_t lanes(NormalFormat format) const;
   std::size_t lanes(const OutputLayout& outputs) const;
   // True when a frame on `batch` writes it with streaming stores (ClOptions::stores;
