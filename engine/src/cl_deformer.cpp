@@ -279,8 +279,8 @@ void ClDeformer::Impl::check_buffer_sizes(const DeviceBatch& batch) {
                      staged_struct_options(batch, stages_structs()) +
                      detail::plane_stride_option(batch.outputs, layout(1, NormalFormat::kFloat32));
   }
-  // Lanes (and their kind of store) for this batch: kernels of more than one lane for
-  // FinFlex's float32 planes, the one-lane kernels for any other layout.
+  // Lanes (and their kind of store) for this batch (lanes(outputs): FinFlex's planes as
+  // vectors, other layouts lane by lane or with one lane).
   batch_lanes_ = lanes(batch.outputs);
   batch_streams_ = streams_outputs(batch);
   ++generation_;  // kernels take the batch's arguments again
