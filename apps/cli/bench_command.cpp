@@ -440,8 +440,8 @@ Command add_bench_command(CLI::App& app) {
       ->capture_default_str();
   bench
       ->add_option("--lanes", options->lanes,
-                   "Vertex slots per work-item: 1, 8, 16, 32 (0: the device's; FinFlex's float32 "
-                   "planes only, other layouts run with 1)")
+                   "Vertex slots per work-item: 1, 8, 16, 32 (0: the device's; on CPUs FinFlex's "
+                   "planes are stored as vectors, other layouts lane by lane)")
       ->capture_default_str();
   bench
       ->add_option("--stores", options->stores,
