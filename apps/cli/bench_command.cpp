@@ -1,6 +1,7 @@
 // finflex bench: frames of a batch on one device, timed by OpenCL profiling events,
 // next to a write-only kernel of the same outputs (the device's write bandwidth,
-// measured in the same run: the fastest of its shapes).
+// measured in the same run: the fastest of its shapes; on CPUs that shape also runs
+// after every frame, and the fraction is the median of the frames' own ratios).
 //
 //   finflex bench --mesh PATH --instances N --frames F [--mode paper|exact]
 //                 [--normals rotate|jacobian] [--normal-format float32|half]
@@ -24,6 +25,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -66,7 +68,15 @@ struct BenchOptions {
   bool json = false;
 };
 
-// What a benchmark measured, before the write-only comparison.
+// The write-only kernel's fastest shape for a batch, and its median frame time.
+struct WriteOnlyShape {
+  std::size_t per_item = 1;
+  std::size_t lanes = 1;
+  bool streaming = false;
+  double seconds = 0.0;
+};
+
+// What a benchmark measured, with the write-only kernel it is compared with.
 struct Measured {
   std::string what;
   std::size_t passes = 1;
@@ -85,6 +95,9 @@ struct Measured {
   // --swim: of the host's enqueue, the driver's part (inputs checked, copied, uploaded,
   // the driver kernel launched).
   std::vector<double> host_driver_seconds;
+  // The write-only kernel's fastest shape, timed on its own before the frames; on CPUs
+  // also after every frame (times.reference).
+  WriteOnlyShape write_only;
 };
 
 // --host: frames whose kernels are waited for, then mapped for the host and timed:
@@ -114,30 +127,44 @@ bool frames_ahead(Context& context) { return context.description().is_gpu(); }
 // instances per work-item and 4 (the rig kernels' on GPUs), each with one lane and,
 // when the deformer has more for this batch (FinFlex's float32 planes), with its lanes
 // (vector stores, kernels/cpu/lane_outputs.cl), streaming and plain.
-double write_only_median(Context& context, DeviceBatch& batch, std::size_t vertices,
-                         std::size_t per_item, std::size_t lanes, std::size_t frames) {
-  struct Shape {
-    std::size_t lanes;
-    bool streaming;
-  };
-  std::vector<Shape> shapes = {{1, false}};
-  if (lanes > 1) shapes.insert(shapes.end(), {{lanes, true}, {lanes, false}});
-  double fastest = 0.0;
+cl::Event enqueue_write_only(Context& context, DeviceBatch& batch, std::size_t vertices,
+                             const WriteOnlyShape& shape) {
+  return bench::enqueue_write_only(context, batch, vertices, shape.per_item,
+                                   bench::WriteValues::kDeviceDefault, shape.lanes,
+                                   shape.streaming);
+}
+
+WriteOnlyShape fastest_write_only(Context& context, DeviceBatch& batch, std::size_t vertices,
+                                  std::size_t per_item, std::size_t lanes, std::size_t frames) {
+  std::vector<WriteOnlyShape> shapes;
   for (std::size_t per : {per_item, std::size_t{4}}) {
-    for (const Shape& shape : shapes) {
-      const bench::FrameTimes times = bench::time_frames(
-          frames, [](std::size_t) {},
-          [&](std::vector<cl::Event>& events) {
-            events.assign(1, bench::enqueue_write_only(context, batch, vertices, per,
-                                                       bench::WriteValues::kDeviceDefault,
-                                                       shape.lanes, shape.streaming));
-          },
-          frames_ahead(context));
-      const double seconds = bench::median(times.device);
-      fastest = fastest == 0.0 ? seconds : std::min(fastest, seconds);
-    }
+    shapes.push_back({per, 1, false, 0.0});
+    if (lanes > 1) shapes.insert(shapes.end(), {{per, lanes, true, 0.0}, {per, lanes, false, 0.0}});
+  }
+  WriteOnlyShape fastest;
+  for (WriteOnlyShape& shape : shapes) {
+    const bench::FrameTimes times = bench::time_frames(
+        frames, [](std::size_t) {},
+        [&](std::vector<cl::Event>& events) {
+          events.assign(1, enqueue_write_only(context, batch, vertices, shape));
+        },
+        frames_ahead(context));
+    shape.seconds = bench::median(times.device);
+    if (fastest.seconds == 0.0 || shape.seconds < fastest.seconds) fastest = shape;
   }
   return fastest;
+}
+
+// On CPUs, whose frames are waited for one by one, the write-only kernel's fastest shape
+// runs after every frame too (bench::time_frames' reference): on a shared machine a
+// frame's time drifts from run to run by a fifth or more, and a frame and the write-only
+// kernel right after it see the machine in the same state. None on GPUs (frames ahead).
+std::function<cl::Event()> write_reference(Context& context, DeviceBatch& batch,
+                                           std::size_t vertices, const WriteOnlyShape& shape) {
+  if (frames_ahead(context)) return {};
+  return [&context, &batch, vertices, shape] {
+    return enqueue_write_only(context, batch, vertices, shape);
+  };
 }
 
 // Value k of a table parameter (a spine's angles) for instance i at frame f: a smooth
@@ -231,6 +258,9 @@ Measured measure_deform(const BenchOptions& options, const Mesh& mesh, Context& 
   measured.passes = passes_path ? deformer.pass_count() : 1;
   measured.scratch_records = passes_path ? deformer.scratch_records_per_slot() : 0.0;
   const Rig& rig = model.rig();
+  measured.write_only = fastest_write_only(context, bench.batch, layout.vertices,
+                                           deformer.instances_per_item(layout.layout),
+                                           deformer.lanes(layout.layout), frames);
   measured.times = bench::time_frames(
       frames,
       [&](std::size_t f) {
@@ -246,7 +276,8 @@ Measured measure_deform(const BenchOptions& options, const Mesh& mesh, Context& 
         }
       },
       [&](std::vector<cl::Event>& events) { deformer.enqueue(job, &events); },
-      frames_ahead(context));
+      frames_ahead(context),
+      write_reference(context, bench.batch, layout.vertices, measured.write_only));
   if (options.host) measured.host_map_seconds = time_host_maps(deformer, job, frames);
   measured.what = options.rig.empty() ? std::string("bend ") + options.mode
                                       : std::string("rig ") + to_string(chosen);
@@ -282,6 +313,10 @@ Measured measure_swim(const BenchOptions& options, Context& context, std::size_t
   tank::Species& species = scene->species().front();
   Measured measured;
   std::vector<double> enqueue, driver;  // per frame, the tank's step excluded
+  const std::size_t output_vertices = species.batch().layout.plane_stride;
+  measured.write_only = fastest_write_only(
+      context, species.batch(), output_vertices, species.deformer->instances_per_item(format),
+      species.deformer->lanes(species.batch().outputs), frames);
   measured.times = bench::time_frames(
       frames, [](std::size_t) {},
       [&](std::vector<cl::Event>& events) {
@@ -290,7 +325,8 @@ Measured measure_swim(const BenchOptions& options, Context& context, std::size_t
         driver.push_back(work.driver_seconds);
         events = work.kernels;
       },
-      frames_ahead(context));
+      frames_ahead(context),
+      write_reference(context, species.batch(), output_vertices, measured.write_only));
   // time_frames timed the whole call on the host: keep the timed frames' enqueues.
   measured.times.host.assign(enqueue.begin() + 1, enqueue.end());
   measured.host_driver_seconds.assign(driver.begin() + 1, driver.end());
@@ -300,7 +336,7 @@ Measured measure_swim(const BenchOptions& options, Context& context, std::size_t
   measured.lanes = species.deformer->lanes(species.batch().outputs);
   measured.streaming = species.deformer->streams_outputs(species.batch());
   measured.vertices = species.swim.model().vertex_count();
-  measured.output_vertices = species.batch().layout.plane_stride;
+  measured.output_vertices = output_vertices;
   measured.bytes_per_vertex = species.batch().layout.bytes_per_vertex();
   return measured;
 }
@@ -355,8 +391,15 @@ int run_bench(const BenchOptions& options) {
             ? measure_swim(options, context, instances, frames, normals, format, scene)
             : measure_deform(options, mesh, context, instances, frames, normals, format, deform);
     const double seconds = bench::median(m.times.device);
+    // Interleaved (CPUs): the median of each frame's own ratio to the write-only kernel
+    // run right after it; else the write-only kernel's median against the frames'.
+    const bool interleaved = !m.times.reference.empty();
     const double write_seconds =
-        write_only_median(context, *m.batch, m.output_vertices, m.per_item, m.lanes, frames);
+        interleaved ? bench::median(m.times.reference) : m.write_only.seconds;
+    std::vector<double> frame_fractions;
+    for (std::size_t f = 0; f < m.times.reference.size(); ++f) {
+      frame_fractions.push_back(m.times.reference[f] / m.times.device[f]);
+    }
     const double vertices = double(m.vertices) * double(instances);
     const BatchLayout& layout = m.batch->layout;
     const double bytes_per_vertex = double(m.bytes_per_vertex);
@@ -385,7 +428,11 @@ int run_bench(const BenchOptions& options) {
     const double scratch_record_bytes = 12.0 * (layout.tangents ? 3.0 : 2.0);
     result["moved_bytes_per_vertex"] = bytes_per_vertex + scratch_record_bytes * m.scratch_records;
     result["write_bandwidth_bytes_per_second"] = written / write_seconds;
-    result["write_fraction"] = write_seconds / seconds;
+    result["write_fraction"] =
+        interleaved ? bench::median(frame_fractions) : write_seconds / seconds;
+    result["write_reference"] = interleaved ? "interleaved" : "separate";
+    // The write-only kernel's fastest shape timed on its own, before the frames.
+    result["write_fraction_separate"] = m.write_only.seconds / seconds;
     result["host_enqueue_seconds_median"] = bench::median(m.times.host);
     if (options.swim) {
       result["host_driver_seconds_median"] = bench::median(m.host_driver_seconds);

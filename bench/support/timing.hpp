@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 #include <CL/opencl.hpp>
@@ -22,6 +23,7 @@ struct FrameTimes {
   std::vector<double> device;  // kernel time per frame
   std::vector<double> host;    // wall time of the enqueue call (checks, upload, launches)
   std::vector<std::vector<double>> kernels;  // per frame, each kernel's own time
+  std::vector<double> reference;  // per frame, the reference kernel run after it (if any)
 
   // Each kernel's median over the frames (kernels in launch order).
   std::vector<double> kernel_medians() const;
@@ -37,9 +39,14 @@ struct FrameTimes {
 // them (GPUs: a frame waited for one by one holds the gap between its driver's end
 // and the launch of its deformation). Off, each frame is waited for before the next
 // is prepared (CPUs: the host's work would share the cores the kernels run on).
+// `reference`, when given and the frames do not run ahead: a kernel enqueued after
+// every frame has completed (the warm-up's too), its time in `times.reference`, so that
+// a frame and its reference see a shared machine in the same state.
 template <typename Prepare, typename Enqueue>
-FrameTimes time_frames(std::size_t frames, Prepare prepare, Enqueue enqueue, bool ahead = false) {
+FrameTimes time_frames(std::size_t frames, Prepare prepare, Enqueue enqueue, bool ahead = false,
+                       const std::function<cl::Event()>& reference = {}) {
   FrameTimes times;
+  const bool interleaved = reference && !ahead;
   std::vector<cl::Event> kernels, in_flight;
   auto record = [&times](const std::vector<cl::Event>& frame) {
     times.device.push_back(span_seconds(frame.front(), frame.back()));
@@ -50,6 +57,7 @@ FrameTimes time_frames(std::size_t frames, Prepare prepare, Enqueue enqueue, boo
   prepare(0);
   enqueue(kernels);
   span_seconds(kernels.front(), kernels.back());
+  if (interleaved) event_seconds(reference());
   for (std::size_t f = 1; f <= frames; ++f) {
     prepare(f);
     const auto start = std::chrono::steady_clock::now();
@@ -58,6 +66,7 @@ FrameTimes time_frames(std::size_t frames, Prepare prepare, Enqueue enqueue, boo
     times.host.push_back(std::chrono::duration<double>(end - start).count());
     if (!ahead) {
       record(kernels);
+      if (interleaved) times.reference.push_back(event_seconds(reference()));
       continue;
     }
     if (!in_flight.empty()) record(in_flight);
