@@ -15,18 +15,45 @@
 namespace finflex {
 namespace {
 
-const char* kFill = R"(
+// A kernel that fills a buffer of 4,096 floats with a value: a frame's stand-in.
+class Fill {
+ public:
+  explicit Fill(Context& context)
+      : context_(context), buffer_(context.context(), CL_MEM_READ_WRITE, 4096 * sizeof(float)) {
+    cl::Program program(context.context(), R"(
 __kernel void fill(__global float* out, const float value) {
   out[get_global_id(0)] = value;
 }
-)";
+)");
+    EXPECT_EQ(program.build(), CL_SUCCESS);
+    kernel_ = cl::Kernel(program, "fill");
+  }
+
+  cl::Event launch(float value) {
+    cl::Event done;
+    kernel_.setArg(0, buffer_);
+    kernel_.setArg(1, value);
+    EXPECT_EQ(context_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(4096),
+                                                    cl::NDRange(64), nullptr, &done),
+              CL_SUCCESS);
+    return done;
+  }
+
+  // The buffer's first value once the queue has finished.
+  float first_value() {
+    float value = 0.0f;
+    context_.queue().enqueueReadBuffer(buffer_, CL_TRUE, 0, sizeof(float), &value);
+    return value;
+  }
+
+ private:
+  Context& context_;
+  cl::Buffer buffer_;
+  cl::Kernel kernel_;
+};
 
 TEST(BenchTiming, EachFrameRecordsItsOwnKernelsWhetherOrNotFramesRunAhead) {
-  Context& context = test::shared_context();
-  cl::Program program(context.context(), kFill);
-  ASSERT_EQ(program.build(), CL_SUCCESS);
-  cl::Kernel kernel(program, "fill");
-  cl::Buffer buffer(context.context(), CL_MEM_READ_WRITE, 4096 * sizeof(float));
+  Fill fill(test::shared_context());
   for (bool ahead : {false, true}) {
     SCOPED_TRACE(ahead ? "frames ahead" : "frame by frame");
     std::vector<std::size_t> prepared;
@@ -39,13 +66,7 @@ TEST(BenchTiming, EachFrameRecordsItsOwnKernelsWhetherOrNotFramesRunAhead) {
         [&](std::vector<cl::Event>& events) {
           events.clear();
           for (std::size_t k = 0; k < enqueued % 3 + 1; ++k) {
-            cl::Event done;
-            kernel.setArg(0, buffer);
-            kernel.setArg(1, float(enqueued));
-            ASSERT_EQ(context.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(4096),
-                                                           cl::NDRange(64), nullptr, &done),
-                      CL_SUCCESS);
-            events.push_back(done);
+            events.push_back(fill.launch(float(enqueued)));
           }
           ++enqueued;
         },
@@ -60,32 +81,17 @@ TEST(BenchTiming, EachFrameRecordsItsOwnKernelsWhetherOrNotFramesRunAhead) {
       EXPECT_GT(times.device[f - 1], 0.0) << "frame " << f;
     }
   }
-  std::vector<float> last(4096);
-  context.queue().enqueueReadBuffer(buffer, CL_TRUE, 0, last.size() * sizeof(float), last.data());
-  EXPECT_EQ(last.front(), 6.0f);  // every frame ran, the last one last
+  EXPECT_EQ(fill.first_value(), 6.0f);  // every frame ran, the last one last
 }
 
 // A reference kernel runs after every frame waited for (the warm-up's too) and is
 // timed on its own; with frames ahead it does not run.
 TEST(BenchTiming, AReferenceKernelRunsAfterEveryFrameWaitedFor) {
-  Context& context = test::shared_context();
-  cl::Program program(context.context(), kFill);
-  ASSERT_EQ(program.build(), CL_SUCCESS);
-  cl::Kernel kernel(program, "fill");
-  cl::Buffer buffer(context.context(), CL_MEM_READ_WRITE, 4096 * sizeof(float));
+  Fill fill(test::shared_context());
   std::vector<std::string> order;  // "frame" or "reference", as enqueued
-  auto launch = [&](float value) {
-    cl::Event done;
-    kernel.setArg(0, buffer);
-    kernel.setArg(1, value);
-    EXPECT_EQ(context.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(4096),
-                                                   cl::NDRange(64), nullptr, &done),
-              CL_SUCCESS);
-    return done;
-  };
   const std::function<cl::Event()> reference = [&] {
     order.push_back("reference");
-    return launch(-1.0f);
+    return fill.launch(-1.0f);
   };
   for (bool ahead : {false, true}) {
     SCOPED_TRACE(ahead ? "frames ahead" : "frame by frame");
@@ -95,7 +101,7 @@ TEST(BenchTiming, AReferenceKernelRunsAfterEveryFrameWaitedFor) {
         frames, [](std::size_t) {},
         [&](std::vector<cl::Event>& events) {
           order.push_back("frame");
-          events.assign(1, launch(float(order.size())));
+          events.assign(1, fill.launch(float(order.size())));
         },
         ahead, reference);
     ASSERT_EQ(times.device.size(), frames);
@@ -111,9 +117,7 @@ TEST(BenchTiming, AReferenceKernelRunsAfterEveryFrameWaitedFor) {
       expected.insert(expected.end(), {"frame", "reference"});
     EXPECT_EQ(order, expected);
   }
-  std::vector<float> last(4096);
-  context.queue().enqueueReadBuffer(buffer, CL_TRUE, 0, last.size() * sizeof(float), last.data());
-  EXPECT_EQ(last.front(), 5.0f);  // frames ahead: the last frame ran last
+  EXPECT_EQ(fill.first_value(), 5.0f);  // frames ahead: the last frame ran last
 }
 
 }  // namespace
