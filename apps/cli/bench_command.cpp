@@ -123,10 +123,7 @@ std::vector<double> time_host_maps(ClDeformer& deformer, ClJob& job, std::size_t
 // frame is waited for (the host's work would take the kernels' cores).
 bool frames_ahead(Context& context) { return context.description().is_gpu(); }
 
-// The write-only kernel through the batch's layout: the fastest of the deformer's
-// instances per work-item and 4 (the rig kernels' on GPUs), each with one lane and,
-// when the deformer has more for this batch (FinFlex's float32 planes), with its lanes
-// (vector stores, kernels/cpu/lane_outputs.cl), streaming and plain.
+// The write-only kernel of a shape through the batch's layout.
 cl::Event enqueue_write_only(Context& context, DeviceBatch& batch, std::size_t vertices,
                              const WriteOnlyShape& shape) {
   return bench::enqueue_write_only(context, batch, vertices, shape.per_item,
@@ -134,6 +131,10 @@ cl::Event enqueue_write_only(Context& context, DeviceBatch& batch, std::size_t v
                                    shape.streaming);
 }
 
+// The write-only kernel through the batch's layout: the fastest of the deformer's
+// instances per work-item and 4 (the rig kernels' on GPUs), each with one lane and,
+// when the deformer has more for this batch (FinFlex's float32 planes), with its lanes
+// (vector stores, kernels/cpu/lane_outputs.cl), streaming and plain.
 WriteOnlyShape fastest_write_only(Context& context, DeviceBatch& batch, std::size_t vertices,
                                   std::size_t per_item, std::size_t lanes, std::size_t frames) {
   std::vector<WriteOnlyShape> shapes;
