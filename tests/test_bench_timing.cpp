@@ -85,7 +85,9 @@ TEST(BenchTiming, EachFrameRecordsItsOwnKernelsWhetherOrNotFramesRunAhead) {
 }
 
 // A reference kernel runs after every frame waited for (the warm-up's too) and is
-// timed on its own; with frames ahead it does not run.
+// timed on its own; each timed frame follows an untimed one (its lead) and each timed
+// reference an untimed reference; the enqueue callback is told which frames are timed.
+// With frames ahead no reference runs.
 TEST(BenchTiming, AReferenceKernelRunsAfterEveryFrameWaitedFor) {
   Fill fill(test::shared_context());
   std::vector<std::string> order;  // "frame" or "reference", as enqueued
@@ -99,22 +101,25 @@ TEST(BenchTiming, AReferenceKernelRunsAfterEveryFrameWaitedFor) {
     const std::size_t frames = 4;
     const bench::FrameTimes times = bench::time_frames(
         frames, [](std::size_t) {},
-        [&](std::vector<cl::Event>& events) {
-          order.push_back("frame");
+        [&](std::vector<cl::Event>& events, bool timed) {
+          order.push_back(timed ? "timed frame" : "frame");
           events.assign(1, fill.launch(float(order.size())));
         },
         ahead, reference);
     ASSERT_EQ(times.device.size(), frames);
     if (ahead) {
       EXPECT_TRUE(times.reference.empty());
-      EXPECT_EQ(order, std::vector<std::string>(frames + 1, "frame"));
+      std::vector<std::string> expected(frames + 1, "timed frame");
+      expected.front() = "frame";  // the warm-up
+      EXPECT_EQ(order, expected);
       continue;
     }
     ASSERT_EQ(times.reference.size(), frames);
     for (double seconds : times.reference) EXPECT_GT(seconds, 0.0);
-    std::vector<std::string> expected;
-    for (std::size_t f = 0; f <= frames; ++f)
-      expected.insert(expected.end(), {"frame", "reference"});
+    std::vector<std::string> expected = {"frame", "reference"};  // the warm-up
+    for (std::size_t f = 1; f <= frames; ++f) {
+      expected.insert(expected.end(), {"frame", "timed frame", "reference", "reference"});
+    }
     EXPECT_EQ(order, expected);
   }
   EXPECT_EQ(fill.first_value(), 5.0f);  // frames ahead: the last frame ran last

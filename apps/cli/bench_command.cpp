@@ -313,24 +313,26 @@ Measured measure_swim(const BenchOptions& options, Context& context, std::size_t
       normals, format, cl_options(options));
   tank::Species& species = scene->species().front();
   Measured measured;
-  std::vector<double> enqueue, driver;  // per frame, the tank's step excluded
+  std::vector<double> enqueue, driver;  // per timed frame, the tank's step excluded
   const std::size_t output_vertices = species.batch().layout.plane_stride;
   measured.write_only = fastest_write_only(
       context, species.batch(), output_vertices, species.deformer->instances_per_item(format),
       species.deformer->lanes(species.batch().outputs), frames);
   measured.times = bench::time_frames(
       frames, [](std::size_t) {},
-      [&](std::vector<cl::Event>& events) {
+      [&](std::vector<cl::Event>& events, bool timed) {
         const tank::FrameWork work = scene->enqueue_frame(1.0 / 30.0, true);
-        enqueue.push_back(work.enqueue_seconds);
-        driver.push_back(work.driver_seconds);
+        if (timed) {
+          enqueue.push_back(work.enqueue_seconds);
+          driver.push_back(work.driver_seconds);
+        }
         events = work.kernels;
       },
       frames_ahead(context),
       write_reference(context, species.batch(), output_vertices, measured.write_only));
-  // time_frames timed the whole call on the host: keep the timed frames' enqueues.
-  measured.times.host.assign(enqueue.begin() + 1, enqueue.end());
-  measured.host_driver_seconds.assign(driver.begin() + 1, driver.end());
+  // time_frames timed the whole call on the host, the tank's step included.
+  measured.times.host = enqueue;
+  measured.host_driver_seconds = driver;
   measured.what = std::string("swim ") + to_string(species.deformer->automatic_path());
   measured.batch = &species.batch();
   measured.per_item = species.deformer->instances_per_item(format);
