@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -114,9 +115,24 @@ TEST(NormalFormat, EveryHalfStoreWritesTheNearestHalf) {
   // whatever the device, and on CPUs the store of kernels of 8, 16 and 32 lanes (32 on
   // PoCL: kernels/cpu/lane_outputs.cl, half_bits on vectors): values across [-1, 1]
   // with ties between two halves, values that become subnormal halves, zeros of both
-  // signs.
-  std::vector<float> values = {0.0f,   -0.0f, 1.0f,  -1.0f,    0.5f,        1e-8f,
-                               -3e-8f, 6e-8f, 1e-5f, -6.1e-5f, 0.33333334f, -0.7071068f};
+  // signs, the largest half and what rounds past it (infinity).
+  std::vector<float> values = {0.0f,
+                               -0.0f,
+                               1.0f,
+                               -1.0f,
+                               0.5f,
+                               1e-8f,
+                               -3e-8f,
+                               6e-8f,
+                               1e-5f,
+                               -6.1e-5f,
+                               0.33333334f,
+                               -0.7071068f,
+                               65504.0f,
+                               -65519.0f,
+                               65520.0f,
+                               -1e10f,
+                               std::numeric_limits<float>::infinity()};
   // Exact ties: half-way between two neighbouring halves in [0.5, 1) (spacing 2^-11),
   // with an even and an odd lower neighbour, both signs.
   for (int k : {0, 1, 2, 3, 100, 101, 1022}) {
@@ -153,17 +169,25 @@ __kernel void store_halves(__global const float* in, __global float* out, const 
 }
 )";
   Context& context = test::shared_context();
+  // software: FF_SOFTWARE_HALF, the integer rounding that CPUs without a conversion
+  // instruction take (common/planes.cl), where the others convert in hardware.
   struct Store {
     const char* name;
     int gpu;
     std::size_t lanes;
+    int software;
   };
-  std::vector<Store> stores = {{"vstore_half (GPUs)", 1, 1}, {"half_bits (CPUs)", 0, 1}};
+  std::vector<Store> stores = {{"vstore_half (GPUs)", 1, 1, 0},
+                               {"half_bits (CPUs)", 0, 1, 0},
+                               {"half_bits in software", 0, 1, 1}};
   if (!context.description().is_gpu()) {
-    stores.insert(stores.end(), {{"8 lanes", 0, 8}, {"16 lanes", 0, 16}});
+    stores.insert(stores.end(), {{"8 lanes", 0, 8, 0},
+                                 {"16 lanes", 0, 16, 0},
+                                 {"8 lanes in software", 0, 8, 1},
+                                 {"16 lanes in software", 0, 16, 1}});
     if (context.description().platform_name.find("Portable Computing Language") !=
         std::string::npos) {
-      stores.push_back({"32 lanes", 0, 32});
+      stores.push_back({"32 lanes", 0, 32, 0});
     }
   }
   for (const Store& store : stores) {
@@ -171,8 +195,9 @@ __kernel void store_halves(__global const float* in, __global float* out, const 
     // The device's FF_GPU comes as a build option; the source replaces it before
     // planes.cl reads it.
     source.generated = "#undef FF_GPU\n#define FF_GPU " + std::to_string(store.gpu) + "\n";
-    cl::Kernel kernel =
-        context.kernel("store_halves", source, "-DFF_LANES=" + std::to_string(store.lanes));
+    cl::Kernel kernel = context.kernel("store_halves", source,
+                                       "-DFF_LANES=" + std::to_string(store.lanes) +
+                                           " -DFF_SOFTWARE_HALF=" + std::to_string(store.software));
     cl_int status = CL_SUCCESS;
     cl::Buffer in(context.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
                   planes.size() * sizeof(float), planes.data(), &status);

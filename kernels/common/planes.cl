@@ -35,12 +35,36 @@ FF_INLINE void store_plane3(__global float* planes, size_t first_plane, size_t s
 #endif
 
 
-/* The IEEE half nearest to f (ties to even), as bits: F. Giesen's
- * float_to_half_fast3_rtne with its branches as selects, so it vectorises (PoCL's
- * vstore_half converts element by element). Overflow gives Inf, NaN stays NaN.
- * FF_DEFINE_HALF_BITS(n) defines half_bits##n on float##n: half_bits on a float here,
- * half_bits8 and half_bits16 on the lanes' vectors (kernels/cpu/lane_planes.cl), one
- * rounding for every kernel. */
+/* The IEEE half nearest to f (ties to even), as bits. FF_DEFINE_HALF_BITS(n) defines
+ * half_bits##n on float##n: half_bits on a float here, half_bits8 and half_bits16 on the
+ * lanes' vectors (kernels/cpu/lane_planes.cl), one rounding for every kernel.
+ *
+ * Where the CPU converts in hardware (x86's F16C: vcvtps2ph, up to 16 lanes in one
+ * instruction, to nearest even), clang's _Float16 conversion, which compiles to it:
+ * the same bits as the software rounding below for every float but a NaN's payload (a
+ * NaN stays a NaN). The software rounding took about 20 vector operations a component.
+ * Build option FF_SOFTWARE_HALF (0/1): 1 takes the software rounding everywhere (the
+ * tests compare the two). */
+#ifndef FF_SOFTWARE_HALF
+#define FF_SOFTWARE_HALF 0
+#endif
+#if defined(__clang__) && defined(__F16C__) && !FF_GPU && !FF_SOFTWARE_HALF
+#define FF_HARDWARE_HALF 1
+typedef _Float16 HalfValue;
+typedef _Float16 HalfValue8 __attribute__((ext_vector_type(8)));
+typedef _Float16 HalfValue16 __attribute__((ext_vector_type(16)));
+FF_INLINE HalfValue to_half_value(float f) { return (HalfValue)f; }
+FF_INLINE HalfValue8 to_half_value8(float8 f) { return __builtin_convertvector(f, HalfValue8); }
+FF_INLINE HalfValue16 to_half_value16(float16 f) { return __builtin_convertvector(f, HalfValue16); }
+#define FF_DEFINE_HALF_BITS(n)                              \
+  FF_INLINE ushort##n half_bits##n(float##n f) {            \
+    return __builtin_astype(to_half_value##n(f), ushort##n); \
+  }
+#else
+#define FF_HARDWARE_HALF 0
+/* In software: F. Giesen's float_to_half_fast3_rtne with its branches as selects, so it
+ * vectorises (PoCL's vstore_half converts element by element). Overflow gives Inf, NaN
+ * stays NaN. */
 #define FF_DEFINE_HALF_BITS(n)                                                           \
   FF_INLINE ushort##n half_bits##n(float##n f) {                                         \
     const uint##n sign = as_uint##n(f) & 0x80000000u;                                    \
@@ -59,6 +83,7 @@ FF_INLINE void store_plane3(__global float* planes, size_t first_plane, size_t s
                                                            : normal;                     \
     return convert_ushort##n(bits | (sign >> 16));                                       \
   }
+#endif
 
 FF_DEFINE_HALF_BITS()
 

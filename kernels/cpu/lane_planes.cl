@@ -67,8 +67,9 @@ FF_INLINE void store_lanes(__global float* first, LaneFloat value) {
 
 /* Half planes (normals and tangents of NormalFormat::kHalf): each lane's float as the
  * bits of the nearest half, rounded as the one-lane kernels round it
- * (common/planes.cl FF_DEFINE_HALF_BITS, on a vector of n lanes: integer operations
- * that stay vector code), n consecutive halves stored as one vector of ushorts. */
+ * (common/planes.cl FF_DEFINE_HALF_BITS, on a vector of n lanes: the CPU's conversion
+ * instruction where it has one, else integer operations that stay vector code), n
+ * consecutive halves stored as one vector of ushorts. */
 #define FF_DEFINE_HALF_STORE(n)                                                 \
   FF_DEFINE_HALF_BITS(n)                                                        \
   FF_INLINE void store_half_vector##n(__global ushort* first, float##n value) { \

@@ -22,6 +22,7 @@ std::uint16_t nearest_half(float value) {
   const double v = std::fabs(static_cast<double>(value));
   const std::uint16_t sign = std::signbit(value) ? 0x8000 : 0;
   if (v == 0.0) return sign;
+  if (std::isinf(v)) return sign | 0x7c00;
   const int exponent = v >= std::ldexp(1.0, -14) ? std::ilogb(v) : -15;  // -15: subnormal
   const double unit = exponent >= -14 ? std::ldexp(1.0, exponent - 10) : std::ldexp(1.0, -24);
   const double scaled = v / unit;  // exact: a power of two
@@ -29,6 +30,7 @@ std::uint16_t nearest_half(float value) {
   const double above = scaled - lower;
   if (above > 0.5 || (above == 0.5 && std::fmod(lower, 2.0) != 0.0)) lower += 1.0;
   const double rounded = lower * unit;
+  if (rounded >= 65536.0) return sign | 0x7c00;  // past the largest half, 65504: infinity
   if (rounded < std::ldexp(1.0, -14))
     return sign | static_cast<std::uint16_t>(rounded / std::ldexp(1.0, -24));
   const int e = std::ilogb(rounded);
