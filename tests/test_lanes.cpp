@@ -387,6 +387,98 @@ TEST(Lanes, OtherOutputLayoutsStoreLaneByLaneAndMatchTheReference) {
   EXPECT_EQ(bend_sixteen.lanes(bend_packed), by_lane);
 }
 
+// A vertex struct of float32x3 attributes that fill it, in one buffer (on CPUs unless
+// staged): every lane count transposes each work-item's structs into whole vectors
+// (kernels/cpu/lane_outputs.cl), for 6 floats a vertex (the bend on Blub, no tangents)
+// and 9 (the Barramundi's swim rig, tangents), the members in different orders,
+// streamed, plain, and from a run that starts off a vector boundary (vstoren): the
+// structs hold what one lane writes there, and the bytes past the last struct stay as
+// they were.
+TEST(Lanes, VertexStructsAreTransposedIntoVectors) {
+  if (test::shared_context().description().is_gpu()) GTEST_SKIP() << "CPUs' kernels";
+  const Mesh blub = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
+  const RiggedMesh bend = RiggedMesh::single_bend(blub, find_body_frame(blub), BendMode::kExact);
+  const Mesh barramundi = load_mesh(test::data_path("barramundi/BarramundiFish.gltf"));
+  const RiggedMesh swim(
+      barramundi,
+      resolve_rig(load_rig_file(test::data_path("rigs/barramundi_swim.rig.json")), barramundi));
+  struct Order {
+    const char* name;
+    std::size_t position, normal, tangent;  // floats into the struct
+  };
+  for (const RiggedMesh* model : {&bend, &swim}) {
+    const bool tangents = model->mesh().has_tangents();
+    const std::vector<Order> orders =
+        tangents ? std::vector<Order>{{"position, normal, tangent", 0, 3, 6},
+                                      {"tangent, position, normal", 3, 6, 0}}
+                 : std::vector<Order>{{"position, normal", 0, 3, 0}, {"normal, position", 3, 0, 0}};
+    const RigParameters values = swimming_values(*model, 3);
+    const std::size_t instances = values.instance_count();
+    ClDeformer one_lane(test::shared_context(), *model, with_lanes(1));
+    const std::size_t slots = one_lane.output_vertices(VertexOrder::kSlots);
+    const std::size_t floats = tangents ? 9 : 6;
+    for (const Order& order : orders) {
+      // lead: floats before the first struct (3: the run starts off a vector boundary).
+      for (std::size_t lead : {std::size_t{0}, std::size_t{3}}) {
+        OutputLayout l;
+        auto member = [&](std::size_t at) {
+          return AttributeLayout::packed(AttributeFormat::kFloat32x3, slots, 4 * floats,
+                                         4 * (lead + at));
+        };
+        l.positions = member(order.position);
+        l.normals = member(order.normal);
+        l.tangents = tangents;
+        l.tangent_layout = member(order.tangent);
+        const std::size_t bytes =
+            std::max({OutputLayout::required_bytes(l.positions, instances, slots),
+                      OutputLayout::required_bytes(l.normals, instances, slots),
+                      OutputLayout::required_bytes(l.tangent_layout, instances, slots)});
+        const std::size_t spare = 256;
+        std::vector<float> filled((bytes + spare) / sizeof(float), -7.0f);
+        auto buffer = [&]() {
+          cl_int status = CL_SUCCESS;
+          cl::Buffer b(test::shared_context().context(), CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR,
+                       filled.size() * sizeof(float), filled.data(), &status);
+          check_cl(status, "clCreateBuffer");
+          return b;
+        };
+        cl::Buffer want_buffer = buffer();
+        DeviceBatch want_batch =
+            one_lane.bind(instances, l, {want_buffer, want_buffer, want_buffer, {}});
+        const DeformedBatch<float> want =
+            test::run_on_device(one_lane, want_batch, values, NormalMode::kJacobian);
+        for (std::size_t lanes : vector_lanes()) {
+          for (OutputStores stores : {OutputStores::kStreaming, OutputStores::kPlain}) {
+            SCOPED_TRACE(testing::Message()
+                         << (tangents ? "swim rig, " : "bend, ") << order.name << ", lead " << lead
+                         << ", " << lanes << " lanes, "
+                         << (stores == OutputStores::kStreaming ? "streaming" : "plain"));
+            ClOptions options = with_lanes(lanes);
+            options.stores = stores;
+            ClDeformer d(test::shared_context(), *model, options);
+            EXPECT_EQ(d.lanes(l), lanes);
+            cl::Buffer got_buffer = buffer();
+            DeviceBatch got_batch = d.bind(instances, l, {got_buffer, got_buffer, got_buffer, {}});
+            EXPECT_EQ(d.streams_outputs(got_batch), stores == OutputStores::kStreaming);
+            const DeformedBatch<float> got =
+                test::run_on_device(d, got_batch, values, NormalMode::kJacobian);
+            expect_close_to_one_lane(got, want, model->vertex_count(), instances,
+                                     coordinate_scale(model->rig()));
+            std::vector<float> after(filled.size());
+            check_cl(test::shared_context().queue().enqueueReadBuffer(
+                         got_buffer, CL_TRUE, 0, after.size() * sizeof(float), after.data()),
+                     "clEnqueueReadBuffer");
+            for (std::size_t k = 0; k < lead; ++k) ASSERT_EQ(after[k], -7.0f) << k;
+            for (std::size_t k = bytes / sizeof(float); k < after.size(); ++k) {
+              ASSERT_EQ(after[k], -7.0f) << k;
+            }
+          }
+        }
+      }
+    }
+  }
+}
+
 // OutputStores::kAuto streams a frame's outputs only when they are larger than the
 // caches could hold: the device's global memory cache (CL_DEVICE_GLOBAL_MEM_CACHE_SIZE),
 // at most 4 MiB per compute unit (ClOptions::stores); kPlain and kStreaming are what

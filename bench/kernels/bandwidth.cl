@@ -6,7 +6,8 @@
  * deformation kernels, so PoCL vectorises them alike; write_outputs honours the
  * output layout's options (kernels/common/outputs.cl), FF_INSTANCES_PER_ITEM and
  * FF_LANES (kernels/common/lanes.cl: vector stores of FF_LANES slots for FinFlex's
- * planes, kernels/cpu/lane_outputs.cl, any other layout lane by lane) as they do
+ * planes and vertex structs, kernels/cpu/lane_outputs.cl, any other layout lane by
+ * lane) as they do
  * (NDRange (output vertices / FF_LANES, ceil(instances / FF_INSTANCES_PER_ITEM))).
  * Built after the library's common kernel files.
  *
@@ -36,7 +37,7 @@ __kernel void write_outputs(FF_OUTPUT_ARGUMENTS, const uint vertices, const uint
 #endif
     /* Every output as the deformation kernels store it (common/outputs.cl); in mesh
      * order the vertices past the mesh's are padding and write nothing. */
-#if FF_STAGED_STRUCT
+#if FF_STAGED_STRUCT || (FF_LANE_STRUCT && FF_LANES > 1)
     {
       const Vec3 p = filler, n = filler, t = filler;
       FF_STORE_OUTPUTS(instance, v)

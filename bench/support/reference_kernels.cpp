@@ -37,15 +37,17 @@ cl::Event launch(Context& context, cl::Kernel& kernel, std::size_t vertices, std
 }  // namespace
 
 cl::Event enqueue_write_only(Context& context, DeviceBatch& batch, std::size_t vertices,
-                             std::size_t instances_per_item, WriteValues values,
-                             std::size_t lanes, bool streaming) {
+                             std::size_t instances_per_item, WriteValues values, std::size_t lanes,
+                             bool streaming) {
   if (values == WriteValues::kDeviceDefault) {
     values = context.description().is_gpu() ? WriteValues::kVarying : WriteValues::kConstant;
   }
   const std::string options =
       std::string("-DFF_INSTANCES_PER_ITEM=") + std::to_string(instances_per_item) +
       (values == WriteValues::kVarying ? " -DFF_VARYING_WRITES=1" : "") +
-      output_build_options(batch.outputs) + staged_struct_options(batch, context.description().is_gpu()) +
+      output_build_options(batch.outputs) +
+      staged_struct_options(batch, context.description().is_gpu()) +
+      (lanes > 1 && !context.description().is_gpu() ? lane_struct_options(batch) : std::string()) +
       (lanes > 1 ? " -DFF_LANES=" + std::to_string(lanes) +
                        " -DFF_STREAMING_STORES=" + (streaming ? "1" : "0")
                  : std::string());

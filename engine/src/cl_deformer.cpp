@@ -190,9 +190,10 @@ std::size_t ClDeformer::Impl::lanes() const {
   return options.lanes ? options.lanes : detail::device_lanes(context.description());
 }
 
-// Lanes store FinFlex's planes (normals float32 or half) as vectors
-// (kernels/cpu/lane_outputs.cl) and, on CPUs, any other layout lane by lane through the
-// one-slot stores (kernels/common/outputs.cl): the arithmetic stays vector code. 1,000
+// Lanes store FinFlex's planes (normals float32 or half) and float32 vertex structs in
+// one buffer as vectors (kernels/cpu/lane_outputs.cl) and, on CPUs, any other layout
+// lane by lane through the one-slot stores (kernels/common/outputs.cl): the arithmetic
+// stays vector code. Before the structs were transposed, lane by lane too: 1,000
 // instances on a Xeon with PoCL 5 (which does not vectorise one-lane kernels), 16
 // threads: the interleaved struct 10.0 ms a frame against 17.0 with one lane (bend),
 // 11.6 against 30.7 (rig); on 2 AMD EPYC cores with PoCL 3.1, 22.6 against 45.7 and
@@ -216,11 +217,19 @@ bool ClDeformer::Impl::writes_planes(const OutputLayout& outputs) const {
   return detail::writes_finflex_planes(outputs, layout(1, NormalFormat::kFloat32));
 }
 
+// Vertex structs of float32x3 attributes in one buffer, transposed into vectors by
+// kernels of more than one lane (kernels/cpu/lane_outputs.cl): on CPUs unless staged.
+bool ClDeformer::Impl::writes_lane_structs(const DeviceBatch& batch) const {
+  return lanes(batch.outputs) > 1 && !stages_structs() && !lane_struct_options(batch).empty();
+}
+
 bool ClDeformer::Impl::streams_outputs(const DeviceBatch& batch) const {
-  // Streaming stores: FinFlex's planes, stored as vectors.
-  if (lanes(batch.outputs) == 1 || !writes_planes(batch.outputs)) return false;
+  // Streaming stores: FinFlex's planes and vertex structs, stored as vectors.
+  if (lanes(batch.outputs) == 1 || !(writes_planes(batch.outputs) || writes_lane_structs(batch))) {
+    return false;
+  }
   // FinFlex's planes: 12 bytes per position, 12 or 6 per direction (float32 or half),
-  // per vertex slot and instance.
+  // per vertex slot and instance; a vertex struct, 12 per attribute.
   const BatchLayout& counts = batch.layout;
   const std::size_t direction_bytes =
       batch.outputs.normals.format == AttributeFormat::kFloat16x3 ? 6 : 12;
@@ -277,6 +286,7 @@ void ClDeformer::Impl::check_buffer_sizes(const DeviceBatch& batch) {
   } else {
     batch_options_ = output_build_options(batch.outputs) +
                      staged_struct_options(batch, stages_structs()) +
+                     (writes_lane_structs(batch) ? lane_struct_options(batch) : std::string()) +
                      detail::plane_stride_option(batch.outputs, layout(1, NormalFormat::kFloat32));
   }
   // Lanes (and their kind of store) for this batch (lanes(outputs): FinFlex's planes as

@@ -68,20 +68,34 @@ bool fills_vertex_struct(const OutputLayout& l) {
 
 }  // namespace detail
 
-std::string staged_struct_options(const DeviceBatch& batch, bool staged) {
+namespace {
+
+// `flag`=1 and the struct's numbers (kernels/common/outputs.cl FF_STAGED_STRUCT) for a
+// vertex struct in one buffer; empty for any other layout.
+std::string vertex_struct_options(const DeviceBatch& batch, const char* flag) {
   const OutputLayout& l = batch.outputs;
-  if (!staged || !detail::fills_vertex_struct(l)) return "";
+  if (!detail::fills_vertex_struct(l)) return "";
   const bool one_buffer = batch.normals() == batch.positions() &&
                           (!l.tangents || batch.tangents() == batch.positions());
   if (!one_buffer) return "";
   std::size_t start = std::min(l.positions.offset, l.normals.offset);
   if (l.tangents) start = std::min(start, l.tangent_layout.offset);
   auto floats_in = [&](const AttributeLayout& a) { return std::to_string((a.offset - start) / 4); };
-  return " -DFF_STAGED_STRUCT=1 -DFF_STAGED_FLOATS=" +
-         std::to_string(l.positions.vertex_stride / 4) +
+  return std::string(" -D") + flag +
+         "=1 -DFF_STAGED_FLOATS=" + std::to_string(l.positions.vertex_stride / 4) +
          " -DFF_STAGED_POSITION=" + floats_in(l.positions) +
          " -DFF_STAGED_NORMAL=" + floats_in(l.normals) +
          " -DFF_STAGED_TANGENT=" + (l.tangents ? floats_in(l.tangent_layout) : std::string("0"));
+}
+
+}  // namespace
+
+std::string staged_struct_options(const DeviceBatch& batch, bool staged) {
+  return staged ? vertex_struct_options(batch, "FF_STAGED_STRUCT") : std::string();
+}
+
+std::string lane_struct_options(const DeviceBatch& batch) {
+  return vertex_struct_options(batch, "FF_LANE_STRUCT");
 }
 
 cl_ulong16 output_layout_argument(const OutputLayout& layout, bool previous_valid) {

@@ -104,7 +104,9 @@ struct ClOptions {
   // (refused elsewhere). Lanes apply per batch: outputs in FinFlex's planes (a batch
   // whose OutputLayout equals planes_layout(instances, format) for either NormalFormat:
   // float32 positions, normals and tangents in float32 or half, slot order, no previous
-  // positions; allocate(instances[, format]) makes one) are stored as vectors; on CPUs
+  // positions; allocate(instances[, format]) makes one) are stored as vectors, and so
+  // is a vertex struct of float32x3 attributes that fill it in one buffer (transposed in
+  // registers, finflex/cl_outputs.hpp lane_struct_options) unless it is staged; on CPUs
   // any other layout lane by lane through the one-slot stores of
   // kernels/common/outputs.cl, but the single bend's in mesh order or with previous
   // positions, and on GPUs every other layout, with one lane whatever this asks:
@@ -114,8 +116,9 @@ struct ClOptions {
   OutputStores stores = OutputStores::kAuto;
   // A vertex struct of float32x3 attributes that fill it, in one buffer and slot order
   // (finflex/cl_outputs.hpp staged_struct_options), is written through local memory as
-  // contiguous runs: true on GPUs (coalesced stores), false on CPUs (PoCL writes it
-  // faster directly). Only a layout of that kind is affected.
+  // contiguous runs: true on GPUs (coalesced stores), false on CPUs (whose kernels of
+  // more than one lane transpose a work-item's structs in registers and store whole
+  // vectors: lane_struct_options). Only a layout of that kind is affected.
   enum class StructStores { kAuto, kStaged, kDirect };
   StructStores struct_stores = StructStores::kAuto;
   // Work-items per instance for the per-instance tables of the frame (rig_prepare: a

@@ -28,6 +28,13 @@ FINFLEX_API std::string output_build_options(const OutputLayout& layout);
 // output_build_options(batch.outputs). FinFlex stages on GPUs (ClOptions::struct_stores).
 FINFLEX_API std::string staged_struct_options(const DeviceBatch& batch, bool staged);
 
+// The same vertex struct for kernels of more than one lane (CPUs, ClOptions::lanes):
+// each work-item's structs are transposed from its lanes' vectors in registers and
+// stored as whole vectors (kernels/cpu/lane_outputs.cl). Empty for any other layout.
+// Append to output_build_options(batch.outputs) where FF_LANES > 1 and the structs are
+// not staged; one-lane builds ignore it.
+FINFLEX_API std::string lane_struct_options(const DeviceBatch& batch);
+
 // The `out_layout` argument; `previous_valid`: the positions' place holds the previous
 // frame (DeviceBatch::frames_written > 0).
 FINFLEX_API cl_ulong16 output_layout_argument(const OutputLayout& layout, bool previous_valid);
