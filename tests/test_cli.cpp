@@ -260,23 +260,26 @@ TEST(Cli, BenchMeasuresOutputLayouts) {
   }
 }
 
-// --lanes applies to FinFlex's float32 planes only: another --layout reports the one
-// lane it ran with, and no streaming stores.
-// Lanes for every layout on CPUs (the planes as vectors, others lane by lane);
-// streaming stores for the planes only.
-TEST(Cli, BenchLanesApplyToEveryLayoutStreamingToThePlanes) {
+// Lanes for every layout on CPUs: FinFlex's planes and a vertex struct in one buffer
+// (compact: float32x3 positions, octahedral normals) as vectors, which stream; others
+// lane by lane (the rig with previous positions), which do not.
+TEST(Cli, BenchLanesApplyToEveryLayoutStreamingToPlanesAndStructs) {
   const std::string mesh = fish("blub/fish_low_resolution.obj");
-  for (const char* layout : {"planes", "compact"}) {
-    SCOPED_TRACE(layout);
-    const RunResult r = run_cli("bench --mesh " + mesh +
-                                " --instances 8 --frames 2 --json --lanes 16 --stores streaming"
-                                " --layout " +
-                                layout);
+  const std::string rig = " --rig " + fish("rigs/blub_low_resolution.rig.json");
+  struct Case {
+    std::string options;
+    bool streams;
+  };
+  for (const Case& c : {Case{" --layout planes", true}, Case{" --layout compact", true},
+                        Case{rig + " --previous", false}}) {
+    SCOPED_TRACE(c.options);
+    const RunResult r =
+        run_cli("bench --mesh " + mesh +
+                " --instances 8 --frames 2 --json --lanes 16 --stores streaming" + c.options);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const nlohmann::json j = nlohmann::json::parse(r.out);
-    const bool planes = std::string(layout) == "planes";
     EXPECT_EQ(j.at("lanes").get<std::size_t>(), 16u);
-    EXPECT_EQ(j.at("streaming_stores").get<bool>(), planes);
+    EXPECT_EQ(j.at("streaming_stores").get<bool>(), c.streams);
   }
 }
 

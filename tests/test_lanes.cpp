@@ -387,13 +387,15 @@ TEST(Lanes, OtherOutputLayoutsStoreLaneByLaneAndMatchTheReference) {
   EXPECT_EQ(bend_sixteen.lanes(bend_packed), by_lane);
 }
 
-// A vertex struct of float32x3 attributes that fill it, in one buffer (on CPUs unless
-// staged): every lane count transposes each work-item's structs into whole vectors
-// (kernels/cpu/lane_outputs.cl), for 6 floats a vertex (the bend on Blub, no tangents)
-// and 9 (the Barramundi's swim rig, tangents), the members in different orders,
-// streamed, plain, and from a run that starts off a vector boundary (vstoren): the
-// structs hold what one lane writes there, and the bytes past the last struct stay as
-// they were.
+// A vertex struct that its attributes fill, in one buffer (on CPUs unless staged): every
+// lane count transposes each work-item's structs into whole vectors
+// (kernels/cpu/lane_outputs.cl), for the bend on Blub (no tangents) and the
+// Barramundi's swim rig (tangents), in every format such a struct takes (float32x3 and
+// x4, float16x4, snorm16x4, octahedral16x2; 16 to 48 bytes a vertex), members in
+// different orders, streamed and plain, and from a run 3 words off a vector boundary
+// (vstoren): the structs hold exactly what the same lanes write into separate arrays of
+// the same formats (stored lane by lane), and the words around the run stay as they
+// were.
 TEST(Lanes, VertexStructsAreTransposedIntoVectors) {
   if (test::shared_context().description().is_gpu()) GTEST_SKIP() << "CPUs' kernels";
   const Mesh blub = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
@@ -402,78 +404,99 @@ TEST(Lanes, VertexStructsAreTransposedIntoVectors) {
   const RiggedMesh swim(
       barramundi,
       resolve_rig(load_rig_file(test::data_path("rigs/barramundi_swim.rig.json")), barramundi));
-  struct Order {
-    const char* name;
-    std::size_t position, normal, tangent;  // floats into the struct
+  using F = AttributeFormat;
+  struct Member {
+    F format;
+    std::size_t at;  // bytes into the struct
   };
-  for (const RiggedMesh* model : {&bend, &swim}) {
-    const bool tangents = model->mesh().has_tangents();
-    const std::vector<Order> orders =
-        tangents ? std::vector<Order>{{"position, normal, tangent", 0, 3, 6},
-                                      {"tangent, position, normal", 3, 6, 0}}
-                 : std::vector<Order>{{"position, normal", 0, 3, 0}, {"normal, position", 3, 0, 0}};
-    const RigParameters values = swimming_values(*model, 3);
+  struct Case {
+    const RiggedMesh* model;
+    const char* name;
+    Member position, normal, tangent;
+  };
+  const std::vector<Case> cases = {
+      {&bend, "float32x3 position, normal", {F::kFloat32x3, 0}, {F::kFloat32x3, 12}, {}},
+      {&bend, "float32x3 normal, position", {F::kFloat32x3, 12}, {F::kFloat32x3, 0}, {}},
+      {&bend, "float32x3, octahedral", {F::kFloat32x3, 0}, {F::kOctahedral16x2, 12}, {}},
+      {&bend, "snorm16x4, float32x4", {F::kFloat32x4, 8}, {F::kSnorm16x4, 0}, {}},
+      {&bend, "float32x3, float16x4", {F::kFloat32x3, 0}, {F::kFloat16x4, 12}, {}},
+      {&swim,
+       "float32x3 position, normal, tangent",
+       {F::kFloat32x3, 0},
+       {F::kFloat32x3, 12},
+       {F::kFloat32x3, 24}},
+      {&swim,
+       "float32x3 tangent, position, normal",
+       {F::kFloat32x3, 12},
+       {F::kFloat32x3, 24},
+       {F::kFloat32x3, 0}},
+      {&swim,
+       "float32x3, float16x4, snorm16x4",
+       {F::kFloat32x3, 0},
+       {F::kFloat16x4, 12},
+       {F::kSnorm16x4, 20}},
+      {&swim,
+       "octahedral tangent, float32x3, octahedral",
+       {F::kFloat32x3, 4},
+       {F::kOctahedral16x2, 16},
+       {F::kOctahedral16x2, 0}},
+      {&swim, "float32x4 x 3", {F::kFloat32x4, 0}, {F::kFloat32x4, 16}, {F::kFloat32x4, 32}},
+  };
+  for (const Case& c : cases) {
+    const bool tangents = c.model->mesh().has_tangents();
+    const RigParameters values = swimming_values(*c.model, 3);
     const std::size_t instances = values.instance_count();
-    ClDeformer one_lane(test::shared_context(), *model, with_lanes(1));
-    const std::size_t slots = one_lane.output_vertices(VertexOrder::kSlots);
-    const std::size_t floats = tangents ? 9 : 6;
-    for (const Order& order : orders) {
-      // lead: floats before the first struct (3: the run starts off a vector boundary).
-      for (std::size_t lead : {std::size_t{0}, std::size_t{3}}) {
+    const std::size_t stride = format_bytes(c.position.format) + format_bytes(c.normal.format) +
+                               (tangents ? format_bytes(c.tangent.format) : 0);
+    for (std::size_t lanes : vector_lanes()) {
+      // Streamed with every lane count; plain and off a vector boundary with 16.
+      struct Run {
+        OutputStores stores;
+        std::size_t lead;  // words before the first struct
+      };
+      std::vector<Run> runs = {{OutputStores::kStreaming, 0}};
+      if (lanes == 16)
+        runs.insert(runs.end(), {{OutputStores::kPlain, 0}, {OutputStores::kStreaming, 3}});
+      for (const Run& run : runs) {
+        SCOPED_TRACE(testing::Message()
+                     << c.name << ", " << lanes << " lanes, "
+                     << (run.stores == OutputStores::kStreaming ? "streaming" : "plain")
+                     << ", lead " << run.lead);
+        ClOptions options = with_lanes(lanes);
+        options.stores = run.stores;
+        ClDeformer d(test::shared_context(), *c.model, options);
+        const std::size_t slots = d.output_vertices(VertexOrder::kSlots);
         OutputLayout l;
-        auto member = [&](std::size_t at) {
-          return AttributeLayout::packed(AttributeFormat::kFloat32x3, slots, 4 * floats,
-                                         4 * (lead + at));
+        auto member = [&](const Member& m) {
+          return AttributeLayout::packed(m.format, slots, stride, 4 * run.lead + m.at);
         };
-        l.positions = member(order.position);
-        l.normals = member(order.normal);
+        l.positions = member(c.position);
+        l.normals = member(c.normal);
         l.tangents = tangents;
-        l.tangent_layout = member(order.tangent);
-        const std::size_t bytes =
-            std::max({OutputLayout::required_bytes(l.positions, instances, slots),
-                      OutputLayout::required_bytes(l.normals, instances, slots),
-                      OutputLayout::required_bytes(l.tangent_layout, instances, slots)});
-        const std::size_t spare = 256;
-        std::vector<float> filled((bytes + spare) / sizeof(float), -7.0f);
-        auto buffer = [&]() {
-          cl_int status = CL_SUCCESS;
-          cl::Buffer b(test::shared_context().context(), CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR,
+        l.tangent_layout = tangents ? member(c.tangent) : l.positions;
+        EXPECT_EQ(d.lanes(l), lanes);
+        const std::size_t words = (4 * run.lead + instances * slots * stride) / 4;
+        std::vector<float> filled(words + 64, -7.0f);
+        cl_int status = CL_SUCCESS;
+        cl::Buffer one(test::shared_context().context(), CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR,
                        filled.size() * sizeof(float), filled.data(), &status);
-          check_cl(status, "clCreateBuffer");
-          return b;
-        };
-        cl::Buffer want_buffer = buffer();
-        DeviceBatch want_batch =
-            one_lane.bind(instances, l, {want_buffer, want_buffer, want_buffer, {}});
-        const DeformedBatch<float> want =
-            test::run_on_device(one_lane, want_batch, values, NormalMode::kJacobian);
-        for (std::size_t lanes : vector_lanes()) {
-          for (OutputStores stores : {OutputStores::kStreaming, OutputStores::kPlain}) {
-            SCOPED_TRACE(testing::Message()
-                         << (tangents ? "swim rig, " : "bend, ") << order.name << ", lead " << lead
-                         << ", " << lanes << " lanes, "
-                         << (stores == OutputStores::kStreaming ? "streaming" : "plain"));
-            ClOptions options = with_lanes(lanes);
-            options.stores = stores;
-            ClDeformer d(test::shared_context(), *model, options);
-            EXPECT_EQ(d.lanes(l), lanes);
-            cl::Buffer got_buffer = buffer();
-            DeviceBatch got_batch = d.bind(instances, l, {got_buffer, got_buffer, got_buffer, {}});
-            EXPECT_EQ(d.streams_outputs(got_batch), stores == OutputStores::kStreaming);
-            const DeformedBatch<float> got =
-                test::run_on_device(d, got_batch, values, NormalMode::kJacobian);
-            expect_close_to_one_lane(got, want, model->vertex_count(), instances,
-                                     coordinate_scale(model->rig()));
-            std::vector<float> after(filled.size());
-            check_cl(test::shared_context().queue().enqueueReadBuffer(
-                         got_buffer, CL_TRUE, 0, after.size() * sizeof(float), after.data()),
-                     "clEnqueueReadBuffer");
-            for (std::size_t k = 0; k < lead; ++k) ASSERT_EQ(after[k], -7.0f) << k;
-            for (std::size_t k = bytes / sizeof(float); k < after.size(); ++k) {
-              ASSERT_EQ(after[k], -7.0f) << k;
-            }
-          }
-        }
+        check_cl(status, "clCreateBuffer");
+        DeviceBatch structs = d.bind(instances, l, {one, one, one, {}});
+        EXPECT_EQ(d.streams_outputs(structs), run.stores == OutputStores::kStreaming);
+        OutputLayout apart = l;
+        apart.positions = AttributeLayout::packed(c.position.format, slots);
+        apart.normals = AttributeLayout::packed(c.normal.format, slots);
+        apart.tangent_layout = AttributeLayout::packed(c.tangent.format, slots);
+        apart.tangents = tangents;
+        DeviceBatch arrays = d.allocate(instances, apart);
+        test::expect_same_outputs(test::run_on_device(d, structs, values, NormalMode::kJacobian),
+                                  test::run_on_device(d, arrays, values, NormalMode::kJacobian));
+        std::vector<float> after(filled.size());
+        check_cl(test::shared_context().queue().enqueueReadBuffer(
+                     one, CL_TRUE, 0, after.size() * sizeof(float), after.data()),
+                 "clEnqueueReadBuffer");
+        for (std::size_t k = 0; k < run.lead; ++k) ASSERT_EQ(after[k], -7.0f) << k;
+        for (std::size_t k = words; k < after.size(); ++k) ASSERT_EQ(after[k], -7.0f) << k;
       }
     }
   }

@@ -19,6 +19,13 @@
 #define FF_VARYING_WRITES 0
 #endif
 
+/* Vertex structs of kernels of more than one lane (kernels/cpu/lane_outputs.cl): the
+ * tangents' w as the one-slot stores below write it here. */
+#ifdef FF_LANE_TANGENT_W
+#undef FF_LANE_TANGENT_W
+#define FF_LANE_TANGENT_W(v) ((LaneFloat)1.0f)
+#endif
+
 __kernel void write_outputs(FF_OUTPUT_ARGUMENTS, const uint vertices, const uint instances,
                             const float value) {
   FF_OUTPUT_LOCALS

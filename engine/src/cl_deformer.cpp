@@ -190,8 +190,8 @@ std::size_t ClDeformer::Impl::lanes() const {
   return options.lanes ? options.lanes : detail::device_lanes(context.description());
 }
 
-// Lanes store FinFlex's planes (normals float32 or half) and float32 vertex structs in
-// one buffer as vectors (kernels/cpu/lane_outputs.cl) and, on CPUs, any other layout
+// Lanes store FinFlex's planes (normals float32 or half) and vertex structs in one
+// buffer as vectors (kernels/cpu/lane_outputs.cl) and, on CPUs, any other layout
 // lane by lane through the one-slot stores (kernels/common/outputs.cl): the arithmetic
 // stays vector code. Before the structs were transposed, lane by lane too: 1,000
 // instances on a Xeon with PoCL 5 (which does not vectorise one-lane kernels), 16
@@ -217,8 +217,9 @@ bool ClDeformer::Impl::writes_planes(const OutputLayout& outputs) const {
   return detail::writes_finflex_planes(outputs, layout(1, NormalFormat::kFloat32));
 }
 
-// Vertex structs of float32x3 attributes in one buffer, transposed into vectors by
-// kernels of more than one lane (kernels/cpu/lane_outputs.cl): on CPUs unless staged.
+// Vertex structs in one buffer (finflex/cl_outputs.hpp lane_struct_options),
+// transposed into vectors by kernels of more than one lane (kernels/cpu/lane_outputs.cl):
+// on CPUs unless staged.
 bool ClDeformer::Impl::writes_lane_structs(const DeviceBatch& batch) const {
   return lanes(batch.outputs) > 1 && !stages_structs() && !lane_struct_options(batch).empty();
 }
@@ -229,12 +230,14 @@ bool ClDeformer::Impl::streams_outputs(const DeviceBatch& batch) const {
     return false;
   }
   // FinFlex's planes: 12 bytes per position, 12 or 6 per direction (float32 or half),
-  // per vertex slot and instance; a vertex struct, 12 per attribute.
+  // per vertex slot and instance; a vertex struct, its stride.
   const BatchLayout& counts = batch.layout;
   const std::size_t direction_bytes =
       batch.outputs.normals.format == AttributeFormat::kFloat16x3 ? 6 : 12;
-  const std::size_t bytes = counts.plane_stride * counts.instance_count *
-                            (12 + direction_bytes * (batch.outputs.tangents ? 2 : 1));
+  const std::size_t vertex_bytes = writes_planes(batch.outputs)
+                                       ? 12 + direction_bytes * (batch.outputs.tangents ? 2 : 1)
+                                       : batch.outputs.positions.vertex_stride;
+  const std::size_t bytes = counts.plane_stride * counts.instance_count * vertex_bytes;
   return detail::device_streaming_stores(context.description(), options.stores, bytes);
 }
 

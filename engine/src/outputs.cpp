@@ -66,15 +66,43 @@ bool fills_vertex_struct(const OutputLayout& l) {
   return true;
 }
 
+bool fills_word_struct(const OutputLayout& l) {
+  if (l.order != VertexOrder::kSlots || l.previous_positions) return false;
+  const std::array<const AttributeLayout*, 3> all = {&l.positions, &l.normals, &l.tangent_layout};
+  const std::size_t count = l.tangents ? 3 : 2;
+  const std::size_t stride = l.positions.vertex_stride;
+  std::size_t start = l.positions.offset, bytes = 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    const AttributeLayout* a = all[k];
+    const bool word_format =
+        a->format == AttributeFormat::kFloat32x3 || a->format == AttributeFormat::kFloat32x4 ||
+        a->format == AttributeFormat::kFloat16x4 || a->format == AttributeFormat::kSnorm16x4 ||
+        a->format == AttributeFormat::kOctahedral16x2;
+    if (a->arrangement != Arrangement::kPacked || !word_format || a->vertex_stride != stride ||
+        a->instance_stride != l.positions.instance_stride || a->offset % 4 != 0) {
+      return false;
+    }
+    start = std::min(start, a->offset);
+    bytes += format_bytes(a->format);
+  }
+  if (bytes != stride || l.positions.instance_stride % 4 != 0) return false;
+  // validate_output_layout keeps the members apart, so at these offsets they tile it.
+  for (std::size_t k = 0; k < count; ++k) {
+    if (all[k]->offset - start >= stride) return false;
+  }
+  return true;
+}
+
 }  // namespace detail
 
 namespace {
 
-// `flag`=1 and the struct's numbers (kernels/common/outputs.cl FF_STAGED_STRUCT) for a
-// vertex struct in one buffer; empty for any other layout.
-std::string vertex_struct_options(const DeviceBatch& batch, const char* flag) {
+// `flag`=1 and the struct's numbers (kernels/common/outputs.cl FF_STAGED_STRUCT: words
+// of 4 bytes) for a vertex struct in one buffer that `fills` says the kernels take;
+// empty for any other layout.
+std::string vertex_struct_options(const DeviceBatch& batch, bool fills, const char* flag) {
   const OutputLayout& l = batch.outputs;
-  if (!detail::fills_vertex_struct(l)) return "";
+  if (!fills) return "";
   const bool one_buffer = batch.normals() == batch.positions() &&
                           (!l.tangents || batch.tangents() == batch.positions());
   if (!one_buffer) return "";
@@ -91,11 +119,13 @@ std::string vertex_struct_options(const DeviceBatch& batch, const char* flag) {
 }  // namespace
 
 std::string staged_struct_options(const DeviceBatch& batch, bool staged) {
-  return staged ? vertex_struct_options(batch, "FF_STAGED_STRUCT") : std::string();
+  if (!staged) return "";
+  return vertex_struct_options(batch, detail::fills_vertex_struct(batch.outputs),
+                               "FF_STAGED_STRUCT");
 }
 
 std::string lane_struct_options(const DeviceBatch& batch) {
-  return vertex_struct_options(batch, "FF_LANE_STRUCT");
+  return vertex_struct_options(batch, detail::fills_word_struct(batch.outputs), "FF_LANE_STRUCT");
 }
 
 cl_ulong16 output_layout_argument(const OutputLayout& layout, bool previous_valid) {

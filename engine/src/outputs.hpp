@@ -31,6 +31,10 @@ std::string plane_stride_option(const OutputLayout& outputs, const BatchLayout& 
 // struct (the same vertex and instance strides, 12 bytes a member), in slot order and
 // without previous positions: what staged_struct_options stages, given one buffer.
 bool fills_vertex_struct(const OutputLayout& outputs);
+// The same for kernels of more than one lane (lane_struct_options): members float32x3
+// or x4, float16x4, snorm16x4 or octahedral16x2, each on a 4-byte word, that fill the
+// struct.
+bool fills_word_struct(const OutputLayout& outputs);
 
 // Checks that `batch` holds `counts.instance_count` instances of `vertices` vertices
 // (slots or mesh vertices, as its order says) in its layout, in buffers large enough,

@@ -59,18 +59,22 @@ FF_INLINE void store_outputs(__global float* out_positions, __global float* out_
   }
 #endif
 
-/* A vertex struct of float32x3 attributes that fill its FF_STAGED_FLOATS floats (6, or 9
- * with tangents), all in one buffer, in slot order (finflex/cl_outputs.hpp
- * lane_struct_options; FF_LANE_STRUCT, with the numbers of FF_STAGED_STRUCT,
- * common/outputs.cl): a work-item's FF_LANES structs are one contiguous run. Each native
- * vector of lanes (StoreVector, W of them: kernels/cpu/lane_planes.cl) becomes W structs
- * of F floats, that is F vectors, transposed in registers: output vector k holds the
- * floats W k ... W k + W - 1 of the run, float g being member g % F of the struct of
- * lane g / F. It starts from members 0 and 1 and takes each further member in by one
+/* A vertex struct whose attributes fill it, all in one buffer, in slot order
+ * (finflex/cl_outputs.hpp lane_struct_options; FF_LANE_STRUCT): float32x3 or x4
+ * positions, normals and tangents in float32x3, float32x4, float16x4, snorm16x4 or
+ * octahedral16x2, each attribute starting on a 4-byte word. FF_STAGED_FLOATS is the
+ * struct's words, FF_STAGED_POSITION, FF_STAGED_NORMAL and FF_STAGED_TANGENT the word
+ * each attribute starts at. A work-item's FF_LANES structs are one contiguous run.
+ * Each native vector of lanes (StoreVector, W of them: kernels/cpu/lane_planes.cl)
+ * becomes W structs of F words, that is F vectors, transposed in registers: first each
+ * member word as a vector over the lanes (two 16-bit values packed into one word as the
+ * one-slot stores of common/outputs.cl round them), then output vector k holds the
+ * words W k ... W k + W - 1 of the run, word g being member g % F of the struct of lane
+ * g / F. It starts from members 0 and 1 and takes each further member in by one
  * two-vector shuffle (constant indices: a permute instruction each), F - 1 shuffles an
  * output vector. Stored like the planes (streaming where aligned, vstoren elsewhere).
- * Lane by lane, the same structs took F scalar stores a vertex, each after moving its
- * float out of the vector. */
+ * Lane by lane, the same structs took a scalar store per component, each after moving
+ * its value out of the vector. */
 #if FF_LANE_STRUCT && FF_LANES > 1 && !FF_LANE_PLANES
 #if FF_LANES == 8
 #define FF_STRUCT_WIDTH 8
@@ -78,9 +82,63 @@ FF_INLINE void store_outputs(__global float* out_positions, __global float* out_
 #define FF_STRUCT_WIDTH 16
 #endif
 #define FF_STRUCT_F FF_STAGED_FLOATS
+/* The most words a struct has: three 4-component float32 attributes. */
+#define FF_STRUCT_MOST 12
+
+/* Member words of the 16-bit formats over a native vector of lanes (n of them): two
+ * values to a word, the first in its low half. */
+#define FF_DEFINE_STRUCT_WORDS(n)                                                       \
+  FF_INLINE float##n half_pair_word(float##n a, float##n b) {                           \
+    return as_float##n(convert_uint##n(half_bits##n(a)) |                               \
+                       (convert_uint##n(half_bits##n(b)) << 16));                       \
+  }                                                                                     \
+  /* common/outputs.cl snorm16_bits, lane by lane. */                                   \
+  FF_INLINE uint##n snorm16_lanes(float##n c) {                                         \
+    return as_uint##n(convert_int##n(rint(clamp(c, -1.0f, 1.0f) * 32767.0f))) & 0xffffu; \
+  }                                                                                     \
+  FF_INLINE float##n snorm_pair_word(float##n a, float##n b) {                          \
+    return as_float##n(snorm16_lanes(a) | (snorm16_lanes(b) << 16));                    \
+  }                                                                                     \
+  /* common/outputs.cl octahedral16_bits, lane by lane. */                              \
+  FF_INLINE float##n octahedral_word(float##n x, float##n y, float##n z) {              \
+    const float##n inverse_l1 = 1.0f / (fabs(x) + fabs(y) + fabs(z));                   \
+    const float##n u = x * inverse_l1;                                                  \
+    const float##n v = y * inverse_l1;                                                  \
+    const float##n folded_u =                                                           \
+        (1.0f - fabs(v)) * (u >= 0.0f ? (float##n)1.0f : (float##n)-1.0f);              \
+    const float##n folded_v =                                                           \
+        (1.0f - fabs(u)) * (v >= 0.0f ? (float##n)1.0f : (float##n)-1.0f);              \
+    const float##n out_u = z < 0.0f ? folded_u : u;                                     \
+    const float##n out_v = z < 0.0f ? folded_v : v;                                     \
+    return as_float##n(snorm16_lanes(out_u) | (snorm16_lanes(out_v) << 16));            \
+  }
+#if FF_STRUCT_WIDTH == 8
+FF_DEFINE_STRUCT_WORDS(8)
+#else
+FF_DEFINE_STRUCT_WORDS(16)
+#endif
+
+/* The member words of one attribute in `format` from word `at` (w: the fourth
+ * component of the 4-component formats, as the one-slot stores write it). */
+#define FF_PUT_STRUCT_WORDS(at, format, x, y, z, w)   \
+  if ((format) == FF_F32X3 || (format) == FF_F32X4) { \
+    member[(at)] = (x);                               \
+    member[(at) + 1] = (y);                           \
+    member[(at) + 2] = (z);                           \
+    if ((format) == FF_F32X4) member[(at) + 3] = (w); \
+  } else if ((format) == FF_F16X4) {                  \
+    member[(at)] = half_pair_word((x), (y));          \
+    member[(at) + 1] = half_pair_word((z), (w));      \
+  } else if ((format) == FF_S16X4) {                  \
+    member[(at)] = snorm_pair_word((x), (y));         \
+    member[(at) + 1] = snorm_pair_word((z), (w));     \
+  } else { /* FF_OCT16 */                             \
+    member[(at)] = octahedral_word((x), (y), (z));    \
+  }
+
 /* Element j of output vector k with member m taken in from the second vector: its
- * lane there (W + lane) where float W k + j is member m, else element j as it was. */
-/* (k past F, whose code is left out, as 0: its indices must still be valid.) */
+ * lane there (W + lane) where word W k + j is member m, else element j as it was.
+ * (k past F, whose code is left out, as 0: its indices must still be valid.) */
 #define FF_STRUCT_G(k, j) (FF_STRUCT_WIDTH * ((k) < FF_STRUCT_F ? (k) : 0) + (j))
 #define FF_STRUCT_INDEX(k, m, j)                                  \
   (FF_STRUCT_G(k, j) % FF_STRUCT_F == (m)                          \
@@ -116,25 +174,25 @@ FF_INLINE void store_outputs(__global float* out_positions, __global float* out_
     FF_STRUCT_TAKE(k, 6)                                                                \
     FF_STRUCT_TAKE(k, 7)                                                                \
     FF_STRUCT_TAKE(k, 8)                                                                \
+    FF_STRUCT_TAKE(k, 9)                                                                \
+    FF_STRUCT_TAKE(k, 10)                                                               \
+    FF_STRUCT_TAKE(k, 11)                                                               \
     store_vector(first + (k) * FF_STRUCT_WIDTH, r);                                     \
   }
 
-/* The W structs of one native vector of lanes, at `first` (their first float). */
+/* The W structs of one native vector of lanes, at `first` (their first word); tw:
+ * the tangents' w (the rest mesh's handedness). */
 FF_INLINE void store_struct_vectors(__global float* first, StoreVector px, StoreVector py,
                                     StoreVector pz, StoreVector nx, StoreVector ny,
                                     StoreVector nz, StoreVector tx, StoreVector ty,
-                                    StoreVector tz) {
-  StoreVector member[9]; /* constant indices only: kept in registers */
-  member[FF_STAGED_POSITION] = px;
-  member[FF_STAGED_POSITION + 1] = py;
-  member[FF_STAGED_POSITION + 2] = pz;
-  member[FF_STAGED_NORMAL] = nx;
-  member[FF_STAGED_NORMAL + 1] = ny;
-  member[FF_STAGED_NORMAL + 2] = nz;
+                                    StoreVector tz, StoreVector tw) {
+  /* Constant indices only: kept in registers. Sized past the most words a struct has,
+   * so that the formats' branches left out still index within it. */
+  StoreVector member[FF_STRUCT_MOST + 4];
+  FF_PUT_STRUCT_WORDS(FF_STAGED_POSITION, FF_POSITION_FORMAT, px, py, pz, (StoreVector)1.0f)
+  FF_PUT_STRUCT_WORDS(FF_STAGED_NORMAL, FF_NORMAL_FORMAT, nx, ny, nz, (StoreVector)0.0f)
 #if FF_TANGENTS
-  member[FF_STAGED_TANGENT] = tx;
-  member[FF_STAGED_TANGENT + 1] = ty;
-  member[FF_STAGED_TANGENT + 2] = tz;
+  FF_PUT_STRUCT_WORDS(FF_STAGED_TANGENT, FF_TANGENT_FORMAT, tx, ty, tz, tw)
 #endif
   FF_STRUCT_OUTPUT(0)
   FF_STRUCT_OUTPUT(1)
@@ -145,25 +203,38 @@ FF_INLINE void store_struct_vectors(__global float* first, StoreVector px, Store
   FF_STRUCT_OUTPUT(6)
   FF_STRUCT_OUTPUT(7)
   FF_STRUCT_OUTPUT(8)
+  FF_STRUCT_OUTPUT(9)
+  FF_STRUCT_OUTPUT(10)
+  FF_STRUCT_OUTPUT(11)
 }
 
 /* The work-item's structs of instance i from slot v: the positions' offset less the
- * position's place in the struct is the run's start (as in store_staged). */
+ * position's place in the struct is the run's start (as in store_staged); tw: the
+ * lanes' tangent w. */
 FF_INLINE void store_lane_structs(__global float* out, ulong16 out_layout, size_t i, size_t v,
-                                  Vec3 p, Vec3 n, Vec3 t) {
+                                  Vec3 p, Vec3 n, Vec3 t, LaneFloat tw) {
   __global float* first = out + (size_t)(out_layout.s0 - FF_STAGED_POSITION + i * out_layout.s2) +
                           v * FF_STRUCT_F;
 #if FF_LANES == 32
   store_struct_vectors(first, p.x.lo, p.y.lo, p.z.lo, n.x.lo, n.y.lo, n.z.lo, t.x.lo, t.y.lo,
-                       t.z.lo);
+                       t.z.lo, tw.lo);
   store_struct_vectors(first + 16 * FF_STRUCT_F, p.x.hi, p.y.hi, p.z.hi, n.x.hi, n.y.hi,
-                       n.z.hi, t.x.hi, t.y.hi, t.z.hi);
+                       n.z.hi, t.x.hi, t.y.hi, t.z.hi, tw.hi);
 #else
-  store_struct_vectors(first, p.x, p.y, p.z, n.x, n.y, n.z, t.x, t.y, t.z);
+  store_struct_vectors(first, p.x, p.y, p.z, n.x, n.y, n.z, t.x, t.y, t.z, tw);
 #endif
 }
 
+/* The lanes' tangent w from the rest planes' fourth (common/outputs.cl
+ * FF_REST_TANGENT_W; rest_tangents and stride in scope); kernels without them (the
+ * benchmarks' write-only kernel) define it as they need. */
+#if FF_TANGENT_W
+#define FF_LANE_TANGENT_W(v) load_lanes(rest_tangents + 3 * (size_t)stride + (v))
+#else
+#define FF_LANE_TANGENT_W(v) ((LaneFloat)1.0f)
+#endif
+
 #define FF_OUTPUT_LOCALS
 #define FF_STORE_OUTPUTS(instance, v) \
-  { store_lane_structs(out_positions, out_layout, instance, v, p, n, t); }
+  { store_lane_structs(out_positions, out_layout, instance, v, p, n, t, FF_LANE_TANGENT_W(v)); }
 #endif

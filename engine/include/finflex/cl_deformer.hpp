@@ -105,8 +105,8 @@ struct ClOptions {
   // whose OutputLayout equals planes_layout(instances, format) for either NormalFormat:
   // float32 positions, normals and tangents in float32 or half, slot order, no previous
   // positions; allocate(instances[, format]) makes one) are stored as vectors, and so
-  // is a vertex struct of float32x3 attributes that fill it in one buffer (transposed in
-  // registers, finflex/cl_outputs.hpp lane_struct_options) unless it is staged; on CPUs
+  // is a vertex struct that its attributes fill in one buffer (transposed in registers,
+  // finflex/cl_outputs.hpp lane_struct_options) unless it is staged; on CPUs
   // any other layout lane by lane through the one-slot stores of
   // kernels/common/outputs.cl, but the single bend's in mesh order or with previous
   // positions, and on GPUs every other layout, with one lane whatever this asks:

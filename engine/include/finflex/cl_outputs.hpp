@@ -28,9 +28,12 @@ FINFLEX_API std::string output_build_options(const OutputLayout& layout);
 // output_build_options(batch.outputs). FinFlex stages on GPUs (ClOptions::struct_stores).
 FINFLEX_API std::string staged_struct_options(const DeviceBatch& batch, bool staged);
 
-// The same vertex struct for kernels of more than one lane (CPUs, ClOptions::lanes):
-// each work-item's structs are transposed from its lanes' vectors in registers and
-// stored as whole vectors (kernels/cpu/lane_outputs.cl). Empty for any other layout.
+// A vertex struct for kernels of more than one lane (CPUs, ClOptions::lanes): its
+// attributes in one buffer, slot order, no previous positions, filling the struct,
+// each starting on a 4-byte word, in float32x3 or x4, float16x4, snorm16x4 or
+// octahedral16x2. Each work-item's structs are transposed from its lanes' vectors in
+// registers and stored as whole vectors (kernels/cpu/lane_outputs.cl). Empty for any
+// other layout.
 // Append to output_build_options(batch.outputs) where FF_LANES > 1 and the structs are
 // not staged; one-lane builds ignore it.
 FINFLEX_API std::string lane_struct_options(const DeviceBatch& batch);
