@@ -1,9 +1,8 @@
 /* The outputs of kernels of more than one lane (kernels/common/lanes.cl) in FinFlex's
  * planes in slot order (finflex/batch.hpp), normals (and tangents) in float32 or half:
- * FF_LANE_PLANES (common/outputs.cl), stored as vectors; and float32 vertex structs in
- * one buffer (FF_LANE_STRUCT, below), transposed into vectors. Kernels of more than one
- * lane store every other layout lane by lane through common/outputs.cl's stores of one
- * slot.
+ * FF_LANE_PLANES (common/outputs.cl), stored as vectors; and vertex structs in one
+ * buffer (FF_LANE_STRUCT, below), transposed into vectors. Kernels of more than one lane
+ * store every other layout lane by lane through common/outputs.cl's stores of one slot.
  *
  * store_outputs and FF_STORE_OUTPUTS keep the names and arguments of
  * common/outputs.cl, so the kernels end alike whatever their lanes. The attributes'
