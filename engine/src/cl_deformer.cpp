@@ -221,22 +221,21 @@ bool ClDeformer::Impl::writes_planes(const OutputLayout& outputs) const {
 // transposed into vectors by kernels of more than one lane (kernels/cpu/lane_outputs.cl):
 // on CPUs unless staged.
 bool ClDeformer::Impl::writes_lane_structs(const DeviceBatch& batch) const {
-  return lanes(batch.outputs) > 1 && !stages_structs() && !lane_struct_options(batch).empty();
+  return lanes(batch.outputs) > 1 && !stages_structs() &&
+         detail::fills_word_struct(batch.outputs) && detail::in_one_buffer(batch);
 }
 
 bool ClDeformer::Impl::streams_outputs(const DeviceBatch& batch) const {
   // Streaming stores: FinFlex's planes and vertex structs, stored as vectors.
-  if (lanes(batch.outputs) == 1 || !(writes_planes(batch.outputs) || writes_lane_structs(batch))) {
-    return false;
-  }
+  const bool planes = writes_planes(batch.outputs);
+  if (lanes(batch.outputs) == 1 || !(planes || writes_lane_structs(batch))) return false;
   // FinFlex's planes: 12 bytes per position, 12 or 6 per direction (float32 or half),
   // per vertex slot and instance; a vertex struct, its stride.
   const BatchLayout& counts = batch.layout;
   const std::size_t direction_bytes =
       batch.outputs.normals.format == AttributeFormat::kFloat16x3 ? 6 : 12;
-  const std::size_t vertex_bytes = writes_planes(batch.outputs)
-                                       ? 12 + direction_bytes * (batch.outputs.tangents ? 2 : 1)
-                                       : batch.outputs.positions.vertex_stride;
+  const std::size_t vertex_bytes = planes ? 12 + direction_bytes * (batch.outputs.tangents ? 2 : 1)
+                                          : batch.outputs.positions.vertex_stride;
   const std::size_t bytes = counts.plane_stride * counts.instance_count * vertex_bytes;
   return detail::device_streaming_stores(context.description(), options.stores, bytes);
 }

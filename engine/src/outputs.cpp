@@ -43,42 +43,23 @@ std::string output_build_options(const OutputLayout& layout) {
 
 namespace detail {
 
-bool fills_vertex_struct(const OutputLayout& l) {
+namespace {
+
+// Whether positions, normals (and tangents) are packed members that fill one vertex
+// struct (the same vertex and instance strides, their bytes adding up to the stride,
+// each on a 4-byte word), in slot order and without previous positions, each in a
+// format `takes` accepts.
+template <typename Takes>
+bool fills_struct(const OutputLayout& l, Takes takes) {
   if (l.order != VertexOrder::kSlots || l.previous_positions) return false;
   // No allocation: ClDeformer asks this every frame (its work-item shape).
-  const std::array<const AttributeLayout*, 3> all = {&l.positions, &l.normals, &l.tangent_layout};
-  const std::size_t count = l.tangents ? 3 : 2;
-  const std::size_t stride = l.positions.vertex_stride;
-  if (stride != 12 * count) return false;  // the attributes must fill the struct
-  std::size_t start = l.positions.offset;
-  for (std::size_t k = 0; k < count; ++k) {
-    const AttributeLayout* a = all[k];
-    if (a->arrangement != Arrangement::kPacked || a->format != AttributeFormat::kFloat32x3 ||
-        a->vertex_stride != stride || a->instance_stride != l.positions.instance_stride) {
-      return false;
-    }
-    start = std::min(start, a->offset);
-  }
-  // validate_output_layout keeps the members apart, so at these offsets they tile it.
-  for (std::size_t k = 0; k < count; ++k) {
-    if (all[k]->offset - start >= stride) return false;
-  }
-  return true;
-}
-
-bool fills_word_struct(const OutputLayout& l) {
-  if (l.order != VertexOrder::kSlots || l.previous_positions) return false;
   const std::array<const AttributeLayout*, 3> all = {&l.positions, &l.normals, &l.tangent_layout};
   const std::size_t count = l.tangents ? 3 : 2;
   const std::size_t stride = l.positions.vertex_stride;
   std::size_t start = l.positions.offset, bytes = 0;
   for (std::size_t k = 0; k < count; ++k) {
     const AttributeLayout* a = all[k];
-    const bool word_format =
-        a->format == AttributeFormat::kFloat32x3 || a->format == AttributeFormat::kFloat32x4 ||
-        a->format == AttributeFormat::kFloat16x4 || a->format == AttributeFormat::kSnorm16x4 ||
-        a->format == AttributeFormat::kOctahedral16x2;
-    if (a->arrangement != Arrangement::kPacked || !word_format || a->vertex_stride != stride ||
+    if (a->arrangement != Arrangement::kPacked || !takes(a->format) || a->vertex_stride != stride ||
         a->instance_stride != l.positions.instance_stride || a->offset % 4 != 0) {
       return false;
     }
@@ -93,6 +74,25 @@ bool fills_word_struct(const OutputLayout& l) {
   return true;
 }
 
+}  // namespace
+
+bool fills_vertex_struct(const OutputLayout& l) {
+  return fills_struct(l, [](AttributeFormat f) { return f == AttributeFormat::kFloat32x3; });
+}
+
+bool fills_word_struct(const OutputLayout& l) {
+  return fills_struct(l, [](AttributeFormat f) {
+    return f == AttributeFormat::kFloat32x3 || f == AttributeFormat::kFloat32x4 ||
+           f == AttributeFormat::kFloat16x4 || f == AttributeFormat::kSnorm16x4 ||
+           f == AttributeFormat::kOctahedral16x2;
+  });
+}
+
+bool in_one_buffer(const DeviceBatch& batch) {
+  return batch.normals() == batch.positions() &&
+         (!batch.outputs.tangents || batch.tangents() == batch.positions());
+}
+
 }  // namespace detail
 
 namespace {
@@ -102,10 +102,7 @@ namespace {
 // empty for any other layout.
 std::string vertex_struct_options(const DeviceBatch& batch, bool fills, const char* flag) {
   const OutputLayout& l = batch.outputs;
-  if (!fills) return "";
-  const bool one_buffer = batch.normals() == batch.positions() &&
-                          (!l.tangents || batch.tangents() == batch.positions());
-  if (!one_buffer) return "";
+  if (!fills || !detail::in_one_buffer(batch)) return "";
   std::size_t start = std::min(l.positions.offset, l.normals.offset);
   if (l.tangents) start = std::min(start, l.tangent_layout.offset);
   auto floats_in = [&](const AttributeLayout& a) { return std::to_string((a.offset - start) / 4); };

@@ -35,6 +35,8 @@ bool fills_vertex_struct(const OutputLayout& outputs);
 // or x4, float16x4, snorm16x4 or octahedral16x2, each on a 4-byte word, that fill the
 // struct.
 bool fills_word_struct(const OutputLayout& outputs);
+// Whether the batch's positions, normals (and tangents) share one buffer.
+bool in_one_buffer(const DeviceBatch& batch);
 
 // Checks that `batch` holds `counts.instance_count` instances of `vertices` vertices
 // (slots or mesh vertices, as its order says) in its layout, in buffers large enough,

@@ -49,7 +49,6 @@ FF_INLINE void store_plane3(__global float* planes, size_t first_plane, size_t s
 #define FF_SOFTWARE_HALF 0
 #endif
 #if defined(__clang__) && defined(__F16C__) && !FF_GPU && !FF_SOFTWARE_HALF
-#define FF_HARDWARE_HALF 1
 typedef _Float16 HalfValue;
 typedef _Float16 HalfValue8 __attribute__((ext_vector_type(8)));
 typedef _Float16 HalfValue16 __attribute__((ext_vector_type(16)));
@@ -61,7 +60,6 @@ FF_INLINE HalfValue16 to_half_value16(float16 f) { return __builtin_convertvecto
     return __builtin_astype(to_half_value##n(f), ushort##n); \
   }
 #else
-#define FF_HARDWARE_HALF 0
 /* In software: F. Giesen's float_to_half_fast3_rtne with its branches as selects, so it
  * vectorises (PoCL's vstore_half converts element by element). Overflow gives Inf, NaN
  * stays NaN. */
