@@ -310,12 +310,12 @@ TEST(Lanes, StreamingPlainAndUnalignedStoresWriteTheSameBits) {
   }
 }
 
-// Lanes apply per batch: FinFlex's planes in slot order (normals float32 or half) are
-// stored as vectors; any other output layout of a rig, lane by lane through the
-// one-slot stores (kernels/common/outputs.cl), with the same arithmetic: close to a
-// one-lane deformer's outputs in that layout and within the reference's bounds, never
-// streamed (GPUs: one lane). The single bend in mesh order or with previous positions
-// takes one lane.
+// Lanes apply per batch: FinFlex's planes in slot order (normals float32 or half,
+// previous positions in float32 planes) are stored as vectors; any other output layout
+// of a rig, lane by lane through the one-slot stores (kernels/common/outputs.cl), with
+// the same arithmetic: close to a one-lane deformer's outputs in that layout and within
+// the reference's bounds, never streamed (GPUs: one lane). The single bend in mesh order
+// or with previous positions in another layout takes one lane.
 TEST(Lanes, OtherOutputLayoutsStoreLaneByLaneAndMatchTheReference) {
   const Mesh mesh = load_mesh(test::data_path("barramundi/BarramundiFish.gltf"));
   const RiggedMesh model(
@@ -350,7 +350,8 @@ TEST(Lanes, OtherOutputLayoutsStoreLaneByLaneAndMatchTheReference) {
   cases.push_back({"mesh order", mesh_order});
   OutputLayout previous = planes;
   previous.previous_positions = true;
-  cases.push_back({"previous positions", previous});
+  previous.previous_layout = AttributeLayout::packed(AttributeFormat::kFloat32x4, slots);
+  cases.push_back({"packed previous positions", previous});
   OutputLayout offset = planes;
   offset.positions.offset = 64;
   cases.push_back({"positions at an offset", offset});
@@ -379,12 +380,87 @@ TEST(Lanes, OtherOutputLayoutsStoreLaneByLaneAndMatchTheReference) {
   bend_mesh_order.order = VertexOrder::kMesh;
   OutputLayout bend_previous = bend_sixteen.planes_layout(instances);
   bend_previous.previous_positions = true;
+  bend_previous.previous_layout = AttributeLayout::packed(
+      AttributeFormat::kFloat32x3, bend_sixteen.output_vertices(VertexOrder::kSlots));
   EXPECT_EQ(bend_sixteen.lanes(bend_mesh_order), 1u);
   EXPECT_EQ(bend_sixteen.lanes(bend_previous), 1u);
   OutputLayout bend_packed = bend_sixteen.planes_layout(instances);
   bend_packed.positions = AttributeLayout::packed(
       AttributeFormat::kFloat32x3, bend_sixteen.output_vertices(VertexOrder::kSlots));
   EXPECT_EQ(bend_sixteen.lanes(bend_packed), by_lane);
+}
+
+// Previous positions in float32 planes laid out as the positions (planes_layout's
+// previous_layout) take the vector stores too: each lane count, streamed and plain, the
+// bend on Blub and the Barramundi's swim rig (tangents), two frames on one batch. The
+// first frame's previous positions are its own positions (no motion), the second's
+// exactly the first's positions, read back as vectors before they were overwritten; the
+// positions, normals and tangents are the same bits as the same lanes write without
+// previous positions; and a caller's buffers one float off a vector boundary (vloadn,
+// vstoren) hold the same bits again.
+TEST(Lanes, PreviousPositionPlanesAreVectorsHoldingTheFrameBefore) {
+  const Mesh blub = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
+  const RiggedMesh bend = RiggedMesh::single_bend(blub, find_body_frame(blub), BendMode::kExact);
+  const Mesh barramundi = load_mesh(test::data_path("barramundi/BarramundiFish.gltf"));
+  const RiggedMesh swim(
+      barramundi,
+      resolve_rig(load_rig_file(test::data_path("rigs/barramundi_swim.rig.json")), barramundi));
+  for (const RiggedMesh* model : {&bend, &swim}) {
+    const RigParameters first = swimming_values(*model, 3);
+    RigParameters second = swimming_values(*model, 3);
+    std::reverse(second.values().begin(), second.values().end());
+    std::vector<float> clamped(second.values().size());
+    check_parameters(model->rig(), second.view(), /*clamp=*/true, clamped.data());
+    second.values() = clamped;
+    const std::size_t instances = first.instance_count();
+    for (std::size_t lanes : vector_lanes()) {
+      for (OutputStores stores : {OutputStores::kStreaming, OutputStores::kPlain}) {
+        SCOPED_TRACE(std::string(model == &bend ? "bend" : "swim rig") + ", " +
+                     std::to_string(lanes) + " lanes" +
+                     (stores == OutputStores::kPlain ? ", plain" : ", streaming"));
+        ClOptions options = with_lanes(lanes);
+        options.stores = stores;
+        ClDeformer deformer(test::shared_context(), *model, options);
+        OutputLayout layout = deformer.planes_layout(instances);
+        layout.previous_positions = true;
+        ASSERT_EQ(layout.previous_layout, layout.positions);
+        EXPECT_EQ(deformer.lanes(layout), lanes);
+        DeviceBatch batch = deformer.allocate(instances, layout);
+        EXPECT_EQ(deformer.streams_outputs(batch), stores == OutputStores::kStreaming);
+        const DeformedBatch<float> one =
+            test::run_on_device(deformer, batch, first, NormalMode::kJacobian);
+        EXPECT_EQ(one.previous_positions, one.positions);
+        const DeformedBatch<float> two =
+            test::run_on_device(deformer, batch, second, NormalMode::kJacobian);
+        EXPECT_EQ(two.previous_positions, one.positions);
+        EXPECT_NE(two.positions, one.positions);
+        const DeformedBatch<float> without =
+            test::run_on_device(deformer, second, NormalMode::kJacobian);
+        test::expect_same_outputs(two, without);
+
+        // The same two frames in a caller's memory one float past a vector boundary.
+        const std::size_t floats = batch.layout.attribute_elements();
+        std::vector<std::vector<float>> memory(4, std::vector<float>(floats + 16));
+        cl::Buffer buffers[4];
+        for (std::size_t k = 0; k < 4; ++k) {
+          float* start = memory[k].data() + 1;
+          ASSERT_NE(reinterpret_cast<std::uintptr_t>(start) % 64, 0u);
+          buffers[k] = cl::Buffer(test::shared_context().context(), CL_MEM_USE_HOST_PTR,
+                                  floats * sizeof(float), start);
+        }
+        DeviceBatch unaligned = deformer.bind(
+            instances, layout,
+            {buffers[0], buffers[1], layout.tangents ? buffers[2] : cl::Buffer(), buffers[3]});
+        const DeformedBatch<float> unaligned_one =
+            test::run_on_device(deformer, unaligned, first, NormalMode::kJacobian);
+        const DeformedBatch<float> unaligned_two =
+            test::run_on_device(deformer, unaligned, second, NormalMode::kJacobian);
+        test::expect_same_outputs(unaligned_two, two);
+        EXPECT_EQ(unaligned_two.previous_positions, one.positions);
+        EXPECT_EQ(unaligned_one.previous_positions, one.positions);
+      }
+    }
+  }
 }
 
 // A vertex struct that its attributes fill, in one buffer (on CPUs unless staged): every

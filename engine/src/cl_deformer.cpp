@@ -190,17 +190,18 @@ std::size_t ClDeformer::Impl::lanes() const {
   return options.lanes ? options.lanes : detail::device_lanes(context.description());
 }
 
-// Lanes store FinFlex's planes (normals float32 or half) and vertex structs in one
-// buffer as vectors (kernels/cpu/lane_outputs.cl) and, on CPUs, any other layout
+// Lanes store FinFlex's planes (normals float32 or half; previous positions in float32
+// planes) and vertex structs in one buffer as vectors (kernels/cpu/lane_outputs.cl) and,
+// on CPUs, any other layout
 // lane by lane through the one-slot stores (kernels/common/outputs.cl): the arithmetic
 // stays vector code. Before the structs were transposed, lane by lane too: 1,000
 // instances on a Xeon with PoCL 5 (which does not vectorise one-lane kernels), 16
 // threads: the interleaved struct 10.0 ms a frame against 17.0 with one lane (bend),
 // 11.6 against 30.7 (rig); on 2 AMD EPYC cores with PoCL 3.1, 22.6 against 45.7 and
 // 25.6 against 84.9 (docs/benchmarks.md, "Every output layout on CPUs"). But the
-// single bend in mesh order or with previous positions: one lane, which PoCL 3.1's
-// work-group vectoriser makes faster there (14.8 ms against 27 lane by lane, mesh
-// order). GPUs: one lane for any layout but the planes, whatever ClOptions::lanes asks;
+// single bend in mesh order or with previous positions in another layout: one lane,
+// which PoCL 3.1's work-group vectoriser makes faster there (14.8 ms against 27 lane by
+// lane, mesh order). GPUs: one lane for any layout but the planes, whatever ClOptions::lanes asks;
 // and so does a vertex struct staged through local memory (ClOptions::struct_stores,
 // a work-item a vertex).
 std::size_t ClDeformer::Impl::lanes(const OutputLayout& outputs) const {
@@ -229,12 +230,13 @@ bool ClDeformer::Impl::streams_outputs(const DeviceBatch& batch) const {
   // Streaming stores: FinFlex's planes and vertex structs, stored as vectors.
   const bool planes = writes_planes(batch.outputs);
   if (lanes(batch.outputs) == 1 || !(planes || writes_lane_structs(batch))) return false;
-  // FinFlex's planes: 12 bytes per position, 12 or 6 per direction (float32 or half),
-  // per vertex slot and instance; a vertex struct, its stride.
+  // FinFlex's planes: 12 bytes per position (and previous position), 12 or 6 per
+  // direction (float32 or half), per vertex slot and instance; a vertex struct, its stride.
   const BatchLayout& counts = batch.layout;
   const std::size_t direction_bytes =
       batch.outputs.normals.format == AttributeFormat::kFloat16x3 ? 6 : 12;
-  const std::size_t vertex_bytes = planes ? 12 + direction_bytes * (batch.outputs.tangents ? 2 : 1)
+  const std::size_t vertex_bytes = planes ? 12 * (batch.outputs.previous_positions ? 2 : 1) +
+                                                direction_bytes * (batch.outputs.tangents ? 2 : 1)
                                           : batch.outputs.positions.vertex_stride;
   const std::size_t bytes = counts.plane_stride * counts.instance_count * vertex_bytes;
   return detail::device_streaming_stores(context.description(), options.stores, bytes);

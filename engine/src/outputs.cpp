@@ -320,7 +320,8 @@ bool writes_planes_in(const OutputLayout& outputs, const BatchLayout& counts, No
   BatchLayout in_format = counts;
   in_format.normal_format = format;
   const OutputLayout planes = planes_outputs(in_format);
-  return outputs.order == VertexOrder::kSlots && !outputs.previous_positions &&
+  return outputs.order == VertexOrder::kSlots &&
+         (!outputs.previous_positions || outputs.previous_layout == planes.positions) &&
          outputs.positions == planes.positions && outputs.normals == planes.normals &&
          outputs.tangents == planes.tangents &&
          (!outputs.tangents || outputs.tangent_layout == planes.tangent_layout);

@@ -20,8 +20,9 @@ OutputLayout planes_outputs(const BatchLayout& layout);
 // True when `outputs` writes what planes_outputs(counts) writes with normals in float32
 // or half, where it does: float32 planes for positions, normals (and tangents when
 // `counts` has them) in float32 or half planes, at FinFlex's offsets and strides, in
-// slot order, without previous positions. The outputs kernels of more than one lane
-// store as vectors (kernels/cpu/lane_outputs.cl).
+// slot order, previous positions (if any) in float32 planes laid out as the positions.
+// The outputs kernels of more than one lane store as vectors
+// (kernels/cpu/lane_outputs.cl).
 bool writes_finflex_planes(const OutputLayout& outputs, const BatchLayout& counts);
 // " -DFF_PLANE_STRIDE=<stride>u" when `outputs` are FinFlex's planes of `counts`
 // (kernels/common/outputs.cl compiles their places in), else "".

@@ -54,15 +54,17 @@
 #endif
 
 /* FF_LANE_PLANES: kernels of more than one lane (common/lanes.cl) writing FinFlex's
- * planes in slot order (float32 positions, normals and tangents float32 or half), which
- * they store as vectors (kernels/cpu/lane_outputs.cl). Kernels of more than one lane
- * store any other layout lane by lane through this file's stores of one slot. */
+ * planes in slot order (float32 positions, normals and tangents float32 or half, and
+ * previous positions, if any, float32 planes), which they store as vectors
+ * (kernels/cpu/lane_outputs.cl). Kernels of more than one lane store any other layout
+ * lane by lane through this file's stores of one slot. */
 #define FF_LANE_PLANE_FORMAT(format) ((format) == FF_F32X3 || (format) == FF_F16X3)
 #define FF_LANE_PLANES                                                                   \
   (FF_LANES > 1 && FF_POSITION_FORMAT == FF_F32X3 && !FF_POSITION_PACKED &&              \
    FF_LANE_PLANE_FORMAT(FF_NORMAL_FORMAT) && !FF_NORMAL_PACKED &&                        \
    (!FF_TANGENTS || (FF_LANE_PLANE_FORMAT(FF_TANGENT_FORMAT) && !FF_TANGENT_PACKED)) &&  \
-   !FF_PREVIOUS && !FF_MESH_ORDER && !FF_HAS_OUTPUT_LIMIT)
+   (!FF_PREVIOUS || (FF_PREVIOUS_FORMAT == FF_F32X3 && !FF_PREVIOUS_PACKED)) &&          \
+   !FF_MESH_ORDER && !FF_HAS_OUTPUT_LIMIT)
 
 /* The tangents' w (handedness) is written by the 4-component formats. */
 #define FF_TANGENT_W                                                          \

@@ -1,6 +1,7 @@
 /* The outputs of kernels of more than one lane (kernels/common/lanes.cl) in FinFlex's
- * planes in slot order (finflex/batch.hpp), normals (and tangents) in float32 or half:
- * FF_LANE_PLANES (common/outputs.cl), stored as vectors; and vertex structs in one
+ * planes in slot order (finflex/batch.hpp), normals (and tangents) in float32 or half,
+ * previous positions in float32 planes: FF_LANE_PLANES (common/outputs.cl), stored as
+ * vectors; and vertex structs in one
  * buffer (FF_LANE_STRUCT, below), transposed into vectors. Kernels of more than one lane
  * store every other layout lane by lane through common/outputs.cl's stores of one slot.
  *
@@ -15,15 +16,27 @@
 /* Component c of the lanes of instance i from slot v, in `format` (float32 or half):
  * FF_LANES consecutive scalars at offset + i * instance_stride + c * plane_stride + v
  * (with FF_PLANE_STRIDE, the numbers compiled in: common/outputs.cl). */
-FF_INLINE void store_lane_attribute(__global float* buffer, const int format, ulong offset,
-                                    ulong plane_stride, ulong instance_stride, size_t i,
-                                    size_t v, Vec3 value) {
+FF_INLINE size_t lane_attribute_first(ulong offset, ulong instance_stride, size_t i, size_t v) {
 #ifdef FF_PLANE_STRIDE
-  plane_stride = FF_PLANE_STRIDE;
-  const size_t first = element_index(0, 0, plane_stride, 0, i, v);
+  return element_index(0, 0, FF_PLANE_STRIDE, 0, i, v);
 #else
-  const size_t first = (size_t)(offset + i * instance_stride) + v;
+  return (size_t)(offset + i * instance_stride) + v;
 #endif
+}
+
+FF_INLINE size_t lane_plane_stride(ulong plane_stride) {
+#ifdef FF_PLANE_STRIDE
+  return FF_PLANE_STRIDE;
+#else
+  return (size_t)plane_stride;
+#endif
+}
+
+FF_INLINE void store_lane_attribute(__global float* buffer, const int format, ulong offset,
+                                    ulong step, ulong instance_stride, size_t i, size_t v,
+                                    Vec3 value) {
+  const size_t first = lane_attribute_first(offset, instance_stride, i, v);
+  const size_t plane_stride = lane_plane_stride(step);
   if (format == FF_F16X3) {
     __global ushort* halves = (__global ushort*)buffer + first;
     store_half_lanes(halves, value.x);
@@ -36,10 +49,31 @@ FF_INLINE void store_lane_attribute(__global float* buffer, const int format, ul
   }
 }
 
+/* Previous-frame positions (FF_PREVIOUS, float32 planes): the positions' own place
+ * still holds last frame's, read as vectors before they are overwritten (a caller's
+ * plane need not be aligned: vloadn); a batch's first frame (out_layout.sc = 0) writes
+ * this frame's own (no motion). Then stored as the positions are. */
+FF_INLINE void store_lane_previous(__global float* out_previous, __global const float* out_positions,
+                                   ulong16 out_layout, size_t instance, size_t v, Vec3 p) {
+  Vec3 before = p;
+  if (out_layout.sc) {
+    const size_t first = lane_attribute_first(out_layout.s0, out_layout.s2, instance, v);
+    const size_t plane_stride = lane_plane_stride(out_layout.s1);
+    before = vec3(load_lanes_unaligned(out_positions + first),
+                  load_lanes_unaligned(out_positions + first + plane_stride),
+                  load_lanes_unaligned(out_positions + first + 2 * plane_stride));
+  }
+  store_lane_attribute(out_previous, FF_F32X3, out_layout.s9, out_layout.sa, out_layout.sb,
+                       instance, v, before);
+}
+
 FF_INLINE void store_outputs(__global float* out_positions, __global float* out_normals,
                              __global float* out_tangents, __global float* out_previous,
                              ulong16 out_layout, size_t instance, size_t v, Vec3 p, Vec3 n,
                              Vec3 t, float rest_tangent_w) {
+#if FF_PREVIOUS
+  store_lane_previous(out_previous, out_positions, out_layout, instance, v, p);
+#endif
   store_lane_attribute(out_positions, FF_F32X3, out_layout.s0, out_layout.s1, out_layout.s2,
                        instance, v, p);
   store_lane_attribute(out_normals, FF_NORMAL_FORMAT, out_layout.s3, out_layout.s4,

@@ -29,6 +29,15 @@ FF_INLINE LaneFloat load_lanes(__global const float* first) {
   return *(__global const LaneFloat*)first;
 }
 
+/* The same from an output plane, which may be a caller's and not aligned (vloadn). */
+FF_INLINE LaneFloat load_lanes_unaligned(__global const float* first) {
+#if FF_LANES == 32
+  return (LaneFloat)(vload16(0, first), vload16(0, first + 16));
+#else
+  return FF_VLOAD(0, first);
+#endif
+}
+
 /* A store is one native vector (StoreVector): 32 lanes store their two halves, each
  * streamed where it is aligned to its 64 bytes, so a caller's buffer aligned to 64
  * bytes takes streaming stores whatever the lanes. FF_STORE_VECTOR(type, first, value,

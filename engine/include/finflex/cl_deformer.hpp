@@ -103,13 +103,16 @@ struct ClOptions {
   // 8 or 16). 32 lanes are a vector type of clang's, not OpenCL C's: PoCL only
   // (refused elsewhere). Lanes apply per batch: outputs in FinFlex's planes (a batch
   // whose OutputLayout equals planes_layout(instances, format) for either NormalFormat:
-  // float32 positions, normals and tangents in float32 or half, slot order, no previous
-  // positions; allocate(instances[, format]) makes one) are stored as vectors, and so
+  // float32 positions, normals and tangents in float32 or half, slot order, previous
+  // positions, if any, in float32 planes laid out as the positions (previous_layout as
+  // planes_layout sets it); allocate(instances[, format]) makes one) are stored as
+  // vectors, and so
   // is a vertex struct that its attributes fill in one buffer (transposed in registers,
   // finflex/cl_outputs.hpp lane_struct_options) unless it is staged; on CPUs
   // any other layout lane by lane through the one-slot stores of
   // kernels/common/outputs.cl, but the single bend's in mesh order or with previous
-  // positions, and on GPUs every other layout, with one lane whatever this asks:
+  // positions in another layout, and on GPUs every other layout, with one lane whatever
+  // this asks:
   // lanes(outputs) says which.
   std::size_t lanes = 0;
   // With more than one lane: how the outputs are stored.
