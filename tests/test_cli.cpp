@@ -260,9 +260,10 @@ TEST(Cli, BenchMeasuresOutputLayouts) {
   }
 }
 
-// Lanes for every layout on CPUs: FinFlex's planes (with previous positions too) and a
-// vertex struct in one buffer (compact: float32x3 positions, octahedral normals) as
-// vectors, which stream; others lane by lane (the rig in mesh order), which do not.
+// Lanes for every layout on CPUs: FinFlex's planes (with previous positions too), a
+// vertex struct in one buffer (compact: float32x3 positions, octahedral normals) and
+// attributes in arrays of their own as vectors, which stream; others lane by lane (the
+// rig in mesh order), which do not.
 TEST(Cli, BenchLanesApplyToEveryLayoutStreamingToPlanesAndStructs) {
   const std::string mesh = fish("blub/fish_low_resolution.obj");
   const std::string rig = " --rig " + fish("rigs/blub_low_resolution.rig.json");
@@ -271,6 +272,7 @@ TEST(Cli, BenchLanesApplyToEveryLayoutStreamingToPlanesAndStructs) {
     bool streams;
   };
   for (const Case& c : {Case{" --layout planes", true}, Case{" --layout compact", true},
+                        Case{" --layout arrays", true}, Case{rig + " --layout arrays --host", true},
                         Case{rig + " --previous", true}, Case{rig + " --order mesh", false}}) {
     SCOPED_TRACE(c.options);
     const RunResult r =

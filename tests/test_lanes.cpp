@@ -463,16 +463,17 @@ TEST(Lanes, PreviousPositionPlanesAreVectorsHoldingTheFrameBefore) {
   }
 }
 
-// A vertex struct that its attributes fill, in one buffer (on CPUs unless staged): every
-// lane count transposes each work-item's structs into whole vectors
+// A vertex struct that its attributes fill, in one buffer (on CPUs unless staged), and
+// attributes each in a tightly packed array of its own: every lane count transposes
+// each work-item's structs (an array's: one attribute's) into whole vectors
 // (kernels/cpu/lane_outputs.cl), for the bend on Blub (no tangents) and the
-// Barramundi's swim rig (tangents), in every format such a struct takes (float32x3 and
-// x4, float16x4, snorm16x4, octahedral16x2; 16 to 48 bytes a vertex), members in
+// Barramundi's swim rig (tangents), in every format they take (float32x3 and x4,
+// float16x4, snorm16x4, octahedral16x2; structs of 16 to 48 bytes a vertex), members in
 // different orders, streamed and plain, and from a run 3 words off a vector boundary
-// (vstoren): the structs hold exactly what the same lanes write into separate arrays of
-// the same formats (stored lane by lane), and the words around the run stay as they
-// were.
-TEST(Lanes, VertexStructsAreTransposedIntoVectors) {
+// (vstoren): both hold exactly what the same lanes write into arrays of the same
+// formats padded by a word a vertex (stored lane by lane), and the words around each
+// run stay as they were.
+TEST(Lanes, VertexStructsAndAttributeArraysAreTransposedIntoVectors) {
   if (test::shared_context().description().is_gpu()) GTEST_SKIP() << "CPUs' kernels";
   const Mesh blub = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
   const RiggedMesh bend = RiggedMesh::single_bend(blub, find_body_frame(blub), BendMode::kExact);
@@ -518,6 +519,24 @@ TEST(Lanes, VertexStructsAreTransposedIntoVectors) {
        {F::kOctahedral16x2, 0}},
       {&swim, "float32x4 x 3", {F::kFloat32x4, 0}, {F::kFloat32x4, 16}, {F::kFloat32x4, 32}},
   };
+  // A buffer of `words` words filled with -7, with 64 more after them.
+  auto guarded = [](std::size_t words) {
+    std::vector<float> filled(words + 64, -7.0f);
+    cl_int status = CL_SUCCESS;
+    cl::Buffer buffer(test::shared_context().context(), CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR,
+                      filled.size() * sizeof(float), filled.data(), &status);
+    check_cl(status, "clCreateBuffer");
+    return buffer;
+  };
+  // Its first `lead` words and those past `words` still -7.
+  auto expect_guards = [](const cl::Buffer& buffer, std::size_t lead, std::size_t words) {
+    std::vector<float> after(words + 64);
+    check_cl(test::shared_context().queue().enqueueReadBuffer(
+                 buffer, CL_TRUE, 0, after.size() * sizeof(float), after.data()),
+             "clEnqueueReadBuffer");
+    for (std::size_t k = 0; k < lead; ++k) ASSERT_EQ(after[k], -7.0f) << k;
+    for (std::size_t k = words; k < after.size(); ++k) ASSERT_EQ(after[k], -7.0f) << k;
+  };
   for (const Case& c : cases) {
     const bool tangents = c.model->mesh().has_tangents();
     const RigParameters values = swimming_values(*c.model, 3);
@@ -538,41 +557,59 @@ TEST(Lanes, VertexStructsAreTransposedIntoVectors) {
                      << c.name << ", " << lanes << " lanes, "
                      << (run.stores == OutputStores::kStreaming ? "streaming" : "plain")
                      << ", lead " << run.lead);
+        const bool streams = run.stores == OutputStores::kStreaming;
         ClOptions options = with_lanes(lanes);
         options.stores = run.stores;
         ClDeformer d(test::shared_context(), *c.model, options);
         const std::size_t slots = d.output_vertices(VertexOrder::kSlots);
+        const std::size_t lead_bytes = 4 * run.lead;
+        // The struct, in one buffer.
         OutputLayout l;
         auto member = [&](const Member& m) {
-          return AttributeLayout::packed(m.format, slots, stride, 4 * run.lead + m.at);
+          return AttributeLayout::packed(m.format, slots, stride, lead_bytes + m.at);
         };
         l.positions = member(c.position);
         l.normals = member(c.normal);
         l.tangents = tangents;
         l.tangent_layout = tangents ? member(c.tangent) : l.positions;
         EXPECT_EQ(d.lanes(l), lanes);
-        const std::size_t words = (4 * run.lead + instances * slots * stride) / 4;
-        std::vector<float> filled(words + 64, -7.0f);
-        cl_int status = CL_SUCCESS;
-        cl::Buffer one(test::shared_context().context(), CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR,
-                       filled.size() * sizeof(float), filled.data(), &status);
-        check_cl(status, "clCreateBuffer");
+        const std::size_t words = (lead_bytes + instances * slots * stride) / 4;
+        const cl::Buffer one = guarded(words);
         DeviceBatch structs = d.bind(instances, l, {one, one, one, {}});
-        EXPECT_EQ(d.streams_outputs(structs), run.stores == OutputStores::kStreaming);
-        OutputLayout apart = l;
-        apart.positions = AttributeLayout::packed(c.position.format, slots);
-        apart.normals = AttributeLayout::packed(c.normal.format, slots);
-        apart.tangent_layout = AttributeLayout::packed(c.tangent.format, slots);
-        apart.tangents = tangents;
-        DeviceBatch arrays = d.allocate(instances, apart);
+        EXPECT_EQ(d.streams_outputs(structs), streams);
+        // Each attribute in its own tight array, and (the oracle) padded by a word.
+        auto arrays_of = [&](std::size_t padding, std::size_t lead) {
+          OutputLayout a = l;
+          auto array = [&](const Member& m) {
+            return AttributeLayout::packed(m.format, slots, format_bytes(m.format) + padding, lead);
+          };
+          a.positions = array(c.position);
+          a.normals = array(c.normal);
+          a.tangent_layout = tangents ? array(c.tangent) : a.positions;
+          return a;
+        };
+        const OutputLayout tight = arrays_of(0, lead_bytes);
+        const Member* members[] = {&c.position, &c.normal, &c.tangent};
+        std::vector<cl::Buffer> own;
+        std::vector<std::size_t> own_words;
+        for (std::size_t k = 0; k < (tangents ? 3u : 2u); ++k) {
+          own_words.push_back((lead_bytes + instances * slots * format_bytes(members[k]->format)) /
+                              4);
+          own.push_back(guarded(own_words.back()));
+        }
+        DeviceBatch arrays =
+            d.bind(instances, tight, {own[0], own[1], tangents ? own[2] : cl::Buffer(), {}});
+        EXPECT_EQ(d.streams_outputs(arrays), streams);
+        DeviceBatch padded = d.allocate(instances, arrays_of(4, 0));
+        EXPECT_FALSE(d.streams_outputs(padded));
+        const DeformedBatch<float> want =
+            test::run_on_device(d, padded, values, NormalMode::kJacobian);
         test::expect_same_outputs(test::run_on_device(d, structs, values, NormalMode::kJacobian),
-                                  test::run_on_device(d, arrays, values, NormalMode::kJacobian));
-        std::vector<float> after(filled.size());
-        check_cl(test::shared_context().queue().enqueueReadBuffer(
-                     one, CL_TRUE, 0, after.size() * sizeof(float), after.data()),
-                 "clEnqueueReadBuffer");
-        for (std::size_t k = 0; k < run.lead; ++k) ASSERT_EQ(after[k], -7.0f) << k;
-        for (std::size_t k = words; k < after.size(); ++k) ASSERT_EQ(after[k], -7.0f) << k;
+                                  want);
+        test::expect_same_outputs(test::run_on_device(d, arrays, values, NormalMode::kJacobian),
+                                  want);
+        expect_guards(one, run.lead, words);
+        for (std::size_t k = 0; k < own.size(); ++k) expect_guards(own[k], run.lead, own_words[k]);
       }
     }
   }

@@ -6,8 +6,8 @@
 //   finflex bench --mesh PATH --instances N --frames F [--mode paper|exact]
 //                 [--normals rotate|jacobian] [--normal-format float32|half]
 //                 [--rig RIG.json [--path fused|passes] [--swim]]
-//                 [--layout planes|interleaved|compact|snorm] [--order slots|mesh] [--previous]
-//                 [--host] [--per-item N] [--table-items N] [--lanes 0|1|8|16|32]
+//                 [--layout planes|interleaved|compact|snorm|arrays] [--order slots|mesh]
+//                 [--previous] [--host] [--per-item N] [--table-items N] [--lanes 0|1|8|16|32]
 //                 [--stores auto|plain|streaming] [--device NAME] [--json]
 //
 // --layout, --order, --previous: the outputs in that layout (docs/handoff.md), the
@@ -500,7 +500,8 @@ Command add_bench_command(CLI::App& app) {
       ->capture_default_str();
   bench
       ->add_option("--layout", options->layout,
-                   "Output layout: planes, interleaved, compact (octahedral normals) or snorm")
+                   "Output layout: planes, interleaved, compact (octahedral normals), snorm or "
+                   "arrays (each attribute its own packed array)")
       ->capture_default_str();
   bench->add_option("--order", options->order, "Output vertex order: slots or mesh")
       ->capture_default_str();

@@ -27,10 +27,11 @@ std::size_t written_bytes(const OutputLayout& l) {
 }  // namespace
 
 void check_bench_layout(const std::string& name, const std::string& order) {
-  if (name != "planes" && name != "interleaved" && name != "compact" && name != "snorm") {
+  if (name != "planes" && name != "interleaved" && name != "compact" && name != "snorm" &&
+      name != "arrays") {
     throw Error(ErrorCode::kInvalidArgument, "--layout",
                 "--layout '" + name +
-                    "' is not a layout (expected planes, interleaved, compact or snorm)");
+                    "' is not a layout (expected planes, interleaved, compact, snorm or arrays)");
   }
   if (order != "slots" && order != "mesh") {
     throw Error(ErrorCode::kInvalidArgument, "--order",
@@ -38,8 +39,8 @@ void check_bench_layout(const std::string& name, const std::string& order) {
   }
 }
 
-BenchLayout bench_layout(const ClDeformer& deformer, NormalFormat format,
-                         const std::string& name, const std::string& order, bool previous) {
+BenchLayout bench_layout(const ClDeformer& deformer, NormalFormat format, const std::string& name,
+                         const std::string& order, bool previous) {
   check_bench_layout(name, order);
   BenchLayout out;
   const VertexOrder vertex_order = order == "mesh" ? VertexOrder::kMesh : VertexOrder::kSlots;
@@ -48,11 +49,19 @@ BenchLayout bench_layout(const ClDeformer& deformer, NormalFormat format,
   const bool half = format == NormalFormat::kHalf;
   if (name == "planes") {
     const std::size_t stride = padded_plane_stride(out.vertices);
-    const AttributeFormat directions = half ? AttributeFormat::kFloat16x3 : AttributeFormat::kFloat32x3;
+    const AttributeFormat directions =
+        half ? AttributeFormat::kFloat16x3 : AttributeFormat::kFloat32x3;
     out.layout.positions = AttributeLayout::planes(AttributeFormat::kFloat32x3, stride);
     out.layout.normals = AttributeLayout::planes(directions, stride);
     out.layout.tangents = tangents;
     out.layout.tangent_layout = AttributeLayout::planes(directions, stride);
+  } else if (name == "arrays") {
+    out.layout.positions = AttributeLayout::packed(AttributeFormat::kFloat32x3, out.vertices);
+    out.layout.normals = AttributeLayout::packed(
+        half ? AttributeFormat::kFloat16x4 : AttributeFormat::kFloat32x3, out.vertices);
+    out.layout.tangents = tangents;
+    out.layout.tangent_layout = AttributeLayout::packed(
+        half ? AttributeFormat::kFloat16x4 : AttributeFormat::kFloat32x4, out.vertices);
   } else if (name == "interleaved") {
     out.layout = interleaved(half ? AttributeFormat::kFloat16x4 : AttributeFormat::kFloat32x3,
                              tangents, out.vertices);
@@ -61,11 +70,12 @@ BenchLayout bench_layout(const ClDeformer& deformer, NormalFormat format,
   } else {  // snorm (check_bench_layout)
     out.layout = interleaved(AttributeFormat::kSnorm16x4, tangents, out.vertices);
   }
+  out.one_buffer = name != "planes" && name != "arrays";
   out.layout.order = vertex_order;
   if (previous) {
     out.layout.previous_positions = true;
-    out.layout.previous_layout = AttributeLayout::planes(AttributeFormat::kFloat32x3,
-                                                         padded_plane_stride(out.vertices));
+    out.layout.previous_layout =
+        AttributeLayout::planes(AttributeFormat::kFloat32x3, padded_plane_stride(out.vertices));
   }
   out.bytes_per_vertex = written_bytes(out.layout);
   return out;
@@ -81,16 +91,17 @@ void* host_block(HostMemory& memory, std::size_t bytes) {
   return block;
 }
 
-// Every attribute in its own host block (planes), or one block for the vertex struct.
-DeviceBatch bind_host_batch(ClDeformer& deformer, std::size_t instances,
-                            const BenchLayout& layout, HostMemory& memory) {
+// Every attribute in its own host block (planes, arrays), or one block for the vertex
+// struct.
+DeviceBatch bind_host_batch(ClDeformer& deformer, std::size_t instances, const BenchLayout& layout,
+                            HostMemory& memory) {
   const OutputLayout& l = layout.layout;
   const std::size_t n = layout.vertices;
   HostOutputs host;
   auto bytes_of = [&](const AttributeLayout& a) {
     return OutputLayout::required_bytes(a, instances, n);
   };
-  if (l.positions.arrangement == Arrangement::kPlanes) {
+  if (!layout.one_buffer) {
     host.positions_bytes = bytes_of(l.positions);
     host.positions = host_block(memory, host.positions_bytes);
     host.normals_bytes = bytes_of(l.normals);
@@ -119,24 +130,26 @@ DeviceBatch bind_host_batch(ClDeformer& deformer, std::size_t instances,
 
 }  // namespace
 
-DeviceBatch make_bench_batch(ClDeformer& deformer, std::size_t instances,
-                             const BenchLayout& layout, HostMemory& memory) {
+DeviceBatch make_bench_batch(ClDeformer& deformer, std::size_t instances, const BenchLayout& layout,
+                             HostMemory& memory) {
   const OutputLayout& l = layout.layout;
   if (layout.host) return bind_host_batch(deformer, instances, layout, memory);
-  if (l.positions.arrangement == Arrangement::kPlanes) return deformer.allocate(instances, l);
+  if (!layout.one_buffer) return deformer.allocate(instances, l);
   // One buffer for the vertex struct, up to its last attribute's end.
   std::size_t bytes = OutputLayout::required_bytes(l.normals, instances, layout.vertices);
   if (l.tangents) {
-    bytes = std::max(bytes, OutputLayout::required_bytes(l.tangent_layout, instances, layout.vertices));
+    bytes =
+        std::max(bytes, OutputLayout::required_bytes(l.tangent_layout, instances, layout.vertices));
   }
   cl_int status = CL_SUCCESS;
   cl::Buffer vertices(deformer.context().context(), CL_MEM_READ_WRITE, bytes, nullptr, &status);
   check_cl(status, "clCreateBuffer");
   OutputBuffers buffers{vertices, vertices, vertices, {}};
   if (l.previous_positions) {
-    buffers.previous_positions = cl::Buffer(
-        deformer.context().context(), CL_MEM_READ_WRITE,
-        OutputLayout::required_bytes(l.previous_layout, instances, layout.vertices), nullptr, &status);
+    buffers.previous_positions =
+        cl::Buffer(deformer.context().context(), CL_MEM_READ_WRITE,
+                   OutputLayout::required_bytes(l.previous_layout, instances, layout.vertices),
+                   nullptr, &status);
     check_cl(status, "clCreateBuffer");
   }
   return deformer.bind(instances, l, buffers);

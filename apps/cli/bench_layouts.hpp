@@ -4,6 +4,10 @@
 //                with --normal-format half), tangent likewise
 //   compact      position float32x3, normal and tangent octahedral16x2: 16 or 20 bytes
 //   snorm        position float32x3, normal and tangent snorm16x4: 20 or 28 bytes
+//   arrays       each attribute its own tightly packed array (glTF's accessors, a
+//                renderer's separate vertex streams): position and normal float32x3
+//                (normal float16x4 with --normal-format half), tangent float32x4
+//                (float16x4)
 // in slot or mesh order, with previous positions (float32x3 planes) when asked.
 #pragma once
 
@@ -19,7 +23,8 @@ namespace finflex::cli {
 struct BenchLayout {
   OutputLayout layout;
   bool host = false;                 // in the caller's host memory (bind_host)
-  std::size_t vertices = 0;         // the outputs' vertex count (slots or mesh vertices)
+  bool one_buffer = false;           // a vertex struct: every attribute in one buffer
+  std::size_t vertices = 0;          // the outputs' vertex count (slots or mesh vertices)
   std::size_t bytes_per_vertex = 0;  // written per vertex and instance
 };
 
@@ -34,10 +39,9 @@ struct HostMemory {
   std::vector<std::unique_ptr<unsigned char[], void (*)(void*)>> blocks;
 };
 
-// A batch in `layout`: interleaved layouts in one buffer, others one buffer per
-// attribute; with layout.host over `memory` (ClDeformer::bind_host), else device
-// buffers.
-DeviceBatch make_bench_batch(ClDeformer& deformer, std::size_t instances,
-                             const BenchLayout& layout, HostMemory& memory);
+// A batch in `layout`: vertex structs in one buffer, others one buffer per attribute; with
+// layout.host over `memory` (ClDeformer::bind_host), else device buffers.
+DeviceBatch make_bench_batch(ClDeformer& deformer, std::size_t instances, const BenchLayout& layout,
+                             HostMemory& memory);
 
 }  // namespace finflex::cli

@@ -218,26 +218,27 @@ bool ClDeformer::Impl::writes_planes(const OutputLayout& outputs) const {
   return detail::writes_finflex_planes(outputs, layout(1, NormalFormat::kFloat32));
 }
 
-// Vertex structs in one buffer (finflex/cl_outputs.hpp lane_struct_options),
-// transposed into vectors by kernels of more than one lane (kernels/cpu/lane_outputs.cl):
-// on CPUs unless staged.
-bool ClDeformer::Impl::writes_lane_structs(const DeviceBatch& batch) const {
-  return lanes(batch.outputs) > 1 && !stages_structs() &&
-         detail::fills_word_struct(batch.outputs) && detail::in_one_buffer(batch);
+// Vertex structs in one buffer and attributes in arrays of their own
+// (finflex/cl_outputs.hpp lane_struct_options), transposed into vectors by kernels of
+// more than one lane (kernels/cpu/lane_outputs.cl): on CPUs, structs unless staged.
+bool ClDeformer::Impl::writes_lane_words(const DeviceBatch& batch) const {
+  if (lanes(batch.outputs) == 1) return false;
+  if (detail::fills_own_arrays(batch.outputs)) return true;
+  return !stages_structs() && detail::writes_word_runs(batch);
 }
 
 bool ClDeformer::Impl::streams_outputs(const DeviceBatch& batch) const {
-  // Streaming stores: FinFlex's planes and vertex structs, stored as vectors.
-  const bool planes = writes_planes(batch.outputs);
-  if (lanes(batch.outputs) == 1 || !(planes || writes_lane_structs(batch))) return false;
-  // FinFlex's planes: 12 bytes per position (and previous position), 12 or 6 per
-  // direction (float32 or half), per vertex slot and instance; a vertex struct, its stride.
+  // Streaming stores: FinFlex's planes, vertex structs and attribute arrays, stored as
+  // vectors.
+  const OutputLayout& l = batch.outputs;
+  if (lanes(l) == 1 || !(writes_planes(l) || writes_lane_words(batch))) return false;
+  // The bytes each vertex slot and instance writes: each attribute's format (a
+  // struct's members fill its stride).
+  const std::size_t vertex_bytes =
+      format_bytes(l.positions.format) + format_bytes(l.normals.format) +
+      (l.tangents ? format_bytes(l.tangent_layout.format) : 0) +
+      (l.previous_positions ? format_bytes(l.previous_layout.format) : 0);
   const BatchLayout& counts = batch.layout;
-  const std::size_t direction_bytes =
-      batch.outputs.normals.format == AttributeFormat::kFloat16x3 ? 6 : 12;
-  const std::size_t vertex_bytes = planes ? 12 * (batch.outputs.previous_positions ? 2 : 1) +
-                                                direction_bytes * (batch.outputs.tangents ? 2 : 1)
-                                          : batch.outputs.positions.vertex_stride;
   const std::size_t bytes = counts.plane_stride * counts.instance_count * vertex_bytes;
   return detail::device_streaming_stores(context.description(), options.stores, bytes);
 }
@@ -290,7 +291,7 @@ void ClDeformer::Impl::check_buffer_sizes(const DeviceBatch& batch) {
   } else {
     batch_options_ = output_build_options(batch.outputs) +
                      staged_struct_options(batch, stages_structs()) +
-                     (writes_lane_structs(batch) ? lane_struct_options(batch) : std::string()) +
+                     (writes_lane_words(batch) ? lane_struct_options(batch) : std::string()) +
                      detail::plane_stride_option(batch.outputs, layout(1, NormalFormat::kFloat32));
   }
   // Lanes (and their kind of store) for this batch (lanes(outputs): FinFlex's planes as

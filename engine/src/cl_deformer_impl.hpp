@@ -39,7 +39,7 @@ class ClDeformer::Impl {
   std::size_t lanes() const;
   std::size_t lanes(const OutputLayout& outputs) const;
   bool writes_planes(const OutputLayout& outputs) const;
-  bool writes_lane_structs(const DeviceBatch& batch) const;
+  bool writes_lane_words(const DeviceBatch& batch) const;
   // Whether vertex structs are written through local memory (ClOptions::struct_stores).
   bool stages_structs() const {
     return options.struct_stores == ClOptions::StructStores::kStaged ||

@@ -80,17 +80,43 @@ bool fills_vertex_struct(const OutputLayout& l) {
   return fills_struct(l, [](AttributeFormat f) { return f == AttributeFormat::kFloat32x3; });
 }
 
-bool fills_word_struct(const OutputLayout& l) {
-  return fills_struct(l, [](AttributeFormat f) {
-    return f == AttributeFormat::kFloat32x3 || f == AttributeFormat::kFloat32x4 ||
-           f == AttributeFormat::kFloat16x4 || f == AttributeFormat::kSnorm16x4 ||
-           f == AttributeFormat::kOctahedral16x2;
-  });
+namespace {
+
+// The formats whose components kernels of more than one lane pack into 4-byte words.
+bool word_format(AttributeFormat f) {
+  return f == AttributeFormat::kFloat32x3 || f == AttributeFormat::kFloat32x4 ||
+         f == AttributeFormat::kFloat16x4 || f == AttributeFormat::kSnorm16x4 ||
+         f == AttributeFormat::kOctahedral16x2;
 }
+
+}  // namespace
+
+bool fills_word_struct(const OutputLayout& l) { return fills_struct(l, word_format); }
 
 bool in_one_buffer(const DeviceBatch& batch) {
   return batch.normals() == batch.positions() &&
          (!batch.outputs.tangents || batch.tangents() == batch.positions());
+}
+
+bool fills_own_arrays(const OutputLayout& l) {
+  if (l.order != VertexOrder::kSlots || l.previous_positions) return false;
+  // No allocation: ClDeformer asks this every frame (its work-item shape).
+  const std::array<const AttributeLayout*, 3> all = {&l.positions, &l.normals, &l.tangent_layout};
+  const std::size_t count = l.tangents ? 3 : 2;
+  for (std::size_t k = 0; k < count; ++k) {
+    const AttributeLayout* a = all[k];
+    if (a->arrangement != Arrangement::kPacked || !word_format(a->format) ||
+        a->vertex_stride != format_bytes(a->format) || a->offset % 4 != 0 ||
+        a->instance_stride % 4 != 0) {
+      return false;
+    }
+  }
+  return true;
+}
+
+bool writes_word_runs(const DeviceBatch& batch) {
+  return (fills_word_struct(batch.outputs) && in_one_buffer(batch)) ||
+         fills_own_arrays(batch.outputs);
 }
 
 }  // namespace detail
@@ -122,6 +148,7 @@ std::string staged_struct_options(const DeviceBatch& batch, bool staged) {
 }
 
 std::string lane_struct_options(const DeviceBatch& batch) {
+  if (detail::fills_own_arrays(batch.outputs)) return " -DFF_LANE_ARRAYS=1";
   return vertex_struct_options(batch, detail::fills_word_struct(batch.outputs), "FF_LANE_STRUCT");
 }
 

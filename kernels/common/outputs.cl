@@ -232,6 +232,9 @@ FF_INLINE void store_outputs(__global float* out_positions, __global float* out_
 #ifndef FF_LANE_STRUCT
 #define FF_LANE_STRUCT 0
 #endif
+#ifndef FF_LANE_ARRAYS
+#define FF_LANE_ARRAYS 0
+#endif
 
 #if FF_STAGED_STRUCT
 /* A vertex struct of float32x3 attributes that fill its stride, all in one buffer, in
@@ -284,7 +287,7 @@ FF_INLINE void store_staged(__global float* out, __local float* staged, ulong16 
                     instance, out_v, p, n, t, FF_REST_TANGENT_W(v));                           \
     }                                                                                         \
   }
-#elif !FF_LANE_STRUCT /* else kernels/cpu/lane_outputs.cl's vector structs */
+#elif !FF_LANE_STRUCT && !FF_LANE_ARRAYS /* else kernels/cpu/lane_outputs.cl's vectors */
 /* Lane `lane` of a lanes' vector, as one slot's. */
 FF_INLINE StoreVec3 lane_of(Vec3 v, int lane) {
   return store_vec3(FF_FLOAT_LANE(v.x, lane), FF_FLOAT_LANE(v.y, lane), FF_FLOAT_LANE(v.z, lane));

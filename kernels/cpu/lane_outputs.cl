@@ -108,13 +108,17 @@ FF_INLINE void store_outputs(__global float* out_positions, __global float* out_
  * output vector. Stored like the planes (streaming where aligned, vstoren elsewhere).
  * Lane by lane, the same structs took a scalar store per component, each after moving
  * its value out of the vector. */
-#if FF_LANE_STRUCT && FF_LANES > 1 && !FF_LANE_PLANES
+/* Each attribute in its own tightly packed array (FF_LANE_ARRAYS, also from
+ * lane_struct_options: its vertex stride its format's bytes, starting on a 4-byte word,
+ * in slot order, as glTF's accessors and a renderer's separate vertex streams hold
+ * them): an array of one-attribute structs, F the format's words, transposed alike, one
+ * attribute at a time. */
+#if (FF_LANE_STRUCT || FF_LANE_ARRAYS) && FF_LANES > 1 && !FF_LANE_PLANES
 #if FF_LANES == 8
 #define FF_STRUCT_WIDTH 8
 #else
 #define FF_STRUCT_WIDTH 16
 #endif
-#define FF_STRUCT_F FF_STAGED_FLOATS
 /* The most words a struct has: three 4-component float32 attributes. */
 #define FF_STRUCT_MOST 12
 
@@ -169,49 +173,77 @@ FF_DEFINE_STRUCT_WORDS(16)
     member[(at)] = octahedral_word((x), (y), (z));    \
   }
 
-/* Element j of output vector k with member m taken in from the second vector: its
- * lane there (W + lane) where word W k + j is member m, else element j as it was.
- * (k past F, whose code is left out, as 0: its indices must still be valid.) */
-#define FF_STRUCT_G(k, j) (FF_STRUCT_WIDTH * ((k) < FF_STRUCT_F ? (k) : 0) + (j))
-#define FF_STRUCT_INDEX(k, m, j)                                  \
-  (FF_STRUCT_G(k, j) % FF_STRUCT_F == (m)                          \
-       ? FF_STRUCT_WIDTH + FF_STRUCT_G(k, j) / FF_STRUCT_F : (j))
+/* Element j of output vector k of a struct of F words with member m taken in from the
+ * second vector: its lane there (W + lane) where word W k + j is member m, else
+ * element j as it was. (k past F, whose code is left out, as 0: its indices must still
+ * be valid.) */
+#define FF_STRUCT_G(F, k, j) (FF_STRUCT_WIDTH * ((k) < (F) ? (k) : 0) + (j))
+#define FF_STRUCT_INDEX(F, k, m, j) \
+  (FF_STRUCT_G(F, k, j) % (F) == (m) ? FF_STRUCT_WIDTH + FF_STRUCT_G(F, k, j) / (F) : (j))
 /* The first shuffle: members 0 and 1 into their places (lane g / F of either). */
-#define FF_STRUCT_FIRST(k, m, j)                                                   \
-  (FF_STRUCT_G(k, j) % FF_STRUCT_F == 1 ? FF_STRUCT_WIDTH + FF_STRUCT_G(k, j) / FF_STRUCT_F \
-                                        : FF_STRUCT_G(k, j) / FF_STRUCT_F)
+#define FF_STRUCT_FIRST(F, k, m, j)                                                \
+  (FF_STRUCT_G(F, k, j) % (F) == 1 ? FF_STRUCT_WIDTH + FF_STRUCT_G(F, k, j) / (F) \
+                                   : FF_STRUCT_G(F, k, j) / (F))
 #if FF_STRUCT_WIDTH == 8
-#define FF_STRUCT_INDICES(M, k, m) \
-  M(k, m, 0), M(k, m, 1), M(k, m, 2), M(k, m, 3), M(k, m, 4), M(k, m, 5), M(k, m, 6), M(k, m, 7)
+#define FF_STRUCT_INDICES(M, F, k, m)                                                   \
+  M(F, k, m, 0), M(F, k, m, 1), M(F, k, m, 2), M(F, k, m, 3), M(F, k, m, 4), M(F, k, m, 5), \
+      M(F, k, m, 6), M(F, k, m, 7)
 #else
-#define FF_STRUCT_INDICES(M, k, m)                                                        \
-  M(k, m, 0), M(k, m, 1), M(k, m, 2), M(k, m, 3), M(k, m, 4), M(k, m, 5), M(k, m, 6),     \
-      M(k, m, 7), M(k, m, 8), M(k, m, 9), M(k, m, 10), M(k, m, 11), M(k, m, 12),          \
-      M(k, m, 13), M(k, m, 14), M(k, m, 15)
+#define FF_STRUCT_INDICES(M, F, k, m)                                                   \
+  M(F, k, m, 0), M(F, k, m, 1), M(F, k, m, 2), M(F, k, m, 3), M(F, k, m, 4), M(F, k, m, 5), \
+      M(F, k, m, 6), M(F, k, m, 7), M(F, k, m, 8), M(F, k, m, 9), M(F, k, m, 10),          \
+      M(F, k, m, 11), M(F, k, m, 12), M(F, k, m, 13), M(F, k, m, 14), M(F, k, m, 15)
 #endif
 /* Member m taken into r (members past the struct's F: nothing). */
-#define FF_STRUCT_TAKE(k, m)                                                            \
-  if ((m) < FF_STRUCT_F) {                                                              \
-    r = __builtin_shufflevector(r, member[(m) < FF_STRUCT_F ? (m) : 0],                 \
-                                FF_STRUCT_INDICES(FF_STRUCT_INDEX, k, m));              \
+#define FF_STRUCT_TAKE(F, k, m)                                          \
+  if ((m) < (F)) {                                                       \
+    r = __builtin_shufflevector(r, member[(m) < (F) ? (m) : 0],          \
+                                FF_STRUCT_INDICES(FF_STRUCT_INDEX, F, k, m)); \
   }
 /* Output vector k (none past F) of the run at `first`. */
-#define FF_STRUCT_OUTPUT(k)                                                             \
-  if ((k) < FF_STRUCT_F) {                                                              \
-    StoreVector r = __builtin_shufflevector(member[0], member[1],                       \
-                                            FF_STRUCT_INDICES(FF_STRUCT_FIRST, k, 1));  \
-    FF_STRUCT_TAKE(k, 2)                                                                \
-    FF_STRUCT_TAKE(k, 3)                                                                \
-    FF_STRUCT_TAKE(k, 4)                                                                \
-    FF_STRUCT_TAKE(k, 5)                                                                \
-    FF_STRUCT_TAKE(k, 6)                                                                \
-    FF_STRUCT_TAKE(k, 7)                                                                \
-    FF_STRUCT_TAKE(k, 8)                                                                \
-    FF_STRUCT_TAKE(k, 9)                                                                \
-    FF_STRUCT_TAKE(k, 10)                                                               \
-    FF_STRUCT_TAKE(k, 11)                                                               \
-    store_vector(first + (k) * FF_STRUCT_WIDTH, r);                                     \
+#define FF_STRUCT_OUTPUT(F, k)                                                         \
+  if ((k) < (F)) {                                                                     \
+    StoreVector r = __builtin_shufflevector(member[0], member[1],                      \
+                                            FF_STRUCT_INDICES(FF_STRUCT_FIRST, F, k, 1)); \
+    FF_STRUCT_TAKE(F, k, 2)                                                            \
+    FF_STRUCT_TAKE(F, k, 3)                                                            \
+    FF_STRUCT_TAKE(F, k, 4)                                                            \
+    FF_STRUCT_TAKE(F, k, 5)                                                            \
+    FF_STRUCT_TAKE(F, k, 6)                                                            \
+    FF_STRUCT_TAKE(F, k, 7)                                                            \
+    FF_STRUCT_TAKE(F, k, 8)                                                            \
+    FF_STRUCT_TAKE(F, k, 9)                                                            \
+    FF_STRUCT_TAKE(F, k, 10)                                                           \
+    FF_STRUCT_TAKE(F, k, 11)                                                           \
+    store_vector(first + (k) * FF_STRUCT_WIDTH, r);                                    \
   }
+/* The run of W structs of F words from `member` (in scope, with `first`). */
+#define FF_STORE_STRUCT_RUN(F) \
+  FF_STRUCT_OUTPUT(F, 0)       \
+  FF_STRUCT_OUTPUT(F, 1)       \
+  FF_STRUCT_OUTPUT(F, 2)       \
+  FF_STRUCT_OUTPUT(F, 3)       \
+  FF_STRUCT_OUTPUT(F, 4)       \
+  FF_STRUCT_OUTPUT(F, 5)       \
+  FF_STRUCT_OUTPUT(F, 6)       \
+  FF_STRUCT_OUTPUT(F, 7)       \
+  FF_STRUCT_OUTPUT(F, 8)       \
+  FF_STRUCT_OUTPUT(F, 9)       \
+  FF_STRUCT_OUTPUT(F, 10)      \
+  FF_STRUCT_OUTPUT(F, 11)
+
+/* The lanes' tangent w from the rest planes' fourth (common/outputs.cl
+ * FF_REST_TANGENT_W; rest_tangents and stride in scope); kernels without them (the
+ * benchmarks' write-only kernel) define it as they need. */
+#if FF_TANGENT_W
+#define FF_LANE_TANGENT_W(v) load_lanes(rest_tangents + 3 * (size_t)stride + (v))
+#else
+#define FF_LANE_TANGENT_W(v) ((LaneFloat)1.0f)
+#endif
+#define FF_OUTPUT_LOCALS
+
+#if FF_LANE_STRUCT
+#define FF_STRUCT_F FF_STAGED_FLOATS
 
 /* The W structs of one native vector of lanes, at `first` (their first word); tw:
  * the tangents' w (the rest mesh's handedness). */
@@ -227,18 +259,7 @@ FF_INLINE void store_struct_vectors(__global float* first, StoreVector px, Store
 #if FF_TANGENTS
   FF_PUT_STRUCT_WORDS(FF_STAGED_TANGENT, FF_TANGENT_FORMAT, tx, ty, tz, tw)
 #endif
-  FF_STRUCT_OUTPUT(0)
-  FF_STRUCT_OUTPUT(1)
-  FF_STRUCT_OUTPUT(2)
-  FF_STRUCT_OUTPUT(3)
-  FF_STRUCT_OUTPUT(4)
-  FF_STRUCT_OUTPUT(5)
-  FF_STRUCT_OUTPUT(6)
-  FF_STRUCT_OUTPUT(7)
-  FF_STRUCT_OUTPUT(8)
-  FF_STRUCT_OUTPUT(9)
-  FF_STRUCT_OUTPUT(10)
-  FF_STRUCT_OUTPUT(11)
+  FF_STORE_STRUCT_RUN(FF_STRUCT_F)
 }
 
 /* The work-item's structs of instance i from slot v: the positions' offset less the
@@ -258,16 +279,75 @@ FF_INLINE void store_lane_structs(__global float* out, ulong16 out_layout, size_
 #endif
 }
 
-/* The lanes' tangent w from the rest planes' fourth (common/outputs.cl
- * FF_REST_TANGENT_W; rest_tangents and stride in scope); kernels without them (the
- * benchmarks' write-only kernel) define it as they need. */
-#if FF_TANGENT_W
-#define FF_LANE_TANGENT_W(v) load_lanes(rest_tangents + 3 * (size_t)stride + (v))
-#else
-#define FF_LANE_TANGENT_W(v) ((LaneFloat)1.0f)
-#endif
-
-#define FF_OUTPUT_LOCALS
 #define FF_STORE_OUTPUTS(instance, v) \
   { store_lane_structs(out_positions, out_layout, instance, v, p, n, t, FF_LANE_TANGENT_W(v)); }
+
+#else /* FF_LANE_ARRAYS */
+/* A format's 4-byte words, and its scalars to a word (out_layout counts in scalars). */
+#define FF_FORMAT_WORDS(format) \
+  ((format) == FF_F32X3 ? 3 : (format) == FF_F32X4 ? 4 : (format) == FF_OCT16 ? 1 : 2)
+#define FF_FORMAT_SCALARS_PER_WORD(format) \
+  ((format) == FF_F16X4 || (format) == FF_S16X4 ? 2 : 1)
+
+/* store_<attribute>_vectors(first, x, y, z, w): the W one-attribute structs of one
+ * native vector of lanes at `first`. */
+#define FF_DEFINE_ARRAY_STORE(name, format)                                              \
+  FF_INLINE void name(__global float* first, StoreVector x, StoreVector y, StoreVector z, \
+                      StoreVector w) {                                                   \
+    StoreVector member[FF_STRUCT_MOST + 4];                                              \
+    FF_PUT_STRUCT_WORDS(0, format, x, y, z, w)                                           \
+    FF_STORE_STRUCT_RUN(FF_FORMAT_WORDS(format))                                         \
+  }
+FF_DEFINE_ARRAY_STORE(store_position_vectors, FF_POSITION_FORMAT)
+FF_DEFINE_ARRAY_STORE(store_normal_vectors, FF_NORMAL_FORMAT)
+#if FF_TANGENTS
+FF_DEFINE_ARRAY_STORE(store_tangent_vectors, FF_TANGENT_FORMAT)
+#endif
+
+/* The first word of (instance i, slot v) of an array at (offset, instance stride), in
+ * scalars of its format. */
+#define FF_ARRAY_FIRST(buffer, format, offset, instance_stride, i, v)          \
+  ((buffer) + (size_t)((offset) + (i) * (instance_stride)) /                   \
+                  FF_FORMAT_SCALARS_PER_WORD(format) +                         \
+   (v) * FF_FORMAT_WORDS(format))
+
+/* One attribute's lanes (x, y, z, w), native vector by native vector. */
+#if FF_LANES == 32
+#define FF_STORE_ARRAY(store, format, first, x, y, z, w)                             \
+  {                                                                                  \
+    store(first, (x).lo, (y).lo, (z).lo, (w).lo);                                    \
+    store((first) + 16 * FF_FORMAT_WORDS(format), (x).hi, (y).hi, (z).hi, (w).hi);   \
+  }
+#else
+#define FF_STORE_ARRAY(store, format, first, x, y, z, w) store(first, x, y, z, w);
+#endif
+
+/* The work-item's lanes of instance i from slot v into each attribute's array (w: the
+ * fourth component as the one-slot stores write it: 1 for positions, 0 for normals,
+ * the rest mesh's handedness tw for tangents). */
+FF_INLINE void store_lane_arrays(__global float* out_positions, __global float* out_normals,
+                                 __global float* out_tangents, ulong16 out_layout, size_t i,
+                                 size_t v, Vec3 p, Vec3 n, Vec3 t, LaneFloat tw) {
+  FF_STORE_ARRAY(store_position_vectors, FF_POSITION_FORMAT,
+                 FF_ARRAY_FIRST(out_positions, FF_POSITION_FORMAT, out_layout.s0, out_layout.s2,
+                                i, v),
+                 p.x, p.y, p.z, (LaneFloat)1.0f)
+  FF_STORE_ARRAY(store_normal_vectors, FF_NORMAL_FORMAT,
+                 FF_ARRAY_FIRST(out_normals, FF_NORMAL_FORMAT, out_layout.s3, out_layout.s5, i,
+                                v),
+                 n.x, n.y, n.z, (LaneFloat)0.0f)
+#if FF_TANGENTS
+  FF_STORE_ARRAY(store_tangent_vectors, FF_TANGENT_FORMAT,
+                 FF_ARRAY_FIRST(out_tangents, FF_TANGENT_FORMAT, out_layout.s6, out_layout.s8,
+                                i, v),
+                 t.x, t.y, t.z, tw)
+#endif
+}
+
+#define FF_STORE_OUTPUTS(instance, v)                                                     \
+  {                                                                                       \
+    store_lane_arrays(out_positions, out_normals, out_tangents, out_layout, instance, v, p, \
+                      n, t, FF_LANE_TANGENT_W(v));                                        \
+  }
+#endif
 #endif

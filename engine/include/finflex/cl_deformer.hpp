@@ -108,7 +108,8 @@ struct ClOptions {
   // planes_layout sets it); allocate(instances[, format]) makes one) are stored as
   // vectors, and so
   // is a vertex struct that its attributes fill in one buffer (transposed in registers,
-  // finflex/cl_outputs.hpp lane_struct_options) unless it is staged; on CPUs
+  // finflex/cl_outputs.hpp lane_struct_options) unless it is staged, and so are
+  // attributes each in a tightly packed array of its own; on CPUs
   // any other layout lane by lane through the one-slot stores of
   // kernels/common/outputs.cl, but the single bend's in mesh order or with previous
   // positions in another layout, and on GPUs every other layout, with one lane whatever

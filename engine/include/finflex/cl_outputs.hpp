@@ -31,9 +31,11 @@ FINFLEX_API std::string staged_struct_options(const DeviceBatch& batch, bool sta
 // A vertex struct for kernels of more than one lane (CPUs, ClOptions::lanes): its
 // attributes in one buffer, slot order, no previous positions, filling the struct,
 // each starting on a 4-byte word, in float32x3 or x4, float16x4, snorm16x4 or
-// octahedral16x2. Each work-item's structs are transposed from its lanes' vectors in
-// registers and stored as whole vectors (kernels/cpu/lane_outputs.cl). Empty for any
-// other layout.
+// octahedral16x2 (FF_LANE_STRUCT); or each attribute in a tightly packed array of its
+// own (vertex stride its format's bytes; the same formats, slot order, no previous
+// positions; FF_LANE_ARRAYS). Each work-item's structs (an array's: one attribute's)
+// are transposed from its lanes' vectors in registers and stored as whole vectors
+// (kernels/cpu/lane_outputs.cl). Empty for any other layout.
 // Append to output_build_options(batch.outputs) where FF_LANES > 1 and the structs are
 // not staged; one-lane builds ignore it.
 FINFLEX_API std::string lane_struct_options(const DeviceBatch& batch);
