@@ -51,6 +51,19 @@ double coordinate_scale(const Rig& rig) {
   return glm::length(f.origin) + f.length;
 }
 
+// The Barramundi with its swim rig (a spine, fins, padding slots, tangents).
+RiggedMesh barramundi_swim() {
+  const Mesh mesh = load_mesh(test::data_path("barramundi/BarramundiFish.gltf"));
+  return RiggedMesh(
+      mesh, resolve_rig(load_rig_file(test::data_path("rigs/barramundi_swim.rig.json")), mesh));
+}
+
+// The exact whole-body bend on the low-resolution Blub (no tangents).
+RiggedMesh blub_exact_bend() {
+  const Mesh mesh = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
+  return RiggedMesh::single_bend(mesh, find_body_frame(mesh), BendMode::kExact);
+}
+
 // Instances swimming through their ranges: each single parameter at a fraction of its
 // limit (up to 0.95, both signs), each table (a spine's angles) a travelling wave of
 // up to 0.6 rad; then clamped as the backends clamp.
@@ -214,8 +227,7 @@ TEST(Lanes, ShippedRigsWithSpinesMatchOneLaneAndTheReference) {
 TEST(Lanes, PlacedInstancesMatchOneLaneAndTheReference) {
   const Mesh mesh = load_mesh(test::data_path("barramundi/BarramundiFish.gltf"));
   const RiggedMesh bend = RiggedMesh::single_bend(mesh, find_body_frame(mesh), BendMode::kExact);
-  const RiggedMesh swim(
-      mesh, resolve_rig(load_rig_file(test::data_path("rigs/barramundi_swim.rig.json")), mesh));
+  const RiggedMesh swim = barramundi_swim();
   std::vector<Placement> where(3);
   for (std::size_t i = 0; i < where.size(); ++i) {
     const float turn = 2.0f * float(i) - 2.5f;
@@ -276,9 +288,7 @@ TEST(Lanes, SeveralInstancesPerWorkItemGiveTheSameResult) {
 // runs kernels on a CL_MEM_USE_HOST_PTR buffer's own memory: stored with vstoren), all
 // write the same bits.
 TEST(Lanes, StreamingPlainAndUnalignedStoresWriteTheSameBits) {
-  const Mesh mesh = load_mesh(test::data_path("barramundi/BarramundiFish.gltf"));
-  const RiggedMesh model(
-      mesh, resolve_rig(load_rig_file(test::data_path("rigs/barramundi_swim.rig.json")), mesh));
+  const RiggedMesh model = barramundi_swim();
   const RigParameters values = swimming_values(model, 3);
   ClOptions plain_options = with_lanes(16);
   plain_options.stores = OutputStores::kPlain;
@@ -317,9 +327,7 @@ TEST(Lanes, StreamingPlainAndUnalignedStoresWriteTheSameBits) {
 // the reference's bounds, never streamed (GPUs: one lane). The single bend in mesh order
 // or with previous positions in another layout takes one lane.
 TEST(Lanes, OtherOutputLayoutsStoreLaneByLaneAndMatchTheReference) {
-  const Mesh mesh = load_mesh(test::data_path("barramundi/BarramundiFish.gltf"));
-  const RiggedMesh model(
-      mesh, resolve_rig(load_rig_file(test::data_path("rigs/barramundi_swim.rig.json")), mesh));
+  const RiggedMesh model = barramundi_swim();
   const RigParameters values = swimming_values(model, 3);
   const std::size_t instances = values.instance_count();
   ClDeformer sixteen(test::shared_context(), model, with_lanes(16));
@@ -372,9 +380,8 @@ TEST(Lanes, OtherOutputLayoutsStoreLaneByLaneAndMatchTheReference) {
                                coordinate_scale(model.rig()));
     }
   }
-  // The single bend in mesh order or with previous positions: one lane.
-  const Mesh blub = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
-  const RiggedMesh bend = RiggedMesh::single_bend(blub, find_body_frame(blub), BendMode::kExact);
+  // The single bend in mesh order or with previous positions in another layout: one lane.
+  const RiggedMesh bend = blub_exact_bend();
   ClDeformer bend_sixteen(test::shared_context(), bend, with_lanes(16));
   OutputLayout bend_mesh_order = bend_sixteen.planes_layout(instances);
   bend_mesh_order.order = VertexOrder::kMesh;
@@ -399,12 +406,8 @@ TEST(Lanes, OtherOutputLayoutsStoreLaneByLaneAndMatchTheReference) {
 // previous positions; and a caller's buffers one float off a vector boundary (vloadn,
 // vstoren) hold the same bits again.
 TEST(Lanes, PreviousPositionPlanesAreVectorsHoldingTheFrameBefore) {
-  const Mesh blub = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
-  const RiggedMesh bend = RiggedMesh::single_bend(blub, find_body_frame(blub), BendMode::kExact);
-  const Mesh barramundi = load_mesh(test::data_path("barramundi/BarramundiFish.gltf"));
-  const RiggedMesh swim(
-      barramundi,
-      resolve_rig(load_rig_file(test::data_path("rigs/barramundi_swim.rig.json")), barramundi));
+  const RiggedMesh bend = blub_exact_bend();
+  const RiggedMesh swim = barramundi_swim();
   for (const RiggedMesh* model : {&bend, &swim}) {
     const RigParameters first = swimming_values(*model, 3);
     RigParameters second = swimming_values(*model, 3);
@@ -475,12 +478,8 @@ TEST(Lanes, PreviousPositionPlanesAreVectorsHoldingTheFrameBefore) {
 // run stay as they were.
 TEST(Lanes, VertexStructsAndAttributeArraysAreTransposedIntoVectors) {
   if (test::shared_context().description().is_gpu()) GTEST_SKIP() << "CPUs' kernels";
-  const Mesh blub = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
-  const RiggedMesh bend = RiggedMesh::single_bend(blub, find_body_frame(blub), BendMode::kExact);
-  const Mesh barramundi = load_mesh(test::data_path("barramundi/BarramundiFish.gltf"));
-  const RiggedMesh swim(
-      barramundi,
-      resolve_rig(load_rig_file(test::data_path("rigs/barramundi_swim.rig.json")), barramundi));
+  const RiggedMesh bend = blub_exact_bend();
+  const RiggedMesh swim = barramundi_swim();
   using F = AttributeFormat;
   struct Member {
     F format;
@@ -670,10 +669,8 @@ void expect_rounded_to_half(const DeformedBatch<float>& half, const DeformedBatc
 // and its directions rounded to the nearest half; streamed, plain, and into a caller's
 // host memory that is not aligned to the vectors, the same bits.
 TEST(Lanes, HalfNormalPlanesTakeLanesAndRoundTheFloat32Outputs) {
-  const Mesh mesh = load_mesh(test::data_path("barramundi/BarramundiFish.gltf"));
-  const RiggedMesh model(
-      mesh, resolve_rig(load_rig_file(test::data_path("rigs/barramundi_swim.rig.json")), mesh));
-  ASSERT_TRUE(mesh.has_tangents());
+  const RiggedMesh model = barramundi_swim();
+  ASSERT_TRUE(model.mesh().has_tangents());
   const RigParameters values = swimming_values(model, 5);
   const std::size_t instances = values.instance_count();
   for (std::size_t lanes : vector_lanes()) {
