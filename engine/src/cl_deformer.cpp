@@ -224,7 +224,8 @@ bool ClDeformer::Impl::writes_planes(const OutputLayout& outputs) const {
 bool ClDeformer::Impl::writes_lane_words(const DeviceBatch& batch) const {
   if (lanes(batch.outputs) == 1) return false;
   if (detail::fills_own_arrays(batch.outputs)) return true;
-  return !stages_structs() && detail::writes_word_runs(batch);
+  return !stages_structs() && detail::fills_word_struct(batch.outputs) &&
+         detail::in_one_buffer(batch);
 }
 
 bool ClDeformer::Impl::streams_outputs(const DeviceBatch& batch) const {

@@ -114,11 +114,6 @@ bool fills_own_arrays(const OutputLayout& l) {
   return true;
 }
 
-bool writes_word_runs(const DeviceBatch& batch) {
-  return (fills_word_struct(batch.outputs) && in_one_buffer(batch)) ||
-         fills_own_arrays(batch.outputs);
-}
-
 }  // namespace detail
 
 namespace {

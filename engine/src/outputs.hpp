@@ -42,9 +42,6 @@ bool in_one_buffer(const DeviceBatch& batch);
 // bytes) in one of fills_word_struct's formats, each on a 4-byte word, in slot order and
 // without previous positions: what lane_struct_options also takes (FF_LANE_ARRAYS).
 bool fills_own_arrays(const OutputLayout& outputs);
-// What kernels of more than one lane transpose into vectors: a word struct in one
-// buffer, or attributes in arrays of their own (lane_struct_options not empty).
-bool writes_word_runs(const DeviceBatch& batch);
 
 // Checks that `batch` holds `counts.instance_count` instances of `vertices` vertices
 // (slots or mesh vertices, as its order says) in its layout, in buffers large enough,

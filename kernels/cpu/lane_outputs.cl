@@ -1,9 +1,10 @@
 /* The outputs of kernels of more than one lane (kernels/common/lanes.cl) in FinFlex's
  * planes in slot order (finflex/batch.hpp), normals (and tangents) in float32 or half,
  * previous positions in float32 planes: FF_LANE_PLANES (common/outputs.cl), stored as
- * vectors; and vertex structs in one
- * buffer (FF_LANE_STRUCT, below), transposed into vectors. Kernels of more than one lane
- * store every other layout lane by lane through common/outputs.cl's stores of one slot.
+ * vectors; vertex structs in one buffer (FF_LANE_STRUCT, below) and attributes in
+ * arrays of their own (FF_LANE_ARRAYS), transposed into vectors. Kernels of more than
+ * one lane store every other layout lane by lane through common/outputs.cl's stores of
+ * one slot.
  *
  * store_outputs and FF_STORE_OUTPUTS keep the names and arguments of
  * common/outputs.cl, so the kernels end alike whatever their lanes. The attributes'
