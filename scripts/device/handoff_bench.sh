@@ -22,7 +22,7 @@ bench() {
     --device "$device" --json "$@" >> "$log" || echo "{\"failed\": \"$*\"}" >> "$log"
 }
 for rig in "" "--rig data/rigs/blub.rig.json"; do
-  for layout in planes interleaved compact snorm; do
+  for layout in planes interleaved compact snorm arrays; do
     for order in slots mesh; do
       # shellcheck disable=SC2086
       bench $rig --layout "$layout" --order "$order"
