@@ -614,6 +614,92 @@ TEST(Lanes, VertexStructsAndAttributeArraysAreTransposedIntoVectors) {
   }
 }
 
+// The whole-body bend in mesh order (its slots are its vertices: slot order without the
+// padding): a vertex struct in one buffer and attributes in arrays of their own are
+// stored as vectors by every lane count, the work-item that reaches past the last vertex
+// storing only its vertices (FF_OUTPUT_LIMIT). Each vertex holds the same bits as the same
+// deformer writes in slot order, and nothing is written past the last vertex of the last
+// instance. Other layouts of the bend in mesh order take one lane.
+TEST(Lanes, TheBendInMeshOrderStoresStructsAndArraysAsVectors) {
+  if (test::shared_context().description().is_gpu()) GTEST_SKIP() << "CPUs' kernels";
+  const RiggedMesh bend = blub_exact_bend();
+  const std::size_t vertices = bend.vertex_count();
+  ASSERT_NE(vertices % 32, 0u);  // a work-item reaches past the last vertex
+  const RigParameters values = test::bend_fractions(bend, {0.9, -0.4, 0.6});
+  const std::size_t instances = values.instance_count();
+  using F = AttributeFormat;
+  struct Case {
+    const char* name;
+    F position, normal;
+    bool one_buffer;
+  };
+  for (const Case& c : {Case{"interleaved float32", F::kFloat32x3, F::kFloat32x3, true},
+                        Case{"compact", F::kFloat32x3, F::kOctahedral16x2, true},
+                        Case{"snorm16, float32x4", F::kFloat32x4, F::kSnorm16x4, true},
+                        Case{"arrays", F::kFloat32x3, F::kFloat32x3, false},
+                        Case{"arrays, float16x4", F::kFloat32x3, F::kFloat16x4, false}}) {
+    for (std::size_t lanes : vector_lanes()) {
+      SCOPED_TRACE(testing::Message() << c.name << ", " << lanes << " lanes");
+      ClDeformer d(test::shared_context(), bend, with_lanes(lanes));
+      auto layout_in = [&](VertexOrder order) {
+        const std::size_t n = d.output_vertices(order);
+        const std::size_t stride = format_bytes(c.position) + format_bytes(c.normal);
+        OutputLayout l;
+        l.order = order;
+        l.positions = c.one_buffer ? AttributeLayout::packed(c.position, n, stride, 0)
+                                   : AttributeLayout::packed(c.position, n);
+        l.normals = c.one_buffer
+                        ? AttributeLayout::packed(c.normal, n, stride, format_bytes(c.position))
+                        : AttributeLayout::packed(c.normal, n);
+        return l;
+      };
+      const OutputLayout mesh = layout_in(VertexOrder::kMesh);
+      EXPECT_EQ(d.lanes(mesh), lanes);
+      // Each buffer as long as its attributes need, and 64 words of -7 after them.
+      std::vector<std::size_t> bytes;
+      std::vector<cl::Buffer> buffers;
+      for (const AttributeLayout* a : {&mesh.positions, &mesh.normals}) {
+        if (c.one_buffer && !buffers.empty()) break;
+        bytes.push_back(
+            OutputLayout::required_bytes(c.one_buffer ? mesh.normals : *a, instances, vertices));
+        std::vector<float> filled(bytes.back() / 4 + 64, -7.0f);
+        cl_int status = CL_SUCCESS;
+        buffers.emplace_back(test::shared_context().context(),
+                             CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR,
+                             filled.size() * sizeof(float), filled.data(), &status);
+        check_cl(status, "clCreateBuffer");
+      }
+      const cl::Buffer& normals = c.one_buffer ? buffers[0] : buffers[1];
+      DeviceBatch in_mesh_order = d.bind(instances, mesh, {buffers[0], normals, {}, {}});
+      DeviceBatch in_slots = d.allocate(instances, layout_in(VertexOrder::kSlots));
+      const DeformedBatch<float> got =
+          test::run_on_device(d, in_mesh_order, values, NormalMode::kJacobian);
+      const DeformedBatch<float> want =
+          test::run_on_device(d, in_slots, values, NormalMode::kJacobian);
+      for (std::size_t i = 0; i < instances; ++i) {
+        for (std::size_t v = 0; v < vertices; ++v) {
+          ASSERT_EQ(got.position(i, v), want.position(i, v)) << i << " " << v;
+          ASSERT_EQ(got.normal(i, v), want.normal(i, v)) << i << " " << v;
+        }
+      }
+      for (std::size_t k = 0; k < buffers.size(); ++k) {
+        std::vector<float> after(bytes[k] / 4 + 64);
+        check_cl(test::shared_context().queue().enqueueReadBuffer(
+                     buffers[k], CL_TRUE, 0, after.size() * sizeof(float), after.data()),
+                 "clEnqueueReadBuffer");
+        for (std::size_t w = bytes[k] / 4; w < after.size(); ++w) ASSERT_EQ(after[w], -7.0f) << w;
+      }
+    }
+  }
+  // Planes in mesh order: one lane.
+  ClDeformer sixteen(test::shared_context(), bend, with_lanes(16));
+  OutputLayout planes = sixteen.planes_layout(instances);
+  planes.order = VertexOrder::kMesh;
+  planes.positions = AttributeLayout::planes(AttributeFormat::kFloat32x3, vertices);
+  planes.normals = planes.positions;
+  EXPECT_EQ(sixteen.lanes(planes), 1u);
+}
+
 // OutputStores::kAuto streams a frame's outputs only when they are larger than the
 // caches could hold: the device's global memory cache (CL_DEVICE_GLOBAL_MEM_CACHE_SIZE),
 // at most 4 MiB per compute unit (ClOptions::stores); kPlain and kStreaming are what

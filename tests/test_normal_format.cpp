@@ -164,7 +164,8 @@ __kernel void store_halves(__global const float* in, __global float* out, const 
   store_attribute(out, FF_F16X3, 0, 0, stride, 3 * stride, 1, v, load_plane3(in, 0, stride, v), 0.0f);
 #else
   const size_t v = FF_FIRST_SLOT;
-  store_lane_attribute(out, FF_F16X3, 0, stride, 3 * stride, 1, v, load_plane3(in, 0, stride, v));
+  store_lane_attribute(out, FF_F16X3, 0, stride, 3 * stride, 1, v, load_plane3(in, 0, stride, v),
+                       FF_LANES);
 #endif
 }
 )";

@@ -44,12 +44,12 @@ __kernel void write_outputs(FF_OUTPUT_ARGUMENTS, const uint vertices, const uint
 #endif
     /* Every output as the deformation kernels store it (common/outputs.cl); in mesh
      * order the vertices past the mesh's are padding and write nothing. */
-#if FF_STAGED_STRUCT || ((FF_LANE_STRUCT || FF_LANE_ARRAYS) && FF_LANES > 1)
+#if FF_STAGED_STRUCT || ((FF_LANE_PLANES || FF_LANE_STRUCT || FF_LANE_ARRAYS) && FF_LANES > 1)
     {
       const Vec3 p = filler, n = filler, t = filler;
       FF_STORE_OUTPUTS(instance, v)
     }
-#elif FF_LANES == 1 || FF_LANE_PLANES
+#elif FF_LANES == 1
     if (!FF_MESH_ORDER || v < vertices) {
       store_outputs(out_positions, out_normals, out_tangents, out_previous, out_layout, instance,
                     v, filler, filler, filler, 1.0f);

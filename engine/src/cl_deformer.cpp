@@ -199,16 +199,24 @@ std::size_t ClDeformer::Impl::lanes() const {
 // threads: the interleaved struct 10.0 ms a frame against 17.0 with one lane (bend),
 // 11.6 against 30.7 (rig); on 2 AMD EPYC cores with PoCL 3.1, 22.6 against 45.7 and
 // 25.6 against 84.9 (docs/benchmarks.md, "Every output layout on CPUs"). But the
-// single bend in mesh order or with previous positions in another layout: one lane,
-// which PoCL 3.1's work-group vectoriser makes faster there (14.8 ms against 27 lane by
-// lane, mesh order). GPUs: one lane for any layout but the planes, whatever ClOptions::lanes asks;
-// and so does a vertex struct staged through local memory (ClOptions::struct_stores,
-// a work-item a vertex).
+// single bend in mesh order (but for a struct or arrays of their own, which its lanes
+// store as vectors: its slots are its vertices) or with previous positions in another
+// layout: one lane, which PoCL 3.1's work-group vectoriser makes faster there (14.8 ms
+// against 27 lane by lane, mesh order). GPUs: one lane for any layout but the planes,
+// whatever ClOptions::lanes asks; and so does a vertex struct staged through local
+// memory (ClOptions::struct_stores, a work-item a vertex).
 std::size_t ClDeformer::Impl::lanes(const OutputLayout& outputs) const {
   if (writes_planes(outputs)) return lanes();
   if (context.description().is_gpu()) return 1;
-  if (stages_structs() && detail::fills_vertex_struct(outputs)) return 1;
-  if (single_bend && (outputs.order == VertexOrder::kMesh || outputs.previous_positions)) {
+  const bool mesh_as_slots = outputs.order == VertexOrder::kMesh && slots_in_mesh_order_;
+  OutputLayout as_written = outputs;
+  if (mesh_as_slots) as_written.order = VertexOrder::kSlots;
+  if (stages_structs() && detail::fills_vertex_struct(as_written)) return 1;
+  if (single_bend && outputs.previous_positions) return 1;
+  // The single bend in mesh order: a struct or arrays of their own as vectors (as in
+  // slot order, less the padding), every other layout with one lane.
+  if (single_bend && outputs.order == VertexOrder::kMesh &&
+      !detail::fills_word_struct(as_written) && !detail::fills_own_arrays(as_written)) {
     return 1;
   }
   return lanes();
@@ -284,11 +292,14 @@ void ClDeformer::Impl::check_buffer_sizes(const DeviceBatch& batch) {
   validated_ = {batch.serial, batch.outputs, buffers, batch.layout.instance_count};
   if (batch.outputs.order == VertexOrder::kMesh && slots_in_mesh_order_) {
     // Slot s is mesh vertex s (a plain bend): mesh order is slot order without the
-    // padding, stored without the vertex_of_slot indirection.
-    OutputLayout slot_order = batch.outputs;
-    slot_order.order = VertexOrder::kSlots;
-    batch_options_ = output_build_options(slot_order) +
-                     " -DFF_OUTPUT_LIMIT=" + std::to_string(model.vertex_count());
+    // padding, stored without the vertex_of_slot indirection (and by kernels of more
+    // than one lane as vectors, as slot order is).
+    DeviceBatch as_slots = batch;
+    as_slots.outputs.order = VertexOrder::kSlots;
+    batch_options_ = output_build_options(as_slots.outputs) +
+                     staged_struct_options(as_slots, stages_structs()) +
+                     (writes_lane_words(as_slots) ? lane_struct_options(as_slots) : std::string()) +
+                     " -DFF_OUTPUT_LIMIT=" + std::to_string(model.vertex_count()) + "u";
   } else {
     batch_options_ = output_build_options(batch.outputs) +
                      staged_struct_options(batch, stages_structs()) +

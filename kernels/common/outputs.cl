@@ -47,24 +47,20 @@
 #ifndef FF_MESH_ORDER
 #define FF_MESH_ORDER 0
 #endif
-#ifdef FF_OUTPUT_LIMIT
-#define FF_HAS_OUTPUT_LIMIT 1
-#else
-#define FF_HAS_OUTPUT_LIMIT 0
-#endif
 
 /* FF_LANE_PLANES: kernels of more than one lane (common/lanes.cl) writing FinFlex's
  * planes in slot order (float32 positions, normals and tangents float32 or half, and
  * previous positions, if any, float32 planes), which they store as vectors
- * (kernels/cpu/lane_outputs.cl). Kernels of more than one lane store any other layout
- * lane by lane through this file's stores of one slot. */
+ * (kernels/cpu/lane_outputs.cl); so too in mesh order where slot s is mesh vertex s
+ * (FF_OUTPUT_LIMIT: slot order without the padding). Kernels of more than one lane
+ * store any other layout lane by lane through this file's stores of one slot. */
 #define FF_LANE_PLANE_FORMAT(format) ((format) == FF_F32X3 || (format) == FF_F16X3)
 #define FF_LANE_PLANES                                                                   \
   (FF_LANES > 1 && FF_POSITION_FORMAT == FF_F32X3 && !FF_POSITION_PACKED &&              \
    FF_LANE_PLANE_FORMAT(FF_NORMAL_FORMAT) && !FF_NORMAL_PACKED &&                        \
    (!FF_TANGENTS || (FF_LANE_PLANE_FORMAT(FF_TANGENT_FORMAT) && !FF_TANGENT_PACKED)) &&  \
    (!FF_PREVIOUS || (FF_PREVIOUS_FORMAT == FF_F32X3 && !FF_PREVIOUS_PACKED)) &&          \
-   !FF_MESH_ORDER && !FF_HAS_OUTPUT_LIMIT)
+   !FF_MESH_ORDER)
 
 /* The tangents' w (handedness) is written by the 4-component formats. */
 #define FF_TANGENT_W                                                          \
@@ -270,6 +266,10 @@ FF_INLINE void store_staged(__global float* out, __local float* staged, ulong16 
                        (v - lid) * FF_STAGED_FLOATS;
   for (uint k = 0; k < FF_STAGED_FLOATS; ++k) {
     const uint i = k * FF_STAGED_GROUP + lid;
+#ifdef FF_OUTPUT_LIMIT
+    /* Padding slots past the last vertex (mesh order): nothing. */
+    if (v - lid + i / FF_STAGED_FLOATS >= FF_OUTPUT_LIMIT) continue;
+#endif
     out[first + i] = staged[i];
   }
   barrier(CLK_LOCAL_MEM_FENCE); /* the next instance reuses the staging */

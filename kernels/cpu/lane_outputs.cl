@@ -35,18 +35,18 @@ FF_INLINE size_t lane_plane_stride(ulong plane_stride) {
 
 FF_INLINE void store_lane_attribute(__global float* buffer, const int format, ulong offset,
                                     ulong step, ulong instance_stride, size_t i, size_t v,
-                                    Vec3 value) {
+                                    Vec3 value, int valid) {
   const size_t first = lane_attribute_first(offset, instance_stride, i, v);
   const size_t plane_stride = lane_plane_stride(step);
   if (format == FF_F16X3) {
     __global ushort* halves = (__global ushort*)buffer + first;
-    store_half_lanes(halves, value.x);
-    store_half_lanes(halves + plane_stride, value.y);
-    store_half_lanes(halves + 2 * plane_stride, value.z);
+    store_half_lanes(halves, value.x, valid);
+    store_half_lanes(halves + plane_stride, value.y, valid);
+    store_half_lanes(halves + 2 * plane_stride, value.z, valid);
   } else {
-    store_lanes(buffer + first, value.x);
-    store_lanes(buffer + first + plane_stride, value.y);
-    store_lanes(buffer + first + 2 * plane_stride, value.z);
+    store_lanes(buffer + first, value.x, valid);
+    store_lanes(buffer + first + plane_stride, value.y, valid);
+    store_lanes(buffer + first + 2 * plane_stride, value.z, valid);
   }
 }
 
@@ -55,39 +55,41 @@ FF_INLINE void store_lane_attribute(__global float* buffer, const int format, ul
  * plane need not be aligned: vloadn); a batch's first frame (out_layout.sc = 0) writes
  * this frame's own (no motion). Then stored as the positions are. */
 FF_INLINE void store_lane_previous(__global float* out_previous, __global const float* out_positions,
-                                   ulong16 out_layout, size_t instance, size_t v, Vec3 p) {
+                                   ulong16 out_layout, size_t instance, size_t v, Vec3 p,
+                                   int valid) {
   Vec3 before = p;
   if (out_layout.sc) {
     const size_t first = lane_attribute_first(out_layout.s0, out_layout.s2, instance, v);
     const size_t plane_stride = lane_plane_stride(out_layout.s1);
-    before = vec3(load_lanes_unaligned(out_positions + first),
-                  load_lanes_unaligned(out_positions + first + plane_stride),
-                  load_lanes_unaligned(out_positions + first + 2 * plane_stride));
+    before = vec3(load_lanes_unaligned(out_positions + first, valid, p.x),
+                  load_lanes_unaligned(out_positions + first + plane_stride, valid, p.y),
+                  load_lanes_unaligned(out_positions + first + 2 * plane_stride, valid, p.z));
   }
   store_lane_attribute(out_previous, FF_F32X3, out_layout.s9, out_layout.sa, out_layout.sb,
-                       instance, v, before);
+                       instance, v, before, valid);
 }
 
 FF_INLINE void store_outputs(__global float* out_positions, __global float* out_normals,
                              __global float* out_tangents, __global float* out_previous,
                              ulong16 out_layout, size_t instance, size_t v, Vec3 p, Vec3 n,
                              Vec3 t, float rest_tangent_w) {
+  const int valid = FF_VALID_LANES(v);
 #if FF_PREVIOUS
-  store_lane_previous(out_previous, out_positions, out_layout, instance, v, p);
+  store_lane_previous(out_previous, out_positions, out_layout, instance, v, p, valid);
 #endif
   store_lane_attribute(out_positions, FF_F32X3, out_layout.s0, out_layout.s1, out_layout.s2,
-                       instance, v, p);
+                       instance, v, p, valid);
   store_lane_attribute(out_normals, FF_NORMAL_FORMAT, out_layout.s3, out_layout.s4,
-                       out_layout.s5, instance, v, n);
+                       out_layout.s5, instance, v, n, valid);
 #if FF_TANGENTS
   store_lane_attribute(out_tangents, FF_TANGENT_FORMAT, out_layout.s6, out_layout.s7,
-                       out_layout.s8, instance, v, t);
+                       out_layout.s8, instance, v, t, valid);
 #endif
 }
 
 #define FF_OUTPUT_LOCALS
 #define FF_STORE_OUTPUTS(instance, v)                                                      \
-  {                                                                                        \
+  if (FF_WRITES_LANES(v)) {                                                                \
     store_outputs(out_positions, out_normals, out_tangents, out_previous, out_layout,      \
                   instance, v, p, n, t, 1.0f);                                             \
   }
@@ -216,9 +218,10 @@ FF_DEFINE_STRUCT_WORDS(16)
     FF_STRUCT_TAKE(F, k, 9)                                                            \
     FF_STRUCT_TAKE(F, k, 10)                                                           \
     FF_STRUCT_TAKE(F, k, 11)                                                           \
-    store_vector(first + (k) * FF_STRUCT_WIDTH, r);                                    \
+    store_vector(first + (k) * FF_STRUCT_WIDTH, r, valid - (k) * FF_STRUCT_WIDTH);     \
   }
-/* The run of W structs of F words from `member` (in scope, with `first`). */
+/* The run of W structs of F words from `member` (in scope, with `first` and `valid`, the
+ * run's words that are outputs). */
 #define FF_STORE_STRUCT_RUN(F) \
   FF_STRUCT_OUTPUT(F, 0)       \
   FF_STRUCT_OUTPUT(F, 1)       \
@@ -247,11 +250,11 @@ FF_DEFINE_STRUCT_WORDS(16)
 #define FF_STRUCT_F FF_STAGED_FLOATS
 
 /* The W structs of one native vector of lanes, at `first` (their first word); tw:
- * the tangents' w (the rest mesh's handedness). */
+ * the tangents' w (the rest mesh's handedness); valid: the words that are outputs. */
 FF_INLINE void store_struct_vectors(__global float* first, StoreVector px, StoreVector py,
                                     StoreVector pz, StoreVector nx, StoreVector ny,
                                     StoreVector nz, StoreVector tx, StoreVector ty,
-                                    StoreVector tz, StoreVector tw) {
+                                    StoreVector tz, StoreVector tw, int valid) {
   /* Constant indices only: kept in registers. Sized past the most words a struct has,
    * so that the formats' branches left out still index within it. */
   StoreVector member[FF_STRUCT_MOST + 4];
@@ -270,18 +273,21 @@ FF_INLINE void store_lane_structs(__global float* out, ulong16 out_layout, size_
                                   Vec3 p, Vec3 n, Vec3 t, LaneFloat tw) {
   __global float* first = out + (size_t)(out_layout.s0 - FF_STAGED_POSITION + i * out_layout.s2) +
                           v * FF_STRUCT_F;
+  const int valid = FF_VALID_LANES(v) * FF_STRUCT_F;
 #if FF_LANES == 32
   store_struct_vectors(first, p.x.lo, p.y.lo, p.z.lo, n.x.lo, n.y.lo, n.z.lo, t.x.lo, t.y.lo,
-                       t.z.lo, tw.lo);
+                       t.z.lo, tw.lo, valid);
   store_struct_vectors(first + 16 * FF_STRUCT_F, p.x.hi, p.y.hi, p.z.hi, n.x.hi, n.y.hi,
-                       n.z.hi, t.x.hi, t.y.hi, t.z.hi, tw.hi);
+                       n.z.hi, t.x.hi, t.y.hi, t.z.hi, tw.hi, valid - 16 * FF_STRUCT_F);
 #else
-  store_struct_vectors(first, p.x, p.y, p.z, n.x, n.y, n.z, t.x, t.y, t.z, tw);
+  store_struct_vectors(first, p.x, p.y, p.z, n.x, n.y, n.z, t.x, t.y, t.z, tw, valid);
 #endif
 }
 
-#define FF_STORE_OUTPUTS(instance, v) \
-  { store_lane_structs(out_positions, out_layout, instance, v, p, n, t, FF_LANE_TANGENT_W(v)); }
+#define FF_STORE_OUTPUTS(instance, v)                                                       \
+  if (FF_WRITES_LANES(v)) {                                                                 \
+    store_lane_structs(out_positions, out_layout, instance, v, p, n, t, FF_LANE_TANGENT_W(v)); \
+  }
 
 #else /* FF_LANE_ARRAYS */
 /* A format's 4-byte words, and its scalars to a word (out_layout counts in scalars). */
@@ -290,11 +296,11 @@ FF_INLINE void store_lane_structs(__global float* out, ulong16 out_layout, size_
 #define FF_FORMAT_SCALARS_PER_WORD(format) \
   ((format) == FF_F16X4 || (format) == FF_S16X4 ? 2 : 1)
 
-/* store_<attribute>_vectors(first, x, y, z, w): the W one-attribute structs of one
- * native vector of lanes at `first`. */
+/* store_<attribute>_vectors(first, x, y, z, w, valid): the W one-attribute structs of
+ * one native vector of lanes at `first`, `valid` of their words outputs. */
 #define FF_DEFINE_ARRAY_STORE(name, format)                                              \
   FF_INLINE void name(__global float* first, StoreVector x, StoreVector y, StoreVector z, \
-                      StoreVector w) {                                                   \
+                      StoreVector w, int valid) {                                        \
     StoreVector member[FF_STRUCT_MOST + 4];                                              \
     FF_PUT_STRUCT_WORDS(0, format, x, y, z, w)                                           \
     FF_STORE_STRUCT_RUN(FF_FORMAT_WORDS(format))                                         \
@@ -312,15 +318,18 @@ FF_DEFINE_ARRAY_STORE(store_tangent_vectors, FF_TANGENT_FORMAT)
                   FF_FORMAT_SCALARS_PER_WORD(format) +                         \
    (v) * FF_FORMAT_WORDS(format))
 
-/* One attribute's lanes (x, y, z, w), native vector by native vector. */
+/* One attribute's lanes (x, y, z, w), native vector by native vector (`valid` lanes in
+ * scope). */
 #if FF_LANES == 32
-#define FF_STORE_ARRAY(store, format, first, x, y, z, w)                             \
-  {                                                                                  \
-    store(first, (x).lo, (y).lo, (z).lo, (w).lo);                                    \
-    store((first) + 16 * FF_FORMAT_WORDS(format), (x).hi, (y).hi, (z).hi, (w).hi);   \
+#define FF_STORE_ARRAY(store, format, first, x, y, z, w)                                   \
+  {                                                                                        \
+    store(first, (x).lo, (y).lo, (z).lo, (w).lo, valid * FF_FORMAT_WORDS(format));         \
+    store((first) + 16 * FF_FORMAT_WORDS(format), (x).hi, (y).hi, (z).hi, (w).hi,          \
+          (valid - 16) * FF_FORMAT_WORDS(format));                                         \
   }
 #else
-#define FF_STORE_ARRAY(store, format, first, x, y, z, w) store(first, x, y, z, w);
+#define FF_STORE_ARRAY(store, format, first, x, y, z, w) \
+  store(first, x, y, z, w, valid * FF_FORMAT_WORDS(format));
 #endif
 
 /* The work-item's lanes of instance i from slot v into each attribute's array (w: the
@@ -329,6 +338,7 @@ FF_DEFINE_ARRAY_STORE(store_tangent_vectors, FF_TANGENT_FORMAT)
 FF_INLINE void store_lane_arrays(__global float* out_positions, __global float* out_normals,
                                  __global float* out_tangents, ulong16 out_layout, size_t i,
                                  size_t v, Vec3 p, Vec3 n, Vec3 t, LaneFloat tw) {
+  const int valid = FF_VALID_LANES(v);
   FF_STORE_ARRAY(store_position_vectors, FF_POSITION_FORMAT,
                  FF_ARRAY_FIRST(out_positions, FF_POSITION_FORMAT, out_layout.s0, out_layout.s2,
                                 i, v),
@@ -346,7 +356,7 @@ FF_INLINE void store_lane_arrays(__global float* out_positions, __global float* 
 }
 
 #define FF_STORE_OUTPUTS(instance, v)                                                     \
-  {                                                                                       \
+  if (FF_WRITES_LANES(v)) {                                                               \
     store_lane_arrays(out_positions, out_normals, out_tangents, out_layout, instance, v, p, \
                       n, t, FF_LANE_TANGENT_W(v));                                        \
   }

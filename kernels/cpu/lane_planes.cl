@@ -29,14 +29,39 @@ FF_INLINE LaneFloat load_lanes(__global const float* first) {
   return *(__global const LaneFloat*)first;
 }
 
-/* The same from an output plane, which may be a caller's and not aligned (vloadn). */
-FF_INLINE LaneFloat load_lanes_unaligned(__global const float* first) {
+/* The same from an output plane, which may be a caller's and not aligned (vloadn); its
+ * first `valid` lanes only (as the stores below), the others from `beyond`. */
+FF_INLINE LaneFloat load_lanes_unaligned(__global const float* first, int valid, LaneFloat beyond) {
 #if FF_LANES == 32
+  if (valid < FF_LANES) {
+    float kept[32];
+    vstore16(beyond.lo, 0, kept);
+    vstore16(beyond.hi, 0, kept + 16);
+    for (int k = 0; k < valid; ++k) kept[k] = first[k];
+    return (LaneFloat)(vload16(0, kept), vload16(0, kept + 16));
+  }
   return (LaneFloat)(vload16(0, first), vload16(0, first + 16));
 #else
+  if (valid < FF_LANES) {
+    float kept[FF_LANES];
+    FF_VSTORE(beyond, 0, kept);
+    for (int k = 0; k < valid; ++k) kept[k] = first[k];
+    return FF_VLOAD(0, kept);
+  }
   return FF_VLOAD(0, first);
 #endif
 }
+
+/* The lanes of the work-item from slot v that hold output vertices: those before
+ * FF_OUTPUT_LIMIT (mesh order of a model whose slots are its vertices; the kernels
+ * store nothing for a work-item at or past it), else all. */
+#ifdef FF_OUTPUT_LIMIT
+#define FF_WRITES_LANES(v) ((v) < FF_OUTPUT_LIMIT)
+#define FF_VALID_LANES(v) ((int)min((size_t)FF_LANES, (size_t)FF_OUTPUT_LIMIT - (v)))
+#else
+#define FF_WRITES_LANES(v) 1
+#define FF_VALID_LANES(v) FF_LANES
+#endif
 
 /* A store is one native vector (StoreVector): 32 lanes store their two halves, each
  * streamed where it is aligned to its 64 bytes, so a caller's buffer aligned to 64
@@ -61,16 +86,28 @@ typedef LaneFloat StoreVector;
     vstoren(value, 0, first);                               \
   }
 
-FF_INLINE void store_vector(__global float* first, StoreVector value) {
-  FF_STORE_VECTOR(StoreVector, first, value, FF_VSTORE)
+/* `valid`: the elements from `first` that are outputs (FF_OUTPUT_LIMIT: a work-item
+ * that reaches past the last output vertex stores only its first ones, one by one;
+ * elsewhere at least the vector's, which folds the test away). */
+#define FF_STORE_VALID(type, element, first, value, valid, vstoren) \
+  if ((valid) >= (int)(sizeof(type) / sizeof(element))) {           \
+    FF_STORE_VECTOR(type, first, value, vstoren)                    \
+  } else {                                                          \
+    element kept[sizeof(type) / sizeof(element)];                   \
+    vstoren(value, 0, kept);                                        \
+    for (int k = 0; k < (valid); ++k) (first)[k] = kept[k];         \
+  }
+
+FF_INLINE void store_vector(__global float* first, StoreVector value, int valid) {
+  FF_STORE_VALID(StoreVector, float, first, value, valid, FF_VSTORE)
 }
 
-FF_INLINE void store_lanes(__global float* first, LaneFloat value) {
+FF_INLINE void store_lanes(__global float* first, LaneFloat value, int valid) {
 #if FF_LANES == 32
-  store_vector(first, value.lo);
-  store_vector(first + 16, value.hi);
+  store_vector(first, value.lo, valid);
+  store_vector(first + 16, value.hi, valid - 16);
 #else
-  store_vector(first, value);
+  store_vector(first, value, valid);
 #endif
 }
 
@@ -81,9 +118,10 @@ FF_INLINE void store_lanes(__global float* first, LaneFloat value) {
  * consecutive halves stored as one vector of ushorts. */
 #define FF_DEFINE_HALF_STORE(n)                                                 \
   FF_DEFINE_HALF_BITS(n)                                                        \
-  FF_INLINE void store_half_vector##n(__global ushort* first, float##n value) { \
+  FF_INLINE void store_half_vector##n(__global ushort* first, float##n value,   \
+                                      int valid) {                              \
     const ushort##n bits = half_bits##n(value);                                 \
-    FF_STORE_VECTOR(ushort##n, first, bits, vstore##n)                          \
+    FF_STORE_VALID(ushort##n, ushort, first, bits, valid, vstore##n)            \
   }
 
 #if FF_LANES == 8
@@ -92,14 +130,14 @@ FF_DEFINE_HALF_STORE(8)
 FF_DEFINE_HALF_STORE(16)
 #endif
 
-FF_INLINE void store_half_lanes(__global ushort* first, LaneFloat value) {
+FF_INLINE void store_half_lanes(__global ushort* first, LaneFloat value, int valid) {
 #if FF_LANES == 8
-  store_half_vector8(first, value);
+  store_half_vector8(first, value, valid);
 #elif FF_LANES == 16
-  store_half_vector16(first, value);
+  store_half_vector16(first, value, valid);
 #else
-  store_half_vector16(first, value.lo);
-  store_half_vector16(first + 16, value.hi);
+  store_half_vector16(first, value.lo, valid);
+  store_half_vector16(first + 16, value.hi, valid - 16);
 #endif
 }
 
@@ -112,8 +150,8 @@ FF_INLINE Vec3 load_plane3(__global const float* planes, size_t first_plane, siz
 
 FF_INLINE void store_plane3(__global float* planes, size_t first_plane, size_t stride, size_t v,
                             Vec3 value) {
-  store_lanes(planes + first_plane * stride + v, value.x);
-  store_lanes(planes + (first_plane + 1) * stride + v, value.y);
-  store_lanes(planes + (first_plane + 2) * stride + v, value.z);
+  store_lanes(planes + first_plane * stride + v, value.x, FF_LANES);
+  store_lanes(planes + (first_plane + 1) * stride + v, value.y, FF_LANES);
+  store_lanes(planes + (first_plane + 2) * stride + v, value.z, FF_LANES);
 }
 #endif
