@@ -625,80 +625,102 @@ TEST(Lanes, VertexStructsAndAttributeArraysAreTransposedIntoVectors) {
 TEST(Lanes, TheBendInMeshOrderStoresStructsAndArraysAsVectors) {
   const bool gpu = test::shared_context().description().is_gpu();
   const RiggedMesh bend = blub_exact_bend();
-  const std::size_t vertices = bend.vertex_count();
-  ASSERT_NE(vertices % 32, 0u);  // a work-item reaches past the last vertex
-  const RigParameters values = test::bend_fractions(bend, {0.9, -0.4, 0.6});
-  const std::size_t instances = values.instance_count();
+  const Mesh barramundi = load_mesh(test::data_path("barramundi/BarramundiFish.gltf"));
+  const RiggedMesh bend_with_tangents =
+      RiggedMesh::single_bend(barramundi, find_body_frame(barramundi), BendMode::kExact);
   using F = AttributeFormat;
   struct Case {
     const char* name;
-    F position, normal;
+    F position, normal, tangent;
     bool one_buffer;
   };
-  for (const Case& c : {Case{"interleaved float32", F::kFloat32x3, F::kFloat32x3, true},
-                        Case{"compact", F::kFloat32x3, F::kOctahedral16x2, true},
-                        Case{"snorm16, float32x4", F::kFloat32x4, F::kSnorm16x4, true},
-                        Case{"arrays", F::kFloat32x3, F::kFloat32x3, false},
-                        Case{"arrays, float16x4", F::kFloat32x3, F::kFloat16x4, false}}) {
-    for (std::size_t lanes : gpu ? std::vector<std::size_t>{1} : vector_lanes()) {
-      SCOPED_TRACE(testing::Message() << c.name << ", " << lanes << " lanes");
-      ClDeformer d(test::shared_context(), bend, with_lanes(lanes));
-      auto layout_in = [&](VertexOrder order) {
-        const std::size_t n = d.output_vertices(order);
-        const std::size_t stride = format_bytes(c.position) + format_bytes(c.normal);
-        OutputLayout l;
-        l.order = order;
-        l.positions = c.one_buffer ? AttributeLayout::packed(c.position, n, stride, 0)
-                                   : AttributeLayout::packed(c.position, n);
-        l.normals = c.one_buffer
-                        ? AttributeLayout::packed(c.normal, n, stride, format_bytes(c.position))
-                        : AttributeLayout::packed(c.normal, n);
-        return l;
-      };
-      const OutputLayout mesh = layout_in(VertexOrder::kMesh);
-      EXPECT_EQ(d.lanes(mesh), lanes);
-      // Each buffer as long as its attributes need, and 64 words of -7 after them.
-      std::vector<std::size_t> bytes;
-      std::vector<cl::Buffer> buffers;
-      for (const AttributeLayout* a : {&mesh.positions, &mesh.normals}) {
-        if (c.one_buffer && !buffers.empty()) break;
-        bytes.push_back(
-            OutputLayout::required_bytes(c.one_buffer ? mesh.normals : *a, instances, vertices));
-        std::vector<float> filled(bytes.back() / 4 + 64, -7.0f);
-        cl_int status = CL_SUCCESS;
-        buffers.emplace_back(test::shared_context().context(),
-                             CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR,
-                             filled.size() * sizeof(float), filled.data(), &status);
-        check_cl(status, "clCreateBuffer");
-      }
-      const cl::Buffer& normals = c.one_buffer ? buffers[0] : buffers[1];
-      DeviceBatch in_mesh_order = d.bind(instances, mesh, {buffers[0], normals, {}, {}});
-      DeviceBatch in_slots = d.allocate(instances, layout_in(VertexOrder::kSlots));
-      const DeformedBatch<float> got =
-          test::run_on_device(d, in_mesh_order, values, NormalMode::kJacobian);
-      const DeformedBatch<float> want =
-          test::run_on_device(d, in_slots, values, NormalMode::kJacobian);
-      for (std::size_t i = 0; i < instances; ++i) {
-        for (std::size_t v = 0; v < vertices; ++v) {
-          ASSERT_EQ(got.position(i, v), want.position(i, v)) << i << " " << v;
-          ASSERT_EQ(got.normal(i, v), want.normal(i, v)) << i << " " << v;
+  for (const RiggedMesh* model : {&bend, &bend_with_tangents}) {
+    const std::size_t vertices = model->vertex_count();
+    ASSERT_NE(vertices % 32, 0u);  // a work-item reaches past the last vertex
+    const bool tangents = model->mesh().has_tangents();
+    const RigParameters values = test::bend_fractions(*model, {0.9, -0.4, 0.6});
+    const std::size_t instances = values.instance_count();
+    for (const Case& c :
+         {Case{"interleaved float32", F::kFloat32x3, F::kFloat32x3, F::kFloat32x3, true},
+          Case{"compact", F::kFloat32x3, F::kOctahedral16x2, F::kOctahedral16x2, true},
+          Case{"snorm16, float32x4", F::kFloat32x4, F::kSnorm16x4, F::kSnorm16x4, true},
+          Case{"arrays", F::kFloat32x3, F::kFloat32x3, F::kFloat32x4, false},
+          Case{"arrays, float16x4", F::kFloat32x3, F::kFloat16x4, F::kFloat16x4, false}}) {
+      for (std::size_t lanes : gpu ? std::vector<std::size_t>{1} : vector_lanes()) {
+        SCOPED_TRACE(testing::Message() << (tangents ? "Barramundi, " : "Blub, ") << c.name << ", "
+                                        << lanes << " lanes");
+        ClDeformer d(test::shared_context(), *model, with_lanes(lanes));
+        auto layout_in = [&](VertexOrder order) {
+          const std::size_t n = d.output_vertices(order);
+          const std::size_t stride = format_bytes(c.position) + format_bytes(c.normal) +
+                                     (tangents ? format_bytes(c.tangent) : 0);
+          OutputLayout l;
+          l.order = order;
+          l.tangents = tangents;
+          std::size_t at = 0;
+          for (auto [layout, format] : {std::pair{&l.positions, c.position},
+                                        {&l.normals, c.normal},
+                                        {&l.tangent_layout, c.tangent}}) {
+            *layout = c.one_buffer ? AttributeLayout::packed(format, n, stride, at)
+                                   : AttributeLayout::packed(format, n);
+            at += format_bytes(format);
+          }
+          return l;
+        };
+        const OutputLayout mesh = layout_in(VertexOrder::kMesh);
+        EXPECT_EQ(d.lanes(mesh), lanes);
+        // Each buffer as long as its attributes need, and 64 words of -7 after them.
+        std::vector<std::size_t> bytes;
+        std::vector<cl::Buffer> buffers;
+        for (const AttributeLayout* a : {&mesh.positions, &mesh.normals, &mesh.tangent_layout}) {
+          if ((c.one_buffer && !buffers.empty()) || (a == &mesh.tangent_layout && !tangents)) {
+            break;
+          }
+          bytes.push_back(OutputLayout::required_bytes(
+              c.one_buffer ? (tangents ? mesh.tangent_layout : mesh.normals) : *a, instances,
+              vertices));
+          std::vector<float> filled(bytes.back() / 4 + 64, -7.0f);
+          cl_int status = CL_SUCCESS;
+          buffers.emplace_back(test::shared_context().context(),
+                               CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR,
+                               filled.size() * sizeof(float), filled.data(), &status);
+          check_cl(status, "clCreateBuffer");
         }
-      }
-      for (std::size_t k = 0; k < buffers.size(); ++k) {
-        std::vector<float> after(bytes[k] / 4 + 64);
-        check_cl(test::shared_context().queue().enqueueReadBuffer(
-                     buffers[k], CL_TRUE, 0, after.size() * sizeof(float), after.data()),
-                 "clEnqueueReadBuffer");
-        for (std::size_t w = bytes[k] / 4; w < after.size(); ++w) ASSERT_EQ(after[w], -7.0f) << w;
+        auto buffer = [&](std::size_t k) { return c.one_buffer ? buffers[0] : buffers[k]; };
+        DeviceBatch in_mesh_order = d.bind(
+            instances, mesh, {buffer(0), buffer(1), tangents ? buffer(2) : cl::Buffer(), {}});
+        DeviceBatch in_slots = d.allocate(instances, layout_in(VertexOrder::kSlots));
+        const DeformedBatch<float> got =
+            test::run_on_device(d, in_mesh_order, values, NormalMode::kJacobian);
+        const DeformedBatch<float> want =
+            test::run_on_device(d, in_slots, values, NormalMode::kJacobian);
+        for (std::size_t i = 0; i < instances; ++i) {
+          for (std::size_t v = 0; v < vertices; ++v) {
+            ASSERT_EQ(got.position(i, v), want.position(i, v)) << i << " " << v;
+            ASSERT_EQ(got.normal(i, v), want.normal(i, v)) << i << " " << v;
+            if (tangents) {
+              ASSERT_EQ(got.tangent(i, v), want.tangent(i, v)) << i << " " << v;
+            }
+          }
+        }
+        for (std::size_t k = 0; k < buffers.size(); ++k) {
+          std::vector<float> after(bytes[k] / 4 + 64);
+          check_cl(test::shared_context().queue().enqueueReadBuffer(
+                       buffers[k], CL_TRUE, 0, after.size() * sizeof(float), after.data()),
+                   "clEnqueueReadBuffer");
+          for (std::size_t w = bytes[k] / 4; w < after.size(); ++w) {
+            ASSERT_EQ(after[w], -7.0f) << w;
+          }
+        }
       }
     }
   }
   if (gpu) return;
   // Planes in mesh order: one lane.
   ClDeformer sixteen(test::shared_context(), bend, with_lanes(16));
-  OutputLayout planes = sixteen.planes_layout(instances);
+  OutputLayout planes = sixteen.planes_layout(3);
   planes.order = VertexOrder::kMesh;
-  planes.positions = AttributeLayout::planes(AttributeFormat::kFloat32x3, vertices);
+  planes.positions = AttributeLayout::planes(AttributeFormat::kFloat32x3, bend.vertex_count());
   planes.normals = planes.positions;
   EXPECT_EQ(sixteen.lanes(planes), 1u);
 }
