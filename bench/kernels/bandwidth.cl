@@ -6,9 +6,11 @@
  * deformation kernels, so PoCL vectorises them alike; write_outputs honours the
  * output layout's options (kernels/common/outputs.cl), FF_INSTANCES_PER_ITEM and
  * FF_LANES (kernels/common/lanes.cl: vector stores of FF_LANES slots for FinFlex's
- * planes and vertex structs, kernels/cpu/lane_outputs.cl, any other layout lane by
- * lane) as they do
+ * planes, vertex structs and attribute arrays, kernels/cpu/lane_outputs.cl, any other
+ * layout lane by lane) as they do
  * (NDRange (output vertices / FF_LANES, ceil(instances / FF_INSTANCES_PER_ITEM))).
+ * Mesh order is built as slot order with FF_OUTPUT_LIMIT = vertices (the host,
+ * bench/support/reference_kernels.cpp): the first `vertices` places of each instance.
  * Built after the library's common kernel files.
  *
  * FF_VARYING_WRITES (0/1): write_outputs writes `value` everywhere (0), or values that
@@ -42,21 +44,21 @@ __kernel void write_outputs(FF_OUTPUT_ARGUMENTS, const uint vertices, const uint
 #else
     const Vec3 filler = vec3(value, value, value);
 #endif
-    /* Every output as the deformation kernels store it (common/outputs.cl); in mesh
-     * order the vertices past the mesh's are padding and write nothing. */
+    /* Every output as the deformation kernels store it (common/outputs.cl); places at
+     * or past `vertices` (mesh order's padding) write nothing. */
 #if FF_STAGED_STRUCT || ((FF_LANE_PLANES || FF_LANE_STRUCT || FF_LANE_ARRAYS) && FF_LANES > 1)
     {
       const Vec3 p = filler, n = filler, t = filler;
       FF_STORE_OUTPUTS(instance, v)
     }
 #elif FF_LANES == 1
-    if (!FF_MESH_ORDER || v < vertices) {
+    if (v < vertices) {
       store_outputs(out_positions, out_normals, out_tangents, out_previous, out_layout, instance,
                     v, filler, filler, filler, 1.0f);
     }
 #else
     for (int lane = 0; lane < FF_LANES; ++lane) {
-      if (!FF_MESH_ORDER || v + lane < vertices) {
+      if (v + lane < vertices) {
         const StoreVec3 one = lane_of(filler, lane);
         store_outputs(out_positions, out_normals, out_tangents, out_previous, out_layout,
                       instance, v + lane, one, one, one, 1.0f);

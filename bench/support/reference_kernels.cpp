@@ -42,17 +42,18 @@ cl::Event enqueue_write_only(Context& context, DeviceBatch& batch, std::size_t v
   if (values == WriteValues::kDeviceDefault) {
     values = context.description().is_gpu() ? WriteValues::kVarying : WriteValues::kConstant;
   }
-  // Kernels of more than one lane write mesh order as the slot order of its vertices
-  // without the padding (FF_OUTPUT_LIMIT): the same bytes at the same places, as vectors.
+  // Mesh order is written as the slot order of its vertices without the padding
+  // (FF_OUTPUT_LIMIT): the same bytes at the same places, by the fastest stores of that
+  // layout (vectors, a staged struct), whatever the model's slots.
   const bool cpu_lanes = lanes > 1 && !context.description().is_gpu();
   DeviceBatch as_written = batch;
-  const bool mesh_as_slots = cpu_lanes && batch.outputs.order == VertexOrder::kMesh;
+  const bool mesh_as_slots = batch.outputs.order == VertexOrder::kMesh;
   if (mesh_as_slots) as_written.outputs.order = VertexOrder::kSlots;
   const std::string options =
       std::string("-DFF_INSTANCES_PER_ITEM=") + std::to_string(instances_per_item) +
       (values == WriteValues::kVarying ? " -DFF_VARYING_WRITES=1" : "") +
       output_build_options(as_written.outputs) +
-      staged_struct_options(batch, context.description().is_gpu()) +
+      staged_struct_options(as_written, context.description().is_gpu()) +
       (cpu_lanes ? lane_struct_options(as_written) : std::string()) +
       (mesh_as_slots ? " -DFF_OUTPUT_LIMIT=" + std::to_string(vertices) + "u" : std::string()) +
       (lanes > 1 ? " -DFF_LANES=" + std::to_string(lanes) +
