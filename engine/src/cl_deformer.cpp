@@ -208,9 +208,8 @@ std::size_t ClDeformer::Impl::lanes() const {
 std::size_t ClDeformer::Impl::lanes(const OutputLayout& outputs) const {
   if (writes_planes(outputs)) return lanes();
   if (context.description().is_gpu()) return 1;
-  const bool mesh_as_slots = outputs.order == VertexOrder::kMesh && slots_in_mesh_order_;
   OutputLayout as_written = outputs;
-  if (mesh_as_slots) as_written.order = VertexOrder::kSlots;
+  if (writes_mesh_as_slots(outputs)) as_written.order = VertexOrder::kSlots;
   if (stages_structs() && detail::fills_vertex_struct(as_written)) return 1;
   if (single_bend && outputs.previous_positions) return 1;
   // The single bend in mesh order: a struct or arrays of their own as vectors (as in
@@ -290,22 +289,18 @@ void ClDeformer::Impl::check_buffer_sizes(const DeviceBatch& batch) {
   }
   detail::check_outputs(batch, output_vertices(batch.outputs.order), tangents_, "job.outputs");
   validated_ = {batch.serial, batch.outputs, buffers, batch.layout.instance_count};
-  if (batch.outputs.order == VertexOrder::kMesh && slots_in_mesh_order_) {
-    // Slot s is mesh vertex s (a plain bend): mesh order is slot order without the
-    // padding, stored without the vertex_of_slot indirection (and by kernels of more
-    // than one lane as vectors, as slot order is).
-    DeviceBatch as_slots = batch;
-    as_slots.outputs.order = VertexOrder::kSlots;
-    batch_options_ = output_build_options(as_slots.outputs) +
-                     staged_struct_options(as_slots, stages_structs()) +
-                     (writes_lane_words(as_slots) ? lane_struct_options(as_slots) : std::string()) +
-                     " -DFF_OUTPUT_LIMIT=" + std::to_string(model.vertex_count()) + "u";
-  } else {
-    batch_options_ = output_build_options(batch.outputs) +
-                     staged_struct_options(batch, stages_structs()) +
-                     (writes_lane_words(batch) ? lane_struct_options(batch) : std::string()) +
-                     detail::plane_stride_option(batch.outputs, layout(1, NormalFormat::kFloat32));
-  }
+  // Slot s is mesh vertex s (a plain bend): mesh order is slot order without the
+  // padding, stored without the vertex_of_slot indirection (and by kernels of more than
+  // one lane as vectors, as slot order is).
+  const bool mesh_as_slots = writes_mesh_as_slots(batch.outputs);
+  DeviceBatch written = batch;
+  if (mesh_as_slots) written.outputs.order = VertexOrder::kSlots;
+  batch_options_ =
+      output_build_options(written.outputs) + staged_struct_options(written, stages_structs()) +
+      (writes_lane_words(written) ? lane_struct_options(written) : std::string()) +
+      (mesh_as_slots
+           ? " -DFF_OUTPUT_LIMIT=" + std::to_string(model.vertex_count()) + "u"
+           : detail::plane_stride_option(batch.outputs, layout(1, NormalFormat::kFloat32)));
   // Lanes (and their kind of store) for this batch (lanes(outputs): FinFlex's planes as
   // vectors, other layouts lane by lane or with one lane).
   batch_lanes_ = lanes(batch.outputs);

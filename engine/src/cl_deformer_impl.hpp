@@ -40,6 +40,11 @@ class ClDeformer::Impl {
   std::size_t lanes(const OutputLayout& outputs) const;
   bool writes_planes(const OutputLayout& outputs) const;
   bool writes_lane_words(const DeviceBatch& batch) const;
+  // Whether `outputs` in mesh order are written as slot order without the padding
+  // (FF_OUTPUT_LIMIT): the model's slots are its vertices (a plain bend).
+  bool writes_mesh_as_slots(const OutputLayout& outputs) const {
+    return outputs.order == VertexOrder::kMesh && slots_in_mesh_order_;
+  }
   // Whether vertex structs are written through local memory (ClOptions::struct_stores).
   bool stages_structs() const {
     return options.struct_stores == ClOptions::StructStores::kStaged ||
