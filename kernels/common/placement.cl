@@ -14,9 +14,11 @@ FF_INLINE Vec3 place_linear(Vec3 v, __global const float* r) {
               v.x * r[2] + v.y * r[5] + v.z * r[8]);
 }
 
+/* The position first, so that each coordinate is three multiply-adds. */
 FF_INLINE Vec3 world_point(Vec3 p, __global const float* r) {
-  const Vec3 moved = place_linear(p, r);
-  return vec3(moved.x + r[9], moved.y + r[10], moved.z + r[11]);
+  return vec3(r[9] + p.x * r[0] + p.y * r[3] + p.z * r[6],
+              r[10] + p.x * r[1] + p.y * r[4] + p.z * r[7],
+              r[11] + p.x * r[2] + p.y * r[5] + p.z * r[8]);
 }
 
 FF_INLINE Vec3 world_direction(Vec3 d, __global const float* r) {

@@ -90,8 +90,11 @@ FF_INLINE Vec3 link_linear(Vec3 v, FrameLink l) {
 }
 
 FF_INLINE void leave_into(Vec3* p, Vec3* n, Vec3* t, FrameLink l, SecantSample s) {
-  const Vec3 q = link_linear(secant_position(*p, s), l);
-  *p = vec3(q.x + l[9], q.y + l[10], q.z + l[11]);
+  /* c first: three multiply-adds a coordinate. */
+  const Vec3 q = secant_position(*p, s);
+  *p = vec3(l[9] + q.x * l[0] + q.y * l[1] + q.z * l[2],
+            l[10] + q.x * l[3] + q.y * l[4] + q.z * l[5],
+            l[11] + q.x * l[6] + q.y * l[7] + q.z * l[8]);
   *n = link_linear(secant_normal(*n, s), l + 12);
   *t = link_linear(secant_tangent(*t, s), l + 12);
 }

@@ -14,9 +14,11 @@
  *
  * Stage table constants (DeformerType::stage_constants): 0 x_0 (the first sample),
  * 1 1 / h, 2 h (the spacing), 3 samples - 1. Derived values: a record of 8 floats per
- * sample k, (X_k, Z_k, sin theta_k, cos theta_k, the slope of theta over segment k,
- * theta_k, 2 unused), 32-byte aligned: everything a vertex in segment k needs in one
- * memory sector, read on GPUs as one 4-vector and one 2-vector. */
+ * sample k, (X_k, Z_k, sin theta_k, cos theta_k, the slope a of theta over segment k,
+ * theta_k, a / 2, x_k = x_0 + k h), 32-byte aligned: everything a vertex in segment k
+ * needs in one memory sector, read on GPUs as two 4-vectors. The half slope and x_k
+ * are stored so that a vertex takes its half turn a d / 2 and (within the table) its
+ * distance d from x_k in one operation each. */
 
 /* Lane kernels: the most segments whose records a work-item's lanes blend instead of
  * gathering them. */
@@ -26,7 +28,7 @@
  * stay within [-pi, pi] (the values' limit); half a segment's turn within pi/2, where
  * sin_over_h holds, as long as no segment turns by more than pi. */
 
-/* The spine at a vertex at height z, `position` its x in samples from the first
+/* The spine at a vertex at x and height z, `position` its x in samples from the first
  * (x - x_0) / h: derived (the angles' records); ascending: the lanes hold ascending x
  * (vertices straight from the rest planes, spine_stage_from_rest), so their segments
  * range from the first lane's to the last's; within_table: every lane lies within the
@@ -39,8 +41,9 @@
  * FF_NATIVE_TRIG (engine/src/device_profile.hpp: NVIDIA's GPUs) from the hardware's
  * sine and cosine of the two angles instead, fewer instructions on the arithmetic
  * units. */
-FF_INLINE SecantSample spine_at(LaneFloat position, LaneFloat z, __global const float* derived,
-                                StageFrame f, int ascending, int within_table) {
+FF_INLINE SecantSample spine_at(LaneFloat x, LaneFloat position, LaneFloat z,
+                                __global const float* derived, StageFrame f, int ascending,
+                                int within_table) {
   const float h = FF_STAGE_CONSTANT(f, 2);
   const float last = FF_STAGE_CONSTANT(f, 3);
   /* The segment, floor(position) within [0, last - 1]: the conversion to int of the
@@ -50,7 +53,7 @@ FF_INLINE SecantSample spine_at(LaneFloat position, LaneFloat z, __global const 
       within_table ? fmin(position, last - 1.0f) : clamp(position, 0.0f, last - 1.0f);
 #if FF_LANES > 1
   const LaneInt segment_index = FF_LANE_INT(within);
-  const LaneFloat segment = FF_LANE_FLOAT(segment_index);
+  const LaneFloat segment = within_table ? (LaneFloat)0.0f : FF_LANE_FLOAT(segment_index);
   /* Each lane's own segment's record. The slots of a spine's component are sorted by x
    * (engine/src/rig_program.hpp, make_slot_layout), so the lanes of most work-items
    * share one segment, and those of the rest a few neighbouring ones (a fin's vertices
@@ -62,7 +65,7 @@ FF_INLINE SecantSample spine_at(LaneFloat position, LaneFloat z, __global const 
    * frame for 1,000 fish on 2 cores; blending up to 2, 4 or 8 records, alike). */
   const LaneInt record = 8 * segment_index;
   const int2 range = ascending ? lanes_ends(record) : lanes_range(record);
-  LaneFloat x_j, z_j, sin_j, cos_j, slope;
+  LaneFloat x_j, z_j, sin_j, cos_j, slope, half_slope, sample_x;
   if (range.y - range.x < 8 * FF_SPINE_BLEND) {
     __global const float* first = derived + range.x;
     x_j = (LaneFloat)first[0];
@@ -70,6 +73,8 @@ FF_INLINE SecantSample spine_at(LaneFloat position, LaneFloat z, __global const 
     sin_j = (LaneFloat)first[2];
     cos_j = (LaneFloat)first[3];
     slope = (LaneFloat)first[4];
+    half_slope = (LaneFloat)first[6];
+    sample_x = (LaneFloat)first[7];
     for (int k = range.x + 8; k <= range.y; k += 8) {
       const LaneMask here = record == (LaneInt)k;
       __global const float* shared = derived + k;
@@ -78,6 +83,8 @@ FF_INLINE SecantSample spine_at(LaneFloat position, LaneFloat z, __global const 
       sin_j = here ? (LaneFloat)shared[2] : sin_j;
       cos_j = here ? (LaneFloat)shared[3] : cos_j;
       slope = here ? (LaneFloat)shared[4] : slope;
+      half_slope = here ? (LaneFloat)shared[6] : half_slope;
+      sample_x = here ? (LaneFloat)shared[7] : sample_x;
     }
   } else {
     x_j = FF_GATHER(derived, record);
@@ -85,6 +92,8 @@ FF_INLINE SecantSample spine_at(LaneFloat position, LaneFloat z, __global const 
     sin_j = FF_GATHER(derived + 2, record);
     cos_j = FF_GATHER(derived + 3, record);
     slope = FF_GATHER(derived + 4, record);
+    half_slope = FF_GATHER(derived + 6, record);
+    sample_x = FF_GATHER(derived + 7, record);
   }
 #else
   const int segment_index = (int)within;
@@ -92,21 +101,26 @@ FF_INLINE SecantSample spine_at(LaneFloat position, LaneFloat z, __global const 
   __global const float* record = derived + 8 * segment_index;
 #if FF_GPU
   const float4 at_j = *(__global const float4*)record; /* aligned: two loads */
-  const float2 more_j = *(__global const float2*)(record + 4);
+  const float4 more_j = *(__global const float4*)(record + 4);
   const float x_j = at_j.x, z_j = at_j.y, sin_j = at_j.z, cos_j = at_j.w;
-  const float slope = more_j.x, theta_j = more_j.y;
+  const float slope = more_j.x, theta_j = more_j.y, half_slope = more_j.z;
 #else
   const float x_j = record[0], z_j = record[1], sin_j = record[2], cos_j = record[3];
-  const float slope = record[4], theta_j = record[5];
+  const float slope = record[4], theta_j = record[5], half_slope = record[6];
 #endif
+  const float sample_x = 0.0f; /* one lane: within_table is 0 */
 #endif
-  /* d from x_j (outside the table: < 0 or > h); inside, the part of d where theta is
+  /* d from x_k (outside the table: < 0 or > h); inside, the part of d where theta is
    * linear; beyond, the rest (beyond the ends theta is constant). Written out for
-   * within_table, where beyond is 0: the compiler may not drop a product with 0. */
-  const LaneFloat d = (position - segment) * h;
+   * within_table, where beyond is 0: the compiler may not drop a product with 0.
+   * Within the table d = x - x_k (the record's x_k), one operation; elsewhere from the
+   * position, as the segment was chosen, so that d >= 0 wherever the position is:
+   * x - x_k may round below 0 at a sample, which would take the vertex for one beyond
+   * the table's end (no curvature). */
+  const LaneFloat d = within_table ? x - sample_x : (position - segment) * h;
   const LaneFloat inside = within_table ? d : clamp(d, 0.0f, h);
   const LaneFloat beyond = within_table ? (LaneFloat)0.0f : d - inside;
-  const LaneFloat delta = 0.5f * slope * inside;
+  const LaneFloat delta = half_slope * inside;
   const LaneFloat sinc_delta = sin_over_h(delta);
   /* theta_j + delta (the chord's direction) and theta_j + 2 delta (the end). */
 #if FF_NATIVE_TRIG && FF_LANES == 1
@@ -142,14 +156,17 @@ FF_INLINE SecantSample spine_at(LaneFloat position, LaneFloat z, __global const 
  * lanes all within the table leave out what beyond it costs. */
 FF_INLINE SecantSample spine_sample(LaneFloat x, LaneFloat z, __global const float* derived,
                                     StageFrame f, int ascending) {
+  /* x - x_0 first (exact near x_0), so that the sign of the position is x's against the
+   * table's first sample: a multiply-add x / h - x_0 / h rounds some x just below x_0
+   * to 0 and takes them into the table, where the curvature is not 0. */
   const LaneFloat position = (x - FF_STAGE_CONSTANT(f, 0)) * FF_STAGE_CONSTANT(f, 1);
 #if FF_LANES > 1
   if (ascending && FF_FIRST_LANE(position) >= 0.0f &&
       FF_LAST_LANE(position) <= FF_STAGE_CONSTANT(f, 3)) {
-    return spine_at(position, z, derived, f, 1, 1);
+    return spine_at(x, position, z, derived, f, 1, 1);
   }
 #endif
-  return spine_at(position, z, derived, f, ascending, 0);
+  return spine_at(x, position, z, derived, f, ascending, 0);
 }
 
 /* Stage functions (kernels/common/stage_frame.cl): the angles' records (derived). The
@@ -197,10 +214,11 @@ FF_INLINE void spine_chord(LaneFloat theta_k, LaneFloat theta_next, float h, Lan
   *z = length * sin_mid;
 }
 
-/* Record k's 8 floats at rows + at (lane by lane: each lane's 8 floats in one store). */
+/* Record k's 8 floats at rows + at (lane by lane: each lane's 8 floats in one store);
+ * sample_x: x_k, the same for every lane. */
 #if FF_LANES == 1
 FF_INLINE void store_spine_record(__global float* rows, int at, float x, float z, float sin_k,
-                                  float cos_k, float slope, float theta_k) {
+                                  float cos_k, float slope, float theta_k, float sample_x) {
   __global float* record = rows + at;
   record[0] = x;
   record[1] = z;
@@ -208,16 +226,18 @@ FF_INLINE void store_spine_record(__global float* rows, int at, float x, float z
   record[3] = cos_k;
   record[4] = slope;
   record[5] = theta_k;
-  record[6] = record[7] = 0.0f;
+  record[6] = 0.5f * slope;
+  record[7] = sample_x;
 }
 #else
 FF_INLINE void store_spine_record(__global float* rows, LaneInt at, LaneFloat x, LaneFloat z,
                                   LaneFloat sin_k, LaneFloat cos_k, LaneFloat slope,
-                                  LaneFloat theta_k) {
+                                  LaneFloat theta_k, float sample_x) {
   for (int lane = 0; lane < FF_LANES; ++lane) {
+    const float slope_lane = FF_FLOAT_LANE(slope, lane);
     vstore8((float8)(FF_FLOAT_LANE(x, lane), FF_FLOAT_LANE(z, lane), FF_FLOAT_LANE(sin_k, lane),
-                     FF_FLOAT_LANE(cos_k, lane), FF_FLOAT_LANE(slope, lane),
-                     FF_FLOAT_LANE(theta_k, lane), 0.0f, 0.0f),
+                     FF_FLOAT_LANE(cos_k, lane), slope_lane, FF_FLOAT_LANE(theta_k, lane),
+                     0.5f * slope_lane, sample_x),
             0, rows + FF_INT_LANE(at, lane));
   }
 }
@@ -291,7 +311,8 @@ FF_INLINE void spine_records(__global const float* theta_rows, LaneInt theta_at,
         k + 1 < count ? (FF_GATHER(theta_rows, theta_at + k + 1) - theta_k) * inverse_h
                       : (LaneFloat)0.0f;
     store_spine_record(derived_rows, derived_at + 8 * k, before_x + at_x[k - first] - origin_x,
-                       before_z + at_z[k - first] - origin_z, sin_k, cos_k, slope, theta_k);
+                       before_z + at_z[k - first] - origin_z, sin_k, cos_k, slope, theta_k,
+                       x_first + (float)k * h);
   }
 }
 #endif
