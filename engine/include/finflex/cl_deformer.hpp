@@ -218,11 +218,14 @@ class FINFLEX_API ClDeformer {
   static constexpr std::size_t kGroupSize = 64;
   // Instances (NDRange rows) a work-group of the kernels of more than one lane covers
   // (CPUs; one-lane kernels: 1): PoCL runs a work-group as one call, which loads the
-  // instance's values and placement and the kernel's constants before its loop over
-  // the work-items, so 4 rows share that among 16 lane work-items instead of 4 (the
-  // swim's body kernel on 2 threads of a Xeon, 1,000 fish: 8.57-8.91 ms a frame against
-  // 8.71-9.70 with one row; the write-only kernel alike either way).
-  static constexpr std::size_t kLaneGroupRows = 4;
+  // kernel's constants before its loop over the work-items, and the group's 64 rest
+  // slots stay in the first-level cache while its rows deform them. 4 rows against one:
+  // the swim's body kernel on 2 threads of a Xeon, 1,000 fish, 8.57-8.91 ms a frame
+  // against 8.71-9.70. 16 rows against 4: the whole swim frame 0.94-0.95 of the time
+  // (medians of 16 rounds, two hosts), 32 rows 0.99, 8 rows 1.01; 16 threads alike; the
+  // write-only kernel alike either way (docs/benchmarks.md, Swimming, "Sixteen rows").
+  // Rows past the last instance are skipped in the kernels.
+  static constexpr std::size_t kLaneGroupRows = 16;
   // The NDRange rows of a launch of `lanes`-lane kernels over `items_high` rows of
   // work-items: a whole number of work-groups of group_rows(lanes) rows.
   static constexpr std::size_t group_rows(std::size_t lanes) {
