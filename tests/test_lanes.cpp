@@ -222,6 +222,45 @@ TEST(Lanes, ShippedRigsWithSpinesMatchOneLaneAndTheReference) {
   }
 }
 
+// A spine whose first segments, at the thin tail, turn sharply (by 0.6 rad, half a turn
+// above FF_GENTLE_HALF_TURN: the long polynomials of kernels/common/trig.cl; sharper
+// would fold the surface, which the rig refuses) and whose others turn gently (the short
+// ones), so that work-items of every lane count take both and some blend a sharp and a
+// gentle segment.
+TEST(Lanes, SharplyAndGentlyTurningSpineSegmentsMatchOneLaneAndTheReference) {
+  const Mesh mesh = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
+  const RiggedMesh model(
+      mesh, resolve_rig(load_rig_file(test::data_path("rigs/blub_low_resolution_swim.rig.json")),
+                        mesh));
+  RigParameters values = swimming_values(model, 3);
+  std::size_t tables = 0;
+  for (const RigParameter& parameter : model.rig().parameters) {
+    if (parameter.count == 1) continue;
+    ++tables;
+    for (std::size_t i = 0; i < values.instance_count(); ++i) {
+      float* table = values.values().data() + i * values.values_per_instance() + parameter.offset;
+      for (std::size_t k = 0; k < 6; ++k)
+        table[k] = (k % 2 == 0 ? 0.3f : -0.3f) * (i % 2 == 0 ? 1.0f : -1.0f);
+    }
+  }
+  ASSERT_GT(tables, 0u);
+  ClDeformer one_lane(test::shared_context(), model, with_lanes(1));
+  for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {
+    const DeformedBatch<double> reference = run_reference(model, values, normals);
+    const DeformedBatch<float> scalar =
+        test::run_on_device(one_lane, values, normals, RigPath::kFused);
+    for (std::size_t lanes : vector_lanes()) {
+      SCOPED_TRACE(std::string(to_string(normals)) + " " + std::to_string(lanes) + " lanes");
+      ClDeformer vector(test::shared_context(), model, with_lanes(lanes));
+      const DeformedBatch<float> device =
+          test::run_on_device(vector, values, normals, RigPath::kFused);
+      expect_within_reference_bounds(model, values, normals, device, reference);
+      expect_close_to_one_lane(device, scalar, mesh.vertex_count(), values.instance_count(),
+                               coordinate_scale(model.rig()));
+    }
+  }
+}
+
 // World placement as the last stage (kernels/common/placement.cl), from the job's host
 // records: the whole-body bend and the swim rig of the Barramundi (tangents too).
 TEST(Lanes, PlacedInstancesMatchOneLaneAndTheReference) {

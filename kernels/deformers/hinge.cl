@@ -21,9 +21,22 @@ FF_INLINE SecantSample hinge_sample(LaneFloat x, LaneFloat z, float angle, float
   const LaneFloat fraction =
       has_ramp ? ramp * inverse_width : (x > 0.0f ? (LaneFloat)1.0f : (LaneFloat)0.0f);
   const LaneFloat half_theta = 0.5f * angle * fraction;
-  const LaneFloat sinc_h = sin_over_h(half_theta);
+  /* |half_theta| <= |angle| / 2, the same for every lane (an instance's value): the short
+   * polynomials where the fin folds gently (common/trig.cl), on CPUs (as the spine). */
+#if FF_LANES > 1
+  const int gentle = 0.5f * fabs(angle) <= FF_GENTLE_HALF_TURN;
+#else
+  const int gentle = 0;
+#endif
+  LaneFloat sinc_h, cos_h;
+  if (gentle) {
+    sinc_h = sin_over_h_gentle(half_theta);
+    cos_h = cos_of_h_gentle(half_theta);
+  } else {
+    sinc_h = sin_over_h(half_theta);
+    cos_h = cos_of_h(half_theta);
+  }
   const LaneFloat sin_h = sinc_h * half_theta;
-  const LaneFloat cos_h = cos_of_h(half_theta);
   SecantSample s;
   s.sin_t = 2.0f * sin_h * cos_h;
   s.cos_t = 1.0f - 2.0f * sin_h * sin_h;

@@ -26,7 +26,9 @@
 
 /* Trigonometry from kernels/common/trig.cl (no calls: the kernel vectorises). Angles
  * stay within [-pi, pi] (the values' limit); half a segment's turn within pi/2, where
- * sin_over_h holds, as long as no segment turns by more than pi. */
+ * sin_over_h holds, as long as no segment turns by more than pi; within
+ * FF_GENTLE_HALF_TURN, where the shorter sin_over_h_gentle holds, for segments that turn
+ * by at most 0.5 rad (a swimming fish's turn by a few hundredths). */
 
 /* The spine at a vertex at x and height z, `position` its x in samples from the first
  * (x - x_0) / h: derived (the angles' records); ascending: the lanes hold ascending x
@@ -66,6 +68,8 @@ FF_INLINE SecantSample spine_at(LaneFloat x, LaneFloat position, LaneFloat z,
   const LaneInt record = 8 * segment_index;
   const int2 range = ascending ? lanes_ends(record) : lanes_range(record);
   LaneFloat x_j, z_j, sin_j, cos_j, slope, half_slope, sample_x;
+  /* The largest |a / 2| of the records read (blended ones only; gathered: none known). */
+  float steepest = INFINITY;
   if (range.y - range.x < 8 * FF_SPINE_BLEND) {
     __global const float* first = derived + range.x;
     x_j = (LaneFloat)first[0];
@@ -75,6 +79,7 @@ FF_INLINE SecantSample spine_at(LaneFloat x, LaneFloat position, LaneFloat z,
     slope = (LaneFloat)first[4];
     half_slope = (LaneFloat)first[6];
     sample_x = (LaneFloat)first[7];
+    steepest = fabs(first[6]);
     for (int k = range.x + 8; k <= range.y; k += 8) {
       const LaneMask here = record == (LaneInt)k;
       __global const float* shared = derived + k;
@@ -85,6 +90,7 @@ FF_INLINE SecantSample spine_at(LaneFloat x, LaneFloat position, LaneFloat z,
       slope = here ? (LaneFloat)shared[4] : slope;
       half_slope = here ? (LaneFloat)shared[6] : half_slope;
       sample_x = here ? (LaneFloat)shared[7] : sample_x;
+      steepest = fmax(steepest, fabs(shared[6]));
     }
   } else {
     x_j = FF_GATHER(derived, record);
@@ -121,7 +127,22 @@ FF_INLINE SecantSample spine_at(LaneFloat x, LaneFloat position, LaneFloat z,
   const LaneFloat inside = within_table ? d : clamp(d, 0.0f, h);
   const LaneFloat beyond = within_table ? (LaneFloat)0.0f : d - inside;
   const LaneFloat delta = half_slope * inside;
-  const LaneFloat sinc_delta = sin_over_h(delta);
+  /* |delta| <= |a / 2| h, inside being at most h: the short polynomials where every lane's
+   * segment turns gently (common/trig.cl), on CPUs, where the work-item's lanes take one
+   * branch (a work-item of one lane would branch apart from its warp's neighbours). */
+#if FF_LANES > 1
+  const int gentle = steepest * h <= FF_GENTLE_HALF_TURN;
+#else
+  const int gentle = 0;
+#endif
+  LaneFloat sinc_delta, cos_delta;
+  if (gentle) {
+    sinc_delta = sin_over_h_gentle(delta);
+    cos_delta = cos_of_h_gentle(delta);
+  } else {
+    sinc_delta = sin_over_h(delta);
+    cos_delta = cos_of_h(delta);
+  }
   /* theta_j + delta (the chord's direction) and theta_j + 2 delta (the end). */
 #if FF_NATIVE_TRIG && FF_LANES == 1
   const float mid = theta_j + delta, end = mid + delta; /* within [-pi, pi] */
@@ -129,7 +150,6 @@ FF_INLINE SecantSample spine_at(LaneFloat x, LaneFloat position, LaneFloat z,
   const float sin_end = native_sin(end), cos_end = native_cos(end);
 #else
   const LaneFloat sin_delta = delta * sinc_delta;
-  const LaneFloat cos_delta = cos_of_h(delta);
   const LaneFloat sin_mid = sin_j * cos_delta + cos_j * sin_delta;
   const LaneFloat cos_mid = cos_j * cos_delta - sin_j * sin_delta;
   /* The end: the middle turned by delta again. */
