@@ -45,6 +45,19 @@ FF_INLINE LaneFloat cos_of_h_gentle(LaneFloat h) {
   return 1.0f + q * (-4.999976672e-01f + q * 4.154596686e-02f);
 }
 
+/* sin(h) / h and cos(h) by the short polynomials where `gentle` (|h| <=
+ * FF_GENTLE_HALF_TURN known for every lane: one branch for the work-item), else by the
+ * long ones. */
+FF_INLINE void sinc_and_cos(LaneFloat h, int gentle, LaneFloat* sinc_h, LaneFloat* cos_h) {
+  if (gentle) {
+    *sinc_h = sin_over_h_gentle(h);
+    *cos_h = cos_of_h_gentle(h);
+  } else {
+    *sinc_h = sin_over_h(h);
+    *cos_h = cos_of_h(h);
+  }
+}
+
 /* sin(a) and cos(a) for |a| <= pi, from the half angle h = a / 2 (|h| <= pi/2):
  * sin a = 2 sin h cos h, cos a = 1 - 2 sin^2 h; |error| below 2.5e-7 and 7e-7 (the
  * float32 rounding of 1 - 2 sin^2 h, largest near a = +-pi). These and the functions

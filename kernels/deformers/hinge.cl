@@ -29,13 +29,7 @@ FF_INLINE SecantSample hinge_sample(LaneFloat x, LaneFloat z, float angle, float
   const int gentle = 0;
 #endif
   LaneFloat sinc_h, cos_h;
-  if (gentle) {
-    sinc_h = sin_over_h_gentle(half_theta);
-    cos_h = cos_of_h_gentle(half_theta);
-  } else {
-    sinc_h = sin_over_h(half_theta);
-    cos_h = cos_of_h(half_theta);
-  }
+  sinc_and_cos(half_theta, gentle, &sinc_h, &cos_h);
   const LaneFloat sin_h = sinc_h * half_theta;
   SecantSample s;
   s.sin_t = 2.0f * sin_h * cos_h;

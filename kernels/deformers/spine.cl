@@ -136,13 +136,7 @@ FF_INLINE SecantSample spine_at(LaneFloat x, LaneFloat position, LaneFloat z,
   const int gentle = 0;
 #endif
   LaneFloat sinc_delta, cos_delta;
-  if (gentle) {
-    sinc_delta = sin_over_h_gentle(delta);
-    cos_delta = cos_of_h_gentle(delta);
-  } else {
-    sinc_delta = sin_over_h(delta);
-    cos_delta = cos_of_h(delta);
-  }
+  sinc_and_cos(delta, gentle, &sinc_delta, &cos_delta);
   /* theta_j + delta (the chord's direction) and theta_j + 2 delta (the end). */
 #if FF_NATIVE_TRIG && FF_LANES == 1
   const float mid = theta_j + delta, end = mid + delta; /* within [-pi, pi] */
