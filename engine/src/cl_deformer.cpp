@@ -141,7 +141,7 @@ ClDeformer::Impl::Impl(Context& context_in, const RiggedMesh& model_in, const Cl
   automatic_path =
       model.longest_path() <= ClDeformer::kMaxFusedStages ? RigPath::kFused : RigPath::kPasses;
   program_ = {detail::rig_program_files(rig),
-              detail::rig_dispatch_source(model, slots, fused, plan, kWorkGroupSize,
+              detail::rig_dispatch_source(model, slots, rest, fused, plan, kWorkGroupSize,
                                           options.table_items, share_code),
               ""};
   derived_per_instance_ = detail::derived_per_instance(rig);

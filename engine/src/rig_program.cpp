@@ -231,6 +231,49 @@ RestPlanes make_rest_planes(const RiggedMesh& model, const SlotLayout& slots) {
   return rest;
 }
 
+std::vector<std::uint32_t> slot_segments(const RiggedMesh& model, const SlotLayout& slots,
+                                         const RestPlanes& rest) {
+  constexpr std::size_t kSlots = 8;  // the fewest lanes a CPU kernel takes
+  const Rig& rig = model.rig();
+  std::vector<std::uint32_t> table(slots.slot_count / kSlots, 0u);
+  for (std::size_t c = 0; c < rig.components.size(); ++c) {
+    const std::vector<StageRef>& path = model.paths()[c];
+    if (path.empty()) continue;
+    const RigStage& stage = rig.stage(path.front());
+    if (!stage.deformer->rest_segments || stage.deformer->cl_rest_function == nullptr) continue;
+    // The stage table's floats, and the kernel's float arithmetic (spine.cl spine_sample
+    // and spine_at: the position, its segment within [0, last - 1] by truncation).
+    const StageConstants k = stage.deformer->stage_constants(stage.options, stage.geometry);
+    const float x_first = static_cast<float>(k[0]), inverse_h = static_cast<float>(k[1]);
+    const float last = static_cast<float>(k[3]);
+    // Each slot's segment, or -1 beyond the table.
+    const std::size_t begin = slots.first_slot[c], end = slots.first_slot[c + 1];
+    std::vector<std::int32_t> segment(end - begin);
+    for (std::size_t slot = begin; slot < end; ++slot) {
+      const float position = (rest.positions[slot] - x_first) * inverse_h;
+      segment[slot - begin] = position >= 0.0f && position <= last
+                                  ? static_cast<std::int32_t>(std::min(position, last - 1.0f))
+                                  : -1;
+    }
+    for (std::size_t first = begin; first < end; first += kSlots) {
+      const std::int32_t s = segment[first - begin];
+      if (s < 0 || s > 0xfff) continue;
+      std::uint32_t entry = static_cast<std::uint32_t>(s);
+      for (std::size_t level = 0, count = kSlots; level < 3; ++level, count *= 2) {
+        // The work-item of `count` lanes from `first`, within the component.
+        if (first + count > end) break;
+        const bool alike = std::all_of(segment.begin() + (first - begin),
+                                       segment.begin() + (first - begin + count),
+                                       [s](std::int32_t other) { return other == s; });
+        if (!alike) break;
+        entry |= 1u << (12 + level);
+      }
+      table[first / kSlots] = entry;
+    }
+  }
+  return table;
+}
+
 std::size_t stage_index(const Rig& rig, std::size_t component, std::size_t stage) {
   std::size_t index = 0;
   for (std::size_t c = 0; c < component; ++c) index += rig.components[c].chain.size();
@@ -528,16 +571,40 @@ std::string prepare_items_source(std::size_t items) {
          (items > 1 ? "barrier(CLK_LOCAL_MEM_FENCE)" : "/* one work-item */") + "\n";
 }
 
+namespace {
+
+// Program-scope constant array of slot_segments for the kernels of more than one lane
+// (kernels/deformers/spine.cl spine_lanes_segment), when some slots have them and the
+// mesh has at most 2^18 slots (the table 128 kB, its source about 400 kB: the one-lane
+// programs, which skip it, parse it too); else nothing, and the kernels find the segments
+// themselves.
+std::string slot_segments_source(const std::vector<std::uint32_t>& segments) {
+  constexpr std::size_t kMostEntries = std::size_t{1} << 15;
+  const bool any = std::any_of(segments.begin(), segments.end(),
+                               [](std::uint32_t entry) { return entry != 0u; });
+  if (!any || segments.size() > kMostEntries) return "";
+  std::ostringstream out;
+  out << "#if FF_LANES > 1\n#define FF_SLOT_SEGMENTS 1\n__constant uint ff_slot_segments["
+      << segments.size() << "] = {" << std::hex;
+  for (std::size_t i = 0; i < segments.size(); ++i)
+    out << (i % 8 == 0 ? "\n  " : " ") << "0x" << segments[i] << "u,";
+  out << "};\n#endif\n";
+  return out.str();
+}
+
+}  // namespace
+
 std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots,
-                                const std::vector<FusedLaunch>& fused, const PassPlan& plan,
-                                std::size_t group_size, std::size_t prepare_items,
-                                bool share_code) {
+                                const RestPlanes& rest, const std::vector<FusedLaunch>& fused,
+                                const PassPlan& plan, std::size_t group_size,
+                                std::size_t prepare_items, bool share_code) {
   const Rig& rig = model.rig();
   std::ostringstream out;
   out << "/* Generated for one rig by engine/src/rig_program.cpp: which stages apply to\n"
          " * which work-groups (kernels/rig.cl). */\n";
   out << "#define FF_STAGE_COUNT " << stage_table_rows(rig) << "u\n";
   out << stage_table_source(rig);
+  out << slot_segments_source(slot_segments(model, slots, rest));
   const bool root_has_stages = !rig.components.front().chain.empty();
   if (!root_has_stages) out << "#define FF_ROOT_FRAME " << stage_count(rig) << "u\n";
   out << "#define FF_RIG_GROUP_COUNT " << slots.slot_count / group_size << "u\n";

@@ -41,6 +41,16 @@ struct RestPlanes {
 };
 RestPlanes make_rest_planes(const RiggedMesh& model, const SlotLayout& slots);
 
+// Per 8 rest slots (slot_count / 8 entries), for CPU kernels whose work-items take 8, 16
+// or 32 slots (kernels/deformers/spine.cl spine_lanes_segment): where the slots'
+// component starts its path with a stage of DeformerType::rest_segments, the table
+// segment of the entry's first slot (bits 0-11) and bits 12, 13 and 14 set where the 8,
+// 16 or 32 slots from it all lie within the table in that one segment, computed as the
+// kernel would from the rest planes' x in float; else 0 (the kernel finds the segments
+// itself).
+std::vector<std::uint32_t> slot_segments(const RiggedMesh& model, const SlotLayout& slots,
+                                         const RestPlanes& rest);
+
 // The stages in rig order (components depth-first, then chain order): the index a
 // stage has in the kernels' stage table.
 std::size_t stage_index(const Rig& rig, std::size_t component, std::size_t stage);
@@ -145,7 +155,8 @@ std::vector<FusedLaunch> make_fused_plan(const RiggedMesh& model, const SlotLayo
 std::string prepare_items_source(std::size_t items);
 
 std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots,
-                                const std::vector<FusedLaunch>& fused, const PassPlan& plan,
-                                std::size_t group_size, std::size_t prepare_items, bool share_code);
+                                const RestPlanes& rest, const std::vector<FusedLaunch>& fused,
+                                const PassPlan& plan, std::size_t group_size,
+                                std::size_t prepare_items, bool share_code);
 
 }  // namespace finflex::detail

@@ -45,7 +45,7 @@
  * units. */
 FF_INLINE SecantSample spine_at(LaneFloat x, LaneFloat position, LaneFloat z,
                                 __global const float* derived, StageFrame f, int ascending,
-                                int within_table) {
+                                int within_table, int one_segment, int lanes_segment) {
   const float h = FF_STAGE_CONSTANT(f, 2);
   const float last = FF_STAGE_CONSTANT(f, 3);
   /* The segment, floor(position) within [0, last - 1]: the conversion to int of the
@@ -54,7 +54,9 @@ FF_INLINE SecantSample spine_at(LaneFloat x, LaneFloat position, LaneFloat z,
   const LaneFloat within =
       within_table ? fmin(position, last - 1.0f) : clamp(position, 0.0f, last - 1.0f);
 #if FF_LANES > 1
-  const LaneInt segment_index = FF_LANE_INT(within);
+  /* one_segment (within the table): every lane lies in segment lanes_segment
+   * (spine_lanes_segment), known without the position. */
+  const LaneInt segment_index = one_segment ? (LaneInt)lanes_segment : FF_LANE_INT(within);
   const LaneFloat segment = within_table ? (LaneFloat)0.0f : FF_LANE_FLOAT(segment_index);
   /* Each lane's own segment's record. The slots of a spine's component are sorted by x
    * (engine/src/rig_program.hpp, make_slot_layout), so the lanes of most work-items
@@ -66,7 +68,9 @@ FF_INLINE SecantSample spine_at(LaneFloat x, LaneFloat position, LaneFloat z,
    * more than reading and blending a few records (the fins' kernel 2.8 -> 2.6 ms a
    * frame for 1,000 fish on 2 cores; blending up to 2, 4 or 8 records, alike). */
   const LaneInt record = 8 * segment_index;
-  const int2 range = ascending ? lanes_ends(record) : lanes_range(record);
+  const int2 range = one_segment ? (int2)(8 * lanes_segment) :
+                     ascending   ? lanes_ends(record) :
+                                   lanes_range(record);
   LaneFloat x_j, z_j, sin_j, cos_j, slope, half_slope, sample_x;
   /* The largest |a / 2| of the records read (blended ones only; gathered: none known). */
   float steepest = INFINITY;
@@ -166,10 +170,37 @@ FF_INLINE SecantSample spine_at(LaneFloat x, LaneFloat position, LaneFloat z,
   return s;
 }
 
+/* The one segment all the work-item's lanes lie in, or -1 where they span more than one
+ * or reach beyond the table, for lanes straight from the rest planes: the rig program
+ * finds it once (engine/src/rig_program.cpp slot_segments, the generated
+ * ff_slot_segments, an entry per 8 rest slots: the segment of its first slot in bits
+ * 0-11, as the position below gives it, and bits 12, 13 and 14 set where the 8, 16 or
+ * 32 slots from it all lie in that segment), so a frame does not: a sixth of the fused
+ * kernel's arithmetic on PoCL 3.1. One load: reading an entry for each 8 lanes and
+ * combining them gave that sixth back (docs/benchmarks.md, Swimming, "segment"). */
+#if FF_LANES > 1
+FF_INLINE int spine_lanes_segment(void) {
+#ifdef FF_SLOT_SEGMENTS
+  const uint entry = ff_slot_segments[FF_FIRST_SLOT / 8];
+  const uint one_segment = 1u << (FF_LANES == 32 ? 14 : FF_LANES == 16 ? 13 : 12);
+  return (entry & one_segment) != 0u ? (int)(entry & 0xfffu) : -1;
+#else
+  return -1;
+#endif
+}
+#endif
+
 /* The spine at x of a vertex at height z (spine_at), a branch per work-item: ascending
- * lanes all within the table leave out what beyond it costs. */
+ * lanes all within the table leave out what beyond it costs, and those in one known
+ * segment what finding it costs. */
 FF_INLINE SecantSample spine_sample(LaneFloat x, LaneFloat z, __global const float* derived,
                                     StageFrame f, int ascending) {
+#if FF_LANES > 1
+  if (ascending) {
+    const int lanes_segment = spine_lanes_segment();
+    if (lanes_segment >= 0) return spine_at(x, x, z, derived, f, 1, 1, 1, lanes_segment);
+  }
+#endif
   /* x - x_0 first (exact near x_0), so that the sign of the position is x's against the
    * table's first sample: a multiply-add x / h - x_0 / h rounds some x just below x_0
    * to 0 and takes them into the table, where the curvature is not 0. */
@@ -177,10 +208,10 @@ FF_INLINE SecantSample spine_sample(LaneFloat x, LaneFloat z, __global const flo
 #if FF_LANES > 1
   if (ascending && FF_FIRST_LANE(position) >= 0.0f &&
       FF_LAST_LANE(position) <= FF_STAGE_CONSTANT(f, 3)) {
-    return spine_at(x, position, z, derived, f, 1, 1);
+    return spine_at(x, position, z, derived, f, 1, 1, 0, 0);
   }
 #endif
-  return spine_at(x, position, z, derived, f, ascending, 0);
+  return spine_at(x, position, z, derived, f, ascending, 0, 0, 0);
 }
 
 /* Stage functions (kernels/common/stage_frame.cl): the angles' records (derived). The

@@ -125,6 +125,12 @@ struct DeformerType {
   // spine (z k = 1.23 >= 1)").
   std::string (*check_values)(float* values, const StageOptions& options,
                               const StageGeometry& geometry, bool clamp) = nullptr;
+  // With a rest function: the stage's constants are a table's (first x, 1 / spacing,
+  // spacing, last sample), and the rest function of CPU kernels may read the segments
+  // of each 8 rest slots from the generated `ff_slot_segments` (the spine,
+  // kernels/deformers/spine.cl), which the rig program computes once from the rest
+  // planes instead of every frame.
+  bool rest_segments = false;
 };
 
 // Every registered deformer, in registry order.

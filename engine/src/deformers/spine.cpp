@@ -177,6 +177,7 @@ const DeformerType& spine_type() {
       "spine_stage_from_rest",
       measure_spine,
       check_spine,
+      true,  // rest_segments: spine_lanes_segment in spine.cl
   };
   return type;
 }
