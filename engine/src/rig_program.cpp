@@ -231,49 +231,6 @@ RestPlanes make_rest_planes(const RiggedMesh& model, const SlotLayout& slots) {
   return rest;
 }
 
-std::vector<std::uint32_t> slot_segments(const RiggedMesh& model, const SlotLayout& slots,
-                                         const RestPlanes& rest) {
-  constexpr std::size_t kSlots = 8;  // the fewest lanes a CPU kernel takes
-  const Rig& rig = model.rig();
-  std::vector<std::uint32_t> table(slots.slot_count / kSlots, 0u);
-  for (std::size_t c = 0; c < rig.components.size(); ++c) {
-    const std::vector<StageRef>& path = model.paths()[c];
-    if (path.empty()) continue;
-    const RigStage& stage = rig.stage(path.front());
-    if (!stage.deformer->rest_segments || stage.deformer->cl_rest_function == nullptr) continue;
-    // The stage table's floats, and the kernel's float arithmetic (spine.cl spine_sample
-    // and spine_at: the position, its segment within [0, last - 1] by truncation).
-    const StageConstants k = stage.deformer->stage_constants(stage.options, stage.geometry);
-    const float x_first = static_cast<float>(k[0]), inverse_h = static_cast<float>(k[1]);
-    const float last = static_cast<float>(k[3]);
-    // Each slot's segment, or -1 beyond the table.
-    const std::size_t begin = slots.first_slot[c], end = slots.first_slot[c + 1];
-    std::vector<std::int32_t> segment(end - begin);
-    for (std::size_t slot = begin; slot < end; ++slot) {
-      const float position = (rest.positions[slot] - x_first) * inverse_h;
-      segment[slot - begin] = position >= 0.0f && position <= last
-                                  ? static_cast<std::int32_t>(std::min(position, last - 1.0f))
-                                  : -1;
-    }
-    for (std::size_t first = begin; first < end; first += kSlots) {
-      const std::int32_t s = segment[first - begin];
-      if (s < 0 || s > 0xfff) continue;
-      std::uint32_t entry = static_cast<std::uint32_t>(s);
-      for (std::size_t level = 0, count = kSlots; level < 3; ++level, count *= 2) {
-        // The work-item of `count` lanes from `first`, within the component.
-        if (first + count > end) break;
-        const bool alike = std::all_of(segment.begin() + (first - begin),
-                                       segment.begin() + (first - begin + count),
-                                       [s](std::int32_t other) { return other == s; });
-        if (!alike) break;
-        entry |= 1u << (12 + level);
-      }
-      table[first / kSlots] = entry;
-    }
-  }
-  return table;
-}
-
 std::size_t stage_index(const Rig& rig, std::size_t component, std::size_t stage) {
   std::size_t index = 0;
   for (std::size_t c = 0; c < component; ++c) index += rig.components[c].chain.size();
@@ -572,6 +529,56 @@ std::string prepare_items_source(std::size_t items) {
 }
 
 namespace {
+
+// Per 8 rest slots (slot_count / 8 entries), for CPU kernels whose work-items take 8, 16
+// or 32 slots (kernels/deformers/spine.cl spine_lanes_segment): where the slots'
+// component starts its path with a stage of DeformerType::rest_segments, the table
+// segment of the entry's first slot (bits 0-11) and bits 12, 13 and 14 set where the 8,
+// 16 or 32 slots from it all lie within the table in that one segment, computed as the
+// kernel would from the rest planes' x in float; else 0 (the kernel finds the segments
+// itself).
+std::vector<std::uint32_t> slot_segments(const RiggedMesh& model, const SlotLayout& slots,
+                                         const RestPlanes& rest) {
+  constexpr std::size_t kSlots = 8;  // the fewest lanes a CPU kernel takes
+  const Rig& rig = model.rig();
+  std::vector<std::uint32_t> table(slots.slot_count / kSlots, 0u);
+  for (std::size_t c = 0; c < rig.components.size(); ++c) {
+    const std::vector<StageRef>& path = model.paths()[c];
+    if (path.empty()) continue;
+    const RigStage& stage = rig.stage(path.front());
+    if (!stage.deformer->rest_segments || stage.deformer->cl_rest_function == nullptr) continue;
+    // The stage table's floats, and the kernel's float arithmetic (spine.cl spine_sample
+    // and spine_at: the position, its segment within [0, last - 1] by truncation).
+    const StageConstants k = stage.deformer->stage_constants(stage.options, stage.geometry);
+    const float x_first = static_cast<float>(k[0]), inverse_h = static_cast<float>(k[1]);
+    const float last = static_cast<float>(k[3]);
+    // Each slot's segment, or -1 beyond the table.
+    const std::size_t begin = slots.first_slot[c], end = slots.first_slot[c + 1];
+    std::vector<std::int32_t> segment(end - begin);
+    for (std::size_t slot = begin; slot < end; ++slot) {
+      const float position = (rest.positions[slot] - x_first) * inverse_h;
+      segment[slot - begin] = position >= 0.0f && position <= last
+                                  ? static_cast<std::int32_t>(std::min(position, last - 1.0f))
+                                  : -1;
+    }
+    for (std::size_t first = begin; first < end; first += kSlots) {
+      const std::int32_t s = segment[first - begin];
+      if (s < 0 || s > 0xfff) continue;
+      std::uint32_t entry = static_cast<std::uint32_t>(s);
+      for (std::size_t level = 0, count = kSlots; level < 3; ++level, count *= 2) {
+        // The work-item of `count` lanes from `first`, within the component.
+        if (first + count > end) break;
+        const bool alike = std::all_of(segment.begin() + (first - begin),
+                                       segment.begin() + (first - begin + count),
+                                       [s](std::int32_t other) { return other == s; });
+        if (!alike) break;
+        entry |= 1u << (12 + level);
+      }
+      table[first / kSlots] = entry;
+    }
+  }
+  return table;
+}
 
 // Program-scope constant array of slot_segments for the kernels of more than one lane
 // (kernels/deformers/spine.cl spine_lanes_segment), when some slots have them and the

@@ -41,16 +41,6 @@ struct RestPlanes {
 };
 RestPlanes make_rest_planes(const RiggedMesh& model, const SlotLayout& slots);
 
-// Per 8 rest slots (slot_count / 8 entries), for CPU kernels whose work-items take 8, 16
-// or 32 slots (kernels/deformers/spine.cl spine_lanes_segment): where the slots'
-// component starts its path with a stage of DeformerType::rest_segments, the table
-// segment of the entry's first slot (bits 0-11) and bits 12, 13 and 14 set where the 8,
-// 16 or 32 slots from it all lie within the table in that one segment, computed as the
-// kernel would from the rest planes' x in float; else 0 (the kernel finds the segments
-// itself).
-std::vector<std::uint32_t> slot_segments(const RiggedMesh& model, const SlotLayout& slots,
-                                         const RestPlanes& rest);
-
 // The stages in rig order (components depth-first, then chain order): the index a
 // stage has in the kernels' stage table.
 std::size_t stage_index(const Rig& rig, std::size_t component, std::size_t stage);
@@ -154,6 +144,8 @@ std::vector<FusedLaunch> make_fused_plan(const RiggedMesh& model, const SlotLayo
 // device_profile.hpp) and FF_PREPARE_BARRIER(), a barrier between them (none for one).
 std::string prepare_items_source(std::size_t items);
 
+// `rest`: the rest planes, from which the kernels of more than one lane get a table of
+// their spine segments (kernels/deformers/spine.cl spine_lanes_segment).
 std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots,
                                 const RestPlanes& rest, const std::vector<FusedLaunch>& fused,
                                 const PassPlan& plan, std::size_t group_size,

@@ -198,6 +198,7 @@ FF_INLINE SecantSample spine_sample(LaneFloat x, LaneFloat z, __global const flo
 #if FF_LANES > 1
   if (ascending) {
     const int lanes_segment = spine_lanes_segment();
+    /* The position goes unused there: x stands in for it. */
     if (lanes_segment >= 0) return spine_at(x, x, z, derived, f, 1, 1, 1, lanes_segment);
   }
 #endif
