@@ -261,6 +261,56 @@ TEST(Lanes, SharplyAndGentlyTurningSpineSegmentsMatchOneLaneAndTheReference) {
   }
 }
 
+// Fins whose hinges sweep them along the body's spine (kernels/deformers/spine.cl
+// spine_stage_swept: the segments a work-item's lanes reach, per bin of the hinge's
+// angle, from a table the rig program computes): every shipped swim rig, its fins'
+// angles stepped through the table's range [-0.8, 0.8] rad by a little less than a bin
+// (so that they land in every bin, next to its edges too) and beyond it, its spine a
+// travelling wave.
+TEST(Lanes, FinsSweptAlongTheSpineMatchOneLaneAndTheReference) {
+  struct Shipped {
+    const char* fish;
+    const char* rig;
+  };
+  const Shipped shipped[] = {
+      {"blub/fish.obj", "rigs/blub_swim.rig.json"},
+      {"blub/fish_low_resolution.obj", "rigs/blub_low_resolution_swim.rig.json"},
+      {"barramundi/BarramundiFish.gltf", "rigs/barramundi_swim.rig.json"}};
+  for (const Shipped& c : shipped) {
+    const Mesh mesh = load_mesh(test::data_path(c.fish));
+    const RiggedMesh model(mesh, resolve_rig(load_rig_file(test::data_path(c.rig)), mesh));
+    constexpr std::size_t kInstances = 72;
+    RigParameters values = swimming_values(model, kInstances);
+    std::size_t fins = 0;
+    for (const RigParameter& parameter : model.rig().parameters) {
+      if (parameter.count != 1) continue;
+      ++fins;
+      for (std::size_t i = 0; i < kInstances; ++i) {
+        // From -0.99 to 0.99 rad in steps of 0.0279 (a bin: 0.025).
+        values.values()[i * values.values_per_instance() + parameter.offset] =
+            static_cast<float>(-0.99 + 1.98 * double(i) / double(kInstances - 1));
+      }
+    }
+    ASSERT_GE(fins, 2u) << c.rig;
+    ClDeformer one_lane(test::shared_context(), model, with_lanes(1));
+    for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {
+      const DeformedBatch<double> reference = run_reference(model, values, normals);
+      const DeformedBatch<float> scalar =
+          test::run_on_device(one_lane, values, normals, RigPath::kFused);
+      for (std::size_t lanes : vector_lanes()) {
+        SCOPED_TRACE(std::string(c.rig) + " " + to_string(normals) + " " +
+                     std::to_string(lanes) + " lanes");
+        ClDeformer vector(test::shared_context(), model, with_lanes(lanes));
+        const DeformedBatch<float> device =
+            test::run_on_device(vector, values, normals, RigPath::kFused);
+        expect_within_reference_bounds(model, values, normals, device, reference);
+        expect_close_to_one_lane(device, scalar, mesh.vertex_count(), values.instance_count(),
+                                 coordinate_scale(model.rig()));
+      }
+    }
+  }
+}
+
 // World placement as the last stage (kernels/common/placement.cl), from the job's host
 // records: the whole-body bend and the swim rig of the Barramundi (tangents too).
 TEST(Lanes, PlacedInstancesMatchOneLaneAndTheReference) {

@@ -9,6 +9,7 @@
 #include "device_profile.hpp"
 #include "finflex/context.hpp"
 #include "finflex/error.hpp"
+#include "segment_tables.hpp"
 
 namespace finflex::detail {
 namespace {
@@ -58,7 +59,8 @@ struct StageCall {
   static constexpr std::size_t kNoLink = ~std::size_t{0};
 };
 
-std::string stage_call(const StageCall& c) {
+// `more_arguments`: after the stage function's own (a swept function's: swept_arguments).
+std::string stage_call(const StageCall& c, const std::string& more_arguments = "") {
   std::ostringstream call;
   call << "{ const StageFrame f = ff_stage_table + ";
   if (c.literal) {
@@ -73,7 +75,7 @@ std::string stage_call(const StageCall& c) {
   } else {
     call << "FF_STAGE_VALUES(f), derived + FF_STAGE_DERIVED(f)";
   }
-  call << "); ";
+  call << more_arguments << "); ";
   if (c.link != StageCall::kNoLink && c.literal) {
     call << "leave_into(&p, &n, &t, ff_link_table + " << kLinkValues * c.link << ", s);";
   } else if (c.link != StageCall::kNoLink) {
@@ -528,79 +530,6 @@ std::string prepare_items_source(std::size_t items) {
          (items > 1 ? "barrier(CLK_LOCAL_MEM_FENCE)" : "/* one work-item */") + "\n";
 }
 
-namespace {
-
-// Per 8 rest slots (slot_count / 8 entries), for CPU kernels whose work-items take 8, 16
-// or 32 slots (kernels/deformers/spine.cl spine_lanes_segment): where the slots'
-// component starts its path with a stage of DeformerType::rest_segments, the table
-// segment of the entry's first slot (bits 0-11) and bits 12, 13 and 14 set where the 8,
-// 16 or 32 slots from it all lie within the table in that one segment, computed as the
-// kernel would from the rest planes' x in float; else 0 (the kernel finds the segments
-// itself).
-std::vector<std::uint32_t> slot_segments(const RiggedMesh& model, const SlotLayout& slots,
-                                         const RestPlanes& rest) {
-  constexpr std::size_t kSlots = 8;  // the fewest lanes a CPU kernel takes
-  const Rig& rig = model.rig();
-  std::vector<std::uint32_t> table(slots.slot_count / kSlots, 0u);
-  for (std::size_t c = 0; c < rig.components.size(); ++c) {
-    const std::vector<StageRef>& path = model.paths()[c];
-    if (path.empty()) continue;
-    const RigStage& stage = rig.stage(path.front());
-    if (!stage.deformer->rest_segments || stage.deformer->cl_rest_function == nullptr) continue;
-    // The stage table's floats, and the kernel's float arithmetic (spine.cl spine_sample
-    // and spine_at: the position, its segment within [0, last - 1] by truncation).
-    const StageConstants k = stage.deformer->stage_constants(stage.options, stage.geometry);
-    const float x_first = static_cast<float>(k[0]), inverse_h = static_cast<float>(k[1]);
-    const float last = static_cast<float>(k[3]);
-    // Each slot's segment, or -1 beyond the table.
-    const std::size_t begin = slots.first_slot[c], end = slots.first_slot[c + 1];
-    std::vector<std::int32_t> segment(end - begin);
-    for (std::size_t slot = begin; slot < end; ++slot) {
-      const float position = (rest.positions[slot] - x_first) * inverse_h;
-      segment[slot - begin] = position >= 0.0f && position <= last
-                                  ? static_cast<std::int32_t>(std::min(position, last - 1.0f))
-                                  : -1;
-    }
-    for (std::size_t first = begin; first < end; first += kSlots) {
-      const std::int32_t s = segment[first - begin];
-      if (s < 0 || s > 0xfff) continue;
-      std::uint32_t entry = static_cast<std::uint32_t>(s);
-      for (std::size_t level = 0, count = kSlots; level < 3; ++level, count *= 2) {
-        // The work-item of `count` lanes from `first`, within the component.
-        if (first + count > end) break;
-        const bool alike = std::all_of(segment.begin() + (first - begin),
-                                       segment.begin() + (first - begin + count),
-                                       [s](std::int32_t other) { return other == s; });
-        if (!alike) break;
-        entry |= 1u << (12 + level);
-      }
-      table[first / kSlots] = entry;
-    }
-  }
-  return table;
-}
-
-// Program-scope constant array of slot_segments for the kernels of more than one lane
-// (kernels/deformers/spine.cl spine_lanes_segment), when some slots have them and the
-// mesh has at most 2^18 slots (the table 128 kB, its source about 400 kB: the one-lane
-// programs, which skip it, parse it too); else nothing, and the kernels find the segments
-// themselves.
-std::string slot_segments_source(const std::vector<std::uint32_t>& segments) {
-  constexpr std::size_t kMostEntries = std::size_t{1} << 15;
-  const bool any = std::any_of(segments.begin(), segments.end(),
-                               [](std::uint32_t entry) { return entry != 0u; });
-  if (!any || segments.size() > kMostEntries) return "";
-  std::ostringstream out;
-  out << "#if FF_LANES > 1\n#define FF_SLOT_SEGMENTS 1\n__constant uint ff_slot_segments["
-      << segments.size() << "] = {" << std::hex;
-  for (std::size_t i = 0; i < segments.size(); ++i)
-    out << (i % 8 == 0 ? "\n  " : " ") << "0x" << segments[i] << "u,";
-  out << "};\n#endif\n";
-  return out.str();
-}
-
-}  // namespace
-
 std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots,
                                 const RestPlanes& rest, const std::vector<FusedLaunch>& fused,
                                 const PassPlan& plan, std::size_t group_size,
@@ -611,7 +540,8 @@ std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots
          " * which work-groups (kernels/rig.cl). */\n";
   out << "#define FF_STAGE_COUNT " << stage_table_rows(rig) << "u\n";
   out << stage_table_source(rig);
-  out << slot_segments_source(slot_segments(model, slots, rest));
+  SweptSegments swept = swept_segments(model, slots);
+  out << segment_tables_source(slot_segments(model, slots, rest), swept);
   const bool root_has_stages = !rig.components.front().chain.empty();
   if (!root_has_stages) out << "#define FF_ROOT_FRAME " << stage_count(rig) << "u\n";
   out << "#define FF_RIG_GROUP_COUNT " << slots.slot_count / group_size << "u\n";
@@ -640,7 +570,13 @@ std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots
                      derived_offset(rig, path[j].component, path[j].stage)};
       linked_in = j + 1 < path.size();
       if (linked_in) call.link = links.of_path[c][j];
-      code << " " << stage_call(call);
+      // The last stage of a component with swept segments (segment_tables.hpp), compiled in.
+      std::string more_arguments;
+      if (literal && j + 1 == path.size() && swept.first_entry[c] != SweptSegments::kNone) {
+        call.function = rig.stage(path[j]).deformer->cl_swept_function;
+        more_arguments = swept_arguments(swept, slots, c);
+      }
+      code << " " << stage_call(call, more_arguments);
     }
     return code.str();
   };

@@ -45,7 +45,7 @@
  * units. */
 FF_INLINE SecantSample spine_at(LaneFloat x, LaneFloat position, LaneFloat z,
                                 __global const float* derived, StageFrame f, int ascending,
-                                int within_table, int one_segment, int lanes_segment) {
+                                int within_table, int known_segments, int first_segment) {
   const float h = FF_STAGE_CONSTANT(f, 2);
   const float last = FF_STAGE_CONSTANT(f, 3);
   /* The segment, floor(position) within [0, last - 1]: the conversion to int of the
@@ -54,9 +54,10 @@ FF_INLINE SecantSample spine_at(LaneFloat x, LaneFloat position, LaneFloat z,
   const LaneFloat within =
       within_table ? fmin(position, last - 1.0f) : clamp(position, 0.0f, last - 1.0f);
 #if FF_LANES > 1
-  /* one_segment (within the table): every lane lies in segment lanes_segment
-   * (spine_lanes_segment), known without the position. */
-  const LaneInt segment_index = one_segment ? (LaneInt)lanes_segment : FF_LANE_INT(within);
+  /* known_segments (within the table): every lane lies in segment first_segment
+   * (spine_lanes_segment: known_segments 1) or in it and the next (spine_stage_swept:
+   * 2), known without the position; a lane is in the next one from its first sample on. */
+  const LaneInt segment_index = known_segments ? (LaneInt)first_segment : FF_LANE_INT(within);
   const LaneFloat segment = within_table ? (LaneFloat)0.0f : FF_LANE_FLOAT(segment_index);
   /* Each lane's own segment's record. The slots of a spine's component are sorted by x
    * (engine/src/rig_program.hpp, make_slot_layout), so the lanes of most work-items
@@ -68,9 +69,9 @@ FF_INLINE SecantSample spine_at(LaneFloat x, LaneFloat position, LaneFloat z,
    * more than reading and blending a few records (the fins' kernel 2.8 -> 2.6 ms a
    * frame for 1,000 fish on 2 cores; blending up to 2, 4 or 8 records, alike). */
   const LaneInt record = 8 * segment_index;
-  const int2 range = one_segment ? (int2)(8 * lanes_segment) :
-                     ascending   ? lanes_ends(record) :
-                                   lanes_range(record);
+  const int2 range = known_segments ? (int2)(8 * first_segment, 8 * (first_segment + known_segments - 1)) :
+                     ascending      ? lanes_ends(record) :
+                                      lanes_range(record);
   LaneFloat x_j, z_j, sin_j, cos_j, slope, half_slope, sample_x;
   /* The largest |a / 2| of the records read (blended ones only; gathered: none known). */
   float steepest = INFINITY;
@@ -85,8 +86,8 @@ FF_INLINE SecantSample spine_at(LaneFloat x, LaneFloat position, LaneFloat z,
     sample_x = (LaneFloat)first[7];
     steepest = fabs(first[6]);
     for (int k = range.x + 8; k <= range.y; k += 8) {
-      const LaneMask here = record == (LaneInt)k;
       __global const float* shared = derived + k;
+      const LaneMask here = known_segments ? x >= (LaneFloat)shared[7] : record == (LaneInt)k;
       x_j = here ? (LaneFloat)shared[0] : x_j;
       z_j = here ? (LaneFloat)shared[1] : z_j;
       sin_j = here ? (LaneFloat)shared[2] : sin_j;
@@ -179,11 +180,13 @@ FF_INLINE SecantSample spine_at(LaneFloat x, LaneFloat position, LaneFloat z,
  * kernel's arithmetic on PoCL 3.1. One load: reading an entry for each 8 lanes and
  * combining them gave that sixth back (docs/benchmarks.md, Swimming, "segment"). */
 #if FF_LANES > 1
+/* The bit of an entry set where the work-item's FF_LANES slots share its segment. */
+#define FF_SHARED_SEGMENT_BIT (1u << (FF_LANES == 32 ? 14 : FF_LANES == 16 ? 13 : 12))
+
 FF_INLINE int spine_lanes_segment(void) {
 #ifdef FF_SLOT_SEGMENTS
   const uint entry = ff_slot_segments[FF_FIRST_SLOT / 8];
-  const uint one_segment = 1u << (FF_LANES == 32 ? 14 : FF_LANES == 16 ? 13 : 12);
-  return (entry & one_segment) != 0u ? (int)(entry & 0xfffu) : -1;
+  return (entry & FF_SHARED_SEGMENT_BIT) != 0u ? (int)(entry & 0xfffu) : -1;
 #else
   return -1;
 #endif
@@ -226,6 +229,30 @@ FF_INLINE SecantSample spine_stage(Vec3 p, StageFrame f, __global const float* v
 FF_INLINE SecantSample spine_stage_from_rest(Vec3 p, StageFrame f, __global const float* values,
                                              __global const float* derived) {
   return spine_sample(p.x, p.z, derived, f, 1);
+}
+
+/* Stage function (DeformerType::cl_swept_function) for vertices that reach the spine
+ * after one stage of one value, `moved_by`, moved them along it (a fin's hinge): the
+ * rig program found, per 8 slots and bin of that value's range [-limit, limit], the two
+ * neighbouring segments they stay in for every value in the bin, where they do
+ * (engine/src/segment_tables.cpp swept_segments, the generated ff_swept_segments: the
+ * first of the two, and bits as ff_slot_segments'). Where all the work-item's lanes do,
+ * it takes them without finding them (most of a swimming fish's fin work-items). */
+FF_INLINE SecantSample spine_stage_swept(Vec3 p, StageFrame f, __global const float* values,
+                                         __global const float* derived, float moved_by,
+                                         int first_entry, float limit, float bins_per_unit) {
+#if FF_LANES > 1 && defined(FF_SWEPT_SEGMENTS)
+  const float bin = (moved_by + limit) * bins_per_unit;
+  if (bin >= 0.0f && bin < (float)FF_SWEPT_BINS) {
+    const uint entry =
+        ff_swept_segments[first_entry + (int)(FF_FIRST_SLOT / 8) * FF_SWEPT_BINS + (int)bin];
+    /* The position goes unused there: x stands in for it. */
+    if ((entry & FF_SHARED_SEGMENT_BIT) != 0u) {
+      return spine_at(p.x, p.x, p.z, derived, f, 0, 1, 2, (int)(entry & 0xfffu));
+    }
+  }
+#endif
+  return spine_sample(p.x, p.z, derived, f, 0);
 }
 
 /* The records of one instance's angles (rig_prepare, one-lane programs; each of the

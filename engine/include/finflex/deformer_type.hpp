@@ -131,6 +131,14 @@ struct DeformerType {
   // kernels/deformers/spine.cl), which the rig program computes once from the rest
   // planes instead of every frame.
   bool rest_segments = false;
+  // With rest_segments: the OpenCL function for vertices that reach the stage after one
+  // stage of one value moved them (a fin's hinge before the body's spine), `SecantSample
+  // <function>(Vec3 p, StageFrame f, __global const float* values, __global const float*
+  // derived, float moved_by, int first_entry, float limit, float bins_per_unit)`:
+  // `moved_by` the earlier stage's value, and where the generated `ff_swept_segments`
+  // holds the segments the work-item's lanes reach for it (the spine,
+  // kernels/deformers/spine.cl spine_stage_swept).
+  const char* cl_swept_function = nullptr;
 };
 
 // Every registered deformer, in registry order.

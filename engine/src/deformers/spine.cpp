@@ -178,6 +178,7 @@ const DeformerType& spine_type() {
       measure_spine,
       check_spine,
       true,  // rest_segments: spine_lanes_segment in spine.cl
+      "spine_stage_swept",
   };
   return type;
 }
