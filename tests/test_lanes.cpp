@@ -108,6 +108,27 @@ void expect_close_to_one_lane(const DeformedBatch<float>& lanes,
   EXPECT_LT(d.tangent, 1e-5);
 }
 
+// The fused kernels of every lane count (vector_lanes) against one lane and the double
+// reference, with both normal modes; `label` names the case in failures.
+void expect_fused_lanes_match(const RiggedMesh& model, const RigParameters& values,
+                              const std::string& label) {
+  ClDeformer one_lane(test::shared_context(), model, with_lanes(1));
+  for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {
+    const DeformedBatch<double> reference = run_reference(model, values, normals);
+    const DeformedBatch<float> scalar =
+        test::run_on_device(one_lane, values, normals, RigPath::kFused);
+    for (std::size_t lanes : vector_lanes()) {
+      SCOPED_TRACE(label + " " + to_string(normals) + " " + std::to_string(lanes) + " lanes");
+      ClDeformer vector(test::shared_context(), model, with_lanes(lanes));
+      const DeformedBatch<float> device =
+          test::run_on_device(vector, values, normals, RigPath::kFused);
+      expect_within_reference_bounds(model, values, normals, device, reference);
+      expect_close_to_one_lane(device, scalar, model.mesh().vertex_count(),
+                               values.instance_count(), coordinate_scale(model.rig()));
+    }
+  }
+}
+
 TEST(Lanes, CpusTakeVectorsGpusOneLaneWhateverTheNormalFormat) {
   const Mesh mesh = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
   const RiggedMesh model = RiggedMesh::single_bend(mesh, find_body_frame(mesh), BendMode::kPaper);
@@ -244,21 +265,7 @@ TEST(Lanes, SharplyAndGentlyTurningSpineSegmentsMatchOneLaneAndTheReference) {
     }
   }
   ASSERT_GT(tables, 0u);
-  ClDeformer one_lane(test::shared_context(), model, with_lanes(1));
-  for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {
-    const DeformedBatch<double> reference = run_reference(model, values, normals);
-    const DeformedBatch<float> scalar =
-        test::run_on_device(one_lane, values, normals, RigPath::kFused);
-    for (std::size_t lanes : vector_lanes()) {
-      SCOPED_TRACE(std::string(to_string(normals)) + " " + std::to_string(lanes) + " lanes");
-      ClDeformer vector(test::shared_context(), model, with_lanes(lanes));
-      const DeformedBatch<float> device =
-          test::run_on_device(vector, values, normals, RigPath::kFused);
-      expect_within_reference_bounds(model, values, normals, device, reference);
-      expect_close_to_one_lane(device, scalar, mesh.vertex_count(), values.instance_count(),
-                               coordinate_scale(model.rig()));
-    }
-  }
+  expect_fused_lanes_match(model, values, "");
 }
 
 // Fins whose hinges sweep them along the body's spine (kernels/deformers/spine.cl
@@ -279,35 +286,20 @@ TEST(Lanes, FinsSweptAlongTheSpineMatchOneLaneAndTheReference) {
   for (const Shipped& c : shipped) {
     const Mesh mesh = load_mesh(test::data_path(c.fish));
     const RiggedMesh model(mesh, resolve_rig(load_rig_file(test::data_path(c.rig)), mesh));
-    constexpr std::size_t kInstances = 72;
+    constexpr std::size_t kInstances = 90;
     RigParameters values = swimming_values(model, kInstances);
     std::size_t fins = 0;
     for (const RigParameter& parameter : model.rig().parameters) {
       if (parameter.count != 1) continue;
       ++fins;
       for (std::size_t i = 0; i < kInstances; ++i) {
-        // From -0.99 to 0.99 rad in steps of 0.0279 (a bin: 0.025).
+        // From -0.99 to 0.99 rad in steps of 0.0222 (a bin: 0.025).
         values.values()[i * values.values_per_instance() + parameter.offset] =
             static_cast<float>(-0.99 + 1.98 * double(i) / double(kInstances - 1));
       }
     }
     ASSERT_GE(fins, 2u) << c.rig;
-    ClDeformer one_lane(test::shared_context(), model, with_lanes(1));
-    for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {
-      const DeformedBatch<double> reference = run_reference(model, values, normals);
-      const DeformedBatch<float> scalar =
-          test::run_on_device(one_lane, values, normals, RigPath::kFused);
-      for (std::size_t lanes : vector_lanes()) {
-        SCOPED_TRACE(std::string(c.rig) + " " + to_string(normals) + " " +
-                     std::to_string(lanes) + " lanes");
-        ClDeformer vector(test::shared_context(), model, with_lanes(lanes));
-        const DeformedBatch<float> device =
-            test::run_on_device(vector, values, normals, RigPath::kFused);
-        expect_within_reference_bounds(model, values, normals, device, reference);
-        expect_close_to_one_lane(device, scalar, mesh.vertex_count(), values.instance_count(),
-                                 coordinate_scale(model.rig()));
-      }
-    }
+    expect_fused_lanes_match(model, values, c.rig);
   }
 }
 
