@@ -142,7 +142,7 @@ ClDeformer::Impl::Impl(Context& context_in, const RiggedMesh& model_in, const Cl
       model.longest_path() <= ClDeformer::kMaxFusedStages ? RigPath::kFused : RigPath::kPasses;
   program_ = {detail::rig_program_files(rig),
               detail::rig_dispatch_source(model, slots, rest, fused, plan, kWorkGroupSize,
-                                          options.table_items, share_code),
+                                          options.table_items, share_code, lanes() > 1),
               ""};
   derived_per_instance_ = detail::derived_per_instance(rig);
   // A placeholder until the first frame sizes it: every rig kernel takes the buffer.

@@ -533,15 +533,19 @@ std::string prepare_items_source(std::size_t items) {
 std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots,
                                 const RestPlanes& rest, const std::vector<FusedLaunch>& fused,
                                 const PassPlan& plan, std::size_t group_size,
-                                std::size_t prepare_items, bool share_code) {
+                                std::size_t prepare_items, bool share_code, bool lane_tables) {
   const Rig& rig = model.rig();
   std::ostringstream out;
   out << "/* Generated for one rig by engine/src/rig_program.cpp: which stages apply to\n"
          " * which work-groups (kernels/rig.cl). */\n";
   out << "#define FF_STAGE_COUNT " << stage_table_rows(rig) << "u\n";
   out << stage_table_source(rig);
-  SweptSegments swept = swept_segments(model, slots);
-  out << segment_tables_source(slot_segments(model, slots, rest), swept);
+  SweptSegments swept;
+  swept.first_entry.assign(rig.components.size(), SweptSegments::kNone);
+  if (lane_tables) {
+    swept = swept_segments(model, slots);
+    out << segment_tables_source(slot_segments(model, slots, rest), swept);
+  }
   const bool root_has_stages = !rig.components.front().chain.empty();
   if (!root_has_stages) out << "#define FF_ROOT_FRAME " << stage_count(rig) << "u\n";
   out << "#define FF_RIG_GROUP_COUNT " << slots.slot_count / group_size << "u\n";

@@ -144,11 +144,12 @@ std::vector<FusedLaunch> make_fused_plan(const RiggedMesh& model, const SlotLayo
 // device_profile.hpp) and FF_PREPARE_BARRIER(), a barrier between them (none for one).
 std::string prepare_items_source(std::size_t items);
 
-// `rest`: the rest planes, from which the kernels of more than one lane get a table of
-// their spine segments (kernels/deformers/spine.cl spine_lanes_segment).
+// `rest`: the rest planes, from which, with `lane_tables` (the deformer's kernels take
+// more than one lane), they get tables of their spine segments (segment_tables.hpp;
+// kernels/deformers/spine.cl spine_lanes_segment and spine_stage_swept).
 std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots,
                                 const RestPlanes& rest, const std::vector<FusedLaunch>& fused,
                                 const PassPlan& plan, std::size_t group_size,
-                                std::size_t prepare_items, bool share_code);
+                                std::size_t prepare_items, bool share_code, bool lane_tables);
 
 }  // namespace finflex::detail
