@@ -191,8 +191,8 @@ SweptSegments swept_segments(const RiggedMesh& model, const SlotLayout& slots) {
 
 std::string segment_tables_source(const std::vector<std::uint32_t>& slot_table,
                                   SweptSegments& swept) {
-  // At most 2^15 entries each (the slot table 128 kB, its source about 400 kB: the
-  // one-lane programs, which skip it, parse it too).
+  // At most 2^15 entries each (the slot table 128 kB, its source about 400 kB: a CPU
+  // deformer's one-lane programs, for layouts its lanes do not store, parse it too).
   constexpr std::size_t kMostEntries = std::size_t{1} << 15;
   auto worth = [](const auto& entries) {
     return entries.size() <= kMostEntries &&

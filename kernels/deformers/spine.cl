@@ -69,7 +69,8 @@ FF_INLINE SecantSample spine_at(LaneFloat x, LaneFloat position, LaneFloat z,
    * more than reading and blending a few records (the fins' kernel 2.8 -> 2.6 ms a
    * frame for 1,000 fish on 2 cores; blending up to 2, 4 or 8 records, alike). */
   const LaneInt record = 8 * segment_index;
-  const int2 range = known_segments ? (int2)(8 * first_segment, 8 * (first_segment + known_segments - 1)) :
+  const int2 known_range = (int2)(8 * first_segment, 8 * (first_segment + known_segments - 1));
+  const int2 range = known_segments ? known_range :
                      ascending      ? lanes_ends(record) :
                                       lanes_range(record);
   LaneFloat x_j, z_j, sin_j, cos_j, slope, half_slope, sample_x;
