@@ -174,7 +174,7 @@ FF_INLINE SecantSample spine_at(LaneFloat x, LaneFloat position, LaneFloat z,
 
 /* The one segment all the work-item's lanes lie in, or -1 where they span more than one
  * or reach beyond the table, for lanes straight from the rest planes: the rig program
- * finds it once (engine/src/rig_program.cpp slot_segments, the generated
+ * finds it once (engine/src/segment_tables.cpp slot_segments, the generated
  * ff_slot_segments, an entry per 8 rest slots: the segment of its first slot in bits
  * 0-11, as the position below gives it, and bits 12, 13 and 14 set where the 8, 16 or
  * 32 slots from it all lie in that segment), so a frame does not: a sixth of the fused
