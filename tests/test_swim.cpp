@@ -144,6 +144,76 @@ TEST(Swim, DriverWithAFishPerLaneMatchesOneFishPerWorkItem) {
     ASSERT_NEAR(records_a[k], records_b[k], 2e-5) << "fish " << k / (8 * swim.samples());
 }
 
+// Inputs written straight into the upload's staging memory (staged_inputs, then
+// enqueue_staged) drive the fish to the same bits as a copy of them (enqueue), over more
+// frames than the staging ring has areas, with copied frames in between on the same
+// driver, and the area asked for twice in a frame.
+TEST(Swim, StagedInputsDriveAsCopiedOnes) {
+  const SwimModel swim(barramundi());
+  std::vector<float> lengths(37);
+  for (std::size_t i = 0; i < lengths.size(); ++i) lengths[i] = 0.25f + 0.01f * float(i);
+  ClSwimDriver copied(test::shared_context(), swim, lengths);
+  ClSwimDriver staged(test::shared_context(), swim, lengths);
+  const float dt = 1.0f / 30.0f;
+  for (int frame = 0; frame < 11; ++frame) {
+    const std::vector<SwimInput> inputs = inputs_at(lengths.size(), lengths, frame);
+    copied.enqueue(inputs, dt);
+    if (frame % 4 == 3) {
+      staged.staged_inputs();  // taken, then overwritten by a copied frame
+      staged.enqueue(inputs, dt);
+    } else {
+      SwimInput* area = staged.staged_inputs();
+      ASSERT_NE(area, nullptr);
+      std::copy(inputs.begin(), inputs.end(), area);
+      ASSERT_EQ(staged.staged_inputs(), area) << "the same area until it is enqueued";
+      staged.enqueue_staged(dt);
+    }
+    // Every frame: a frame's parameters and placements come from its own inputs.
+    ASSERT_EQ(staged.read_parameters().values(), copied.read_parameters().values()) << frame;
+    ASSERT_EQ(staged.read_wave_phases(), copied.read_wave_phases()) << frame;
+    const std::vector<PlacementRecord> a = staged.read_placements(), b = copied.read_placements();
+    for (std::size_t i = 0; i < lengths.size(); ++i) {
+      for (std::size_t k = 0; k < 13; ++k)  // the records' 13 used floats
+        ASSERT_EQ(a[i][k], b[i][k]) << "frame " << frame << " fish " << i;
+    }
+    ASSERT_EQ(staged.read_limited_segments(), copied.read_limited_segments()) << frame;
+  }
+}
+
+// A bad staged value is named as enqueue names it; nothing runs, and the inputs stay
+// staged to be mended. Enqueueing with nothing staged is refused by name.
+TEST(Swim, BadStagedInputsAreNamedAndStayStaged) {
+  const SwimModel swim(barramundi());
+  const std::vector<float> lengths = {0.4f, 0.3f};
+  ClSwimDriver driver(test::shared_context(), swim, lengths);
+  auto field_of = [&](float dt) {
+    try {
+      driver.enqueue_staged(dt);
+    } catch (const Error& e) {
+      return e.field();
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(field_of(0.1f), "staged_inputs");
+  const std::vector<float> before = driver.read_wave_phases();
+  SwimInput* area = driver.staged_inputs();
+  const std::vector<SwimInput> inputs = inputs_at(lengths.size(), lengths, 0);
+  std::copy(inputs.begin(), inputs.end(), area);
+  area[1].speed = -1.0f;
+  EXPECT_EQ(field_of(0.1f), "inputs[1].speed");
+  area[1].speed = 0.2f;
+  area[0].yaw = NAN;
+  EXPECT_EQ(field_of(0.1f), "inputs[0].yaw");
+  area[0].yaw = 0.0f;
+  EXPECT_EQ(field_of(0.0f), "dt");
+  EXPECT_EQ(field_of(NAN), "dt");
+  EXPECT_EQ(driver.read_wave_phases(), before) << "a refused frame ran";
+  EXPECT_EQ(driver.staged_inputs(), area);
+  EXPECT_EQ(field_of(0.1f), "accepted");
+  EXPECT_NE(driver.read_wave_phases(), before);
+  EXPECT_EQ(field_of(0.1f), "staged_inputs") << "an enqueued area is staged again";
+}
+
 // The driver shares a spine's samples out over a work-group of 64 on GPUs (one
 // work-item per fish on CPUs) and clears folding segment by segment with a scan
 // (kernels/swim/driver.cl): both on every device, a table of 150 samples (3 per

@@ -70,7 +70,7 @@ SwimScene::SwimScene(Context& context, const std::vector<SpeciesFiles>& files, s
       const Mesh mesh = load_mesh(files[s].mesh);
       SwimModel swim(RiggedMesh(mesh, resolve_rig(load_rig_file(files[s].rig), mesh)));
       species_.push_back(
-          Species{species_name(files[s]), std::move(swim), nullptr, nullptr, nullptr, {}, {}});
+          Species{species_name(files[s]), std::move(swim), nullptr, nullptr, nullptr, {}});
     } catch (const Error& e) {
       throw Error(e.code(), at, at + ": " + e.what());
     }
@@ -103,10 +103,18 @@ FrameWork SwimScene::enqueue_frame(double dt, bool profile) {
   FrameWork work;
   const auto start = std::chrono::steady_clock::now();
   tank_->step(dt);
+  // The tank writes the inputs straight into the drivers' staging memory; taking the
+  // staging area is the driver's host time, writing into it the simulation's.
+  double staging_seconds = 0.0;
   for (std::size_t s = 0; s < species_.size(); ++s) {
-    if (species_[s].driver) tank_->inputs(s, species_[s].inputs);
+    if (!species_[s].driver) continue;
+    const auto staging_start = std::chrono::steady_clock::now();
+    SwimInput* staged = species_[s].driver->staged_inputs();
+    staging_seconds += seconds_since(staging_start);
+    tank_->inputs(s, staged);
   }
-  work.simulation_seconds = seconds_since(start);
+  work.simulation_seconds = seconds_since(start) - staging_seconds;
+  work.driver_seconds = staging_seconds;
   const auto enqueue_start = std::chrono::steady_clock::now();
   std::vector<cl::Event> events;
   FrameGate gate(context_);  // the frame goes to the device once all of it is enqueued
@@ -114,8 +122,7 @@ FrameWork SwimScene::enqueue_frame(double dt, bool profile) {
     Species& sp = species_[s];
     if (!sp.driver) continue;
     const auto driver_start = std::chrono::steady_clock::now();
-    const cl::Event driven =
-        sp.driver->enqueue(sp.inputs, static_cast<float>(dt), gate.wait_list());
+    const cl::Event driven = sp.driver->enqueue_staged(static_cast<float>(dt), gate.wait_list());
     work.driver_seconds += seconds_since(driver_start);
     if (sp.outputs->waits_for_device()) gate.open();
     sp.outputs->enqueue(*sp.deformer, sp.job, profile ? &events : nullptr);
@@ -126,7 +133,8 @@ FrameWork SwimScene::enqueue_frame(double dt, bool profile) {
     }
   }
   gate.open();
-  work.enqueue_seconds = std::max(0.0, seconds_since(enqueue_start) - work.handoff_seconds);
+  work.enqueue_seconds =
+      std::max(0.0, seconds_since(enqueue_start) - work.handoff_seconds) + staging_seconds;
   return work;
 }
 

@@ -81,7 +81,6 @@ struct Species {
   std::unique_ptr<ClSwimDriver> driver;
   std::unique_ptr<SpeciesOutputs> outputs;
   ClJob job;
-  std::vector<SwimInput> inputs;  // this frame's, in the tank's order of its fish
 
   DeviceBatch& batch() { return outputs->batch(); }
 };
@@ -104,8 +103,8 @@ struct FrameWork {
   double simulation_seconds = 0.0;  // the tank's step and its swim inputs
   double enqueue_seconds = 0.0;     // the drivers' uploads and every launch (and what
                                     // the hand-off waits for, when it waits)
-  double driver_seconds = 0.0;      // of which the drivers' (inputs checked, copied and
-                                    // uploaded, driver kernels launched)
+  double driver_seconds = 0.0;      // of which the drivers' (their staging areas taken,
+                                    // inputs checked and uploaded, kernels launched)
   double handoff_seconds = 0.0;     // the outputs' hand-off (SpeciesOutputs)
   std::vector<cl::Event> kernels;   // every kernel, in order (profiling)
 };

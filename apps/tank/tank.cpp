@@ -197,16 +197,20 @@ void Tank::step(double dt) {
 }
 
 void Tank::inputs(std::size_t species, std::vector<SwimInput>& out) const {
-  out.clear();
+  out.resize(static_cast<std::size_t>(std::count_if(
+      fish_.begin(), fish_.end(), [&](const Fish& fish) { return fish.species == species; })));
+  inputs(species, out.data());
+}
+
+void Tank::inputs(std::size_t species, SwimInput* out) const {
   for (const Fish& fish : fish_) {
     if (fish.species != species) continue;
-    SwimInput in;
+    SwimInput& in = *out++;
     in.position = glm::vec3(fish.position);
     in.yaw = static_cast<float>(fish.yaw);
     in.pitch = static_cast<float>(fish.pitch);
     in.speed = static_cast<float>(fish.speed);
     in.turn_rate = static_cast<float>(fish.turn_rate);
-    out.push_back(in);
   }
 }
 

@@ -89,6 +89,9 @@ class Tank {
   glm::dvec3 current(const glm::dvec3& position) const;
   // The swim drivers' inputs of species s's fish (in order of fish()), and their lengths.
   void inputs(std::size_t species, std::vector<SwimInput>& out) const;
+  // The same written into `out`, one entry per fish of the species (a swim driver's
+  // ClSwimDriver::staged_inputs()).
+  void inputs(std::size_t species, SwimInput* out) const;
   std::vector<float> lengths(std::size_t species) const;
   // Times a fish had to be put back inside the water (its steering failed).
   std::size_t corrections() const { return corrections_; }

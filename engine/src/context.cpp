@@ -5,6 +5,7 @@
 
 #include "device_profile.hpp"
 #include "finflex/error.hpp"
+#include "finflex/frame_gate.hpp"
 #include "kernel_sources.hpp"
 
 namespace finflex {
@@ -170,25 +171,20 @@ Context::Context(const std::string& device,
 
 Context::~Context() {
   // Nothing may throw here: failures are ignored.
-  for (cl::UserEvent& gate : gates_) {
-    cl_int state = CL_COMPLETE;
-    gate.getInfo(CL_EVENT_COMMAND_EXECUTION_STATUS, &state);
-    if (state != CL_COMPLETE) gate.setStatus(CL_COMPLETE);
+  for (const std::shared_ptr<detail::GateState>& gate : gates_) {
+    if (!gate->opened) gate->event.setStatus(CL_COMPLETE);
   }
   queue_.finish();
   map_queue_.finish();
 }
 
-void Context::track_gate(const cl::UserEvent& gate) {
+void Context::track_gate(const std::shared_ptr<detail::GateState>& gate) {
   std::lock_guard<std::mutex> lock(gates_mutex_);
-  // The gates seen open are dropped, so the list holds the few of the frames in flight.
-  gates_.erase(std::remove_if(gates_.begin(), gates_.end(),
-                              [](const cl::UserEvent& g) {
-                                cl_int state = CL_SUBMITTED;
-                                g.getInfo(CL_EVENT_COMMAND_EXECUTION_STATUS, &state);
-                                return state == CL_COMPLETE;
-                              }),
-               gates_.end());
+  // The opened gates are dropped, so the list holds the few of the frames in flight.
+  gates_.erase(
+      std::remove_if(gates_.begin(), gates_.end(),
+                     [](const std::shared_ptr<detail::GateState>& g) { return g->opened.load(); }),
+      gates_.end());
   gates_.push_back(gate);
 }
 

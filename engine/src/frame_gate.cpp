@@ -8,20 +8,25 @@ namespace finflex {
 
 FrameGate::FrameGate(Context& context) {
   cl_int status = CL_SUCCESS;
-  gate_ = cl::UserEvent(context.context(), &status);
+  gate_ = std::make_shared<detail::GateState>();
+  gate_->event = cl::UserEvent(context.context(), &status);
   check_cl(status, "clCreateUserEvent");
-  wait_.push_back(gate_);
+  wait_.push_back(gate_->event);
   context.track_gate(gate_);
 }
 
 FrameGate::~FrameGate() {
-  if (!open_) gate_.setStatus(CL_COMPLETE);  // no throwing here: the status is ignored
+  if (open_) return;
+  gate_->event.setStatus(CL_COMPLETE);  // no throwing here: the status is ignored
+  gate_->opened = true;
 }
 
 void FrameGate::open() {
   if (open_) return;
   open_ = true;
-  check_cl(gate_.setStatus(CL_COMPLETE), "clSetUserEventStatus");
+  const cl_int status = gate_->event.setStatus(CL_COMPLETE);
+  gate_->opened = true;
+  check_cl(status, "clSetUserEventStatus");
 }
 
 }  // namespace finflex

@@ -12,9 +12,15 @@
 //   job.derived_buffer = driver.derived_buffer();  (null: rig_prepare runs)
 //   each frame: driver.enqueue(inputs, dt); deformer.enqueue(job);
 //
+// or, with no copy of the inputs, written straight into the upload's staging memory:
+//
+//   each frame: SwimInput* in = driver.staged_inputs();  (fill in[0 .. fish_count()))
+//               driver.enqueue_staged(dt); deformer.enqueue(job);
+//
 // The device's state: per fish its wave and pectoral phases (2 floats). Memory per
 // fish: 7 floats of inputs (a SwimInput as it is), the rig's values, 16 floats of
-// placement. Host work per frame: a copy of the inputs and one pass checking them.
+// placement. Host work per frame: a copy of the inputs and one pass checking them (the
+// check alone for staged inputs).
 #pragma once
 
 #include <cstddef>
@@ -46,6 +52,18 @@ class FINFLEX_API ClSwimDriver {
   // and enqueues the driver kernel. Returns its event.
   cl::Event enqueue(const std::vector<SwimInput>& inputs, float dt,
                     const std::vector<cl::Event>* wait = nullptr);
+
+  // The next frame's inputs, written in place: fish_count() SwimInputs in pinned host
+  // memory that the upload reads (on NVIDIA's OpenCL it saves the 280 KB copy of
+  // 10,000 fish, docs/swimming.md "Host time"). Waits, if it must, for the upload of
+  // the frame that last used this area (three frames ago). The area holds that frame's
+  // inputs: write every fish. The same area until enqueue_staged() or enqueue().
+  SwimInput* staged_inputs();
+  // As enqueue, for the inputs written into staged_inputs(): checks them there
+  // (check_swim_inputs; after an error they stay staged, to be mended). From its
+  // return on the area belongs to the upload: write the next frame's inputs into the
+  // next staged_inputs(). kInvalidArgument "staged_inputs" when none is staged.
+  cl::Event enqueue_staged(float dt, const std::vector<cl::Event>* wait = nullptr);
 
   // What a ClJob reads: rows of the rig's values, and placement records.
   const cl::Buffer& parameter_buffer() const;

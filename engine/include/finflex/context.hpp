@@ -19,6 +19,9 @@
 #include "finflex/export.hpp"
 
 namespace finflex {
+namespace detail {
+struct GateState;  // finflex/frame_gate.hpp
+}
 
 struct DeviceDescription {
   std::size_t platform_index = 0;
@@ -108,7 +111,7 @@ class FINFLEX_API Context {
  private:
   friend class FrameGate;
   // A FrameGate's user event, to be opened by ~Context if it is still closed then.
-  void track_gate(const cl::UserEvent& gate);
+  void track_gate(const std::shared_ptr<detail::GateState>& gate);
 
   DeviceDescription description_;
   cl::Device device_;
@@ -119,7 +122,7 @@ class FINFLEX_API Context {
   std::mutex cache_mutex_;
   std::map<std::string, cl::Program> programs_;
   std::mutex gates_mutex_;
-  std::vector<cl::UserEvent> gates_;  // the gates not yet seen open
+  std::vector<std::shared_ptr<detail::GateState>> gates_;  // the gates not yet seen open
 };
 
 // Throws finflex::Error (kOpenCL) "what: CL_... (code)" when status != CL_SUCCESS.

@@ -19,6 +19,8 @@
 // the Context's destructor (which waits for its queues) for a gate that outlives it.
 #pragma once
 
+#include <atomic>
+#include <memory>
 #include <vector>
 
 #include <CL/opencl.hpp>
@@ -27,6 +29,17 @@
 #include "finflex/export.hpp"
 
 namespace finflex {
+namespace detail {
+
+// A gate's user event and whether it was opened, shared by the FrameGate and its
+// Context: the Context drops the opened ones without asking the driver (a status query
+// costs a few microseconds of a frame on NVIDIA's OpenCL).
+struct GateState {
+  cl::UserEvent event;
+  std::atomic<bool> opened{false};
+};
+
+}  // namespace detail
 
 class FINFLEX_API FrameGate {
  public:
@@ -42,7 +55,7 @@ class FINFLEX_API FrameGate {
   bool is_open() const { return open_; }
 
  private:
-  cl::UserEvent gate_;
+  std::shared_ptr<detail::GateState> gate_;
   std::vector<cl::Event> wait_;
   bool open_ = false;
 };

@@ -169,10 +169,15 @@ class FINFLEX_API SwimReference {
 // and > 0).
 FINFLEX_API void check_swim_inputs(const std::vector<SwimInput>& inputs, std::size_t fish,
                                    double dt);
+// The same for `count` inputs from `inputs`.
+FINFLEX_API void check_swim_inputs(const SwimInput* inputs, std::size_t count, std::size_t fish,
+                                   double dt);
 
 // Swim inputs from rows of 7 floats (x, y, z, yaw, pitch, speed, turning rate: a
 // SwimInput's fields in order), the form arrays and files carry them in; `fish` rows.
 FINFLEX_API void swim_inputs_from_rows(const float* rows, std::size_t fish,
                                        std::vector<SwimInput>& inputs);
+// The same into `fish` SwimInputs at `inputs` (ClSwimDriver::staged_inputs()).
+FINFLEX_API void swim_inputs_from_rows(const float* rows, std::size_t fish, SwimInput* inputs);
 
 }  // namespace finflex

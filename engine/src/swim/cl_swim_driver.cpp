@@ -28,15 +28,18 @@ constexpr std::size_t kInputFloats = 7;
 static_assert(sizeof(SwimInput) == kInputFloats * sizeof(float),
               "SwimInput is uploaded as it is: 7 packed floats");
 
-// Copies the inputs to the staging buffer; true when every value is finite and every
+// Copies the inputs to the staging buffer (none when `staged` is null: the caller wrote
+// them there, ClSwimDriver::staged_inputs); true when every value is finite and every
 // speed >= 0. Branch-free passes over the bits: a float is not finite when its
 // exponent is all ones, which adding 1 to the exponent carries into bit 31; below 0
 // when its sign is set and it is not -0. The copy and the finiteness check are one
-// pass; the checks read the caller's floats, never the staging copy: pinned staging
-// memory is slow to read back (75 us for 10,000 fish on an H100 machine, against
-// 20 us from the caller's; docs/swimming.md, "Host time"). With SSE2 the copy streams
-// past the caches (the host never reads the staging memory; a cached store would read
-// each line first): 31-35 us for 10,000 fish on an H200 machine, 44 us without.
+// pass; the checks read the caller's floats, never the staging copy: staging memory
+// the copy streamed to is slow to read back (75 us for 10,000 fish on an H100 machine,
+// against 20 us from the caller's; docs/swimming.md, "Host time"). With SSE2 the copy
+// streams past the caches (the host never reads the staging memory; a cached store
+// would read each line first): 31-35 us for 10,000 fish on an H200 machine, 44 us
+// without; 24-55 against 48-57 in an H100 machine's frames
+// (docs/results/2026-11-28_h100_swim_host_breakdown.txt).
 bool copy_valid_inputs(const SwimInput* inputs, float* staged, std::size_t fish) {
   const std::size_t count = fish * kInputFloats;
   const auto* source = reinterpret_cast<const unsigned char*>(inputs);
@@ -50,9 +53,9 @@ bool copy_valid_inputs(const SwimInput* inputs, float* staged, std::size_t fish)
     for (; k + 4 <= count; k += 4) {
       const __m128i b = _mm_loadu_si128(reinterpret_cast<const __m128i*>(source + k * 4));
       carried4 = _mm_or_si128(carried4, _mm_add_epi32(_mm_and_si128(b, exponent), one));
-      _mm_stream_si128(reinterpret_cast<__m128i*>(target + k * 4), b);
+      if (target) _mm_stream_si128(reinterpret_cast<__m128i*>(target + k * 4), b);
     }
-    _mm_sfence();  // the streamed stores reach memory before the upload reads it
+    if (target) _mm_sfence();  // the streamed stores reach memory before the upload reads it
     std::uint32_t lanes[4];
     _mm_storeu_si128(reinterpret_cast<__m128i*>(lanes), carried4);
     carried = lanes[0] | lanes[1] | lanes[2] | lanes[3];
@@ -62,7 +65,7 @@ bool copy_valid_inputs(const SwimInput* inputs, float* staged, std::size_t fish)
     std::uint32_t b;
     std::memcpy(&b, source + k * sizeof b, sizeof b);
     carried |= (b & 0x7f800000u) + 0x00800000u;
-    std::memcpy(target + k * sizeof b, &b, sizeof b);
+    if (target) std::memcpy(target + k * sizeof b, &b, sizeof b);
   }
   for (std::size_t i = 0; i < fish; ++i) {
     std::uint32_t b;
@@ -250,7 +253,10 @@ class ClSwimDriver::Impl {
   cl::Buffer sizes_, phases_, parameters_, placements_, limited_;
   cl::Kernel kernel_;
   detail::ParameterUpload inputs_;
+  SwimInput* staged_ = nullptr;  // the staging area staged_inputs() gave, until enqueued
   bool bound_ = false;
+
+  cl::Event upload_and_launch(float dt, const std::vector<cl::Event>* wait);
 };
 
 ClSwimDriver::ClSwimDriver(Context& context, const SwimModel& swim,
@@ -272,9 +278,43 @@ cl::Event ClSwimDriver::enqueue(const std::vector<SwimInput>& inputs, float dt,
   // Copied as they are (the upload reads them after this returns), then checked in
   // one pass; only a bad value is looked for by name.
   float* staged = d.inputs_.acquire(d.context, d.fish * kInputFloats);
+  d.staged_ = nullptr;  // a staged_inputs() area is this one, now overwritten
   if (!copy_valid_inputs(inputs.data(), staged, d.fish)) {
     check_swim_inputs(inputs, d.fish, dt);
   }
+  return d.upload_and_launch(dt, wait);
+}
+
+SwimInput* ClSwimDriver::staged_inputs() {
+  Impl& d = *impl_;
+  if (!d.staged_) {
+    // The ring's staging areas are mapped pinned memory, aligned for floats: a
+    // SwimInput is 7 packed floats (kInputFloats).
+    d.staged_ = reinterpret_cast<SwimInput*>(d.inputs_.acquire(d.context, d.fish * kInputFloats));
+  }
+  return d.staged_;
+}
+
+cl::Event ClSwimDriver::enqueue_staged(float dt, const std::vector<cl::Event>* wait) {
+  Impl& d = *impl_;
+  if (!d.staged_ && d.fish > 0) {
+    throw Error(ErrorCode::kInvalidArgument, "staged_inputs",
+                "staged_inputs: enqueue_staged() needs the inputs written into staged_inputs() "
+                "first (none is staged since the last enqueue)");
+  }
+  // Checked where the caller wrote them; the area stays staged after a bad value, to be
+  // mended and enqueued again.
+  if (!std::isfinite(dt) || !(dt > 0.0f) ||
+      (d.fish > 0 && !copy_valid_inputs(d.staged_, nullptr, d.fish))) {
+    check_swim_inputs(d.staged_, d.fish, d.fish, dt);
+  }
+  d.staged_ = nullptr;
+  return d.upload_and_launch(dt, wait);
+}
+
+// The staged inputs' upload after `wait`, then the driver kernel.
+cl::Event ClSwimDriver::Impl::upload_and_launch(float dt, const std::vector<cl::Event>* wait) {
+  Impl& d = *this;
   const bool replaced = d.inputs_.upload(d.context, wait);
   cl::Kernel& kernel = d.kernel_;
   if (replaced || !d.bound_) {

@@ -21,6 +21,10 @@ double wrapped(double phase) { return phase - std::floor(phase); }
 
 void swim_inputs_from_rows(const float* rows, std::size_t fish, std::vector<SwimInput>& inputs) {
   inputs.resize(fish);
+  swim_inputs_from_rows(rows, fish, inputs.data());
+}
+
+void swim_inputs_from_rows(const float* rows, std::size_t fish, SwimInput* inputs) {
   for (std::size_t i = 0; i < fish; ++i) {
     const float* row = rows + 7 * i;
     inputs[i].position = {row[0], row[1], row[2]};
@@ -32,12 +36,16 @@ void swim_inputs_from_rows(const float* rows, std::size_t fish, std::vector<Swim
 }
 
 void check_swim_inputs(const std::vector<SwimInput>& inputs, std::size_t fish, double dt) {
+  check_swim_inputs(inputs.data(), inputs.size(), fish, dt);
+}
+
+void check_swim_inputs(const SwimInput* inputs, std::size_t count, std::size_t fish, double dt) {
   if (!std::isfinite(dt) || !(dt > 0.0)) fail("dt", "= " + std::to_string(dt) + " must be > 0");
-  if (inputs.size() != fish) {
+  if (count != fish) {
     fail("inputs",
-         "has " + std::to_string(inputs.size()) + " entries for " + std::to_string(fish) + " fish");
+         "has " + std::to_string(count) + " entries for " + std::to_string(fish) + " fish");
   }
-  for (std::size_t i = 0; i < inputs.size(); ++i) {
+  for (std::size_t i = 0; i < count; ++i) {
     const SwimInput& in = inputs[i];
     // The common case in one pass of comparisons; names only for a bad value.
     const bool finite = std::isfinite(in.position.x) && std::isfinite(in.position.y) &&
