@@ -81,7 +81,6 @@ struct finflex_swim_driver {
   std::shared_ptr<finflex::Context> context;
   std::shared_ptr<const finflex::SwimModel> swim;
   std::unique_ptr<finflex::ClSwimDriver> driver;
-  std::vector<finflex::SwimInput> inputs;  // the frame's, reused
   mutable finflex_error error;
 };
 

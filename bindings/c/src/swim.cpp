@@ -68,7 +68,6 @@ finflex_status finflex_swim_driver_create(finflex_context* context, const finfle
         phases == nullptr ? std::vector<float>{} : std::vector<float>(phases, phases + fish_count);
     handle->driver = std::make_unique<finflex::ClSwimDriver>(*handle->context, *handle->swim,
                                                              fish_lengths, fish_phases);
-    handle->inputs.resize(fish_count);
     return handle;
   });
 }
@@ -90,9 +89,12 @@ finflex_status finflex_swim_driver_enqueue(finflex_swim_driver* driver,
   return guarded(slot_of(driver), [&] {
     finflex::ClSwimDriver& d = driver_of(driver);
     if (count > 0) require(inputs, "inputs");
-    driver->inputs.resize(count);
+    // A wrong count or dt is named before anything is staged (check_swim_inputs).
+    if (count != d.fish_count()) finflex::check_swim_inputs(nullptr, count, d.fish_count(), dt);
+    // Converted straight into the upload's staging memory, checked there.
+    finflex::SwimInput* staged = d.staged_inputs();
     for (std::size_t i = 0; i < count; ++i) {
-      finflex::SwimInput& in = driver->inputs[i];
+      finflex::SwimInput& in = staged[i];
       in.position = {inputs[i].position[0], inputs[i].position[1], inputs[i].position[2]};
       in.yaw = inputs[i].yaw;
       in.pitch = inputs[i].pitch;
@@ -101,7 +103,7 @@ finflex_status finflex_swim_driver_enqueue(finflex_swim_driver* driver,
     }
     const std::vector<cl::Event> events = finflex::c::wait_events(wait, wait_count);
     finflex::c::enqueue_with_event(
-        done, [&] { return d.enqueue(driver->inputs, dt, events.empty() ? nullptr : &events); });
+        done, [&] { return d.enqueue_staged(dt, events.empty() ? nullptr : &events); });
   });
 }
 

@@ -24,8 +24,7 @@ struct PySwimDriver {
   std::shared_ptr<Context> context;
   std::shared_ptr<const SwimModel> swim;
   std::unique_ptr<ClSwimDriver> driver;
-  std::vector<float> rows;        // the frame's inputs as given, reused
-  std::vector<SwimInput> inputs;  // the same as SwimInputs, reused
+  std::vector<float> rows;  // the frame's inputs as given, reused
 };
 
 // A frame's device work held back until all of it is enqueued (finflex::FrameGate).
@@ -89,8 +88,7 @@ void bind_swim(nb::module_& m) {
                              swim.swim,
                              std::make_unique<ClSwimDriver>(*context.context, *swim.swim, lengths,
                                                             phases.value_or(std::vector<float>{})),
-                             {},
-                             std::vector<SwimInput>(lengths.size())};
+                             {}};
           },
           nb::arg("context"), nb::arg("swim"), nb::arg("lengths"), nb::arg("phases") = nb::none(),
           "One fish per length (metres, > 0); phases (cycles) per fish or 0. finflex.Error "
@@ -100,11 +98,15 @@ void bind_swim(nb::module_& m) {
           "enqueue",
           [](PySwimDriver& d, nb::handle inputs, float dt, nb::handle wait) {
             float_rows_into(inputs, "inputs", 7, d.rows);
-            swim_inputs_from_rows(d.rows.data(), d.rows.size() / 7, d.inputs);
+            const std::size_t fish = d.driver->fish_count(), count = d.rows.size() / 7;
+            // A wrong count or dt is named before anything is staged; the rows go
+            // straight into the upload's staging memory, checked there.
+            if (count != fish) check_swim_inputs(nullptr, count, fish, dt);
             const std::vector<cl::Event> events = wait_events(wait);
             PyEvent done;
             nb::gil_scoped_release release;
-            done.event = d.driver->enqueue(d.inputs, dt, events.empty() ? nullptr : &events);
+            swim_inputs_from_rows(d.rows.data(), count, d.driver->staged_inputs());
+            done.event = d.driver->enqueue_staged(dt, events.empty() ? nullptr : &events);
             return done;
           },
           nb::arg("inputs"), nb::arg("dt"), nb::arg("wait") = nb::none(),
