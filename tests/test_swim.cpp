@@ -3,6 +3,7 @@
 // frequency (no jump when the speed changes), a wave that travels from head to tail,
 // and a whole frame (driver, then the deformation reading its buffers) against the
 // reference.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -449,7 +450,48 @@ TEST(Swim, AContextWaitsForItsQueuesAndOpensAGateThatOutlivesIt) {
   EXPECT_NE(driven.getInfo<CL_EVENT_COMMAND_EXECUTION_STATUS>(), CL_COMPLETE);
   context.reset();  // opens the gate, then waits for the frame
   EXPECT_EQ(driven.getInfo<CL_EVENT_COMMAND_EXECUTION_STATUS>(), CL_COMPLETE);
-  gate.reset();  // already opened: nothing left to do
+  EXPECT_NO_THROW(gate->open());  // already opened: nothing left to do
+  gate.reset();
+}
+
+// A Context makes its gates' user events ahead on a helper thread: each frame's gate
+// is still a new event of its own (a reused, complete one would let its frame run at
+// once), frames gated one after the other give the frames of an ungated driver, and the
+// Context stops its helper when it goes, right after a gate opened.
+TEST(Swim, GatesMadeAheadEachHoldTheirOwnFrame) {
+  const SwimModel swim(barramundi());
+  const std::vector<float> lengths = {0.3f, 0.45f, 0.38f};
+  auto context = std::make_unique<Context>();
+  ClSwimDriver ungated(*context, swim, lengths);
+  auto gated = std::make_unique<ClSwimDriver>(*context, swim, lengths);
+  std::vector<cl::Event> gate_events;  // held, so that no handle is freed and made again
+  for (int frame = 0; frame < 20; ++frame) {
+    const std::vector<SwimInput> inputs = inputs_at(lengths.size(), lengths, frame);
+    ungated.enqueue(inputs, 1.0f / 30.0f);
+    FrameGate gate(*context);
+    gate_events.push_back(gate.wait_list()->front());
+    const cl::Event driven = gated->enqueue(inputs, 1.0f / 30.0f, gate.wait_list());
+    if (frame % 5 == 0) {  // held back until the gate opens (a few frames: each waits)
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      EXPECT_NE(driven.getInfo<CL_EVENT_COMMAND_EXECUTION_STATUS>(), CL_COMPLETE)
+          << "frame " << frame;
+    }
+    gate.open();
+  }
+  std::vector<cl_event> handles;
+  for (const cl::Event& event : gate_events) handles.push_back(event());
+  std::sort(handles.begin(), handles.end());
+  EXPECT_EQ(std::adjacent_find(handles.begin(), handles.end()), handles.end())
+      << "a user event served two gates";
+  EXPECT_EQ(gated->read_wave_phases(), ungated.read_wave_phases());
+  EXPECT_EQ(gated->read_parameters().values(), ungated.read_parameters().values());
+  {
+    FrameGate gate(*context);
+    gated->enqueue(inputs_at(lengths.size(), lengths, 20), 1.0f / 30.0f, gate.wait_list());
+    gate.open();  // asks the helper for more events, if it has fewer than it keeps
+  }
+  gated.reset();
+  context.reset();  // stops the helper, busy or not
 }
 
 TEST(Swim, BadInputsAreNamed) {

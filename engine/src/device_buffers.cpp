@@ -58,7 +58,8 @@ void ParameterUpload::release(Staging& staging) {
 
 float* ParameterUpload::acquire(Context& context, std::size_t values) {
   Staging& staging = staging_[next_];
-  if (staging.done()) check_cl(staging.done.wait(), "clWaitForEvents");
+  const bool finished = staging.finished && staging.finished->load(std::memory_order_acquire);
+  if (staging.done() && !finished) check_cl(staging.done.wait(), "clWaitForEvents");
   if (values > staging.capacity) {
     // Grown by half again, so frames of slowly growing sizes do not map every time.
     const std::size_t capacity = std::max(values, staging.capacity + staging.capacity / 2);
@@ -97,8 +98,28 @@ bool ParameterUpload::upload(Context& context, const std::vector<cl::Event>* wai
   return replaced;
 }
 
+namespace {
+
+// The completion callback of a staging area's frame: sets the area's flag and lets go of
+// its share of it. An abnormal end (a negative status) leaves the flag clear, so that
+// acquire()'s wait reports it.
+void CL_CALLBACK mark_finished(cl_event, cl_int status, void* flag) {
+  auto* shared = static_cast<std::shared_ptr<std::atomic<bool>>*>(flag);
+  if (status == CL_COMPLETE) (*shared)->store(true, std::memory_order_release);
+  delete shared;
+}
+
+}  // namespace
+
 void ParameterUpload::used(const cl::Event& frame_done) {
-  staging_[next_].done = frame_done;
+  Staging& staging = staging_[next_];
+  staging.done = frame_done;
+  staging.finished = std::make_shared<std::atomic<bool>>(false);
+  auto* callback_share = new std::shared_ptr<std::atomic<bool>>(staging.finished);
+  if (staging.done.setCallback(CL_COMPLETE, mark_finished, callback_share) != CL_SUCCESS) {
+    delete callback_share;
+    staging.finished.reset();
+  }
   next_ = (next_ + 1) % kSlots;
 }
 

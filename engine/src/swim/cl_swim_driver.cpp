@@ -255,6 +255,7 @@ class ClSwimDriver::Impl {
   detail::ParameterUpload inputs_;
   SwimInput* staged_ = nullptr;  // the staging area staged_inputs() gave, until enqueued
   bool bound_ = false;
+  float bound_dt_ = 0.0f;  // the kernel's dt argument (enqueue refuses dt <= 0)
 
   cl::Event upload_and_launch(float dt, const std::vector<cl::Event>* wait);
 };
@@ -330,8 +331,10 @@ cl::Event ClSwimDriver::Impl::upload_and_launch(float dt, const std::vector<cl::
     set(dt);
     set(static_cast<cl_uint>(d.fish));
     d.bound_ = true;
+  } else if (dt != d.bound_dt_) {
+    check_cl(kernel.setArg(7, dt), "clSetKernelArg dt");
   }
-  check_cl(kernel.setArg(7, dt), "clSetKernelArg dt");
+  d.bound_dt_ = dt;  // a steady frame rate sets no argument a frame
   cl::Event done;
   const std::size_t work_items = (d.fish * d.items + d.lanes - 1) / d.lanes;
   const std::size_t global = (work_items + d.group - 1) / d.group * d.group;
