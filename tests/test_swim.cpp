@@ -454,11 +454,10 @@ TEST(Swim, AContextWaitsForItsQueuesAndOpensAGateThatOutlivesIt) {
   gate.reset();
 }
 
-// A Context makes its gates' user events ahead on a helper thread: each frame's gate
-// is still a new event of its own (a reused, complete one would let its frame run at
-// once), frames gated one after the other give the frames of an ungated driver, and the
-// Context stops its helper when it goes, right after a gate opened.
-TEST(Swim, GatesMadeAheadEachHoldTheirOwnFrame) {
+// Frame after frame, each gate is a new event of its own (a reused, complete one would
+// let its frame run at once), and frames gated one after the other give the frames of an
+// ungated driver.
+TEST(Swim, GatesFrameAfterFrameEachHoldTheirOwnFrame) {
   const SwimModel swim(barramundi());
   const std::vector<float> lengths = {0.3f, 0.45f, 0.38f};
   auto context = std::make_unique<Context>();
@@ -488,10 +487,10 @@ TEST(Swim, GatesMadeAheadEachHoldTheirOwnFrame) {
   {
     FrameGate gate(*context);
     gated->enqueue(inputs_at(lengths.size(), lengths, 20), 1.0f / 30.0f, gate.wait_list());
-    gate.open();  // asks the helper for more events, if it has fewer than it keeps
+    gate.open();
   }
   gated.reset();
-  context.reset();  // stops the helper, busy or not
+  context.reset();
 }
 
 TEST(Swim, BadInputsAreNamed) {

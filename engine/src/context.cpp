@@ -6,7 +6,6 @@
 #include "device_profile.hpp"
 #include "finflex/error.hpp"
 #include "finflex/frame_gate.hpp"
-#include "gate_events.hpp"
 #include "kernel_sources.hpp"
 
 namespace finflex {
@@ -168,13 +167,10 @@ Context::Context(const std::string& device,
   check_cl(status, "clCreateCommandQueue");
   map_queue_ = cl::CommandQueue(context_, device_, 0, &status);
   check_cl(status, "clCreateCommandQueue (maps)");
-  gate_events_ = std::make_shared<detail::GateEvents>(context_);
 }
 
 Context::~Context() {
-  // Nothing may throw here: failures are ignored. A gate opening now on another thread
-  // may hold the events' helper a moment longer; it stops with the last share.
-  gate_events_.reset();
+  // Nothing may throw here: failures are ignored.
   for (const std::shared_ptr<detail::GateState>& gate : gates_) {
     if (!gate->opened.exchange(true)) gate->event.setStatus(CL_COMPLETE);
   }

@@ -3,14 +3,14 @@
 #include "finflex/frame_gate.hpp"
 
 #include "finflex/error.hpp"
-#include "gate_events.hpp"
 
 namespace finflex {
 
 FrameGate::FrameGate(Context& context) {
+  cl_int status = CL_SUCCESS;
   gate_ = std::make_shared<detail::GateState>();
-  gate_->event = context.gate_events_->take();
-  events_ = context.gate_events_;
+  gate_->event = cl::UserEvent(context.context(), &status);
+  check_cl(status, "clCreateUserEvent");
   wait_.push_back(gate_->event);
   context.track_gate(gate_);
 }
@@ -27,9 +27,6 @@ void FrameGate::open() {
   open_ = true;
   if (gate_->opened.exchange(true)) return;  // the Context's destructor opened it
   check_cl(gate_->event.setStatus(CL_COMPLETE), "clSetUserEventStatus");
-  // The next frames' events are made now, while this frame's thread is out of the
-  // driver's calls.
-  if (const std::shared_ptr<detail::GateEvents> events = events_.lock()) events->top_up();
 }
 
 }  // namespace finflex

@@ -21,8 +21,7 @@
 namespace finflex {
 namespace detail {
 struct GateState;  // finflex/frame_gate.hpp
-class GateEvents;  // the gates' user events, made ahead
-}  // namespace detail
+}
 
 struct DeviceDescription {
   std::size_t platform_index = 0;
@@ -86,8 +85,7 @@ class FINFLEX_API Context {
   // Waits for the work on its queues, so that none is still running when the OpenCL
   // implementation shuts down with the process (PoCL compiles a kernel on its first
   // launch, in a thread of its own); opens every FrameGate of the context still closed
-  // first, which nothing could open after it, and stops the helper thread that makes
-  // the gates' user events ahead (started by the first gate opened).
+  // first, which nothing could open after it.
   ~Context();
   Context(const Context&) = delete;
   Context& operator=(const Context&) = delete;
@@ -125,8 +123,6 @@ class FINFLEX_API Context {
   std::map<std::string, cl::Program> programs_;
   std::mutex gates_mutex_;
   std::vector<std::shared_ptr<detail::GateState>> gates_;  // the gates not yet seen open
-  // Shared with the gates (weakly), which ask it for more when they open.
-  std::shared_ptr<detail::GateEvents> gate_events_;
 };
 
 // Throws finflex::Error (kOpenCL) "what: CL_... (code)" when status != CL_SUCCESS.

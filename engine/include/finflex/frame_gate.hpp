@@ -56,7 +56,6 @@ class FINFLEX_API FrameGate {
 
  private:
   std::shared_ptr<detail::GateState> gate_;
-  std::weak_ptr<detail::GateEvents> events_;  // the Context's, asked for more on open()
   std::vector<cl::Event> wait_;
   bool open_ = false;
 };
