@@ -493,6 +493,57 @@ TEST(Swim, GatesFrameAfterFrameEachHoldTheirOwnFrame) {
   context.reset();
 }
 
+// The inputs' check goes over blocks of 4 fish on SSE2 machines, then fish one by one:
+// a bad value is found wherever it lies, through enqueue() and enqueue_staged().
+TEST(Swim, EveryBadInputIsFoundWhereverItLies) {
+  const SwimModel swim(barramundi());
+  const std::vector<float> lengths(13, 0.3f);  // 3 blocks of 4 fish, and one after
+  ClSwimDriver driver(test::shared_context(), swim, lengths);
+  // Every value of the good inputs >= 0: the fast check then passes them, and a bad speed
+  // it misses would be accepted (a value it flags wrongly only sends the inputs to the
+  // check that names the problem).
+  std::vector<SwimInput> good = inputs_at(lengths.size(), lengths, 2);
+  for (SwimInput& input : good) {
+    for (std::size_t f = 0; f < 7; ++f) {
+      float& value = reinterpret_cast<float*>(&input)[f];
+      value = std::fabs(value);
+    }
+  }
+  auto field_of = [&](const std::vector<SwimInput>& inputs) {
+    std::string copied = "accepted", staged = "accepted";
+    try {
+      driver.enqueue(inputs, 0.1f);
+    } catch (const Error& e) {
+      copied = e.field();
+    }
+    SwimInput* area = driver.staged_inputs();
+    std::copy(inputs.begin(), inputs.end(), area);
+    try {
+      driver.enqueue_staged(0.1f);
+    } catch (const Error& e) {
+      staged = e.field();
+    }
+    EXPECT_EQ(copied, staged);
+    return copied;
+  };
+  for (std::size_t i = 0; i < lengths.size(); ++i) {
+    const std::string fish = "inputs[" + std::to_string(i) + "]";
+    std::vector<SwimInput> inputs = good;
+    for (std::size_t f = 0; f < 7; ++f) {
+      inputs = good;
+      reinterpret_cast<float*>(&inputs[i])[f] = NAN;
+      EXPECT_EQ(field_of(inputs).rfind(fish + ".", 0), 0u) << fish << " float " << f;
+    }
+    inputs = good;
+    inputs[i].speed = -std::numeric_limits<float>::denorm_min();
+    EXPECT_EQ(field_of(inputs), fish + ".speed");
+    inputs[i].speed = -0.0f;
+    inputs[i].turn_rate = -1.0f;  // other values may be negative
+    inputs[i].yaw = -3.0f;
+    EXPECT_EQ(field_of(inputs), "accepted") << fish;
+  }
+}
+
 TEST(Swim, BadInputsAreNamed) {
   const SwimModel swim(barramundi());
   SwimReference fish(swim, {0.4f, 0.3f});

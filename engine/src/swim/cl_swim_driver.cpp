@@ -30,16 +30,15 @@ static_assert(sizeof(SwimInput) == kInputFloats * sizeof(float),
 
 // Copies the inputs to the staging buffer (none when `staged` is null: the caller wrote
 // them there, ClSwimDriver::staged_inputs); true when every value is finite and every
-// speed >= 0. Branch-free passes over the bits: a float is not finite when its
+// speed >= 0, in one branch-free pass over the bits: a float is not finite when its
 // exponent is all ones, which adding 1 to the exponent carries into bit 31; below 0
-// when its sign is set and it is not -0. The copy and the finiteness check are one
-// pass; the checks read the caller's floats, never the staging copy: staging memory
-// the copy streamed to is slow to read back (75 us for 10,000 fish on an H100 machine,
-// against 20 us from the caller's; docs/swimming.md, "Host time"). With SSE2 the copy
-// streams past the caches (the host never reads the staging memory; a cached store
-// would read each line first): 31-35 us for 10,000 fish on an H200 machine, 44 us
-// without; 24-55 against 48-57 in an H100 machine's frames
-// (docs/results/2026-11-28_h100_swim_host_breakdown.txt).
+// when, as a 32-bit integer, it is negative and not -0 (INT32_MIN). The checks read the
+// caller's floats, never the staging copy: staging memory the copy streamed to is slow
+// to read back (75 us for 10,000 fish on an H100 machine, against 20 us from the
+// caller's; docs/swimming.md, "Host time"). With SSE2 the copy streams past the caches
+// (the host never reads the staging memory; a cached store would read each line first):
+// 31-35 us for 10,000 fish on an H200 machine, 44 us without; 24-55 against 48-57 in an
+// H100 machine's frames (docs/results/2026-11-28_h100_swim_host_breakdown.txt).
 bool copy_valid_inputs(const SwimInput* inputs, float* staged, std::size_t fish) {
   const std::size_t count = fish * kInputFloats;
   const auto* source = reinterpret_cast<const unsigned char*>(inputs);
@@ -48,29 +47,48 @@ bool copy_valid_inputs(const SwimInput* inputs, float* staged, std::size_t fish)
   std::size_t k = 0;
 #if defined(__SSE2__)
   if (reinterpret_cast<std::uintptr_t>(target) % 16 == 0) {
+    // Blocks of 4 inputs, 28 floats in 7 vectors; the speeds (float 5 of each input)
+    // are floats 5, 12, 19 and 26 of a block: these lanes of vectors 1, 3, 4 and 6.
+    constexpr std::size_t kBlock = 4 * kInputFloats;
     const __m128i exponent = _mm_set1_epi32(0x7f800000), one = _mm_set1_epi32(0x00800000);
-    __m128i carried4 = _mm_setzero_si128();
-    for (; k + 4 <= count; k += 4) {
-      const __m128i b = _mm_loadu_si128(reinterpret_cast<const __m128i*>(source + k * 4));
-      carried4 = _mm_or_si128(carried4, _mm_add_epi32(_mm_and_si128(b, exponent), one));
-      if (target) _mm_stream_si128(reinterpret_cast<__m128i*>(target + k * 4), b);
+    const __m128i zero = _mm_setzero_si128(), minus_zero = _mm_set1_epi32(INT32_MIN);
+    const __m128i speed_lanes[7] = {zero,
+                                    _mm_setr_epi32(0, -1, 0, 0),
+                                    zero,
+                                    _mm_setr_epi32(-1, 0, 0, 0),
+                                    _mm_setr_epi32(0, 0, 0, -1),
+                                    zero,
+                                    _mm_setr_epi32(0, 0, -1, 0)};
+    __m128i carried4 = zero, negative4 = zero;
+    for (; k + kBlock <= count; k += kBlock) {
+      for (std::size_t v = 0; v < 7; ++v) {
+        const std::size_t byte = (k + 4 * v) * sizeof(float);
+        const __m128i b = _mm_loadu_si128(reinterpret_cast<const __m128i*>(source + byte));
+        carried4 = _mm_or_si128(carried4, _mm_add_epi32(_mm_and_si128(b, exponent), one));
+        const __m128i below_zero =
+            _mm_andnot_si128(_mm_cmpeq_epi32(b, minus_zero), _mm_cmplt_epi32(b, zero));
+        negative4 = _mm_or_si128(negative4, _mm_and_si128(below_zero, speed_lanes[v]));
+        if (target) _mm_stream_si128(reinterpret_cast<__m128i*>(target + byte), b);
+      }
     }
     if (target) _mm_sfence();  // the streamed stores reach memory before the upload reads it
-    std::uint32_t lanes[4];
+    std::uint32_t lanes[4], negative_lanes[4];
     _mm_storeu_si128(reinterpret_cast<__m128i*>(lanes), carried4);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(negative_lanes), negative4);
     carried = lanes[0] | lanes[1] | lanes[2] | lanes[3];
+    negative_speed =
+        (negative_lanes[0] | negative_lanes[1] | negative_lanes[2] | negative_lanes[3]) & 1u;
   }
 #endif
+  // The inputs after the blocks (all of them without SSE2): k ends a whole input.
   for (; k < count; ++k) {
     std::uint32_t b;
     std::memcpy(&b, source + k * sizeof b, sizeof b);
     carried |= (b & 0x7f800000u) + 0x00800000u;
+    if (k % kInputFloats == 5) {
+      negative_speed |= (b >> 31) & static_cast<std::uint32_t>((b & 0x7fffffffu) != 0u);
+    }
     if (target) std::memcpy(target + k * sizeof b, &b, sizeof b);
-  }
-  for (std::size_t i = 0; i < fish; ++i) {
-    std::uint32_t b;
-    std::memcpy(&b, source + (i * kInputFloats + 5) * sizeof b, sizeof b);
-    negative_speed |= (b >> 31) & static_cast<std::uint32_t>((b & 0x7fffffffu) != 0u);
   }
   return ((carried >> 31) | negative_speed) == 0;
 }
