@@ -493,7 +493,8 @@ TEST(Swim, GatesFrameAfterFrameEachHoldTheirOwnFrame) {
   context.reset();
 }
 
-// The inputs' check goes over blocks of 4 fish on SSE2 machines, then fish one by one:
+// The inputs' check goes over blocks of 4 fish with SSE2 (copied inputs), of 8 with
+// AVX2 (staged inputs, where the processor has it), then fish one by one:
 // a bad value is found wherever it lies, through enqueue() and enqueue_staged().
 TEST(Swim, EveryBadInputIsFoundWhereverItLies) {
   const SwimModel swim(barramundi());
