@@ -61,7 +61,9 @@ bool has_avx2() {
 
 // copy_valid_inputs' check without a copy, 8 lanes wide: blocks of 8 inputs (56 floats
 // in 7 vectors), whose speeds are floats 5, 12, ..., 54: one lane of each vector, two
-// of the sixth. 4.3 us for 10,000 fish against 9.6 with SSE2 on an EPYC (in cache).
+// of the sixth. 4.3 us for 10,000 fish against 9.6 with SSE2 on an EPYC (in cache); in
+// an H100 machine's frames 13-16 us, as with SSE2 (waiting on memory there;
+// docs/results/2026-11-28_h100_swim_host_breakdown_final.txt).
 __attribute__((target("avx2"))) bool valid_inputs_avx2(const SwimInput* inputs, std::size_t fish) {
   constexpr std::size_t kBlock = 8 * kInputFloats;
   const std::size_t count = fish * kInputFloats;
