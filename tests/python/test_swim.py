@@ -102,6 +102,27 @@ def test_a_frame_behind_a_gate_runs_when_it_opens(context, swim):
     np.testing.assert_array_equal(gated_deformer.read(gated_batch).positions, expected)
 
 
+def test_inputs_in_any_memory_order_drive_alike(context, swim):
+    # C-ordered rows are read in place, others copied first: the frames are the same.
+    in_place = finflex.SwimDriver(context, swim, LENGTHS)
+    copied = finflex.SwimDriver(context, swim, LENGTHS)
+    for frame in range(4):
+        rows = inputs()
+        rows[:, 3] += 0.1 * frame
+        wide = np.zeros((len(LENGTHS), 9), np.float32)
+        wide[:, 1:8] = rows
+        other_order = np.asfortranarray(rows) if frame % 2 else wide[:, 1:8]
+        assert not other_order.flags.c_contiguous
+        in_place.enqueue(rows, DT).wait()
+        copied.enqueue(other_order, DT).wait()
+        np.testing.assert_array_equal(in_place.read_parameters(), copied.read_parameters())
+        placed = (in_place.read_placements(), copied.read_placements())
+        np.testing.assert_array_equal(placed[0][:, :13], placed[1][:, :13])  # 3 unused
+    with pytest.raises(finflex.Error) as e:
+        in_place.enqueue(inputs()[:2], DT)  # C-ordered, one fish short
+    assert e.value.field == "inputs"
+
+
 def test_bad_inputs_name_their_field(context, swim, mesh):
     driver = finflex.SwimDriver(context, swim, LENGTHS)
     with pytest.raises(finflex.Error) as e:

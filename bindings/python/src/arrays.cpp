@@ -38,15 +38,22 @@ AnyArray as_array(nb::handle object, const std::string& name, const std::string&
   return array;
 }
 
+// The (n, columns) array of T behind `object`; rejects any other.
 template <typename T>
-void copy_rows(nb::handle object, const char* name, std::size_t columns, const char* dtype,
-               std::vector<T>& out) {
+AnyArray rows_array(nb::handle object, const char* name, std::size_t columns, const char* dtype) {
   const std::string expected =
       std::string("a ") + dtype + " array of shape (n, " + std::to_string(columns) + ")";
-  const AnyArray array = as_array(object, name, expected);
+  AnyArray array = as_array(object, name, expected);
   if (array.dtype() != nb::dtype<T>() || array.ndim() != 2 || array.shape(1) != columns) {
     reject(name, std::string(name) + ": expected " + expected + ", got " + describe(object));
   }
+  return array;
+}
+
+template <typename T>
+void copy_rows(nb::handle object, const char* name, std::size_t columns, const char* dtype,
+               std::vector<T>& out) {
+  const AnyArray array = rows_array<T>(object, name, columns, dtype);
   const T* data = static_cast<const T*>(array.data());
   out.resize(array.shape(0) * columns);
   for (std::size_t i = 0; i < array.shape(0); ++i) {
@@ -124,6 +131,15 @@ std::vector<float> float_rows(nb::handle array, const char* name, std::size_t co
 void float_rows_into(nb::handle array, const char* name, std::size_t columns,
                      std::vector<float>& rows) {
   copy_rows<float>(array, name, columns, "float32", rows);
+}
+
+const float* contiguous_float_rows(nb::handle array, const char* name, std::size_t columns,
+                                   std::size_t& rows) {
+  const AnyArray checked = rows_array<float>(array, name, columns, "float32");
+  rows = checked.shape(0);
+  const bool contiguous = (rows <= 1 || checked.stride(0) == static_cast<std::int64_t>(columns)) &&
+                          (columns <= 1 || checked.stride(1) == 1);
+  return contiguous ? static_cast<const float*>(checked.data()) : nullptr;
 }
 
 std::vector<std::uint32_t> index_rows(nb::handle array, const char* name, std::size_t columns) {

@@ -24,7 +24,7 @@ struct PySwimDriver {
   std::shared_ptr<Context> context;
   std::shared_ptr<const SwimModel> swim;
   std::unique_ptr<ClSwimDriver> driver;
-  std::vector<float> rows;  // the frame's inputs as given, reused
+  std::vector<float> rows;  // the frame's inputs when copied (not C-ordered), reused
 };
 
 // A frame's device work held back until all of it is enqueued (finflex::FrameGate).
@@ -97,15 +97,22 @@ void bind_swim(nb::module_& m) {
       .def(
           "enqueue",
           [](PySwimDriver& d, nb::handle inputs, float dt, nb::handle wait) {
-            float_rows_into(inputs, "inputs", 7, d.rows);
-            const std::size_t fish = d.driver->fish_count(), count = d.rows.size() / 7;
-            // A wrong count or dt is named before anything is staged; the rows go
-            // straight into the upload's staging memory, checked there.
+            // C-ordered rows are read where they are; others are copied first.
+            std::size_t count = 0;
+            const float* rows = contiguous_float_rows(inputs, "inputs", 7, count);
+            if (rows == nullptr) {
+              float_rows_into(inputs, "inputs", 7, d.rows);
+              rows = d.rows.data();
+            }
+            const std::size_t fish = d.driver->fish_count();
+            // A wrong count is named before anything is staged; the rows go straight
+            // into the upload's staging memory (holding the GIL while the array is
+            // read), checked there with dt.
             if (count != fish) check_swim_inputs(nullptr, count, fish, dt);
             const std::vector<cl::Event> events = wait_events(wait);
+            swim_inputs_from_rows(rows, count, d.driver->staged_inputs());
             PyEvent done;
             nb::gil_scoped_release release;
-            swim_inputs_from_rows(d.rows.data(), count, d.driver->staged_inputs());
             done.event = d.driver->enqueue_staged(dt, events.empty() ? nullptr : &events);
             return done;
           },
