@@ -50,10 +50,9 @@ AnyArray rows_array(nb::handle object, const char* name, std::size_t columns, co
   return array;
 }
 
+// The rows of a checked (n, columns) array into `out`, whatever its strides.
 template <typename T>
-void copy_rows(nb::handle object, const char* name, std::size_t columns, const char* dtype,
-               std::vector<T>& out) {
-  const AnyArray array = rows_array<T>(object, name, columns, dtype);
+void copy_checked_rows(const AnyArray& array, std::size_t columns, std::vector<T>& out) {
   const T* data = static_cast<const T*>(array.data());
   out.resize(array.shape(0) * columns);
   for (std::size_t i = 0; i < array.shape(0); ++i) {
@@ -62,6 +61,12 @@ void copy_rows(nb::handle object, const char* name, std::size_t columns, const c
                                   static_cast<std::int64_t>(c) * array.stride(1)];
     }
   }
+}
+
+template <typename T>
+void copy_rows(nb::handle object, const char* name, std::size_t columns, const char* dtype,
+               std::vector<T>& out) {
+  copy_checked_rows(rows_array<T>(object, name, columns, dtype), columns, out);
 }
 
 }  // namespace
@@ -133,13 +138,15 @@ void float_rows_into(nb::handle array, const char* name, std::size_t columns,
   copy_rows<float>(array, name, columns, "float32", rows);
 }
 
-const float* contiguous_float_rows(nb::handle array, const char* name, std::size_t columns,
-                                   std::size_t& rows) {
+const float* float_rows_in_place(nb::handle array, const char* name, std::size_t columns,
+                                 std::vector<float>& copy, std::size_t& rows) {
   const AnyArray checked = rows_array<float>(array, name, columns, "float32");
   rows = checked.shape(0);
   const bool contiguous = (rows <= 1 || checked.stride(0) == static_cast<std::int64_t>(columns)) &&
                           (columns <= 1 || checked.stride(1) == 1);
-  return contiguous ? static_cast<const float*>(checked.data()) : nullptr;
+  if (contiguous) return static_cast<const float*>(checked.data());
+  copy_checked_rows(checked, columns, copy);
+  return copy.data();
 }
 
 std::vector<std::uint32_t> index_rows(nb::handle array, const char* name, std::size_t columns) {

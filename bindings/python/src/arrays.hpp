@@ -36,12 +36,12 @@ std::vector<float> float_rows(nb::handle array, const char* name, std::size_t co
 // The same into `rows` (resized; its memory reused by a frame's call).
 void float_rows_into(nb::handle array, const char* name, std::size_t columns,
                      std::vector<float>& rows);
-// The rows of an (n, columns) float32 array, in place when they lie one after the other
-// (C order), else null (copy them with float_rows_into); `rows` gets n. Other arrays
-// are rejected as float_rows_into rejects them. The memory is the array's: valid while
-// it lives and is not resized.
-const float* contiguous_float_rows(nb::handle array, const char* name, std::size_t columns,
-                                   std::size_t& rows);
+// The rows of an (n, columns) float32 array: the array's own memory when they lie one
+// after the other (C order; valid while it lives and is not resized), else `copy`
+// (resized, as float_rows_into fills it); `rows` gets n. Other arrays are rejected as
+// float_rows_into rejects them.
+const float* float_rows_in_place(nb::handle array, const char* name, std::size_t columns,
+                                 std::vector<float>& copy, std::size_t& rows);
 // A copy of an (n, columns) array of uint32 (any strides).
 std::vector<std::uint32_t> index_rows(nb::handle array, const char* name, std::size_t columns);
 

@@ -99,11 +99,7 @@ void bind_swim(nb::module_& m) {
           [](PySwimDriver& d, nb::handle inputs, float dt, nb::handle wait) {
             // C-ordered rows are read where they are; others are copied first.
             std::size_t count = 0;
-            const float* rows = contiguous_float_rows(inputs, "inputs", 7, count);
-            if (rows == nullptr) {
-              float_rows_into(inputs, "inputs", 7, d.rows);
-              rows = d.rows.data();
-            }
+            const float* rows = float_rows_in_place(inputs, "inputs", 7, d.rows, count);
             const std::size_t fish = d.driver->fish_count();
             // A wrong count is named before anything is staged; the rows go straight
             // into the upload's staging memory (holding the GIL while the array is
