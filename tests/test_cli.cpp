@@ -152,7 +152,8 @@ void expect_bench_json(const std::string& arguments, const RiggedMesh& model, Ri
                                                   "instances_per_item",
                                                   "lanes",
                                                   "streaming_stores",
-                                                  "frames_ahead"};
+                                                  "frames_ahead",
+                                                  "huge_pages"};
   EXPECT_EQ(keys, expected_keys);  // in this order, none missing, none extra
 
   ClDeformer deformer(test::shared_context(), model);
@@ -215,6 +216,34 @@ void expect_bench_json(const std::string& arguments, const RiggedMesh& model, Ri
   EXPECT_EQ(j.at("lanes").get<std::size_t>(), deformer.lanes(format));
   EXPECT_EQ(j.at("streaming_stores").get<bool>(),
             deformer.streams_outputs(deformer.allocate(8, format)));
+  // The system's transparent huge page mode, as the kernel says it.
+  std::ifstream thp("/sys/kernel/mm/transparent_hugepage/enabled");
+  std::string modes;
+  const std::string transparent = j.at("huge_pages").at("transparent").get<std::string>();
+  if (std::getline(thp, modes)) {
+    EXPECT_NE(modes.find("[" + transparent + "]"), std::string::npos) << modes;
+  } else {
+    EXPECT_EQ(transparent, "unknown");
+  }
+}
+
+// bench reports glibc's malloc huge-page tunable as the environment gives it: the last
+// glibc.malloc.hugetlb among GLIBC_TUNABLES's settings, "0" when none.
+TEST(Cli, BenchReportsGlibcHugePageTunable) {
+  const std::string bench =
+      "bench --mesh " + fish("blub/fish_low_resolution.obj") + " --instances 2 --frames 1 --json";
+  for (const auto& [environment, expected] : std::vector<std::pair<std::string, std::string>>{
+           {"env -u GLIBC_TUNABLES", "0"},
+           {"GLIBC_TUNABLES=glibc.malloc.hugetlb=1", "1"},
+           {"GLIBC_TUNABLES=glibc.malloc.hugetlb=0:glibc.malloc.arena_max=4:glibc.malloc.hugetlb=1",
+            "1"},
+           {"GLIBC_TUNABLES=glibc.malloc.arena_max=4", "0"}}) {
+    const RunResult r = run_cli(bench, environment);
+    ASSERT_EQ(r.exit_code, 0) << environment << ": " << r.err;
+    const nlohmann::ordered_json j = nlohmann::ordered_json::parse(r.out);
+    EXPECT_EQ(j.at("huge_pages").at("glibc_malloc_hugetlb").get<std::string>(), expected)
+        << environment;
+  }
 }
 
 TEST(Cli, BenchJsonKeysAndValues) {

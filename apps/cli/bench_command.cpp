@@ -38,6 +38,7 @@
 #include "cli_paths.hpp"
 #include "commands.hpp"
 #include "finflex/finflex.hpp"
+#include "huge_page_settings.hpp"
 #include "reference_kernels.hpp"
 #include "swim_scene.hpp"
 #include "timing.hpp"
@@ -451,6 +452,9 @@ int run_bench(const BenchOptions& options) {
     result["lanes"] = m.lanes;
     result["streaming_stores"] = m.streaming;
     result["frames_ahead"] = frames_ahead(context);
+    // What puts the host's memory in huge pages (CPU devices' buffers are host memory).
+    result["huge_pages"] = {{"transparent", transparent_huge_pages()},
+                            {"glibc_malloc_hugetlb", glibc_malloc_hugetlb()}};
     std::printf("%s\n", options.json ? result.dump().c_str() : result.dump(2).c_str());
     return kExitSuccess;
   } catch (const std::exception& error) {

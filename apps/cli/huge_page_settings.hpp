@@ -1,0 +1,19 @@
+// The host's huge-page settings, reported with `finflex bench` results: on CPU devices
+// they move a frame's time (docs/benchmarks.md, Swimming, "Huge pages").
+#pragma once
+
+#include <string>
+
+namespace finflex::cli {
+
+// The system's transparent huge page mode ("always", "madvise" or "never"): the word in
+// brackets in /sys/kernel/mm/transparent_hugepage/enabled; "unknown" where that file is
+// missing (systems other than Linux) or says something else.
+std::string transparent_huge_pages();
+
+// glibc's malloc huge-page tunable as this process's environment sets it: the value of
+// glibc.malloc.hugetlb among GLIBC_TUNABLES's colon-separated settings (the last one
+// given), "0" (glibc's default, off) where it is not set.
+std::string glibc_malloc_hugetlb();
+
+}  // namespace finflex::cli
