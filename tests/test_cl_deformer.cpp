@@ -227,6 +227,44 @@ TEST(ClDeformer, BatchEqualsSingleRuns) {
   }
 }
 
+// On a CPU device a batch's outputs of at least a huge page (2 MiB) are host memory
+// aligned to one (engine/src/host_pages.hpp), smaller ones and a GPU's ordinary
+// buffers; both deform alike.
+TEST(ClDeformer, LargeOutputsOfACpuDeviceLieInHugePageAlignedMemory) {
+  SmallFish fish;
+  const bool cpu = fish.deformer.context().description().type == "CPU";
+  const std::size_t huge_page = std::size_t{2} << 20;
+  const std::size_t instances = 3000;
+  DeviceBatch large = fish.deformer.allocate(instances);
+  DeviceBatch small = fish.deformer.allocate(1);
+  ASSERT_GE(large.positions.getInfo<CL_MEM_SIZE>(), huge_page);
+  ASSERT_LT(small.positions.getInfo<CL_MEM_SIZE>(), huge_page);
+  for (const cl::Buffer* buffer : {&large.positions, &large.normals}) {
+    const bool host_memory = (buffer->getInfo<CL_MEM_FLAGS>() & CL_MEM_USE_HOST_PTR) != 0;
+    EXPECT_EQ(host_memory, cpu);
+    if (host_memory) {
+      const auto address = reinterpret_cast<std::uintptr_t>(buffer->getInfo<CL_MEM_HOST_PTR>());
+      EXPECT_EQ(address % huge_page, 0u);
+    }
+  }
+  EXPECT_EQ(small.positions.getInfo<CL_MEM_FLAGS>() & CL_MEM_USE_HOST_PTR, 0u);
+
+  std::vector<float> m(instances);
+  for (std::size_t i = 0; i < instances; ++i) {
+    m[i] = fish.limit * static_cast<float>(std::sin(0.37 * static_cast<double>(i)));
+  }
+  const NormalMode normals = NormalMode::kRotate;
+  const DeformedBatch<float> all = test::run_on_device(fish.deformer, large, fish.m(m), normals);
+  for (std::size_t i : {std::size_t{0}, std::size_t{1234}, instances - 1}) {
+    const DeformedBatch<float> one =
+        test::run_on_device(fish.deformer, small, fish.m({m[i]}), normals);
+    for (std::size_t v = 0; v < fish.mesh.vertex_count(); ++v) {
+      ASSERT_EQ(one.position(0, v), all.position(i, v)) << "instance " << i << " vertex " << v;
+      ASSERT_EQ(one.normal(0, v), all.normal(i, v)) << "instance " << i << " vertex " << v;
+    }
+  }
+}
+
 // Kernel arguments are set only when a frame goes to another batch than the last one:
 // alternating batches of different sizes must each get their own frames.
 TEST(ClDeformer, AlternatingBatchesEachGetTheirOwnFrames) {

@@ -225,6 +225,18 @@ void expect_bench_json(const std::string& arguments, const RiggedMesh& model, Ri
   } else {
     EXPECT_EQ(transparent, "unknown");
   }
+  // The process's huge-page memory: a count of bytes (none with huge pages off), or null
+  // where the system does not say.
+  const auto& held = j.at("huge_pages").at("process_bytes");
+  std::ifstream rollup("/proc/self/smaps_rollup");
+  if (rollup) {
+    ASSERT_TRUE(held.is_number_unsigned()) << held.dump();
+    if (transparent == "never") {
+      EXPECT_EQ(held.get<std::uint64_t>(), 0u);
+    }
+  } else {
+    EXPECT_TRUE(held.is_null());
+  }
 }
 
 // bench reports glibc's malloc huge-page tunable as the environment gives it: the last

@@ -24,9 +24,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -452,9 +454,13 @@ int run_bench(const BenchOptions& options) {
     result["lanes"] = m.lanes;
     result["streaming_stores"] = m.streaming;
     result["frames_ahead"] = frames_ahead(context);
-    // What puts the host's memory in huge pages (CPU devices' buffers are host memory).
-    result["huge_pages"] = {{"transparent", transparent_huge_pages()},
-                            {"glibc_malloc_hugetlb", glibc_malloc_hugetlb()}};
+    // What puts the host's memory in huge pages (CPU devices' buffers are host memory),
+    // and how much of it the process holds in them after the frames.
+    const std::optional<std::uint64_t> huge_bytes = process_huge_page_bytes();
+    result["huge_pages"] = {
+        {"transparent", transparent_huge_pages()},
+        {"glibc_malloc_hugetlb", glibc_malloc_hugetlb()},
+        {"process_bytes", huge_bytes ? nlohmann::ordered_json(*huge_bytes) : nullptr}};
     std::printf("%s\n", options.json ? result.dump().c_str() : result.dump(2).c_str());
     return kExitSuccess;
   } catch (const std::exception& error) {

@@ -30,4 +30,19 @@ std::string glibc_malloc_hugetlb() {
   return value;
 }
 
+std::optional<std::uint64_t> process_huge_page_bytes() {
+  std::ifstream file("/proc/self/smaps_rollup");
+  const std::string key = "AnonHugePages:";
+  for (std::string line; std::getline(file, line);) {
+    if (line.compare(0, key.size(), key) != 0) continue;
+    // "AnonHugePages:     253952 kB"
+    std::istringstream fields(line.substr(key.size()));
+    std::uint64_t kilobytes = 0;
+    std::string unit;
+    if (fields >> kilobytes >> unit && unit == "kB") return kilobytes * 1024;
+    return std::nullopt;
+  }
+  return std::nullopt;
+}
+
 }  // namespace finflex::cli

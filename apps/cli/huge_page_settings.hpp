@@ -2,6 +2,8 @@
 // they move a frame's time (docs/benchmarks.md, Swimming, "Huge pages").
 #pragma once
 
+#include <cstdint>
+#include <optional>
 #include <string>
 
 namespace finflex::cli {
@@ -15,5 +17,11 @@ std::string transparent_huge_pages();
 // glibc.malloc.hugetlb among GLIBC_TUNABLES's colon-separated settings (the last one
 // given), "0" (glibc's default, off) where it is not set.
 std::string glibc_malloc_hugetlb();
+
+// The bytes of this process's anonymous memory in transparent huge pages now (the
+// AnonHugePages line of /proc/self/smaps_rollup): on CPU devices the outputs of at
+// least 2 MiB are advised as huge pages (engine/src/host_pages.hpp), and this says
+// whether the system gave them. Empty where the file is missing or unreadable.
+std::optional<std::uint64_t> process_huge_page_bytes();
 
 }  // namespace finflex::cli

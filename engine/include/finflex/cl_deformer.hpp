@@ -148,7 +148,11 @@ class FINFLEX_API ClDeformer {
   // Allocates the outputs of `instances` instances in FinFlex's planes, normals and
   // tangents in `format`. kInvalidArgument for 0, kOutOfRange naming "instances" when
   // one attribute array would exceed the device's largest allocation or above
-  // kMaxDeviceInstances.
+  // kMaxDeviceInstances. On a CPU device an attribute's buffer of 2 MiB or more is host
+  // memory aligned to 2 MiB and advised as transparent huge pages (Linux), wrapped
+  // with CL_MEM_USE_HOST_PTR: the kernels' stores then miss the TLB far less
+  // (docs/benchmarks.md, Swimming, "Outputs in huge pages"). For bind_host, align and
+  // advise your own memory alike for the same gain.
   DeviceBatch allocate(std::size_t instances, NormalFormat format = NormalFormat::kFloat32) const;
 
   // ---- Hand-off (finflex/output_layout.hpp, docs/handoff.md) ----
