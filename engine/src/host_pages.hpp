@@ -18,7 +18,7 @@ constexpr std::size_t kHugePageBytes = std::size_t{2} << 20;
 // of at least kHugePageBytes is host memory aligned to a huge page and advised to the
 // kernel as huge-page memory (Linux madvise MADV_HUGEPAGE), wrapped with
 // CL_MEM_USE_HOST_PTR and freed by the buffer's destructor callback: the deformation's
-// stores, which visit dozens of planes' pages a work-group, then miss the TLB far less
+// stores, which visit dozens of planes' pages a work-group, then cross far fewer pages
 // (docs/benchmarks.md, Swimming, "Outputs in huge pages"). Elsewhere, or where that fails, an
 // ordinary buffer.
 cl::Buffer make_large_buffer(const Context& context, cl_mem_flags flags, std::size_t bytes);

@@ -150,8 +150,8 @@ class FINFLEX_API ClDeformer {
   // one attribute array would exceed the device's largest allocation or above
   // kMaxDeviceInstances. On a CPU device an attribute's buffer of 2 MiB or more is host
   // memory aligned to 2 MiB and advised as transparent huge pages (Linux), wrapped
-  // with CL_MEM_USE_HOST_PTR: the kernels' stores then miss the TLB far less
-  // (docs/benchmarks.md, Swimming, "Outputs in huge pages"). For bind_host, align and
+  // with CL_MEM_USE_HOST_PTR: the kernels' stores then run faster, on far fewer
+  // pages (docs/benchmarks.md, Swimming, "Outputs in huge pages"). For bind_host, align and
   // advise your own memory alike for the same gain.
   DeviceBatch allocate(std::size_t instances, NormalFormat format = NormalFormat::kFloat32) const;
 
