@@ -351,8 +351,8 @@ void ClDeformer::Impl::ensure_scratch(std::size_t instances) {
   scratch_.clear();
   for (std::size_t k = 0; k < 3 * scratch_sets_; ++k) {
     const bool tangent = k % 3 == 2;
-    scratch_.push_back(detail::make_large_buffer(context, CL_MEM_READ_WRITE,
-                                                 tangent && !tangents_ ? sizeof(float) : bytes));
+    scratch_.push_back(
+        detail::make_large_buffer(context, tangent && !tangents_ ? sizeof(float) : bytes));
   }
   scratch_instances_ = instances;
   ++generation_;

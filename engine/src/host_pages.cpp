@@ -34,24 +34,24 @@ void* huge_page_memory(std::size_t bytes) {
 
 }  // namespace
 
-cl::Buffer make_large_buffer(const Context& context, cl_mem_flags flags, std::size_t bytes) {
-  if (context.description().type != "CPU" || bytes < kHugePageBytes) {
-    return make_buffer(context.context(), flags, bytes);
-  }
-  void* memory = huge_page_memory(bytes);
-  if (!memory) return make_buffer(context.context(), flags, bytes);
-  cl_int status = CL_SUCCESS;
-  cl::Buffer buffer(context.context(), flags | CL_MEM_USE_HOST_PTR, bytes, memory, &status);
-  if (status != CL_SUCCESS) {
+cl::Buffer make_large_buffer(const Context& context, std::size_t bytes) {
+  void* memory = context.description().type == "CPU" && bytes >= kHugePageBytes
+                     ? huge_page_memory(bytes)
+                     : nullptr;
+  if (!memory) return make_buffer(context.context(), CL_MEM_READ_WRITE, bytes);
+  cl::Buffer buffer;
+  try {
+    buffer = make_buffer_over(context.context(), memory, bytes);
+  } catch (...) {
     std::free(memory);
-    return make_buffer(context.context(), flags, bytes);
+    throw;
   }
   if (clSetMemObjectDestructorCallback(buffer(), free_host_memory, memory) != CL_SUCCESS) {
     // Nothing else holds the buffer yet: releasing it ends the device's use of the
     // memory at once.
     buffer = cl::Buffer();
     std::free(memory);
-    return make_buffer(context.context(), flags, bytes);
+    return make_buffer(context.context(), CL_MEM_READ_WRITE, bytes);
   }
   return buffer;
 }

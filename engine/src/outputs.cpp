@@ -423,7 +423,7 @@ DeviceBatch allocate_outputs(Context& context, const BatchLayout& counts,
                       std::to_string(device.max_allocation_bytes) + " bytes on '" +
                       device.device_name + "')");
     }
-    *a.buffer = make_large_buffer(context, CL_MEM_READ_WRITE, bytes);
+    *a.buffer = make_large_buffer(context, bytes);
   }
   return batch;
 }
