@@ -53,7 +53,7 @@ __kernel void single_bend(__global const float* restrict rest_positions,
     if (instance >= instances) break;
     const SecantSample s = bend_sample(rest_p.x, rest_p.z, m[instance]);
 #if FF_PLACEMENT /* from the body frame straight to the world */
-    __global const float* record = placements + instance * 16;
+    FF_READ_PLACEMENT(record, placements + instance * 16)
     const Vec3 p = world_point(secant_position(rest_p, s), record);
     const Vec3 n = world_direction(secant_normal(rest_n, s), record);
     const Vec3 t = world_direction(secant_tangent(rest_t, s), record);

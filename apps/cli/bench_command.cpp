@@ -263,7 +263,7 @@ Measured measure_deform(const BenchOptions& options, const Mesh& mesh, Context& 
   measured.scratch_records = passes_path ? deformer.scratch_records_per_slot() : 0.0;
   const Rig& rig = model.rig();
   measured.write_only = fastest_write_only(context, bench.batch, layout.vertices,
-                                           deformer.instances_per_item(layout.layout),
+                                           deformer.instances_per_item(layout.layout, normals),
                                            deformer.lanes(layout.layout), frames);
   measured.times = bench::time_frames(
       frames,
@@ -286,7 +286,7 @@ Measured measure_deform(const BenchOptions& options, const Mesh& mesh, Context& 
   measured.what = options.rig.empty() ? std::string("bend ") + options.mode
                                       : std::string("rig ") + to_string(chosen);
   measured.batch = &bench.batch;
-  measured.per_item = deformer.instances_per_item(layout.layout);
+  measured.per_item = deformer.instances_per_item(layout.layout, normals);
   measured.lanes = deformer.lanes(layout.layout);
   measured.streaming = deformer.streams_outputs(bench.batch);
   measured.vertices = mesh.vertex_count();
@@ -318,9 +318,10 @@ Measured measure_swim(const BenchOptions& options, Context& context, std::size_t
   Measured measured;
   std::vector<double> enqueue, driver;  // per timed frame, the tank's step excluded
   const std::size_t output_vertices = species.batch().layout.plane_stride;
-  measured.write_only = fastest_write_only(
-      context, species.batch(), output_vertices, species.deformer->instances_per_item(format),
-      species.deformer->lanes(species.batch().outputs), frames);
+  measured.write_only =
+      fastest_write_only(context, species.batch(), output_vertices,
+                         species.deformer->instances_per_item(format, normals),
+                         species.deformer->lanes(species.batch().outputs), frames);
   measured.times = bench::time_frames(
       frames, [](std::size_t) {},
       [&](std::vector<cl::Event>& events, bool timed) {
@@ -338,7 +339,7 @@ Measured measure_swim(const BenchOptions& options, Context& context, std::size_t
   measured.host_driver_seconds = driver;
   measured.what = std::string("swim ") + to_string(species.deformer->automatic_path());
   measured.batch = &species.batch();
-  measured.per_item = species.deformer->instances_per_item(format);
+  measured.per_item = species.deformer->instances_per_item(format, normals);
   measured.lanes = species.deformer->lanes(species.batch().outputs);
   measured.streaming = species.deformer->streams_outputs(species.batch());
   measured.vertices = species.swim.model().vertex_count();

@@ -160,10 +160,11 @@ BatchLayout ClDeformer::Impl::layout(std::size_t instances, NormalFormat format)
   return layout;
 }
 
-std::size_t ClDeformer::Impl::per_item(NormalFormat format) const {
+std::size_t ClDeformer::Impl::per_item(NormalFormat format, bool rotated_planes) const {
   return options.instances_per_item
              ? options.instances_per_item
-             : detail::device_instances_per_item(context.description(), single_bend, format);
+             : detail::device_instances_per_item(context.description(), single_bend, format,
+                                                 derived_per_instance_ > 0 && rotated_planes);
 }
 
 // Normals of fewer than 12 bytes (16-bit and octahedral formats) take the work-item
@@ -173,14 +174,15 @@ std::size_t ClDeformer::Impl::per_item(NormalFormat format) const {
 // strided stores then stay within one instance's vertices. Measured on the H100, 4,000
 // fish (docs/handoff.md): the bend's octahedral struct 0.41 ms at one, 0.44 at two; the
 // rig's kernels are faster at their usual four (0.32 against 0.42).
-std::size_t ClDeformer::Impl::per_item(const OutputLayout& outputs) const {
+std::size_t ClDeformer::Impl::per_item(const OutputLayout& outputs, NormalMode normals) const {
   const bool staged = stages_structs() && detail::fills_vertex_struct(outputs);
   if (options.instances_per_item == 0 && context.description().is_gpu() && single_bend &&
       outputs.positions.arrangement == Arrangement::kPacked && !staged) {
     return 1;
   }
-  return per_item(format_bytes(outputs.normals.format) < 12 ? NormalFormat::kHalf
-                                                            : NormalFormat::kFloat32);
+  return per_item(
+      format_bytes(outputs.normals.format) < 12 ? NormalFormat::kHalf : NormalFormat::kFloat32,
+      writes_planes(outputs) && normals == NormalMode::kRotate);
 }
 
 std::size_t ClDeformer::Impl::output_vertices(VertexOrder order) const {
@@ -329,7 +331,7 @@ void ClDeformer::Impl::check(const ClJob& job) const {
 ClDeformer::Impl::BoundKernel& ClDeformer::Impl::kernel(std::size_t index, const ClJob& job) {
   const bool placed = job.placements != nullptr || job.placement_buffer != nullptr;
   const detail::KernelVariant variant{
-      index,  job.normals,  batch_options_, per_item(job.outputs->outputs),
+      index,  job.normals,  batch_options_, per_item(job.outputs->outputs, job.normals),
       placed, batch_lanes_, batch_streams_};
   auto found = kernels_.find(variant);
   if (found == kernels_.end()) {
@@ -394,7 +396,7 @@ void ClDeformer::Impl::prepare_derived(const ClJob& job, const FrameInputs& inpu
     // build when they have one lane): it works on instances, not on vertex slots.
     const bool placed = job.placements != nullptr || job.placement_buffer != nullptr;
     const detail::KernelVariant variant{
-        0, job.normals, batch_options_, per_item(job.outputs->outputs), placed, 1};
+        0, job.normals, batch_options_, per_item(job.outputs->outputs, job.normals), placed, 1};
     prepare_ = context.kernel("rig_prepare", program_, variant.options());
   }
   cl_uint arg = 0;
@@ -464,7 +466,7 @@ void ClDeformer::Impl::launch(BoundKernel& bound, const ClJob& job, std::size_t 
   // profiling (creating events costs host time on some drivers).
   cl::Event own;
   cl::Event* event = done ? done : kernel_events ? &own : nullptr;
-  const std::size_t per = per_item(job.outputs->outputs);
+  const std::size_t per = per_item(job.outputs->outputs, job.normals);
   // A work-group covers kWorkGroupSize slots whatever the lanes: the rig kernels tell
   // components apart by work-group (kernels/rig.cl).
   // With lanes, kLaneGroupRows instance rows (the kernels skip those past the
@@ -695,11 +697,11 @@ std::size_t ClDeformer::derived_floats_per_instance() const {
   return impl_->derived_per_instance();
 }
 RigPath ClDeformer::automatic_path() const { return impl_->automatic_path; }
-std::size_t ClDeformer::instances_per_item(NormalFormat format) const {
-  return impl_->per_item(format);
+std::size_t ClDeformer::instances_per_item(NormalFormat format, NormalMode normals) const {
+  return impl_->per_item(format, normals == NormalMode::kRotate);
 }
-std::size_t ClDeformer::instances_per_item(const OutputLayout& outputs) const {
-  return impl_->per_item(outputs);
+std::size_t ClDeformer::instances_per_item(const OutputLayout& outputs, NormalMode normals) const {
+  return impl_->per_item(outputs, normals);
 }
 std::size_t ClDeformer::lanes(NormalFormat) const { return impl_->lanes(); }
 std::size_t ClDeformer::lanes(const OutputLayout& outputs) const { return impl_->lanes(outputs); }

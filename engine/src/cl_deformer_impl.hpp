@@ -29,8 +29,10 @@ class ClDeformer::Impl {
   void check(const ClJob& job) const;
 
   BatchLayout layout(std::size_t instances, NormalFormat format) const;
-  std::size_t per_item(NormalFormat format) const;
-  std::size_t per_item(const OutputLayout& outputs) const;
+  // Instances per work-item for FinFlex's planes in `format` (rotated_planes: with
+  // rotated normals), and for `outputs` with `normals`.
+  std::size_t per_item(NormalFormat format, bool rotated_planes) const;
+  std::size_t per_item(const OutputLayout& outputs, NormalMode normals) const;
   // The outputs' vertex count in `order`: slots, or the mesh's vertices.
   std::size_t output_vertices(VertexOrder order) const;
   // Lanes (ClOptions::lanes), and for a batch's outputs (1 on GPUs unless they are

@@ -21,13 +21,21 @@ static_assert(64 % kWorkGroupSize == 0, "padded_plane_stride must be a multiple 
 // Instances one work-item deforms. GPUs are limited by the rate of work-items, not of
 // bytes, with one instance per work-item: the single bend takes 2 with float32
 // normals and 4 with half normals (fewer bytes per instance), the rig kernels 4 (a
-// vertex's rest values, path and, for a spine, its segment serve four instances).
-// 10,000 swimming fish deform in 0.866 ms at 4 against 0.876 at 2 on an H100, 0.697
-// against 0.748 on an H200 (docs/benchmarks.md). CPUs take 1.
+// vertex's rest values and path serve four instances): 10,000 swimming fish deformed
+// in 0.866 ms at 4 against 0.876 at 2 on an H100, 0.697 against 0.748 on an H200.
+// `spine_planes`: a rig with a table stage (a spine, whose segment lookup serves them
+// too) writing FinFlex's planes with rotated normals takes 8: on an H200, 10,000
+// swimming fish 0.667-0.669 ms against 0.678-0.679 at 4 (0.674-0.676 at 16), half
+// normals 0.603-0.605 against 0.625. Elsewhere 8 holds more than the registers do:
+// Jacobian normals 0.803 against 0.703, octahedral normals 0.361 against 0.297 for
+// 4,000, interleaved structs 0.311 against 0.306, and a rig without a table (the Blub
+// rig's hinges and bend) 0.247-0.249 against 0.239 for 4,000 (docs/benchmarks.md,
+// Swimming, "Eight fish per work-item"). CPUs take 1.
 inline std::size_t device_instances_per_item(const DeviceDescription& device,
-                                             bool single_bend_kernel, NormalFormat format) {
+                                             bool single_bend_kernel, NormalFormat format,
+                                             bool spine_planes) {
   if (!device.is_gpu()) return 1;
-  if (!single_bend_kernel) return 4;
+  if (!single_bend_kernel) return spine_planes ? 8 : 4;
   return format == NormalFormat::kHalf ? 4 : 2;
 }
 

@@ -207,9 +207,12 @@ class FINFLEX_API ClDeformer {
   std::size_t derived_floats_per_instance() const;
   // The path RigPath::kAuto resolves to for this model.
   RigPath automatic_path() const;
-  // Instances one work-item deforms for outputs in `format` (ClOptions).
-  std::size_t instances_per_item(NormalFormat format) const;
-  std::size_t instances_per_item(const OutputLayout& outputs) const;
+  // Instances one work-item deforms for outputs in FinFlex's planes in `format`, or in
+  // `outputs`, with normals by `normals` (ClOptions; the shape may differ by mode).
+  std::size_t instances_per_item(NormalFormat format,
+                                 NormalMode normals = NormalMode::kRotate) const;
+  std::size_t instances_per_item(const OutputLayout& outputs,
+                                 NormalMode normals = NormalMode::kRotate) const;
   // Vertex slots one work-item deforms for outputs in FinFlex's planes (the same for
   // both normal formats), and for outputs in `outputs` (ClOptions::lanes).
   std::size_t lanes(NormalFormat format) const;

@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# Run on a GPU machine from the repository root with a bundle made by bundle.sh: the
+# swim of 10,000 fish (driver, placed deformation) for each binary in turn, ROUNDS
+# rounds (default 3) of FRAMES frames (default 200), so that builds are compared side
+# by side on the same GPU; OPTIONS, bench options for that entry (e.g.
+# "bin/finflex|--normals jacobian"). One JSON line per run in OUT_FILE:
+# {"binary" (its name and options), "round", "result"}; then a line per run on stdout:
+# ms a frame, of write-only, host us, each kernel's median (ms).
+#
+#   scripts/device/gpu_swim_ab.sh BUNDLE_DIR OUT_FILE BINARY[|OPTIONS] ...
+set -uo pipefail
+bundle=$1
+out=$2
+shift 2
+export LD_LIBRARY_PATH="$bundle/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+source "$(dirname "$0")/register_nvidia_icd.sh"
+: > "$out"
+for round in $(seq "${ROUNDS:-3}"); do
+  for entry in "$@"; do
+    binary=${entry%%|*}
+    options=""
+    [[ $entry == *"|"* ]] && options=${entry#*|}
+    # shellcheck disable=SC2086 # the options are words
+    result=$("$binary" bench --mesh data/blub/fish.obj --rig data/rigs/blub_swim.rig.json \
+      --swim --instances 10000 --frames "${FRAMES:-200}" --device NVIDIA --json $options) ||
+      result=null
+    echo "{\"binary\": \"$(basename "$binary")${options:+ $options}\", \"round\": $round, \"result\": $result}" >> "$out"
+  done
+done
+python3 - "$out" <<'PY'
+import json, sys
+for line in open(sys.argv[1]):
+    run = json.loads(line)
+    r = run["result"]
+    if r is None:
+        print(f"{run['binary']:40} round {run['round']} failed")
+        continue
+    kernels = " ".join(f"{k * 1e3:.4f}" for k in r["kernel_seconds_median"])
+    print(f"{run['binary']:40} round {run['round']} {r['seconds_per_frame_median'] * 1e3:.3f} ms "
+          f"{r['write_fraction']:.3f} {r['host_enqueue_seconds_median'] * 1e6:.0f} us  {kernels}")
+PY
