@@ -4,8 +4,8 @@
 # rounds (default 3) of FRAMES frames (default 200), so that builds are compared side
 # by side on the same GPU; OPTIONS, bench options for that entry (e.g.
 # "bin/finflex|--normals jacobian"). One JSON line per run in OUT_FILE:
-# {"binary" (its name and options), "round", "result"}; then a line per run on stdout:
-# ms a frame, of write-only, host us, each kernel's median (ms).
+# {"binary" (its name and options), "round", "result"}; then a table of the runs
+# (bench_table.py).
 #
 #   scripts/device/gpu_swim_ab.sh BUNDLE_DIR OUT_FILE BINARY[|OPTIONS] ...
 set -uo pipefail
@@ -27,15 +27,4 @@ for round in $(seq "${ROUNDS:-3}"); do
     echo "{\"binary\": \"$(basename "$binary")${options:+ $options}\", \"round\": $round, \"result\": $result}" >> "$out"
   done
 done
-python3 - "$out" <<'PY'
-import json, sys
-for line in open(sys.argv[1]):
-    run = json.loads(line)
-    r = run["result"]
-    if r is None:
-        print(f"{run['binary']:40} round {run['round']} failed")
-        continue
-    kernels = " ".join(f"{k * 1e3:.4f}" for k in r["kernel_seconds_median"])
-    print(f"{run['binary']:40} round {run['round']} {r['seconds_per_frame_median'] * 1e3:.3f} ms "
-          f"{r['write_fraction']:.3f} {r['host_enqueue_seconds_median'] * 1e6:.0f} us  {kernels}")
-PY
+python3 "$(dirname "$0")/bench_table.py" "$out"

@@ -34,16 +34,4 @@ bench "swim, 2 instances per work-item" "${swim[@]}" --swim --per-item 2
 bench "swim, 4 instances per work-item" "${swim[@]}" --swim --per-item 4
 bench "swim rig, no driver, not placed" "${swim[@]}"
 bench "whole-body bend" --mode paper
-python3 - "$log" <<'PY'
-import json, sys
-print(f"{'case':40} {'ms/frame':>9} {'of write-only':>13} {'host us':>8}  kernels (ms)")
-for line in open(sys.argv[1]):
-    run = json.loads(line)
-    r = run["result"]
-    if r is None:
-        print(f"{run['case']:40} failed")
-        continue
-    kernels = " ".join(f"{k * 1e3:.3f}" for k in r["kernel_seconds_median"])
-    print(f"{run['case']:40} {r['seconds_per_frame_median'] * 1e3:9.3f} "
-          f"{r['write_fraction']:13.2f} {r['host_enqueue_seconds_median'] * 1e6:8.0f}  {kernels}")
-PY
+python3 "$(dirname "$0")/bench_table.py" "$log"
