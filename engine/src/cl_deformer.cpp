@@ -308,6 +308,8 @@ void ClDeformer::Impl::check_buffer_sizes(const DeviceBatch& batch) {
   // vectors, other layouts lane by lane or with one lane).
   batch_lanes_ = lanes(batch.outputs);
   batch_streams_ = streams_outputs(batch);
+  batch_per_item_ = {per_item(batch.outputs, NormalMode::kRotate),
+                     per_item(batch.outputs, NormalMode::kJacobian)};
   ++generation_;  // kernels take the batch's arguments again
 }
 
@@ -331,7 +333,7 @@ void ClDeformer::Impl::check(const ClJob& job) const {
 ClDeformer::Impl::BoundKernel& ClDeformer::Impl::kernel(std::size_t index, const ClJob& job) {
   const bool placed = job.placements != nullptr || job.placement_buffer != nullptr;
   const detail::KernelVariant variant{
-      index,  job.normals,  batch_options_, per_item(job.outputs->outputs, job.normals),
+      index,  job.normals,  batch_options_, batch_per_item(job.normals),
       placed, batch_lanes_, batch_streams_};
   auto found = kernels_.find(variant);
   if (found == kernels_.end()) {
@@ -396,7 +398,7 @@ void ClDeformer::Impl::prepare_derived(const ClJob& job, const FrameInputs& inpu
     // build when they have one lane): it works on instances, not on vertex slots.
     const bool placed = job.placements != nullptr || job.placement_buffer != nullptr;
     const detail::KernelVariant variant{
-        0, job.normals, batch_options_, per_item(job.outputs->outputs, job.normals), placed, 1};
+        0, job.normals, batch_options_, batch_per_item(job.normals), placed, 1};
     prepare_ = context.kernel("rig_prepare", program_, variant.options());
   }
   cl_uint arg = 0;
@@ -466,7 +468,7 @@ void ClDeformer::Impl::launch(BoundKernel& bound, const ClJob& job, std::size_t 
   // profiling (creating events costs host time on some drivers).
   cl::Event own;
   cl::Event* event = done ? done : kernel_events ? &own : nullptr;
-  const std::size_t per = per_item(job.outputs->outputs, job.normals);
+  const std::size_t per = batch_per_item(job.normals);
   // A work-group covers kWorkGroupSize slots whatever the lanes: the rig kernels tell
   // components apart by work-group (kernels/rig.cl).
   // With lanes, kLaneGroupRows instance rows (the kernels skip those past the

@@ -130,6 +130,12 @@ class ClDeformer::Impl {
   std::string batch_options_;    // output_build_options() of the batch validated last
   std::size_t batch_lanes_ = 1;  // lanes(outputs) of the batch validated last
   bool batch_streams_ = false;   // streams_outputs() of the batch validated last
+  // per_item(outputs, normals) of the batch validated last, by normal mode (rotate,
+  // Jacobian): a frame's kernels take it without working it out again.
+  std::array<std::size_t, 2> batch_per_item_ = {1, 1};
+  std::size_t batch_per_item(NormalMode normals) const {
+    return batch_per_item_[normals == NormalMode::kJacobian ? 1 : 0];
+  }
   // Per slot its mesh vertex (0xffffffff for padding): outputs in mesh order.
   cl::Buffer vertex_of_slot_;
   std::map<detail::KernelVariant, BoundKernel> kernels_;
