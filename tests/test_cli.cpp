@@ -112,6 +112,34 @@ TEST(Cli, BenchPrintsOneJsonObject) {
       2);
 }
 
+// bench --swim: a tank of the low-resolution Blub; the tank's steps recorded before the
+// timed frames (the default) or taken inside the frame loop (live), both reported.
+TEST(Cli, BenchSwimsWithRecordedOrLiveInputs) {
+  const std::string swim = "bench --mesh " + fish("blub/fish_low_resolution.obj") + " --rig " +
+                           fish("rigs/blub_low_resolution_swim.rig.json") +
+                           " --swim --instances 12 --frames 3 --json";
+  for (const std::string inputs : {"", "recorded", "live"}) {
+    SCOPED_TRACE(inputs);
+    const RunResult r = run_cli(swim + (inputs.empty() ? "" : " --swim-inputs " + inputs));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    ASSERT_EQ(line_count(r.out), 1) << r.out;
+    const nlohmann::ordered_json j = nlohmann::ordered_json::parse(r.out);
+    EXPECT_EQ(j.at("swim_inputs").get<std::string>(), inputs.empty() ? "recorded" : inputs);
+    EXPECT_EQ(j.at("instances").get<std::size_t>(), 12u);
+    EXPECT_EQ(j.at("deformation").get<std::string>().rfind("swim ", 0), 0u);
+    EXPECT_GT(j.at("seconds_per_frame_median").get<double>(), 0.0);
+    EXPECT_GT(j.at("host_driver_seconds_median").get<double>(), 0.0);
+    // The driver, then the deformation's kernels.
+    EXPECT_GE(j.at("kernel_seconds_median").size(), 2u);
+  }
+  const RunResult bad = run_cli(swim + " --swim-inputs replayed");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_EQ(line_count(bad.err), 1) << bad.err;
+  EXPECT_NE(bad.err.find("--swim-inputs 'replayed' is not recorded or live"), std::string::npos)
+      << bad.err;
+  EXPECT_TRUE(bad.out.empty()) << bad.out;
+}
+
 // Every key of `finflex bench --json` with its value: the counts as given, the passes
 // and bytes the library says for the model, and the rates consistent with the times
 // (docs/benchmarks.md's counters).

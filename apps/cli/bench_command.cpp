@@ -5,7 +5,7 @@
 //
 //   finflex bench --mesh PATH --instances N --frames F [--mode paper|exact]
 //                 [--normals rotate|jacobian] [--normal-format float32|half]
-//                 [--rig RIG.json [--path fused|passes] [--swim]]
+//                 [--rig RIG.json [--path fused|passes] [--swim [--swim-inputs recorded|live]]]
 //                 [--layout planes|interleaved|compact|snorm|arrays] [--order slots|mesh]
 //                 [--previous] [--host] [--per-item N] [--table-items N] [--lanes 0|1|8|16|32]
 //                 [--stores auto|plain|streaming] [--device NAME] [--json]
@@ -18,6 +18,12 @@
 // driver kernel, the rig's prepare kernel and the deformation with world placement,
 // timed from the driver's start to the deformation's end; the host time is the
 // enqueue (inputs gathered and uploaded, launches), the tank's simulation excluded.
+// --swim-inputs: recorded (default) steps the tank for the timed frames before they
+// run (a ring of at most kRecordedSwimFrames steps, replayed in turn) and each frame
+// copies its step's inputs into the drivers' staging memory, so the device is fed as
+// by an application whose simulation keeps ahead of it; live steps the tank inside the
+// frame loop, and the device waits for the host whenever a step takes longer than a
+// frame (10,000 fish: a millisecond or more against 0.7 ms of kernels on an H200).
 //
 // On GPUs the frames run ahead (the next one enqueued before this one is waited for,
 // JSON "frames_ahead": true), as in an application's frame loop; on CPUs one by one.
@@ -63,6 +69,7 @@ struct BenchOptions {
   std::string stores = "auto";
   std::string dispatch = "auto";
   bool swim = false;
+  std::string swim_inputs = "recorded";
   std::string layout = "planes";
   std::string order = "slots";
   bool previous = false;
@@ -295,6 +302,30 @@ Measured measure_deform(const BenchOptions& options, const Mesh& mesh, Context& 
   return measured;
 }
 
+// --swim-inputs recorded: the tank's steps replayed in turn, at most 64 and at most
+// 256 MiB of inputs (64 steps of 10,000 fish: 18 MB).
+constexpr std::size_t kRecordedSwimFrames = 64;
+constexpr std::size_t kRecordedSwimBytes = std::size_t{256} << 20;
+
+bool parse_swim_inputs(const std::string& text) {
+  if (text == "recorded") return true;
+  if (text == "live") return false;
+  throw Error(ErrorCode::kInvalidArgument, "--swim-inputs",
+              "--swim-inputs '" + text + "' is not recorded or live");
+}
+
+// The swim inputs of the tank's next `steps` steps of dt, species by species.
+std::vector<std::vector<std::vector<SwimInput>>> record_tank_steps(tank::SwimScene& scene,
+                                                                   std::size_t steps, double dt) {
+  std::vector<std::vector<std::vector<SwimInput>>> recorded(steps);
+  for (auto& step : recorded) {
+    scene.tank().step(dt);
+    step.resize(scene.species().size());
+    for (std::size_t s = 0; s < step.size(); ++s) scene.tank().inputs(s, step[s]);
+  }
+  return recorded;
+}
+
 // A tank of swimming fish of one species, the tank scaled to keep the density of
 // 1,000 fish in the default tank.
 Measured measure_swim(const BenchOptions& options, Context& context, std::size_t instances,
@@ -317,6 +348,24 @@ Measured measure_swim(const BenchOptions& options, Context& context, std::size_t
   tank::Species& species = scene->species().front();
   Measured measured;
   std::vector<double> enqueue, driver;  // per timed frame, the tank's step excluded
+  constexpr double kFrameSeconds = 1.0 / 30.0;
+  // The untimed first frame and the timed ones (time_frames).
+  const std::size_t most_steps = std::clamp<std::size_t>(
+      kRecordedSwimBytes / (instances * sizeof(SwimInput)), 1, kRecordedSwimFrames);
+  const std::size_t steps =
+      parse_swim_inputs(options.swim_inputs) ? std::min(frames + 1, most_steps) : 0;
+  const auto recorded = record_tank_steps(*scene, steps, kFrameSeconds);
+  std::size_t frame = 0;
+  auto enqueue_frame = [&]() {
+    if (recorded.empty()) return scene->enqueue_frame(kFrameSeconds, true);
+    const auto& step = recorded[frame++ % recorded.size()];
+    return scene->enqueue_frame(
+        kFrameSeconds,
+        [&step](std::size_t s, SwimInput* staged) {
+          std::copy(step[s].begin(), step[s].end(), staged);
+        },
+        true);
+  };
   const std::size_t output_vertices = species.batch().layout.plane_stride;
   measured.write_only =
       fastest_write_only(context, species.batch(), output_vertices,
@@ -325,7 +374,7 @@ Measured measure_swim(const BenchOptions& options, Context& context, std::size_t
   measured.times = bench::time_frames(
       frames, [](std::size_t) {},
       [&](std::vector<cl::Event>& events, bool timed) {
-        const tank::FrameWork work = scene->enqueue_frame(1.0 / 30.0, true);
+        const tank::FrameWork work = enqueue_frame();
         if (timed) {
           enqueue.push_back(work.enqueue_seconds);
           driver.push_back(work.driver_seconds);
@@ -366,6 +415,7 @@ BenchCounts check_bench(const BenchOptions& options) {
   parse_normal_mode(options.normals, "--normals");
   parse_normal_format(options.normal_format, "--normal-format");
   parse_rig_path(options.path, "--path");
+  parse_swim_inputs(options.swim_inputs);
   cl_options(options);  // --per-item, --table-items, --lanes, --stores, --dispatch
   check_bench_layout(options.layout, options.order);
   check_input_file("--mesh", options.mesh, mesh_extensions());
@@ -441,6 +491,7 @@ int run_bench(const BenchOptions& options) {
     result["host_enqueue_seconds_median"] = bench::median(m.times.host);
     if (options.swim) {
       result["host_driver_seconds_median"] = bench::median(m.host_driver_seconds);
+      result["swim_inputs"] = options.swim_inputs;
     }
     result["host_outputs"] = options.host;
     if (options.host) {
@@ -521,6 +572,11 @@ Command add_bench_command(CLI::App& app) {
                   "Outputs in host memory (bind_host); also time mapping each frame for the host");
   bench->add_flag("--swim", options->swim,
                   "With a swim rig: a tank of swimming fish (driver, deformation, placement)");
+  bench
+      ->add_option("--swim-inputs", options->swim_inputs,
+                   "--swim: recorded (the tank's steps run before the timed frames) or live "
+                   "(the tank steps inside the frame loop)")
+      ->capture_default_str();
   bench->add_option("--device", options->device, "OpenCL device: 'P:D' or a name substring");
   bench->add_flag("--json", options->json, "One JSON object on one line");
   return {[options] { check_bench(*options); }, [options] { return run_bench(*options); }};

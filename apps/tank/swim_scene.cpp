@@ -100,18 +100,28 @@ SwimScene::SwimScene(Context& context, const std::vector<SpeciesFiles>& files, s
 }
 
 FrameWork SwimScene::enqueue_frame(double dt, bool profile) {
-  FrameWork work;
   const auto start = std::chrono::steady_clock::now();
   tank_->step(dt);
-  // The tank writes the inputs straight into the drivers' staging memory; taking the
-  // staging area is the driver's host time, writing into it the simulation's.
+  const double step_seconds = seconds_since(start);
+  // The tank writes the inputs straight into the drivers' staging memory.
+  FrameWork work = enqueue_frame(
+      dt, [this](std::size_t species, SwimInput* staged) { tank_->inputs(species, staged); },
+      profile);
+  work.simulation_seconds += step_seconds;
+  return work;
+}
+
+FrameWork SwimScene::enqueue_frame(double dt, const InputWriter& write_inputs, bool profile) {
+  FrameWork work;
+  const auto start = std::chrono::steady_clock::now();
+  // Taking the staging area is the driver's host time, writing into it the simulation's.
   double staging_seconds = 0.0;
   for (std::size_t s = 0; s < species_.size(); ++s) {
     if (!species_[s].driver) continue;
     const auto staging_start = std::chrono::steady_clock::now();
     SwimInput* staged = species_[s].driver->staged_inputs();
     staging_seconds += seconds_since(staging_start);
-    tank_->inputs(s, staged);
+    write_inputs(s, staged);
   }
   work.simulation_seconds = seconds_since(start) - staging_seconds;
   work.driver_seconds = staging_seconds;

@@ -125,6 +125,13 @@ class SwimScene {
   // every kernel's event goes to the result.
   FrameWork enqueue_frame(double dt, bool profile = false);
 
+  // Writes species `species`' swim inputs of this frame, one per fish of that species,
+  // into `staged` (its driver's staging memory, ClSwimDriver::staged_inputs).
+  using InputWriter = std::function<void(std::size_t species, SwimInput* staged)>;
+  // One frame from inputs the caller writes (a simulation of its own, recorded steps):
+  // the tank does not step. Writing them is the frame's simulation time.
+  FrameWork enqueue_frame(double dt, const InputWriter& write_inputs, bool profile = false);
+
   Tank& tank() { return *tank_; }
   const Tank& tank() const { return *tank_; }
   std::vector<Species>& species() { return species_; }

@@ -3,7 +3,8 @@
 # swim's speed table of docs/swimming.md, one JSON line per run in OUT_DIR/swim.jsonl
 # (each with its write-only kernel through the same layout, in the same process):
 # 10,000 swimming fish of the bundled Blub (driver, rig_prepare, placed deformation),
-# float32 normals three times (the machine is shared), half normals, Jacobian normals,
+# float32 normals three times (the machine is shared) and once with the tank stepping
+# inside the frame loop (--swim-inputs live), half normals, Jacobian normals,
 # 2 and 4 instances per work-item; then the swim rig without the driver or placement
 # and the whole-body bend, at the same count, for reference.
 #
@@ -28,6 +29,8 @@ bench() {
 }
 swim=(--rig data/rigs/blub_swim.rig.json)
 for run in 1 2 3; do bench "swim, float32 normals, run $run" "${swim[@]}" --swim; done
+bench "swim, float32 normals, the tank stepping in the frame loop" "${swim[@]}" --swim \
+  --swim-inputs live
 bench "swim, half normals" "${swim[@]}" --swim --normal-format half
 bench "swim, Jacobian normals" "${swim[@]}" --swim --normals jacobian
 bench "swim, 2 instances per work-item" "${swim[@]}" --swim --per-item 2
