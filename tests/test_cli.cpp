@@ -138,6 +138,12 @@ TEST(Cli, BenchSwimsWithRecordedOrLiveInputs) {
   EXPECT_NE(bad.err.find("--swim-inputs 'replayed' is not recorded or live"), std::string::npos)
       << bad.err;
   EXPECT_TRUE(bad.out.empty()) << bad.out;
+  const RunResult without_swim =
+      run_cli("bench --mesh " + fish("blub/fish_low_resolution.obj") + " --swim-inputs live");
+  EXPECT_EQ(without_swim.exit_code, 2);
+  EXPECT_EQ(line_count(without_swim.err), 1) << without_swim.err;
+  EXPECT_NE(without_swim.err.find("--swim-inputs 'live' needs --swim"), std::string::npos)
+      << without_swim.err;
 }
 
 // Every key of `finflex bench --json` with its value: the counts as given, the passes

@@ -69,7 +69,7 @@ struct BenchOptions {
   std::string stores = "auto";
   std::string dispatch = "auto";
   bool swim = false;
-  std::string swim_inputs = "recorded";
+  std::string swim_inputs;  // --swim only; empty: recorded
   std::string layout = "planes";
   std::string order = "slots";
   bool previous = false;
@@ -307,8 +307,13 @@ Measured measure_deform(const BenchOptions& options, const Mesh& mesh, Context& 
 constexpr std::size_t kRecordedSwimFrames = 64;
 constexpr std::size_t kRecordedSwimBytes = std::size_t{256} << 20;
 
-bool parse_swim_inputs(const std::string& text) {
-  if (text == "recorded") return true;
+// Whether --swim-inputs (given with --swim) says recorded, the default.
+bool parse_swim_inputs(const std::string& text, bool swim) {
+  if (!text.empty() && !swim) {
+    throw Error(ErrorCode::kInvalidArgument, "--swim-inputs",
+                "--swim-inputs '" + text + "' needs --swim");
+  }
+  if (text.empty() || text == "recorded") return true;
   if (text == "live") return false;
   throw Error(ErrorCode::kInvalidArgument, "--swim-inputs",
               "--swim-inputs '" + text + "' is not recorded or live");
@@ -353,7 +358,7 @@ Measured measure_swim(const BenchOptions& options, Context& context, std::size_t
   const std::size_t most_steps = std::clamp<std::size_t>(
       kRecordedSwimBytes / (instances * sizeof(SwimInput)), 1, kRecordedSwimFrames);
   const std::size_t steps =
-      parse_swim_inputs(options.swim_inputs) ? std::min(frames + 1, most_steps) : 0;
+      parse_swim_inputs(options.swim_inputs, true) ? std::min(frames + 1, most_steps) : 0;
   const auto recorded = record_tank_steps(*scene, steps, kFrameSeconds);
   std::size_t frame = 0;
   auto enqueue_frame = [&]() {
@@ -415,7 +420,7 @@ BenchCounts check_bench(const BenchOptions& options) {
   parse_normal_mode(options.normals, "--normals");
   parse_normal_format(options.normal_format, "--normal-format");
   parse_rig_path(options.path, "--path");
-  parse_swim_inputs(options.swim_inputs);
+  parse_swim_inputs(options.swim_inputs, options.swim);
   cl_options(options);  // --per-item, --table-items, --lanes, --stores, --dispatch
   check_bench_layout(options.layout, options.order);
   check_input_file("--mesh", options.mesh, mesh_extensions());
@@ -491,7 +496,7 @@ int run_bench(const BenchOptions& options) {
     result["host_enqueue_seconds_median"] = bench::median(m.times.host);
     if (options.swim) {
       result["host_driver_seconds_median"] = bench::median(m.host_driver_seconds);
-      result["swim_inputs"] = options.swim_inputs;
+      result["swim_inputs"] = parse_swim_inputs(options.swim_inputs, true) ? "recorded" : "live";
     }
     result["host_outputs"] = options.host;
     if (options.host) {
@@ -572,11 +577,9 @@ Command add_bench_command(CLI::App& app) {
                   "Outputs in host memory (bind_host); also time mapping each frame for the host");
   bench->add_flag("--swim", options->swim,
                   "With a swim rig: a tank of swimming fish (driver, deformation, placement)");
-  bench
-      ->add_option("--swim-inputs", options->swim_inputs,
-                   "--swim: recorded (the tank's steps run before the timed frames) or live "
-                   "(the tank steps inside the frame loop)")
-      ->capture_default_str();
+  bench->add_option("--swim-inputs", options->swim_inputs,
+                    "With --swim: recorded (default; the tank's steps run before the timed "
+                    "frames) or live (the tank steps inside the frame loop)");
   bench->add_option("--device", options->device, "OpenCL device: 'P:D' or a name substring");
   bench->add_flag("--json", options->json, "One JSON object on one line");
   return {[options] { check_bench(*options); }, [options] { return run_bench(*options); }};
