@@ -2,6 +2,8 @@
 // the water and never become NaN over 10,000 steps, bad settings named, and a swim
 // scene whose deformed fish are where the tank says.
 #include <cmath>
+#include <memory>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -112,6 +114,48 @@ TEST(SwimScene, DeformedFishAreWhereTheTankPutsThem) {
         centre += glm::dvec3(batch.position(i, v));
       centre /= double(batch.layout.vertex_count);
       EXPECT_LT(glm::length(centre - fish->position), fish->length) << species.name << " " << i;
+    }
+  }
+}
+
+// A frame from inputs the caller writes (SwimScene::enqueue_frame with a writer, as
+// `finflex bench --swim` replays recorded steps) deforms the fish as the tank's own
+// frame does from the same inputs; the tank does not step for it.
+TEST(SwimScene, FramesFromTheCallersInputsMatchTheTanksOwn) {
+  const auto scene = [] {
+    return std::make_unique<SwimScene>(test::shared_context(), bundled_species(test::data_path("")),
+                                       5, TankSettings{}, 7, NormalMode::kRotate);
+  };
+  const auto own = scene();
+  const auto written = scene();
+  constexpr double kDt = 1.0 / 30.0;
+  for (int frame = 0; frame < 3; ++frame) {
+    own->enqueue_frame(kDt);
+    written->tank().step(kDt);
+    const double time = written->tank().time();
+    std::vector<std::size_t> asked;
+    const FrameWork work = written->enqueue_frame(
+        kDt,
+        [&](std::size_t species, SwimInput* staged) {
+          asked.push_back(species);
+          written->tank().inputs(species, staged);
+        },
+        true);
+    EXPECT_EQ(written->tank().time(), time);  // no step of its own
+    EXPECT_EQ(asked, (std::vector<std::size_t>{0, 1}));
+    EXPECT_FALSE(work.kernels.empty());
+  }
+  for (std::size_t s = 0; s < 2; ++s) {
+    SCOPED_TRACE(own->species()[s].name);
+    const DeformedBatch<float> a = own->species()[s].deformer->read(own->species()[s].batch());
+    const DeformedBatch<float> b =
+        written->species()[s].deformer->read(written->species()[s].batch());
+    ASSERT_EQ(a.layout.instance_count, b.layout.instance_count);
+    for (std::size_t i = 0; i < a.layout.instance_count; ++i) {
+      for (std::size_t v = 0; v < a.layout.vertex_count; ++v) {
+        ASSERT_EQ(a.position(i, v), b.position(i, v)) << i << " " << v;
+        ASSERT_EQ(a.normal(i, v), b.normal(i, v)) << i << " " << v;
+      }
     }
   }
 }
