@@ -607,7 +607,8 @@ TEST(RigDeformer, AlternatingBatchesAndPathsEachGetTheirOwnFrames) {
   }
 }
 
-// The fused and multi-pass paths with `per_item` instances per work-item against one.
+// The fused and multi-pass paths of `rig_file`'s rig on the Barramundi, with several
+// instances per work-item (the shapes below) against one.
 void expect_several_per_item_match_one(const std::string& rig_file) {
   SCOPED_TRACE(rig_file);
   const Mesh mesh = load_mesh(test::data_path("barramundi/BarramundiFish.gltf"));
