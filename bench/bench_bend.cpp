@@ -14,9 +14,8 @@ void BM_WriteOnly(benchmark::State& state, NormalFormat format, std::size_t per_
   if (per_item == 0) per_item = bend.deformer.instances_per_item(format);
   if (lanes == 0) lanes = bend.deformer.lanes(format);
   const double seconds = time_iterations(state, [&] {
-    return event_seconds(
-        enqueue_write_only(setup.context, batch, batch.layout.plane_stride, per_item, values,
-                           lanes, streaming));
+    return event_seconds(enqueue_write_only(setup.context, batch, batch.layout.plane_stride,
+                                            per_item, values, lanes, streaming));
   });
   // The reference of write_fraction: the fastest write-only shape measured writing the
   // device's default values (never uniform data on GPUs, which they may compress).

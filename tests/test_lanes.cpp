@@ -123,8 +123,8 @@ void expect_fused_lanes_match(const RiggedMesh& model, const RigParameters& valu
       const DeformedBatch<float> device =
           test::run_on_device(vector, values, normals, RigPath::kFused);
       expect_within_reference_bounds(model, values, normals, device, reference);
-      expect_close_to_one_lane(device, scalar, model.mesh().vertex_count(),
-                               values.instance_count(), coordinate_scale(model.rig()));
+      expect_close_to_one_lane(device, scalar, model.mesh().vertex_count(), values.instance_count(),
+                               coordinate_scale(model.rig()));
     }
   }
 }
@@ -251,8 +251,8 @@ TEST(Lanes, ShippedRigsWithSpinesMatchOneLaneAndTheReference) {
 TEST(Lanes, SharplyAndGentlyTurningSpineSegmentsMatchOneLaneAndTheReference) {
   const Mesh mesh = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
   const RiggedMesh model(
-      mesh, resolve_rig(load_rig_file(test::data_path("rigs/blub_low_resolution_swim.rig.json")),
-                        mesh));
+      mesh,
+      resolve_rig(load_rig_file(test::data_path("rigs/blub_low_resolution_swim.rig.json")), mesh));
   RigParameters values = swimming_values(model, 3);
   std::size_t tables = 0;
   for (const RigParameter& parameter : model.rig().parameters) {

@@ -35,7 +35,6 @@ using test::temp_path;
 // ---------------------------------------------------------------------------------
 // Helpers
 
-
 void write_file(const std::string& path, const std::string& bytes) {
   std::ofstream out(path, std::ios::binary);
   out << bytes;

@@ -80,7 +80,6 @@ std::size_t largest_allocation(const std::function<void()>& action) {
   return g_largest_allocation;
 }
 
-
 // ThrowsError for load_mesh(path), also checking that the message starts with the
 // quoted path.
 ::testing::AssertionResult LoadFails(const std::string& path, ErrorCode code,

@@ -1,13 +1,13 @@
 // Pictures of the swim (apps/pictures): the deformation writes the renderer's GL
 // buffers through GlOutputs (shared with OpenCL, or copied on PoCL), which hold and
-// draw exactly what the engine computes without GL; the id pass covers the fish's silhouette in the colour image with the
-// tank's fish ids; masks become COCO's run lengths (checked by hand here and against
-// pycocotools by tests/python/check_coco.py); the landmarks are the snout's tip and
-// the tail's fork; every camera view frames the whole tank.
+// draw exactly what the engine computes without GL; the id pass covers the fish's silhouette in the
+// colour image with the tank's fish ids; masks become COCO's run lengths (checked by hand here and
+// against pycocotools by tests/python/check_coco.py); the landmarks are the snout's tip and the
+// tail's fork; every camera view frames the whole tank.
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <set>
 
 #include <epoxy/gl.h>

@@ -15,8 +15,8 @@
 
 #include "finflex/body_frame.hpp"
 #include "finflex/cl_deformer.hpp"
-#include "finflex/reference.hpp"
 #include "finflex/mesh_io.hpp"
+#include "finflex/reference.hpp"
 #include "render/renderer.hpp"
 #include "support/deform.hpp"
 #include "support/test_support.hpp"
@@ -43,8 +43,8 @@ const FishPair& fish_pair() {
     const RiggedMesh model = RiggedMesh::single_bend(p.mesh, p.frame, BendMode::kExact);
     ClDeformer deformer(test::shared_context(), model);
     const auto bend = static_cast<float>(0.8 * model.rig().parameters[0].limit);
-    p.batch = test::run_on_device(deformer, test::values_of(model, {0.0f, bend}),
-                                  NormalMode::kJacobian);
+    p.batch =
+        test::run_on_device(deformer, test::values_of(model, {0.0f, bend}), NormalMode::kJacobian);
     return p;
   }();
   return pair;

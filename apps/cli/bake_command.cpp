@@ -16,8 +16,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cli_numbers.hpp"
 #include "cli_errors.hpp"
+#include "cli_numbers.hpp"
 #include "commands.hpp"
 #include "finflex/finflex.hpp"
 #include "frame_meshes.hpp"

@@ -163,8 +163,8 @@ int run_swim(const SwimOptions& options) {
     HandOff hand_off;
     if (plan.render) {
       renderer = std::make_unique<render::Renderer>(pictures::render_settings(plan.pictures));
-      GlSharingContext shared = make_gl_sharing_context(
-          options.device, renderer->egl_display(), renderer->egl_context());
+      GlSharingContext shared =
+          make_gl_sharing_context(options.device, renderer->egl_display(), renderer->egl_context());
       opencl = std::move(shared.context);
       hand_off.why_not_shared = shared.why_not;
     } else {
@@ -178,7 +178,8 @@ int run_swim(const SwimOptions& options) {
     if (renderer) {
       pictures = std::make_unique<pictures::TankPictures>(*renderer, scene, plan.pictures);
       hand_off.path = pictures->hand_off_path();
-      if (hand_off.path == GlPath::kShared) hand_off.why_not_shared.clear();
+      if (hand_off.path == GlPath::kShared)
+        hand_off.why_not_shared.clear();
       else if (hand_off.why_not_shared.empty()) {
         hand_off.why_not_shared = "the OpenCL context does not share the renderer's";
       }

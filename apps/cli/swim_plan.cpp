@@ -4,8 +4,8 @@
 #include <cmath>
 #include <filesystem>
 
-#include "cli_numbers.hpp"
 #include "cli_errors.hpp"
+#include "cli_numbers.hpp"
 #include "render/video.hpp"
 #include "staging_folder.hpp"
 

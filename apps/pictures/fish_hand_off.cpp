@@ -7,8 +7,7 @@ namespace finflex::pictures {
 namespace {
 
 // FinFlex's planes of positions and normals for the renderer: no tangents (not drawn).
-OutputLayout drawn_planes(const ClDeformer& deformer, std::size_t instances,
-                          NormalFormat format) {
+OutputLayout drawn_planes(const ClDeformer& deformer, std::size_t instances, NormalFormat format) {
   OutputLayout layout = deformer.planes_layout(instances, format);
   layout.tangents = false;
   layout.previous_positions = false;
@@ -90,7 +89,8 @@ render::FishDraw fish_draw(const SpeciesDrawing& drawing) {
   draw.mesh = drawing.mesh;
   draw.albedo = drawing.albedo;
   draw.instance_count = outputs.instance_count();
-  draw.positions = render::VertexStream::from_buffer(outputs.positions(), outputs.position_layout());
+  draw.positions =
+      render::VertexStream::from_buffer(outputs.positions(), outputs.position_layout());
   draw.normals = render::VertexStream::from_buffer(outputs.normals(), outputs.normal_layout());
   draw.ids = drawing.ids.data();
   return draw;

@@ -38,8 +38,7 @@ class TankPictures {
   // `renderer`: kInvalidArgument naming "scene" otherwise) whose id pass writes 1 + the
   // fish's index in the tank (tank().fish()). `renderer` (made with
   // render_settings(settings)) and `scene` must outlive the pictures.
-  TankPictures(render::Renderer& renderer, tank::SwimScene& scene,
-               const PictureSettings& settings);
+  TankPictures(render::Renderer& renderer, tank::SwimScene& scene, const PictureSettings& settings);
 
   // The colour pass of every species' last frame (waiting until GL may read it), and
   // its image.

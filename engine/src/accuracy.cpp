@@ -48,9 +48,9 @@ AccuracyReport compare_to_reference(const RiggedMesh& model, const ParameterView
     // World units per mesh unit, and the size of the coordinates the kernels handle.
     const double scale = placements ? double(placements[i].length) / root.length : 1.0;
     const double position_bound =
-        kPositionBound * (placements ? glm::length(glm::dvec3(placements[i].position)) +
-                                           double(placements[i].length)
-                                     : glm::length(root.origin) + root.length);
+        kPositionBound *
+        (placements ? glm::length(glm::dvec3(placements[i].position)) + double(placements[i].length)
+                    : glm::length(root.origin) + root.length);
     const std::vector<double> row = row_of(model, parameters, i);
     for (std::size_t v = 0; v < model.vertex_count(); ++v) {
       detail::PathConditioning c;
@@ -59,8 +59,8 @@ AccuracyReport compare_to_reference(const RiggedMesh& model, const ParameterView
 
       const double position_error =
           glm::length(glm::dvec3(device.position(i, v)) - reference.position(i, v));
-      const double bound = stages * position_bound +
-                           (c.near_limit ? kNearLimitBound * c.near_limit_z * scale : 0.0);
+      const double bound =
+          stages * position_bound + (c.near_limit ? kNearLimitBound * c.near_limit_z * scale : 0.0);
       report.max_position_error = std::max(report.max_position_error, position_error);
       report.max_position_ratio = std::max(report.max_position_ratio, position_error / bound);
 

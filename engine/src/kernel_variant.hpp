@@ -16,15 +16,15 @@ struct KernelVariant {
   NormalMode normals = NormalMode::kRotate;
   std::string outputs;  // output_build_options() of the batch's OutputLayout
   std::size_t instances_per_item = 1;
-  bool placement = false;  // world placement as the last stage
-  std::size_t lanes = 1;   // vertex slots per work-item (kernels/common/lanes.cl)
+  bool placement = false;         // world placement as the last stage
+  std::size_t lanes = 1;          // vertex slots per work-item (kernels/common/lanes.cl)
   bool streaming_stores = false;  // with lanes: kernels/cpu/lane_planes.cl
 
   bool operator<(const KernelVariant& other) const {
     return std::tie(kernel, normals, outputs, instances_per_item, placement, lanes,
-                    streaming_stores) <
-           std::tie(other.kernel, other.normals, other.outputs, other.instances_per_item,
-                    other.placement, other.lanes, other.streaming_stores);
+                    streaming_stores) < std::tie(other.kernel, other.normals, other.outputs,
+                                                 other.instances_per_item, other.placement,
+                                                 other.lanes, other.streaming_stores);
   }
 
   // -D options of kernels/common/secant.cl, planes.cl, outputs.cl, placement.cl,

@@ -55,7 +55,8 @@ void read_into(const std::string& path, std::uint64_t max_bytes, const char* lim
   // and opening some devices has effects of its own.
   require_regular_file(path);
   // O_NONBLOCK: should the path have been replaced by a FIFO since, open returns at once.
-  const detail::FileDescriptor file(::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY | O_NONBLOCK));
+  const detail::FileDescriptor file(
+      ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY | O_NONBLOCK));
   if (file.get() < 0) {
     throw_io(std::string("cannot open the file for reading: ") + std::strerror(errno));
   }

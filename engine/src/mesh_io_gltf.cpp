@@ -78,7 +78,7 @@ void check_count(const std::vector<float>& values, std::size_t components, std::
                  const std::string& field) {
   if (values.size() == vertex_count * components) return;
   throw_gltf_format(field, "has " + std::to_string(values.size() / components) +
-                          " elements, but POSITION has " + std::to_string(vertex_count));
+                               " elements, but POSITION has " + std::to_string(vertex_count));
 }
 
 // One TRIANGLES primitive as a Mesh in world space. Normals are the file's (through
@@ -95,7 +95,7 @@ Part read_primitive(const LoadedGltf& gltf, const tinygltf::Primitive& primitive
                     const Transform& transform, const std::string& field) {
   if (primitive.mode != TINYGLTF_MODE_TRIANGLES) {
     throw_gltf_format(field, std::string("mode ") + std::to_string(primitive.mode) + " (" +
-                            mode_name(primitive.mode) + ") is not supported (only TRIANGLES)");
+                                 mode_name(primitive.mode) + ") is not supported (only TRIANGLES)");
   }
   const int position_accessor = find_attribute(primitive, "POSITION");
   if (position_accessor < 0) throw_gltf_format(field, "has no POSITION attribute");
@@ -172,7 +172,7 @@ Part read_primitive(const LoadedGltf& gltf, const tinygltf::Primitive& primitive
   }
   if (mesh.indices.size() % 3 != 0) {
     throw_gltf_format(field + ".indices", "has " + std::to_string(mesh.indices.size()) +
-                                         " entries, not a multiple of 3 (TRIANGLES)");
+                                              " entries, not a multiple of 3 (TRIANGLES)");
   }
   for (std::size_t i = 0; i < mesh.indices.size(); ++i) {
     if (mesh.indices[i] >= n) {
@@ -265,8 +265,8 @@ class SceneFlattener {
     const tinygltf::Model& model = gltf_.model;
     if (static_cast<std::size_t>(mesh_index) >= model.meshes.size()) {
       throw_gltf_format(indexed("nodes", node) + ".mesh",
-                   "mesh " + std::to_string(mesh_index) + " does not exist (" +
-                       std::to_string(model.meshes.size()) + " meshes)");
+                        "mesh " + std::to_string(mesh_index) + " does not exist (" +
+                            std::to_string(model.meshes.size()) + " meshes)");
     }
     const tinygltf::Mesh& mesh = model.meshes[static_cast<std::size_t>(mesh_index)];
     const std::string mesh_field = indexed("meshes", static_cast<std::size_t>(mesh_index));
@@ -285,11 +285,12 @@ class SceneFlattener {
       placed_ += part.mesh.positions.size() + part.mesh.indices.size() + part.group.size();
       if (placed_ > budget_) {
         throw_gltf_format(indexed("nodes", node),
-                     "placing " + mesh_field + " here brings the scene to more than " +
-                         std::to_string(budget_) + " vertices, indices and group-name bytes (" +
-                         std::to_string(kPlacedElementsPerInputByte) + " per byte of the " +
-                         std::to_string(gltf_.input_bytes) +
-                         " bytes of input): too many instances of its meshes");
+                          "placing " + mesh_field + " here brings the scene to more than " +
+                              std::to_string(budget_) +
+                              " vertices, indices and group-name bytes (" +
+                              std::to_string(kPlacedElementsPerInputByte) + " per byte of the " +
+                              std::to_string(gltf_.input_bytes) +
+                              " bytes of input): too many instances of its meshes");
       }
     }
   }

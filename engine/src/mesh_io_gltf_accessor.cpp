@@ -77,7 +77,7 @@ AccessorView view_accessor(const LoadedGltf& gltf, int index, int expected_type,
   const tinygltf::Model& model = gltf.model;
   if (index < 0 || static_cast<std::size_t>(index) >= model.accessors.size()) {
     throw_gltf_format(field, "accessor " + std::to_string(index) + " does not exist (" +
-                            std::to_string(model.accessors.size()) + " accessors)");
+                                 std::to_string(model.accessors.size()) + " accessors)");
   }
   const tinygltf::Accessor& accessor = model.accessors[static_cast<std::size_t>(index)];
   const std::string where = "accessor " + std::to_string(index);
@@ -86,13 +86,13 @@ AccessorView view_accessor(const LoadedGltf& gltf, int index, int expected_type,
   }
   if (accessor.type != expected_type) {
     throw_gltf_format(field, where + " has type " + type_name(accessor.type) + ", expected " +
-                            type_name(expected_type));
+                                 type_name(expected_type));
   }
   const int component_size =
       tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(accessor.componentType));
   if (component_size <= 0 || accessor.componentType == TINYGLTF_COMPONENT_TYPE_DOUBLE) {
-    throw_gltf_format(field,
-                 where + " has unknown componentType " + std::to_string(accessor.componentType));
+    throw_gltf_format(
+        field, where + " has unknown componentType " + std::to_string(accessor.componentType));
   }
   AccessorView view;
   view.count = accessor.count;
@@ -104,37 +104,39 @@ AccessorView view_accessor(const LoadedGltf& gltf, int index, int expected_type,
   if (accessor.bufferView < 0) {  // no data: zeros, as many as the input's bytes at most
     if (view.count > gltf.input_bytes) {
       throw_gltf_format(field, where + " has no bufferView (all zeros) and count " +
-                              std::to_string(view.count) + ", more than the " +
-                              std::to_string(gltf.input_bytes) + " bytes of input allow");
+                                   std::to_string(view.count) + ", more than the " +
+                                   std::to_string(gltf.input_bytes) + " bytes of input allow");
     }
     view.stride = element_size;
     return view;
   }
   if (static_cast<std::size_t>(accessor.bufferView) >= model.bufferViews.size()) {
-    throw_gltf_format(field, where + " refers to bufferView " + std::to_string(accessor.bufferView) +
-                            ", which does not exist");
+    throw_gltf_format(field, where + " refers to bufferView " +
+                                 std::to_string(accessor.bufferView) + ", which does not exist");
   }
   const tinygltf::BufferView& buffer_view =
       model.bufferViews[static_cast<std::size_t>(accessor.bufferView)];
   if (buffer_view.buffer < 0 ||
       static_cast<std::size_t>(buffer_view.buffer) >= model.buffers.size()) {
-    throw_gltf_format(field, "bufferView " + std::to_string(accessor.bufferView) + " refers to buffer " +
-                            std::to_string(buffer_view.buffer) + ", which does not exist");
+    throw_gltf_format(field, "bufferView " + std::to_string(accessor.bufferView) +
+                                 " refers to buffer " + std::to_string(buffer_view.buffer) +
+                                 ", which does not exist");
   }
   const std::vector<unsigned char>& bytes =
       model.buffers[static_cast<std::size_t>(buffer_view.buffer)].data;
   if (buffer_view.byteOffset > bytes.size() ||
       buffer_view.byteLength > bytes.size() - buffer_view.byteOffset) {
     throw_gltf_format(field, "bufferView " + std::to_string(accessor.bufferView) + " (byteOffset " +
-                            std::to_string(buffer_view.byteOffset) + ", byteLength " +
-                            std::to_string(buffer_view.byteLength) + ") exceeds its buffer of " +
-                            std::to_string(bytes.size()) + " bytes");
+                                 std::to_string(buffer_view.byteOffset) + ", byteLength " +
+                                 std::to_string(buffer_view.byteLength) +
+                                 ") exceeds its buffer of " + std::to_string(bytes.size()) +
+                                 " bytes");
   }
   view.stride = buffer_view.byteStride != 0 ? buffer_view.byteStride : element_size;
   if (view.stride < element_size) {
     throw_gltf_format(field, "bufferView " + std::to_string(accessor.bufferView) + " byteStride " +
-                            std::to_string(view.stride) + " is smaller than the element (" +
-                            std::to_string(element_size) + " bytes)");
+                                 std::to_string(view.stride) + " is smaller than the element (" +
+                                 std::to_string(element_size) + " bytes)");
   }
   if (view.count > 0) {
     const std::size_t available = buffer_view.byteLength;
@@ -144,10 +146,10 @@ AccessorView view_accessor(const LoadedGltf& gltf, int index, int expected_type,
         accessor.byteOffset + (view.count - 1) * view.stride + element_size <= available;
     if (!fits) {
       throw_gltf_format(field, where + " (byteOffset " + std::to_string(accessor.byteOffset) +
-                              ", count " + std::to_string(view.count) + ", stride " +
-                              std::to_string(view.stride) + ") exceeds bufferView " +
-                              std::to_string(accessor.bufferView) + " of " +
-                              std::to_string(available) + " bytes");
+                                   ", count " + std::to_string(view.count) + ", stride " +
+                                   std::to_string(view.stride) + ") exceeds bufferView " +
+                                   std::to_string(accessor.bufferView) + " of " +
+                                   std::to_string(available) + " bytes");
     }
   }
   view.data = bytes.data() + buffer_view.byteOffset + accessor.byteOffset;
@@ -192,9 +194,9 @@ std::vector<float> read_floats(const LoadedGltf& gltf, int index, int type, bool
                          view.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
   if (!is_float && !is_unorm) {
     throw_gltf_format(field, "accessor " + std::to_string(index) + " has componentType " +
-                            component_type_name(view.component_type) +
-                            (view.normalized ? " (normalized)" : "") + ", expected float" +
-                            (allow_normalized ? " or normalized unsigned byte/short" : ""));
+                                 component_type_name(view.component_type) +
+                                 (view.normalized ? " (normalized)" : "") + ", expected float" +
+                                 (allow_normalized ? " or normalized unsigned byte/short" : ""));
   }
   std::vector<float> values(view.count * static_cast<std::size_t>(view.components), 0.0f);
   if (view.data == nullptr) return values;
@@ -222,7 +224,8 @@ std::vector<std::uint32_t> read_indices(const LoadedGltf& gltf, int index,
       type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
       type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
     throw_gltf_format(field, "accessor " + std::to_string(index) + " has componentType " +
-                            component_type_name(type) + ", expected unsigned byte, short or int");
+                                 component_type_name(type) +
+                                 ", expected unsigned byte, short or int");
   }
   std::vector<std::uint32_t> indices(view.count, 0);
   if (view.data == nullptr) return indices;

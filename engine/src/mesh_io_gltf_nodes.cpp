@@ -26,18 +26,18 @@ std::vector<std::int64_t> parents_of(const tinygltf::Model& model) {
       const int child = children[k];
       if (child < 0 || static_cast<std::size_t>(child) >= count) {
         throw_gltf_format(node_field(p) + ".children[" + std::to_string(k) + "]",
-                     "node " + std::to_string(child) + " does not exist (" + std::to_string(count) +
-                         " nodes)");
+                          "node " + std::to_string(child) + " does not exist (" +
+                              std::to_string(count) + " nodes)");
       }
       const auto c = static_cast<std::size_t>(child);
       if (parent[c] == static_cast<std::int64_t>(p)) {
         throw_gltf_format(node_field(c), "is listed twice in " + node_field(p) +
-                                        ".children (a node has one place in the scene)");
+                                             ".children (a node has one place in the scene)");
       }
       if (parent[c] != kNoParent) {
-        throw_gltf_format(node_field(c), "is a child of both " +
-                                        node_field(static_cast<std::size_t>(parent[c])) + " and " +
-                                        node_field(p) + " (a node has at most one parent)");
+        throw_gltf_format(node_field(c),
+                          "is a child of both " + node_field(static_cast<std::size_t>(parent[c])) +
+                              " and " + node_field(p) + " (a node has at most one parent)");
       }
       parent[c] = static_cast<std::int64_t>(p);
     }
@@ -61,7 +61,7 @@ void check_no_cycle(const std::vector<std::int64_t>& parent) {
     }
     if (n != kNoParent && state[static_cast<std::size_t>(n)] == kOnWalk) {
       throw_gltf_format(node_field(static_cast<std::size_t>(n)),
-                   "is its own ancestor (cycle in children)");
+                        "is its own ancestor (cycle in children)");
     }
     for (const std::size_t w : walk) state[w] = kDone;
   }
@@ -82,7 +82,7 @@ std::vector<std::size_t> root_nodes(const tinygltf::Model& model,
   const int scene = model.defaultScene >= 0 ? model.defaultScene : 0;
   if (static_cast<std::size_t>(scene) >= model.scenes.size()) {
     throw_gltf_format("scene", std::to_string(scene) + " does not exist (" +
-                              std::to_string(model.scenes.size()) + " scenes)");
+                                   std::to_string(model.scenes.size()) + " scenes)");
   }
   const std::string scene_field = "scenes[" + std::to_string(scene) + "].nodes";
   const std::vector<int>& listed = model.scenes[static_cast<std::size_t>(scene)].nodes;
@@ -91,16 +91,16 @@ std::vector<std::size_t> root_nodes(const tinygltf::Model& model,
     const int node = listed[k];
     if (node < 0 || static_cast<std::size_t>(node) >= model.nodes.size()) {
       throw_gltf_format(scene_field + "[" + std::to_string(k) + "]",
-                   "node " + std::to_string(node) + " does not exist (" +
-                       std::to_string(model.nodes.size()) + " nodes)");
+                        "node " + std::to_string(node) + " does not exist (" +
+                            std::to_string(model.nodes.size()) + " nodes)");
     }
     const auto n = static_cast<std::size_t>(node);
     if (seen[n]) throw_gltf_format(node_field(n), "is listed twice in " + scene_field);
     seen[n] = true;
     if (parent[n] != kNoParent) {
       throw_gltf_format(node_field(n), "is listed in " + scene_field + " but is a child of " +
-                                      node_field(static_cast<std::size_t>(parent[n])) +
-                                      " (scene nodes must be root nodes)");
+                                           node_field(static_cast<std::size_t>(parent[n])) +
+                                           " (scene nodes must be root nodes)");
     }
     roots.push_back(n);
   }
@@ -128,8 +128,8 @@ std::vector<PlacedNode> scene_nodes(const tinygltf::Model& model) {
     stack.pop_back();
     if (pending.depth > kMaxNodeDepth) {
       throw_gltf_format(node_field(pending.node), "is nested " + std::to_string(pending.depth) +
-                                                 " levels deep, more than the limit of " +
-                                                 std::to_string(kMaxNodeDepth));
+                                                      " levels deep, more than the limit of " +
+                                                      std::to_string(kMaxNodeDepth));
     }
     // The checks above make a second visit impossible; this keeps the walk linear
     // should they ever miss one.

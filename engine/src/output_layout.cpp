@@ -61,7 +61,8 @@ void check_attribute(const AttributeLayout& a, const std::string& field, bool po
   const std::string format = std::string("a ") + f.name + " element";
   if (position && a.format != AttributeFormat::kFloat32x3 &&
       a.format != AttributeFormat::kFloat32x4) {
-    fail(field + ".format", std::string(f.name) + " is not a position format (float32x3 or float32x4)");
+    fail(field + ".format",
+         std::string(f.name) + " is not a position format (float32x3 or float32x4)");
   }
   const std::size_t scalar = f.scalar;
   auto multiple = [&](std::size_t value, const char* name) {
@@ -74,8 +75,8 @@ void check_attribute(const AttributeLayout& a, const std::string& field, bool po
   multiple(a.instance_stride, "instance_stride");
   if (a.arrangement == Arrangement::kPlanes) {
     if (a.format != AttributeFormat::kFloat32x3 && a.format != AttributeFormat::kFloat16x3) {
-      fail(field + ".format", std::string(f.name) +
-                                  " cannot be planes (planes hold float32x3 or float16x3)");
+      fail(field + ".format",
+           std::string(f.name) + " cannot be planes (planes hold float32x3 or float16x3)");
     }
     if (a.plane_stride < vertices) {
       fail(field + ".plane_stride", std::to_string(a.plane_stride) + " elements is less than the " +
@@ -188,8 +189,8 @@ std::size_t OutputLayout::required_bytes(const AttributeLayout& a, std::size_t i
   return checked(vertices - 1, a.vertex_stride, last_instance + format_bytes(a.format), field);
 }
 
-void validate_output_layout(const OutputLayout& layout, std::size_t instances,
-                            std::size_t vertices, const std::uintptr_t buffer_ids[4]) {
+void validate_output_layout(const OutputLayout& layout, std::size_t instances, std::size_t vertices,
+                            const std::uintptr_t buffer_ids[4]) {
   struct Named {
     const AttributeLayout* layout;
     const char* name;

@@ -101,12 +101,11 @@ void ParameterChecker::check_stages(const ParameterView& view, bool clamp, float
         scratch.assign(source, source + parameter.count);
         values = scratch.data();
       }
-      const std::string problem = check.stage.deformer->check_values(
-          values, check.stage.options, check.stage.geometry, clamp);
+      const std::string problem = check.stage.deformer->check_values(values, check.stage.options,
+                                                                     check.stage.geometry, clamp);
       if (problem.empty()) continue;
       const std::string field = parameter.name + "[" + std::to_string(i) + "]";
-      throw Error(ErrorCode::kOutOfRange, field,
-                  field + ": " + problem + " (" + check.where + ")");
+      throw Error(ErrorCode::kOutOfRange, field, field + ": " + problem + " (" + check.where + ")");
     }
   }
 }

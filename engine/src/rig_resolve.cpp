@@ -473,7 +473,8 @@ StageGeometry measure_stage(const std::vector<glm::dvec3>& local, const StageSpe
     geometry.x_highest = std::max(geometry.x_highest, p.x);
     geometry.x_max = std::max(geometry.x_max, std::abs(p.x));
   }
-  if (stage.deformer->measure) geometry.measurements = stage.deformer->measure(stage.options, local);
+  if (stage.deformer->measure)
+    geometry.measurements = stage.deformer->measure(stage.options, local);
   return geometry;
 }
 

@@ -38,8 +38,8 @@ std::uint32_t segment_entry(const std::vector<std::int32_t>& block_segment, std:
 // 12, 13 and 14 set where the 8, 16 or 32 slots from `first` stay within s and the next
 // segment, inside the table [0, last].
 std::uint32_t swept_entry(const std::vector<double>& lowest, const std::vector<double>& highest,
-                          std::size_t block, std::size_t bin, std::size_t first,
-                          std::size_t end, double last) {
+                          std::size_t block, std::size_t bin, std::size_t first, std::size_t end,
+                          double last) {
   // A hundredth of a segment: swept_segments' sampling, and the kernel's float rounding
   // of x and of the bin, move a vertex by far less.
   constexpr double kMargin = 0.01;
@@ -164,8 +164,8 @@ SweptSegments swept_segments(const RiggedMesh& model, const SlotLayout& slots) {
         const glm::dvec3 moved = mover.frame.point_to_mesh(s.f + local.y * e_y + local.z * s.n);
         const double position = (spine.frame.point_to_local(moved).x - x_first) * inverse_h;
         // Sample j closes bin j / 4 - 1 and opens bin j / 4.
-        for (const std::size_t bin : {j / kSamplesPerBin - (j % kSamplesPerBin == 0 ? 1 : 0),
-                                      j / kSamplesPerBin}) {
+        for (const std::size_t bin :
+             {j / kSamplesPerBin - (j % kSamplesPerBin == 0 ? 1 : 0), j / kSamplesPerBin}) {
           if (bin >= kSweptBins) continue;  // (the first's wraps when j = 0)
           double& low = lowest[block * kSweptBins + bin];
           double& high = highest[block * kSweptBins + bin];

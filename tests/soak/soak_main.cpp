@@ -101,10 +101,10 @@ double mib(std::size_t bytes) { return double(bytes) / (1024.0 * 1024.0); }
 int run(const Options& options) {
   Context context(options.device);
   const NormalMode normals = parse_normal_mode(options.normals, "--normals");
-  const auto scene =
-      options.tank ? make_tank_scene(context, options.species, options.period, normals)
-                   : make_rig_batch_scene(context, options.species, options.period, normals,
-                                          parse_rig_path(options.path, "--path"));
+  const auto scene = options.tank
+                         ? make_tank_scene(context, options.species, options.period, normals)
+                         : make_rig_batch_scene(context, options.species, options.period, normals,
+                                                parse_rig_path(options.path, "--path"));
   std::printf("soak: %s on %s, %zu frames, period %zu\n", scene->describe().c_str(),
               context.description().device_name.c_str(), options.frames, options.period);
   const std::size_t warm_up =

@@ -61,8 +61,7 @@ class TankScene final : public SoakScene {
 
 }  // namespace
 
-std::unique_ptr<SoakScene> make_tank_scene(Context& context,
-                                           const std::vector<RigSpecies>& species,
+std::unique_ptr<SoakScene> make_tank_scene(Context& context, const std::vector<RigSpecies>& species,
                                            std::size_t period, NormalMode normals) {
   return std::make_unique<TankScene>(context, species, period, normals);
 }

@@ -12,8 +12,7 @@
 
 namespace finflex::soak {
 
-std::unique_ptr<SoakScene> make_tank_scene(Context& context,
-                                           const std::vector<RigSpecies>& species,
+std::unique_ptr<SoakScene> make_tank_scene(Context& context, const std::vector<RigSpecies>& species,
                                            std::size_t period, NormalMode normals);
 
 }  // namespace finflex::soak

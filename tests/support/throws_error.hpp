@@ -18,8 +18,8 @@ namespace finflex::test {
                                        const std::vector<std::string>& message_parts = {});
 
 // The same with one message part.
-inline ::testing::AssertionResult ThrowsError(const std::function<void()>& action,
-                                              ErrorCode code, const std::string& field_part,
+inline ::testing::AssertionResult ThrowsError(const std::function<void()>& action, ErrorCode code,
+                                              const std::string& field_part,
                                               const std::string& message_part) {
   return ThrowsError(action, code, field_part, std::vector<std::string>{message_part});
 }

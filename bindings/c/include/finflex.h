@@ -180,8 +180,8 @@ FINFLEX_C_API const finflex_error* finflex_rig_error(const finflex_rig* rig);
 /* ------------------------------------------------------------------------- model */
 
 typedef enum finflex_bend_mode {
-  FINFLEX_BEND_PAPER = 0, /* the paper's 4th-order series (15)-(17) */
-  FINFLEX_BEND_EXACT = 1, /* the closed form: the spine keeps its length exactly */
+  FINFLEX_BEND_PAPER = 0,                 /* the paper's 4th-order series (15)-(17) */
+  FINFLEX_BEND_EXACT = 1,                 /* the closed form: the spine keeps its length exactly */
   FINFLEX_BEND_MODE_MAX_ENUM = 0x7fffffff /* every int is a value (checked), not a mode */
 } finflex_bend_mode;
 
@@ -247,14 +247,14 @@ FINFLEX_C_API finflex_status finflex_parameters_view(finflex_parameters* paramet
 /* --------------------------------------------------------------------------- job */
 
 typedef enum finflex_normal_mode {
-  FINFLEX_NORMALS_ROTATE = 0,  /* the paper's (8) */
+  FINFLEX_NORMALS_ROTATE = 0,   /* the paper's (8) */
   FINFLEX_NORMALS_JACOBIAN = 1, /* exact, through the deformation's Jacobian */
   FINFLEX_NORMAL_MODE_MAX_ENUM = 0x7fffffff
 } finflex_normal_mode;
 
 typedef enum finflex_rig_path {
-  FINFLEX_PATH_AUTO = 0,  /* fused where it applies */
-  FINFLEX_PATH_FUSED = 1, /* one pass, each vertex's whole path in registers */
+  FINFLEX_PATH_AUTO = 0,   /* fused where it applies */
+  FINFLEX_PATH_FUSED = 1,  /* one pass, each vertex's whole path in registers */
   FINFLEX_PATH_PASSES = 2, /* one pass per hierarchy level and chain position */
   FINFLEX_RIG_PATH_MAX_ENUM = 0x7fffffff
 } finflex_rig_path;
@@ -468,8 +468,7 @@ FINFLEX_C_API finflex_status finflex_deformer_enqueue_swim(finflex_deformer* def
                                                            finflex_batch* batch,
                                                            finflex_normal_mode normals,
                                                            finflex_event* const* wait,
-                                                           size_t wait_count,
-                                                           finflex_event** done);
+                                                           size_t wait_count, finflex_event** done);
 
 /* A gate that holds a frame's device work back until all of it is enqueued
  * (finflex::FrameGate): put its event in the wait list of the frame's first command
