@@ -21,7 +21,7 @@
 
 #include "finflex/error.hpp"
 #include "finflex/mesh.hpp"
-#include "mesh_io_formats.hpp"
+#include "io/formats.hpp"
 
 namespace {
 

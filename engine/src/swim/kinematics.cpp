@@ -1,4 +1,4 @@
-#include "kinematics.hpp"
+#include "swim/kinematics.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -4,7 +4,7 @@
 
 #include "finflex/error.hpp"
 #include "finflex/swim.hpp"
-#include "kinematics.hpp"
+#include "swim/kinematics.hpp"
 
 namespace finflex {
 namespace {
