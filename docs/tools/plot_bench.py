@@ -5,7 +5,7 @@ format, and the write-only kernel's rate for float32 outputs measured in the sam
 
 A documentation tool (numpy-free; needs matplotlib):
 
-    python3 docs/tools/plot_bench.py docs/results/2026-11-22_pocl_sweep.jsonl \\
+    python3 docs/tools/plot_bench.py docs/results/vm-2-core/sweep.jsonl \\
         --title "PoCL, 2 cores" --out docs/images/scaling_pocl.png
 """
 import argparse
