@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "bench_support.hpp"
+#include "finflex/internal/cl_tuning.hpp"
 
 namespace finflex::bench {
 namespace {
@@ -41,9 +42,9 @@ void BM_Rig(benchmark::State& state, RigPath path) {
   // mesh is shared by all instances), and on the multi-pass path its intermediate
   // results written and read again (24 B each way per stage after its first).
   const bool fused = path == RigPath::kFused;
-  state.counters["passes"] = fused ? 1.0 : static_cast<double>(rig.deformer.pass_count());
+  state.counters["passes"] = fused ? 1.0 : static_cast<double>(internal::pass_count(rig.deformer));
   state.counters["bytes/vertex"] =
-      24.0 * (1.0 + (fused ? 0.0 : rig.deformer.scratch_records_per_slot()));
+      24.0 * (1.0 + (fused ? 0.0 : internal::scratch_records_per_slot(rig.deformer)));
 }
 
 }  // namespace finflex::bench

@@ -15,6 +15,7 @@
 #include <benchmark/benchmark.h>
 
 #include "finflex/finflex.hpp"
+#include "finflex/internal/cl_tuning.hpp"
 #include "reference_kernels.hpp"
 #include "timing.hpp"
 
@@ -100,7 +101,7 @@ double time_iterations(benchmark::State& state, Launch launch) {
 // Benchmark bodies (bench_bend.cpp, bench_rig.cpp, bench_baselines.cpp); registered in
 // bench_main.cpp.
 // per_item, lanes: 0 for the bend deformer's own (ClDeformer::instances_per_item, lanes);
-// streaming: with more than one lane, streaming stores (ClOptions::stores).
+// streaming: with more than one lane, streaming stores (ClTuning::stores).
 void BM_WriteOnly(benchmark::State& state, NormalFormat format, std::size_t per_item,
                   WriteValues values, std::size_t lanes, bool streaming);
 void BM_CopyRest(benchmark::State& state);

@@ -21,6 +21,7 @@
 #include <gtest/gtest.h>
 
 #include "finflex/finflex.hpp"
+#include "finflex/internal/cl_tuning.hpp"
 #include "support/deform.hpp"
 #include "support/synthetic_fish.hpp"
 #include "support/test_support.hpp"
@@ -443,14 +444,14 @@ TEST(ClDeformer, SeveralInstancesPerWorkItemGiveTheSameResult) {
   for (int i = 0; i < 7; ++i) fractions.push_back(0.1 * i);
   const RigParameters m = test::bend_fractions(model, fractions);
   const NormalMode normals = NormalMode::kJacobian;
-  ClOptions one_per_item;
+  ClTuning one_per_item;
   one_per_item.instances_per_item = 1;
   ClDeformer one(test::shared_context(), model, one_per_item);
   const DeformedBatch<float> expected = test::run_on_device(one, m, normals);
   const BodyFrame& frame = model.rig().components[0].frame;
   const double bound = 4e-6 * (glm::length(frame.origin) + frame.length);
   for (std::size_t per_item : {2u, 3u, 8u}) {
-    ClOptions options;
+    ClTuning options;
     options.instances_per_item = per_item;
     ClDeformer several(test::shared_context(), model, options);
     const DeformedBatch<float> got = test::run_on_device(several, m, normals);

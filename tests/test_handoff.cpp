@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "finflex/finflex.hpp"
+#include "finflex/internal/cl_tuning.hpp"
 #include "support/deform.hpp"
 #include "support/test_support.hpp"
 
@@ -232,7 +233,7 @@ TEST(Handoff, InterleavedAndSeparateArraysHoldTheSameData) {
 
 // A vertex struct that its float32x3 attributes fill (tangent, position, normal: 36
 // bytes; 24 without tangents), written through local memory (as GPUs do,
-// ClOptions::struct_stores) and directly, holds exactly what the default planes hold:
+// ClTuning::struct_stores) and directly, holds exactly what the default planes hold:
 // the single-bend kernel, and the rig's fused and multi-pass kernels.
 TEST(Handoff, StagedVertexStructsHoldWhatThePlanesHold) {
   const Mesh blub = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
@@ -248,10 +249,10 @@ TEST(Handoff, StagedVertexStructsHoldWhatThePlanesHold) {
   for (const Case& c : {Case{&bend, &bend_values, RigPath::kAuto},
                         Case{&barramundi(), &rig_values, RigPath::kFused},
                         Case{&barramundi(), &rig_values, RigPath::kPasses}}) {
-    for (const auto stores : {ClOptions::StructStores::kStaged, ClOptions::StructStores::kDirect}) {
+    for (const auto stores : {ClTuning::StructStores::kStaged, ClTuning::StructStores::kDirect}) {
       SCOPED_TRACE(testing::Message() << "path " << to_string(c.path) << ", staged "
-                                      << (stores == ClOptions::StructStores::kStaged));
-      ClOptions options;
+                                      << (stores == ClTuning::StructStores::kStaged));
+      ClTuning options;
       options.struct_stores = stores;
       ClDeformer d(test::shared_context(), *c.model, options);
       const bool tangents = c.model->mesh().has_tangents();

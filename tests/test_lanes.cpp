@@ -3,7 +3,7 @@
 // the one-lane kernels and the double reference: the whole-body bend on every bundled
 // fish, every shipped rig (the swim rigs' spines included) on both paths, world
 // placements, several instances per work-item, and the fall-back to one lane for half
-// normals. Every lane count is forced through ClOptions::lanes, so this runs on any
+// normals. Every lane count is forced through ClTuning::lanes, so this runs on any
 // device; the other test programs run the device's own choice.
 //
 // Tolerances: against the reference, compare_to_reference's bounds
@@ -21,6 +21,7 @@
 #include <gtest/gtest.h>
 
 #include "finflex/finflex.hpp"
+#include "finflex/internal/cl_tuning.hpp"
 #include "support/deform.hpp"
 #include "support/test_support.hpp"
 
@@ -38,8 +39,8 @@ std::vector<std::size_t> vector_lanes(std::vector<std::size_t> lanes = {8, 16, 3
   return lanes;
 }
 
-ClOptions with_lanes(std::size_t lanes, std::size_t per_item = 0) {
-  ClOptions options;
+ClTuning with_lanes(std::size_t lanes, std::size_t per_item = 0) {
+  ClTuning options;
   options.lanes = lanes;
   options.instances_per_item = per_item;
   return options;
@@ -139,12 +140,13 @@ TEST(Lanes, CpusTakeVectorsGpusOneLaneWhateverTheNormalFormat) {
   std::size_t expected = native >= 16 ? 16 : 8;
   if (device_is_pocl()) expected = native >= 16 ? 32 : native >= 8 ? 16 : 8;
   if (device.is_gpu()) expected = 1;
-  EXPECT_EQ(automatic.lanes(NormalFormat::kFloat32), expected);
-  EXPECT_EQ(automatic.lanes(NormalFormat::kHalf), expected);
+  EXPECT_EQ(internal::lanes(automatic, automatic.planes_layout(1, NormalFormat::kFloat32)),
+            expected);
+  EXPECT_EQ(internal::lanes(automatic, automatic.planes_layout(1, NormalFormat::kHalf)), expected);
   for (std::size_t lanes : vector_lanes({1, 8, 16, 32})) {
     ClDeformer forced(test::shared_context(), model, with_lanes(lanes));
-    EXPECT_EQ(forced.lanes(NormalFormat::kFloat32), lanes);
-    EXPECT_EQ(forced.lanes(NormalFormat::kHalf), lanes);
+    EXPECT_EQ(internal::lanes(forced, forced.planes_layout(1, NormalFormat::kFloat32)), lanes);
+    EXPECT_EQ(internal::lanes(forced, forced.planes_layout(1, NormalFormat::kHalf)), lanes);
   }
 }
 
@@ -160,7 +162,7 @@ TEST(Lanes, OtherLaneCountsAreRefusedByName) {
       ADD_FAILURE() << lanes << " lanes were accepted";
     } catch (const Error& e) {
       EXPECT_EQ(e.code(), ErrorCode::kInvalidArgument);
-      EXPECT_EQ(e.field(), "options.lanes");
+      EXPECT_EQ(e.field(), "tuning.lanes");
       if (lanes == 32) {
         EXPECT_NE(std::string(e.what()).find(test::shared_context().description().platform_name),
                   std::string::npos)
@@ -217,7 +219,7 @@ TEST(Lanes, ShippedRigsWithSpinesMatchOneLaneAndTheReference) {
     const RiggedMesh model(mesh, resolve_rig(load_rig_file(test::data_path(c.rig)), mesh));
     const RigParameters values = swimming_values(model, 4);
     const double scale = coordinate_scale(model.rig());
-    ClOptions scalar_options = with_lanes(1);
+    ClTuning scalar_options = with_lanes(1);
     ClDeformer one_lane(test::shared_context(), model, scalar_options);
     for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {
       const DeformedBatch<double> reference = run_reference(model, values, normals);
@@ -225,7 +227,7 @@ TEST(Lanes, ShippedRigsWithSpinesMatchOneLaneAndTheReference) {
           test::run_on_device(one_lane, values, normals, RigPath::kFused);
       for (std::size_t lanes : vector_lanes(c.lanes)) {
         for (RigDispatch dispatch : {RigDispatch::kByPathShape, RigDispatch::kPerComponent}) {
-          ClOptions options = with_lanes(lanes);
+          ClTuning options = with_lanes(lanes);
           options.dispatch = dispatch;
           ClDeformer vector(test::shared_context(), model, options);
           for (RigPath path : {RigPath::kFused, RigPath::kPasses}) {
@@ -353,7 +355,8 @@ TEST(Lanes, SeveralInstancesPerWorkItemGiveTheSameResult) {
     const RigParameters values = swimming_values(*model, 5);
     ClDeformer one(test::shared_context(), *model, with_lanes(16, 1));
     ClDeformer three(test::shared_context(), *model, with_lanes(16, 3));
-    EXPECT_EQ(three.instances_per_item(NormalFormat::kFloat32), 3u);
+    EXPECT_EQ(internal::instances_per_item(three, three.planes_layout(1, NormalFormat::kFloat32)),
+              3u);
     for (RigPath path : {RigPath::kFused, RigPath::kPasses}) {
       SCOPED_TRACE(std::string(model == &bend ? "bend " : "swim rig ") + to_string(path));
       const DeformedBatch<float> a = test::run_on_device(one, values, NormalMode::kJacobian, path);
@@ -371,9 +374,9 @@ TEST(Lanes, SeveralInstancesPerWorkItemGiveTheSameResult) {
 TEST(Lanes, StreamingPlainAndUnalignedStoresWriteTheSameBits) {
   const RiggedMesh model = barramundi_swim();
   const RigParameters values = swimming_values(model, 3);
-  ClOptions plain_options = with_lanes(16);
+  ClTuning plain_options = with_lanes(16);
   plain_options.stores = OutputStores::kPlain;
-  ClOptions streaming_options = with_lanes(16);
+  ClTuning streaming_options = with_lanes(16);
   streaming_options.stores = OutputStores::kStreaming;
   ClDeformer streaming(test::shared_context(), model, streaming_options);
   ClDeformer plain(test::shared_context(), model, plain_options);
@@ -414,8 +417,8 @@ TEST(Lanes, OtherOutputLayoutsStoreLaneByLaneAndMatchTheReference) {
   ClDeformer sixteen(test::shared_context(), model, with_lanes(16));
   ClDeformer one_lane(test::shared_context(), model, with_lanes(1));
   const OutputLayout planes = sixteen.planes_layout(instances);
-  EXPECT_EQ(sixteen.lanes(planes), 16u);
-  EXPECT_EQ(sixteen.lanes(sixteen.planes_layout(instances, NormalFormat::kHalf)), 16u);
+  EXPECT_EQ(internal::lanes(sixteen, planes), 16u);
+  EXPECT_EQ(internal::lanes(sixteen, sixteen.planes_layout(instances, NormalFormat::kHalf)), 16u);
   // Other layouts lane by lane on CPUs; on GPUs one lane whatever the options ask.
   const std::size_t by_lane = test::shared_context().description().is_gpu() ? 1u : 16u;
 
@@ -449,10 +452,10 @@ TEST(Lanes, OtherOutputLayoutsStoreLaneByLaneAndMatchTheReference) {
     const DeformedBatch<double> reference = run_reference(model, values, normals);
     for (const Case& c : cases) {
       SCOPED_TRACE(std::string(c.name) + " " + to_string(normals));
-      EXPECT_EQ(sixteen.lanes(c.layout), by_lane);
+      EXPECT_EQ(internal::lanes(sixteen, c.layout), by_lane);
       DeviceBatch vector_batch = sixteen.allocate(instances, c.layout);
       DeviceBatch scalar_batch = one_lane.allocate(instances, c.layout);
-      EXPECT_FALSE(sixteen.streams_outputs(vector_batch));
+      EXPECT_FALSE(internal::streams_outputs(sixteen, vector_batch));
       const DeformedBatch<float> got = test::run_on_device(sixteen, vector_batch, values, normals);
       const DeformedBatch<float> want =
           test::run_on_device(one_lane, scalar_batch, values, normals);
@@ -470,12 +473,12 @@ TEST(Lanes, OtherOutputLayoutsStoreLaneByLaneAndMatchTheReference) {
   bend_previous.previous_positions = true;
   bend_previous.previous_layout = AttributeLayout::packed(
       AttributeFormat::kFloat32x3, bend_sixteen.output_vertices(VertexOrder::kSlots));
-  EXPECT_EQ(bend_sixteen.lanes(bend_mesh_order), 1u);
-  EXPECT_EQ(bend_sixteen.lanes(bend_previous), 1u);
+  EXPECT_EQ(internal::lanes(bend_sixteen, bend_mesh_order), 1u);
+  EXPECT_EQ(internal::lanes(bend_sixteen, bend_previous), 1u);
   OutputLayout bend_packed = bend_sixteen.planes_layout(instances);
   bend_packed.positions = AttributeLayout::packed(
       AttributeFormat::kFloat32x3, bend_sixteen.output_vertices(VertexOrder::kSlots));
-  EXPECT_EQ(bend_sixteen.lanes(bend_packed), by_lane);
+  EXPECT_EQ(internal::lanes(bend_sixteen, bend_packed), by_lane);
 }
 
 // Previous positions in float32 planes laid out as the positions (planes_layout's
@@ -502,15 +505,15 @@ TEST(Lanes, PreviousPositionPlanesAreVectorsHoldingTheFrameBefore) {
         SCOPED_TRACE(std::string(model == &bend ? "bend" : "swim rig") + ", " +
                      std::to_string(lanes) + " lanes" +
                      (stores == OutputStores::kPlain ? ", plain" : ", streaming"));
-        ClOptions options = with_lanes(lanes);
+        ClTuning options = with_lanes(lanes);
         options.stores = stores;
         ClDeformer deformer(test::shared_context(), *model, options);
         OutputLayout layout = deformer.planes_layout(instances);
         layout.previous_positions = true;
         ASSERT_EQ(layout.previous_layout, layout.positions);
-        EXPECT_EQ(deformer.lanes(layout), lanes);
+        EXPECT_EQ(internal::lanes(deformer, layout), lanes);
         DeviceBatch batch = deformer.allocate(instances, layout);
-        EXPECT_EQ(deformer.streams_outputs(batch), stores == OutputStores::kStreaming);
+        EXPECT_EQ(internal::streams_outputs(deformer, batch), stores == OutputStores::kStreaming);
         const DeformedBatch<float> one =
             test::run_on_device(deformer, batch, first, NormalMode::kJacobian);
         EXPECT_EQ(one.previous_positions, one.positions);
@@ -638,7 +641,7 @@ TEST(Lanes, VertexStructsAndAttributeArraysAreTransposedIntoVectors) {
                      << (run.stores == OutputStores::kStreaming ? "streaming" : "plain")
                      << ", lead " << run.lead);
         const bool streams = run.stores == OutputStores::kStreaming;
-        ClOptions options = with_lanes(lanes);
+        ClTuning options = with_lanes(lanes);
         options.stores = run.stores;
         ClDeformer d(test::shared_context(), *c.model, options);
         const std::size_t slots = d.output_vertices(VertexOrder::kSlots);
@@ -652,11 +655,11 @@ TEST(Lanes, VertexStructsAndAttributeArraysAreTransposedIntoVectors) {
         l.normals = member(c.normal);
         l.tangents = tangents;
         l.tangent_layout = tangents ? member(c.tangent) : l.positions;
-        EXPECT_EQ(d.lanes(l), lanes);
+        EXPECT_EQ(internal::lanes(d, l), lanes);
         const std::size_t words = (lead_bytes + instances * slots * stride) / 4;
         const cl::Buffer one = guarded(words);
         DeviceBatch structs = d.bind(instances, l, {one, one, one, {}});
-        EXPECT_EQ(d.streams_outputs(structs), streams);
+        EXPECT_EQ(internal::streams_outputs(d, structs), streams);
         // Each attribute in its own tight array, and (the oracle) padded by a word.
         auto arrays_of = [&](std::size_t padding, std::size_t lead) {
           OutputLayout a = l;
@@ -679,9 +682,9 @@ TEST(Lanes, VertexStructsAndAttributeArraysAreTransposedIntoVectors) {
         }
         DeviceBatch arrays =
             d.bind(instances, tight, {own[0], own[1], tangents ? own[2] : cl::Buffer(), {}});
-        EXPECT_EQ(d.streams_outputs(arrays), streams);
+        EXPECT_EQ(internal::streams_outputs(d, arrays), streams);
         DeviceBatch padded = d.allocate(instances, arrays_of(4, 0));
-        EXPECT_FALSE(d.streams_outputs(padded));
+        EXPECT_FALSE(internal::streams_outputs(d, padded));
         const DeformedBatch<float> want =
             test::run_on_device(d, padded, values, NormalMode::kJacobian);
         test::expect_same_outputs(test::run_on_device(d, structs, values, NormalMode::kJacobian),
@@ -749,7 +752,7 @@ TEST(Lanes, TheBendInMeshOrderStoresStructsAndArraysAsVectors) {
           return l;
         };
         const OutputLayout mesh = layout_in(VertexOrder::kMesh);
-        EXPECT_EQ(d.lanes(mesh), lanes);
+        EXPECT_EQ(internal::lanes(d, mesh), lanes);
         // Each buffer as long as its attributes need, and 64 words of -7 after them.
         std::vector<std::size_t> bytes;
         std::vector<cl::Buffer> buffers;
@@ -803,12 +806,12 @@ TEST(Lanes, TheBendInMeshOrderStoresStructsAndArraysAsVectors) {
   planes.order = VertexOrder::kMesh;
   planes.positions = AttributeLayout::planes(AttributeFormat::kFloat32x3, bend.vertex_count());
   planes.normals = planes.positions;
-  EXPECT_EQ(sixteen.lanes(planes), 1u);
+  EXPECT_EQ(internal::lanes(sixteen, planes), 1u);
 }
 
 // OutputStores::kAuto streams a frame's outputs only when they are larger than the
 // caches could hold: the device's global memory cache (CL_DEVICE_GLOBAL_MEM_CACHE_SIZE),
-// at most 4 MiB per compute unit (ClOptions::stores); kPlain and kStreaming are what
+// at most 4 MiB per compute unit (ClTuning::stores); kPlain and kStreaming are what
 // they say; one lane never streams.
 TEST(Lanes, AutomaticStoresStreamOutputsLargerThanTheCache) {
   const Mesh mesh = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
@@ -825,18 +828,20 @@ TEST(Lanes, AutomaticStoresStreamOutputsLargerThanTheCache) {
   DeviceBatch batch = automatic.allocate(1);
   batch.layout.instance_count = fitting;
   if (fitting * per_instance <= cache) {
-    EXPECT_FALSE(automatic.streams_outputs(batch));
+    EXPECT_FALSE(internal::streams_outputs(automatic, batch));
   }
   batch.layout.instance_count = cache / per_instance + 1;
-  EXPECT_TRUE(automatic.streams_outputs(batch));
-  ClOptions plain = with_lanes(16), streaming = with_lanes(16);
+  EXPECT_TRUE(internal::streams_outputs(automatic, batch));
+  ClTuning plain = with_lanes(16), streaming = with_lanes(16);
   plain.stores = OutputStores::kPlain;
   streaming.stores = OutputStores::kStreaming;
   const DeviceBatch small = automatic.allocate(1);
-  EXPECT_FALSE(ClDeformer(test::shared_context(), model, plain).streams_outputs(small));
-  EXPECT_TRUE(ClDeformer(test::shared_context(), model, streaming).streams_outputs(small));
+  EXPECT_FALSE(internal::streams_outputs(ClDeformer(test::shared_context(), model, plain), small));
+  EXPECT_TRUE(
+      internal::streams_outputs(ClDeformer(test::shared_context(), model, streaming), small));
   streaming.lanes = 1;
-  EXPECT_FALSE(ClDeformer(test::shared_context(), model, streaming).streams_outputs(small));
+  EXPECT_FALSE(
+      internal::streams_outputs(ClDeformer(test::shared_context(), model, streaming), small));
 }
 
 // Expects `half` to hold `full`'s positions and its directions rounded to the nearest
@@ -866,7 +871,7 @@ TEST(Lanes, HalfNormalPlanesTakeLanesAndRoundTheFloat32Outputs) {
   const RigParameters values = swimming_values(model, 5);
   const std::size_t instances = values.instance_count();
   for (std::size_t lanes : vector_lanes()) {
-    ClOptions streaming = with_lanes(lanes), plain = with_lanes(lanes);
+    ClTuning streaming = with_lanes(lanes), plain = with_lanes(lanes);
     streaming.stores = OutputStores::kStreaming;
     plain.stores = OutputStores::kPlain;
     ClDeformer streamed(test::shared_context(), model, streaming);
@@ -876,7 +881,7 @@ TEST(Lanes, HalfNormalPlanesTakeLanesAndRoundTheFloat32Outputs) {
         SCOPED_TRACE(std::to_string(lanes) + " lanes, " + to_string(normals) + ", " +
                      to_string(path));
         DeviceBatch batch = streamed.allocate(instances, NormalFormat::kHalf);
-        EXPECT_EQ(streamed.lanes(batch.outputs), lanes);
+        EXPECT_EQ(internal::lanes(streamed, batch.outputs), lanes);
         const DeformedBatch<float> half =
             test::run_on_device(streamed, batch, values, normals, path);
         expect_rounded_to_half(half, test::run_on_device(streamed, values, normals, path));

@@ -6,7 +6,7 @@
 // The GPU-only code is run here on any device: the half store of GPUs (vstore_half,
 // FF_GPU=1) and of CPUs (half_bits) both against the nearest half computed on the
 // host, and the GPUs' shapes (four instances per work-item, stages compiled in per
-// component) forced through ClOptions.
+// component) forced through ClTuning.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "finflex/finflex.hpp"
+#include "finflex/internal/cl_tuning.hpp"
 #include "support/deform.hpp"
 #include "support/synthetic_fish.hpp"
 #include "support/test_support.hpp"
@@ -94,7 +95,7 @@ TEST(NormalFormat, HalfRigOnBothPathsKeepsFloatIntermediates) {
   const Mesh mesh = test::synthetic_fish(48, 24, true);
   const RiggedMesh model(mesh, resolve_rig(spec, mesh));
   ClDeformer deformer(test::shared_context(), model);
-  ASSERT_EQ(deformer.pass_count(), 5u);
+  ASSERT_EQ(internal::pass_count(deformer), 5u);
   RigParameters values(model, 2);
   values.set(0, "a", 0.4f);
   values.set(1, "b", -0.7f);
@@ -243,10 +244,10 @@ TEST(NormalFormat, HalfNormalsInTheShapesGpusTake) {
   for (const RiggedMesh* model : {&bend, &rig}) {
     const RigParameters values =
         test::at_fractions_of_the_limits(*model, {0.3, -0.6, 0.9, 0.1, -0.2});
-    ClOptions one;
+    ClTuning one;
     one.instances_per_item = 1;
     one.dispatch = RigDispatch::kByPathShape;
-    ClOptions gpu_shape;
+    ClTuning gpu_shape;
     gpu_shape.instances_per_item = 4;
     gpu_shape.dispatch = RigDispatch::kPerComponent;
     ClDeformer expected_deformer(test::shared_context(), *model, one);

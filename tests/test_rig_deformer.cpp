@@ -22,6 +22,7 @@
 #include <gtest/gtest.h>
 
 #include "finflex/finflex.hpp"
+#include "finflex/internal/cl_tuning.hpp"
 #include "support/deform.hpp"
 #include "support/synthetic_fish.hpp"
 #include "support/test_support.hpp"
@@ -118,8 +119,8 @@ RigParameters random_parameters(const Rig& rig, std::size_t instances, double fr
 }
 
 // The generic rig kernels (not the single-bend one), dispatched as `dispatch` says.
-ClOptions rig_kernels(RigDispatch dispatch = RigDispatch::kAuto, std::size_t per_item = 0) {
-  ClOptions options;
+ClTuning rig_kernels(RigDispatch dispatch = RigDispatch::kAuto, std::size_t per_item = 0) {
+  ClTuning options;
   options.dispatch = dispatch;
   options.instances_per_item = per_item;
   options.single_bend_kernel = false;
@@ -264,7 +265,7 @@ TEST(RigDeformer, DeepTreeFusedPassesAndReferenceAgree) {
   ASSERT_EQ(rig.components.size(), 5u);
   EXPECT_EQ(rig.depth(4), 4u);
   ClDeformer deformer(test::shared_context(), RiggedMesh(mesh, rig), rig_kernels());
-  EXPECT_EQ(deformer.pass_count(), 5u);  // one stage per level
+  EXPECT_EQ(internal::pass_count(deformer), 5u);  // one stage per level
   expect_paths_agree_with_each_other_and_the_reference(mesh, rig, "deep tree", 4);
 }
 
@@ -272,7 +273,7 @@ TEST(RigDeformer, LongChainFusedPassesAndReferenceAgree) {
   const Mesh mesh = test::synthetic_fish(96, 32, true);
   const Rig rig = resolve_rig(long_chain_rig(), mesh);
   ClDeformer deformer(test::shared_context(), RiggedMesh(mesh, rig), rig_kernels());
-  EXPECT_EQ(deformer.pass_count(), 5u);  // one per chain position
+  EXPECT_EQ(internal::pass_count(deformer), 5u);  // one per chain position
   expect_paths_agree_with_each_other_and_the_reference(mesh, rig, "long chain", 4);
 }
 
@@ -301,7 +302,7 @@ TEST(RigDeformer, StagelessComponentsAreCopiedOnThePassesPath) {
   for (const RigComponent& component : rig.components)
     ASSERT_FALSE(component.vertices.empty()) << component.name;
   ClDeformer deformer(test::shared_context(), RiggedMesh(mesh, rig), rig_kernels());
-  EXPECT_EQ(deformer.pass_count(), 2u);  // depth 1: chain positions 0 and 1
+  EXPECT_EQ(internal::pass_count(deformer), 2u);  // depth 1: chain positions 0 and 1
   expect_paths_agree_with_each_other_and_the_reference(mesh, rig, "stageless components", 6);
 }
 
@@ -310,14 +311,14 @@ TEST(RigDeformer, PassesMoveEachVertexOnlyThroughItsOwnStages) {
   // Five stages on every vertex: four intermediate results, each written and read once.
   ClDeformer long_chain(test::shared_context(),
                         RiggedMesh(mesh, resolve_rig(long_chain_rig(), mesh)), rig_kernels());
-  EXPECT_DOUBLE_EQ(long_chain.scratch_records_per_slot(), 8.0);
+  EXPECT_DOUBLE_EQ(internal::scratch_records_per_slot(long_chain), 8.0);
   // One stage on every vertex: no intermediate results.
   RigSpec single;
   single.frame.mode = FrameSpec::Mode::kIdentity;
   single.components.push_back(root({bend("m")}));
   ClDeformer one_stage(test::shared_context(), RiggedMesh(mesh, resolve_rig(single, mesh)),
                        rig_kernels());
-  EXPECT_DOUBLE_EQ(one_stage.scratch_records_per_slot(), 0.0);
+  EXPECT_DOUBLE_EQ(internal::scratch_records_per_slot(one_stage), 0.0);
 }
 
 TEST(RigDeformer, ShippedRigsFusedPassesAndReferenceAgree) {
@@ -629,7 +630,9 @@ void expect_several_per_item_match_one(const std::string& rig_file) {
                                                           {RigDispatch::kPerComponent, 8}};
     for (const auto& [dispatch, per_item] : shapes) {
       ClDeformer several(test::shared_context(), model, rig_kernels(dispatch, per_item));
-      EXPECT_EQ(several.instances_per_item(NormalFormat::kFloat32), per_item);
+      EXPECT_EQ(
+          internal::instances_per_item(several, several.planes_layout(1, NormalFormat::kFloat32)),
+          per_item);
       const DeformedBatch<float> got =
           test::run_on_device(several, values, NormalMode::kJacobian, path);
       const Difference d = max_difference(got, expected, mesh.vertex_count(), 7);

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "finflex/finflex.hpp"
+#include "finflex/internal/cl_tuning.hpp"
 #include "support/deform.hpp"
 #include "support/synthetic_fish.hpp"
 #include "support/test_support.hpp"
@@ -167,9 +168,9 @@ TEST(Spine, DeviceMatchesTheReference) {
   for (const auto& [mesh, frame] : meshes) {
     const RiggedMesh model = spine_model(mesh, 32, frame);
     const RigParameters values = angles(model, waves);
-    for (const ClOptions& options :
-         {ClOptions{0, RigDispatch::kPerComponent, true},
-          ClOptions{0, RigDispatch::kByPathShape, true}, ClOptions{3, RigDispatch::kAuto, true}}) {
+    for (const ClTuning& options :
+         {ClTuning{0, RigDispatch::kPerComponent, true},
+          ClTuning{0, RigDispatch::kByPathShape, true}, ClTuning{3, RigDispatch::kAuto, true}}) {
       ClDeformer deformer(test::shared_context(), model, options);
       for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {
         for (RigPath path : {RigPath::kFused, RigPath::kPasses}) {
@@ -198,25 +199,25 @@ TEST(Spine, DeviceMatchesTheReferenceForEveryTableSize) {
     SCOPED_TRACE("table items " + std::to_string(items));
     expect_every_table_size_matches(items);
   }
-  ClOptions odd;
+  ClTuning odd;
   odd.table_items = 3;
-  ClOptions too_many;
+  ClTuning too_many;
   too_many.table_items = 128;
   EXPECT_THROW(
       ClDeformer(test::shared_context(), spine_model(test::synthetic_fish(16, 8), 32), too_many),
       Error);
   try {
     ClDeformer(test::shared_context(), spine_model(test::synthetic_fish(16, 8), 32), odd);
-    FAIL() << "expected an error naming options.table_items";
+    FAIL() << "expected an error naming tuning.table_items";
   } catch (const Error& e) {
-    EXPECT_EQ(e.field(), "options.table_items");
+    EXPECT_EQ(e.field(), "tuning.table_items");
   }
 }
 
 // The fused path with `table_items` work-items per instance against the reference.
 AccuracyReport fused_against_reference(const RiggedMesh& model, const RigParameters& values,
                                        std::size_t table_items) {
-  ClOptions options;
+  ClTuning options;
   options.table_items = table_items;
   ClDeformer deformer(test::shared_context(), model, options);
   const DeformedBatch<float> device =

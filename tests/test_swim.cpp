@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "finflex/finflex.hpp"
+#include "finflex/internal/cl_tuning.hpp"
 #include "support/deform.hpp"
 #include "support/test_support.hpp"
 
@@ -354,7 +355,7 @@ TEST(Swim, DriverPreparedRecordsDeformAsRigPrepareDoes) {
     SCOPED_TRACE("work-items per fish " + std::to_string(items));
     ClSwimDriver driver(test::shared_context(), swim, lengths, {}, items);
     ASSERT_NE(driver.derived_buffer(), nullptr);
-    ClOptions options;  // rig_prepare sums in the same order as the driver
+    ClTuning options;  // rig_prepare sums in the same order as the driver
     options.table_items = items;
     ClDeformer deformer(test::shared_context(), swim.model(), options);
     DeviceBatch prepared = deformer.allocate(lengths.size());

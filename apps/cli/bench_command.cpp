@@ -46,6 +46,7 @@
 #include "cli_paths.hpp"
 #include "commands.hpp"
 #include "finflex/finflex.hpp"
+#include "finflex/internal/cl_tuning.hpp"
 #include "huge_page_settings.hpp"
 #include "reference_kernels.hpp"
 #include "swim_scene.hpp"
@@ -200,8 +201,8 @@ struct DeformBench {
 
 // --per-item, --table-items, --lanes, --stores and --dispatch: the backend's choices, for
 // experiments.
-ClOptions cl_options(const BenchOptions& options) {
-  ClOptions cl;
+ClTuning cl_options(const BenchOptions& options) {
+  ClTuning cl;
   cl.instances_per_item =
       parse_count(options.per_item, "--per-item", 0, 64, "instances per work-item");
   cl.table_items =
@@ -266,12 +267,13 @@ Measured measure_deform(const BenchOptions& options, const Mesh& mesh, Context& 
   const RigPath chosen = path == RigPath::kAuto ? deformer.automatic_path() : path;
   const bool passes_path = chosen == RigPath::kPasses && !deformer.uses_single_bend_kernel();
   Measured measured;
-  measured.passes = passes_path ? deformer.pass_count() : 1;
-  measured.scratch_records = passes_path ? deformer.scratch_records_per_slot() : 0.0;
+  measured.passes = passes_path ? internal::pass_count(deformer) : 1;
+  measured.scratch_records = passes_path ? internal::scratch_records_per_slot(deformer) : 0.0;
   const Rig& rig = model.rig();
-  measured.write_only = fastest_write_only(context, bench.batch, layout.vertices,
-                                           deformer.instances_per_item(layout.layout, normals),
-                                           deformer.lanes(layout.layout), frames);
+  measured.write_only =
+      fastest_write_only(context, bench.batch, layout.vertices,
+                         internal::instances_per_item(deformer, layout.layout, normals),
+                         internal::lanes(deformer, layout.layout), frames);
   measured.times = bench::time_frames(
       frames,
       [&](std::size_t f) {
@@ -293,9 +295,9 @@ Measured measure_deform(const BenchOptions& options, const Mesh& mesh, Context& 
   measured.what = options.rig.empty() ? std::string("bend ") + options.mode
                                       : std::string("rig ") + to_string(chosen);
   measured.batch = &bench.batch;
-  measured.per_item = deformer.instances_per_item(layout.layout, normals);
-  measured.lanes = deformer.lanes(layout.layout);
-  measured.streaming = deformer.streams_outputs(bench.batch);
+  measured.per_item = internal::instances_per_item(deformer, layout.layout, normals);
+  measured.lanes = internal::lanes(deformer, layout.layout);
+  measured.streaming = internal::streams_outputs(deformer, bench.batch);
   measured.vertices = mesh.vertex_count();
   measured.output_vertices = layout.vertices;
   measured.bytes_per_vertex = layout.bytes_per_vertex;
@@ -372,10 +374,11 @@ Measured measure_swim(const BenchOptions& options, Context& context, std::size_t
         true);
   };
   const std::size_t output_vertices = species.batch().layout.plane_stride;
-  measured.write_only =
-      fastest_write_only(context, species.batch(), output_vertices,
-                         species.deformer->instances_per_item(format, normals),
-                         species.deformer->lanes(species.batch().outputs), frames);
+  measured.write_only = fastest_write_only(
+      context, species.batch(), output_vertices,
+      internal::instances_per_item(*species.deformer, species.deformer->planes_layout(1, format),
+                                   normals),
+      internal::lanes(*species.deformer, species.batch().outputs), frames);
   measured.times = bench::time_frames(
       frames, [](std::size_t) {},
       [&](std::vector<cl::Event>& events, bool timed) {
@@ -393,9 +396,10 @@ Measured measure_swim(const BenchOptions& options, Context& context, std::size_t
   measured.host_driver_seconds = driver;
   measured.what = std::string("swim ") + to_string(species.deformer->automatic_path());
   measured.batch = &species.batch();
-  measured.per_item = species.deformer->instances_per_item(format, normals);
-  measured.lanes = species.deformer->lanes(species.batch().outputs);
-  measured.streaming = species.deformer->streams_outputs(species.batch());
+  measured.per_item = internal::instances_per_item(
+      *species.deformer, species.deformer->planes_layout(1, format), normals);
+  measured.lanes = internal::lanes(*species.deformer, species.batch().outputs);
+  measured.streaming = internal::streams_outputs(*species.deformer, species.batch());
   measured.vertices = species.swim.model().vertex_count();
   measured.output_vertices = output_vertices;
   measured.bytes_per_vertex = species.batch().layout.bytes_per_vertex();

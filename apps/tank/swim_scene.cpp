@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include "finflex/internal/cl_tuning.hpp"
 
 namespace finflex::tank {
 namespace {
@@ -56,7 +57,7 @@ std::vector<SpeciesFiles> bundled_species(const std::string& data_dir) {
 
 SwimScene::SwimScene(Context& context, const std::vector<SpeciesFiles>& files, std::size_t fish,
                      const TankSettings& settings, std::uint64_t seed, NormalMode normals,
-                     NormalFormat format, const ClOptions& options, const OutputsFactory& outputs)
+                     NormalFormat format, const ClTuning& options, const OutputsFactory& outputs)
     : context_(context) {
   if (files.empty()) {
     throw Error(ErrorCode::kInvalidArgument, "species", "species: at least one is needed");

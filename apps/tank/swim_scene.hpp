@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "finflex/finflex.hpp"
+#include "finflex/internal/cl_tuning.hpp"
 #include "tank.hpp"
 
 namespace finflex::tank {
@@ -116,7 +117,7 @@ class SwimScene {
   // outputs (`outputs`, or DeviceOutputs when it is empty).
   SwimScene(Context& context, const std::vector<SpeciesFiles>& species, std::size_t fish,
             const TankSettings& settings, std::uint64_t seed, NormalMode normals,
-            NormalFormat format = NormalFormat::kFloat32, const ClOptions& options = {},
+            NormalFormat format = NormalFormat::kFloat32, const ClTuning& options = {},
             const OutputsFactory& outputs = {});
 
   // One frame: the tank steps by dt, then each species' driver and deformation are

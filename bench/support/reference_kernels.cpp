@@ -6,7 +6,8 @@
 
 #include "bench_kernel_sources.hpp"
 #include "finflex/cl_deformer.hpp"
-#include "finflex/cl_outputs.hpp"
+#include "finflex/internal/cl_outputs.hpp"
+#include "finflex/internal/cl_tuning.hpp"
 
 namespace finflex::bench {
 namespace {
@@ -20,7 +21,7 @@ ProgramSource bandwidth_program() {
 }
 
 // The deformation kernels' NDRange: work-groups of kGroupSize slots, `lanes` slots per
-// work-item, and their instance rows (ClDeformer::group_rows).
+// work-item, and their instance rows (internal::group_rows).
 cl::Event launch(Context& context, cl::Kernel& kernel, std::size_t vertices, std::size_t instances,
                  std::size_t per_item, std::size_t lanes) {
   const std::size_t group = ClDeformer::kGroupSize;
@@ -28,8 +29,8 @@ cl::Event launch(Context& context, cl::Kernel& kernel, std::size_t vertices, std
   check_cl(context.queue().enqueueNDRangeKernel(
                kernel, cl::NullRange,
                cl::NDRange((vertices + group - 1) / group * group / lanes,
-                           ClDeformer::launch_rows((instances + per_item - 1) / per_item, lanes)),
-               cl::NDRange(group / lanes, ClDeformer::group_rows(lanes)), nullptr, &done),
+                           internal::launch_rows((instances + per_item - 1) / per_item, lanes)),
+               cl::NDRange(group / lanes, internal::group_rows(lanes)), nullptr, &done),
            "clEnqueueNDRangeKernel");
   return done;
 }

@@ -8,6 +8,7 @@
 
 #include "finflex/context.hpp"
 #include "finflex/device_batch.hpp"
+#include "finflex/internal/cl_tuning.hpp"
 
 namespace finflex::bench {
 
@@ -26,7 +27,7 @@ enum class WriteValues {
 // (ClDeformer::output_vertices of its order), `instances_per_item` instances and
 // `lanes` slots per work-item (the deformer's: ClDeformer::instances_per_item,
 // ClDeformer::lanes; more than one lane: FinFlex's float32 planes only, with streaming
-// stores or ordinary ones: ClOptions::stores; for another layout the kernel's build
+// stores or ordinary ones: ClTuning::stores; for another layout the kernel's build
 // fails, kernels/cpu/lane_outputs.cl). Returns the kernel's event.
 cl::Event enqueue_write_only(Context& context, DeviceBatch& batch, std::size_t vertices,
                              std::size_t instances_per_item,

@@ -40,7 +40,7 @@ class FINFLEX_API ClSwimDriver {
  public:
   // One fish per length (m, > 0), phases from `phases` (cycles) or 0: errors as
   // SwimReference's. The swim model must outlive the driver. items_per_fish: work-items
-  // per fish, as ClOptions::table_items (0: the device's choice; a power of two up to 64).
+  // per fish, as ClTuning::table_items (0: the device's choice; a power of two up to 64).
   ClSwimDriver(Context& context, const SwimModel& swim, const std::vector<float>& lengths,
                const std::vector<float>& phases = {}, std::size_t items_per_fish = 0);
   ~ClSwimDriver();

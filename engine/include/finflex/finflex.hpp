@@ -21,7 +21,6 @@
 #include "finflex/batch.hpp"
 #include "finflex/body_frame.hpp"
 #include "finflex/cl_deformer.hpp"
-#include "finflex/cl_outputs.hpp"
 #include "finflex/cl_swim.hpp"
 #include "finflex/context.hpp"
 #include "finflex/deformer_type.hpp"

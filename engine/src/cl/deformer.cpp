@@ -8,11 +8,12 @@
 
 #include "cl/deformer_impl.hpp"
 #include "cl/device_profile.hpp"
-#include "finflex/cl_outputs.hpp"
-#include "finflex/error.hpp"
 #include "cl/host_pages.hpp"
 #include "cl/outputs.hpp"
 #include "cl/rig_program.hpp"
+#include "finflex/error.hpp"
+#include "finflex/internal/cl_outputs.hpp"
+#include "finflex/internal/cl_tuning.hpp"
 
 namespace finflex {
 namespace {
@@ -50,27 +51,27 @@ std::size_t longest_prepared_table(const Rig& rig) {
 // ----------------------------------------------------------------------------------
 // Set-up: the model on the device
 
-ClDeformer::Impl::Impl(Context& context_in, const RiggedMesh& model_in, const ClOptions& options_in)
-    : context(context_in), model(model_in), options(options_in), checker_(model_in.rig()) {
+ClDeformer::Impl::Impl(Context& context_in, const RiggedMesh& model_in, const ClTuning& tuning_in)
+    : context(context_in), model(model_in), tuning(tuning_in), checker_(model_in.rig()) {
   const DeviceDescription& device = context.description();
-  options.dispatch = detail::device_dispatch(device, options.dispatch);
-  if (options.lanes != 0 && options.lanes != 1 && options.lanes != 8 && options.lanes != 16 &&
-      options.lanes != 32) {
-    throw Error(ErrorCode::kInvalidArgument, "options.lanes",
-                "options.lanes: " + std::to_string(options.lanes) +
+  tuning.dispatch = detail::device_dispatch(device, tuning.dispatch);
+  if (tuning.lanes != 0 && tuning.lanes != 1 && tuning.lanes != 8 && tuning.lanes != 16 &&
+      tuning.lanes != 32) {
+    throw Error(ErrorCode::kInvalidArgument, "tuning.lanes",
+                "tuning.lanes: " + std::to_string(tuning.lanes) +
                     " is not a number of lanes (expected 0: the device's, 1, 8, 16 or 32)");
   }
-  if (options.lanes == 32 && !detail::device_is_pocl(device)) {
-    throw Error(ErrorCode::kInvalidArgument, "options.lanes",
-                "options.lanes: 32 lanes are built by PoCL only (a vector type of clang's); "
+  if (tuning.lanes == 32 && !detail::device_is_pocl(device)) {
+    throw Error(ErrorCode::kInvalidArgument, "tuning.lanes",
+                "tuning.lanes: 32 lanes are built by PoCL only (a vector type of clang's); "
                 "the device's platform is '" +
                     device.platform_name + "' (expected 0, 1, 8 or 16)");
   }
-  detail::check_table_items(options.table_items, "options.table_items");
-  options.table_items =
-      detail::device_table_items(device, longest_prepared_table(model.rig()), options.table_items);
-  single_bend = options.single_bend_kernel && model.is_single_bend();
-  const bool share_code = options.dispatch == RigDispatch::kByPathShape;
+  detail::check_table_items(tuning.table_items, "tuning.table_items");
+  tuning.table_items =
+      detail::device_table_items(device, longest_prepared_table(model.rig()), tuning.table_items);
+  single_bend = tuning.single_bend_kernel && model.is_single_bend();
+  const bool share_code = tuning.dispatch == RigDispatch::kByPathShape;
   const Rig& rig = model.rig();
   tangents_ = model.mesh().has_tangents();
 
@@ -143,7 +144,7 @@ ClDeformer::Impl::Impl(Context& context_in, const RiggedMesh& model_in, const Cl
       model.longest_path() <= ClDeformer::kMaxFusedStages ? RigPath::kFused : RigPath::kPasses;
   program_ = {detail::rig_program_files(rig),
               detail::rig_dispatch_source(model, slots, rest, fused, plan, kWorkGroupSize,
-                                          options.table_items, share_code, lanes() > 1),
+                                          tuning.table_items, share_code, lanes() > 1),
               ""};
   derived_per_instance_ = detail::derived_per_instance(rig);
   // A placeholder until the first frame sizes it: every rig kernel takes the buffer.
@@ -161,8 +162,8 @@ BatchLayout ClDeformer::Impl::layout(std::size_t instances, NormalFormat format)
 }
 
 std::size_t ClDeformer::Impl::per_item(NormalFormat format, bool rotated_planes) const {
-  return options.instances_per_item
-             ? options.instances_per_item
+  return tuning.instances_per_item
+             ? tuning.instances_per_item
              : detail::device_instances_per_item(context.description(), single_bend, format,
                                                  derived_per_instance_ > 0 && rotated_planes);
 }
@@ -176,7 +177,7 @@ std::size_t ClDeformer::Impl::per_item(NormalFormat format, bool rotated_planes)
 // rig's kernels are faster at their usual four (0.32 against 0.42).
 std::size_t ClDeformer::Impl::per_item(const OutputLayout& outputs, NormalMode normals) const {
   const bool staged = stages_structs() && detail::fills_vertex_struct(outputs);
-  if (options.instances_per_item == 0 && context.description().is_gpu() && single_bend &&
+  if (tuning.instances_per_item == 0 && context.description().is_gpu() && single_bend &&
       outputs.positions.arrangement == Arrangement::kPacked && !staged) {
     return 1;
   }
@@ -190,7 +191,7 @@ std::size_t ClDeformer::Impl::output_vertices(VertexOrder order) const {
 }
 
 std::size_t ClDeformer::Impl::lanes() const {
-  return options.lanes ? options.lanes : detail::device_lanes(context.description());
+  return tuning.lanes ? tuning.lanes : detail::device_lanes(context.description());
 }
 
 // Lanes store FinFlex's planes (normals float32 or half; previous positions in float32
@@ -206,8 +207,8 @@ std::size_t ClDeformer::Impl::lanes() const {
 // store as vectors: its slots are its vertices) or with previous positions in another
 // layout: one lane, which PoCL 3.1's work-group vectoriser makes faster there (14.8 ms
 // against 27 lane by lane, mesh order). GPUs: one lane for any layout but the planes,
-// whatever ClOptions::lanes asks; and so does a vertex struct staged through local
-// memory (ClOptions::struct_stores, a work-item a vertex).
+// whatever ClTuning::lanes asks; and so does a vertex struct staged through local
+// memory (ClTuning::struct_stores, a work-item a vertex).
 std::size_t ClDeformer::Impl::lanes(const OutputLayout& outputs) const {
   if (writes_planes(outputs)) return lanes();
   if (context.description().is_gpu()) return 1;
@@ -229,7 +230,7 @@ bool ClDeformer::Impl::writes_planes(const OutputLayout& outputs) const {
 }
 
 // Vertex structs in one buffer and attributes in arrays of their own
-// (finflex/cl_outputs.hpp lane_struct_options), transposed into vectors by kernels of
+// (finflex/internal/cl_outputs.hpp lane_struct_options), transposed into vectors by kernels of
 // more than one lane (kernels/cpu/lane_outputs.cl): on CPUs, structs unless staged.
 bool ClDeformer::Impl::writes_lane_words(const DeviceBatch& batch) const {
   if (lanes(batch.outputs) == 1) return false;
@@ -251,7 +252,7 @@ bool ClDeformer::Impl::streams_outputs(const DeviceBatch& batch) const {
       (l.previous_positions ? format_bytes(l.previous_layout.format) : 0);
   const BatchLayout& counts = batch.layout;
   const std::size_t bytes = counts.plane_stride * counts.instance_count * vertex_bytes;
-  return detail::device_streaming_stores(context.description(), options.stores, bytes);
+  return detail::device_streaming_stores(context.description(), tuning.stores, bytes);
 }
 
 // ----------------------------------------------------------------------------------
@@ -410,7 +411,7 @@ void ClDeformer::Impl::prepare_derived(const ClJob& job, const FrameInputs& inpu
   set(static_cast<cl_uint>(instances));
   // device_table_items work-items per instance, in groups of table_group_size
   // (kernels/rig.cl).
-  const std::size_t items = options.table_items;
+  const std::size_t items = tuning.table_items;
   const std::size_t group = detail::table_group_size(items);
   const std::size_t global = (instances * items + group - 1) / group * group;
   cl::Event prepared;
@@ -477,10 +478,10 @@ void ClDeformer::Impl::launch(BoundKernel& bound, const ClJob& job, std::size_t 
   const cl::NDRange offset(first_group * items_per_group, 0);
   const cl::NDRange global(
       (end_group - first_group) * items_per_group,
-      launch_rows((job.parameters.instance_count + per - 1) / per, batch_lanes_));
+      internal::launch_rows((job.parameters.instance_count + per - 1) / per, batch_lanes_));
   check_cl(context.queue().enqueueNDRangeKernel(
-               bound.kernel, offset, global, cl::NDRange(items_per_group, group_rows(batch_lanes_)),
-               nullptr, event),
+               bound.kernel, offset, global,
+               cl::NDRange(items_per_group, internal::group_rows(batch_lanes_)), nullptr, event),
            "clEnqueueNDRangeKernel");
   if (kernel_events) kernel_events->push_back(*event);
 }
@@ -593,7 +594,7 @@ cl::Event ClDeformer::Impl::enqueue(const ClJob& job, std::vector<cl::Event>* ke
     // Shared code (RigDispatch::kByPathShape) has a kernel per launch of the plan for
     // one lane, and for more one kernel, rig_fused_0, over every work-group
     // (detail::rig_dispatch_source; the single bend's one launch is that already).
-    if (options.dispatch == RigDispatch::kByPathShape && batch_lanes_ > 1) {
+    if (tuning.dispatch == RigDispatch::kByPathShape && batch_lanes_ > 1) {
       run(0, 0, slot_count_ / kWorkGroupSize, true, &done);
     } else {
       for (std::size_t r = 0; r < fused_launches_.size(); ++r) {
@@ -615,8 +616,11 @@ cl::Event ClDeformer::Impl::enqueue(const ClJob& job, std::vector<cl::Event>* ke
 // ----------------------------------------------------------------------------------
 // The public class
 
-ClDeformer::ClDeformer(Context& context, const RiggedMesh& model, const ClOptions& options)
-    : impl_(std::make_unique<Impl>(context, model, options)) {}
+ClDeformer::ClDeformer(Context& context, const RiggedMesh& model)
+    : ClDeformer(context, model, ClTuning{}) {}
+
+ClDeformer::ClDeformer(Context& context, const RiggedMesh& model, const ClTuning& tuning)
+    : impl_(std::make_unique<Impl>(context, model, tuning)) {}
 
 ClDeformer::~ClDeformer() = default;
 
@@ -693,22 +697,36 @@ const std::vector<std::uint32_t>& ClDeformer::remapped_indices() const {
   return impl_->remapped_indices;
 }
 bool ClDeformer::uses_single_bend_kernel() const { return impl_->single_bend; }
-std::size_t ClDeformer::pass_count() const { return impl_->pass_count; }
-double ClDeformer::scratch_records_per_slot() const { return impl_->scratch_records_per_slot; }
 std::size_t ClDeformer::derived_floats_per_instance() const {
   return impl_->derived_per_instance();
 }
 RigPath ClDeformer::automatic_path() const { return impl_->automatic_path; }
-std::size_t ClDeformer::instances_per_item(NormalFormat format, NormalMode normals) const {
-  return impl_->per_item(format, normals == NormalMode::kRotate);
+
+// ----------------------------------------------------------------------------------
+// What a deformer chose (finflex/internal/cl_tuning.hpp)
+
+namespace internal {
+
+struct DeformerAccess {
+  static const ClDeformer::Impl& impl(const ClDeformer& deformer) { return *deformer.impl_; }
+};
+
+std::size_t pass_count(const ClDeformer& deformer) {
+  return DeformerAccess::impl(deformer).pass_count;
 }
-std::size_t ClDeformer::instances_per_item(const OutputLayout& outputs, NormalMode normals) const {
-  return impl_->per_item(outputs, normals);
+double scratch_records_per_slot(const ClDeformer& deformer) {
+  return DeformerAccess::impl(deformer).scratch_records_per_slot;
 }
-std::size_t ClDeformer::lanes(NormalFormat) const { return impl_->lanes(); }
-std::size_t ClDeformer::lanes(const OutputLayout& outputs) const { return impl_->lanes(outputs); }
-bool ClDeformer::streams_outputs(const DeviceBatch& batch) const {
-  return impl_->streams_outputs(batch);
+std::size_t instances_per_item(const ClDeformer& deformer, const OutputLayout& outputs,
+                               NormalMode normals) {
+  return DeformerAccess::impl(deformer).per_item(outputs, normals);
+}
+std::size_t lanes(const ClDeformer& deformer, const OutputLayout& outputs) {
+  return DeformerAccess::impl(deformer).lanes(outputs);
+}
+bool streams_outputs(const ClDeformer& deformer, const DeviceBatch& batch) {
+  return DeformerAccess::impl(deformer).streams_outputs(batch);
 }
 
+}  // namespace internal
 }  // namespace finflex

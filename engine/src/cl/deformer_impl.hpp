@@ -11,15 +11,16 @@
 #include <vector>
 
 #include "cl/device_buffers.hpp"
-#include "finflex/cl_deformer.hpp"
 #include "cl/kernel_variant.hpp"
+#include "finflex/cl_deformer.hpp"
+#include "finflex/internal/cl_tuning.hpp"
 #include "model/parameter_checks.hpp"
 
 namespace finflex {
 
 class ClDeformer::Impl {
  public:
-  Impl(Context& context, const RiggedMesh& model, const ClOptions& options);
+  Impl(Context& context, const RiggedMesh& model, const ClTuning& tuning);
 
   // enqueue() and check() of the public class. `checked`: the caller has run check()
   // on this job already (RigFrame), so unclamped values are copied, not checked again.
@@ -35,7 +36,7 @@ class ClDeformer::Impl {
   std::size_t per_item(const OutputLayout& outputs, NormalMode normals) const;
   // The outputs' vertex count in `order`: slots, or the mesh's vertices.
   std::size_t output_vertices(VertexOrder order) const;
-  // Lanes (ClOptions::lanes), and for a batch's outputs (1 on GPUs unless they are
+  // Lanes (ClTuning::lanes), and for a batch's outputs (1 on GPUs unless they are
   // FinFlex's planes); whether outputs are FinFlex's planes (float32 or half normals);
   // streaming stores for a batch.
   std::size_t lanes() const;
@@ -47,10 +48,10 @@ class ClDeformer::Impl {
   bool writes_mesh_as_slots(const OutputLayout& outputs) const {
     return outputs.order == VertexOrder::kMesh && slots_in_mesh_order_;
   }
-  // Whether vertex structs are written through local memory (ClOptions::struct_stores).
+  // Whether vertex structs are written through local memory (ClTuning::struct_stores).
   bool stages_structs() const {
-    return options.struct_stores == ClOptions::StructStores::kStaged ||
-           (options.struct_stores == ClOptions::StructStores::kAuto &&
+    return tuning.struct_stores == ClTuning::StructStores::kStaged ||
+           (tuning.struct_stores == ClTuning::StructStores::kAuto &&
             context.description().is_gpu());
   }
   bool streams_outputs(const DeviceBatch& batch) const;
@@ -58,7 +59,7 @@ class ClDeformer::Impl {
 
   Context& context;
   const RiggedMesh model;
-  ClOptions options;  // dispatch resolved for the device
+  ClTuning tuning;  // dispatch resolved for the device
   bool single_bend = false;
   std::vector<std::uint32_t> slot_of_vertex;
   std::vector<std::uint32_t> remapped_indices;

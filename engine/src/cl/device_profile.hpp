@@ -11,6 +11,7 @@
 #include "finflex/cl_deformer.hpp"
 #include "finflex/context.hpp"
 #include "finflex/error.hpp"
+#include "finflex/internal/cl_tuning.hpp"
 
 namespace finflex::detail {
 
@@ -133,7 +134,7 @@ inline std::size_t device_driver_lanes(const DeviceDescription& device, std::siz
 // to share; else table_group_size.
 constexpr std::size_t kLaneDriverGroupSize = 4;
 
-// Checks a table_items option (ClOptions, ClSwimDriver): 0, or a power of two up to
+// Checks a table_items option (ClTuning, ClSwimDriver): 0, or a power of two up to
 // kWorkGroupSize.
 inline void check_table_items(std::size_t items, const char* field) {
   if (items <= kWorkGroupSize && (items & (items - 1)) == 0) return;

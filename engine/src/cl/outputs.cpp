@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "cl/device_buffers.hpp"
-#include "finflex/cl_outputs.hpp"
-#include "finflex/error.hpp"
 #include "cl/host_pages.hpp"
+#include "finflex/error.hpp"
+#include "finflex/internal/cl_outputs.hpp"
 
 namespace finflex {
 namespace {

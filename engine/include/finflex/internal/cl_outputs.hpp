@@ -25,10 +25,10 @@ FINFLEX_API std::string output_build_options(const OutputLayout& layout);
 // order, no previous positions): the options (FF_STAGED_STRUCT, ...) with which the
 // kernels put a work-group's structs together in local memory and write them as one
 // contiguous run. Empty for any other layout, or when `staged` is false. Append to
-// output_build_options(batch.outputs). FinFlex stages on GPUs (ClOptions::struct_stores).
+// output_build_options(batch.outputs). FinFlex stages on GPUs (ClTuning::struct_stores).
 FINFLEX_API std::string staged_struct_options(const DeviceBatch& batch, bool staged);
 
-// A vertex struct for kernels of more than one lane (CPUs, ClOptions::lanes): its
+// A vertex struct for kernels of more than one lane (CPUs, ClTuning::lanes): its
 // attributes in one buffer, slot order, no previous positions, filling the struct,
 // each starting on a 4-byte word, in float32x3 or x4, float16x4, snorm16x4 or
 // octahedral16x2 (FF_LANE_STRUCT); or each attribute in a tightly packed array of its
