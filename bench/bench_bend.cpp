@@ -3,7 +3,6 @@
 #include <chrono>
 
 #include "bench_support.hpp"
-#include "finflex/internal/cl_tuning.hpp"
 
 namespace finflex::bench {
 
@@ -12,9 +11,9 @@ void BM_WriteOnly(benchmark::State& state, NormalFormat format, std::size_t per_
   Setup& setup = Setup::get();
   DeviceModel& bend = setup.bend(BendMode::kPaper);
   DeviceBatch& batch = bend.batch(static_cast<std::size_t>(state.range(0)), format);
-  if (per_item == 0)
-    per_item = internal::instances_per_item(bend.deformer, bend.deformer.planes_layout(1, format));
-  if (lanes == 0) lanes = internal::lanes(bend.deformer, bend.deformer.planes_layout(1, format));
+  const KernelShape shape = kernel_shape(bend.deformer, batch, NormalMode::kRotate);
+  if (per_item == 0) per_item = shape.instances_per_item;
+  if (lanes == 0) lanes = shape.lanes;
   const double seconds = time_iterations(state, [&] {
     return event_seconds(enqueue_write_only(setup.context, batch, batch.layout.plane_stride,
                                             per_item, values, lanes, streaming));

@@ -18,13 +18,7 @@ DeviceBatch& DeviceModel::batch(std::size_t instances, NormalFormat format) {
 
 ClJob DeviceModel::job(const RigParameters& values, DeviceBatch& batch, NormalMode normals,
                        RigPath path) const {
-  ClJob job;
-  job.model = &model;
-  job.parameters = values.view();
-  job.normals = normals;
-  job.path = path;
-  job.outputs = &batch;
-  return job;
+  return frame_job(model, values, batch, normals, path);
 }
 
 Setup& Setup::get() {

@@ -1,6 +1,7 @@
 // Shared pieces of the FinFlex Google Benchmark programs: the device, the mesh and its
-// models, and the counters every benchmark reports. Timing from profiling events and
-// the reference kernels are in support/ (shared with `finflex bench`).
+// models, and the counters every benchmark reports. The harness they share with
+// `finflex bench` (timing from profiling events, the reference kernels, jobs and
+// parameters, what a deformer reports) is in support/.
 #pragma once
 
 #include <chrono>
@@ -14,8 +15,10 @@
 
 #include <benchmark/benchmark.h>
 
+#include "deformer_report.hpp"
 #include "finflex/finflex.hpp"
 #include "finflex/internal/cl_tuning.hpp"
+#include "frame_bench.hpp"
 #include "reference_kernels.hpp"
 #include "timing.hpp"
 
@@ -100,7 +103,7 @@ double time_iterations(benchmark::State& state, Launch launch) {
 
 // Benchmark bodies (bench_bend.cpp, bench_rig.cpp, bench_baselines.cpp); registered in
 // bench_main.cpp.
-// per_item, lanes: 0 for the bend deformer's own (ClDeformer::instances_per_item, lanes);
+// per_item, lanes: 0 for the bend deformer's own (kernel_shape, deformer_report.hpp);
 // streaming: with more than one lane, streaming stores (ClTuning::stores).
 void BM_WriteOnly(benchmark::State& state, NormalFormat format, std::size_t per_item,
                   WriteValues values, std::size_t lanes, bool streaming);

@@ -5,9 +5,8 @@
 #include <string>
 
 #include "bench_kernel_sources.hpp"
-#include "finflex/cl_deformer.hpp"
+#include "deformer_report.hpp"
 #include "finflex/internal/cl_outputs.hpp"
-#include "finflex/internal/cl_tuning.hpp"
 
 namespace finflex::bench {
 namespace {
@@ -20,18 +19,15 @@ ProgramSource bandwidth_program() {
   return {common_kernel_files(), "", found->text};
 }
 
-// The deformation kernels' NDRange: work-groups of kGroupSize slots, `lanes` slots per
-// work-item, and their instance rows (internal::group_rows).
+// The deformation kernels' NDRange (deformer_report.hpp).
 cl::Event launch(Context& context, cl::Kernel& kernel, std::size_t vertices, std::size_t instances,
                  std::size_t per_item, std::size_t lanes) {
-  const std::size_t group = ClDeformer::kGroupSize;
   cl::Event done;
-  check_cl(context.queue().enqueueNDRangeKernel(
-               kernel, cl::NullRange,
-               cl::NDRange((vertices + group - 1) / group * group / lanes,
-                           internal::launch_rows((instances + per_item - 1) / per_item, lanes)),
-               cl::NDRange(group / lanes, internal::group_rows(lanes)), nullptr, &done),
-           "clEnqueueNDRangeKernel");
+  check_cl(
+      context.queue().enqueueNDRangeKernel(
+          kernel, cl::NullRange, deformation_global_range(vertices, instances, per_item, lanes),
+          deformation_local_range(lanes), nullptr, &done),
+      "clEnqueueNDRangeKernel");
   return done;
 }
 

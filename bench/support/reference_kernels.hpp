@@ -25,8 +25,8 @@ enum class WriteValues {
 // Writes every output the batch's layout has (positions, normals, tangents, previous
 // positions, in their formats and arrangements) for `vertices` vertices
 // (ClDeformer::output_vertices of its order), `instances_per_item` instances and
-// `lanes` slots per work-item (the deformer's: ClDeformer::instances_per_item,
-// ClDeformer::lanes; more than one lane: FinFlex's float32 planes only, with streaming
+// `lanes` slots per work-item (the deformer's: kernel_shape, deformer_report.hpp;
+// more than one lane: FinFlex's float32 planes only, with streaming
 // stores or ordinary ones: ClTuning::stores; for another layout the kernel's build
 // fails, kernels/cpu/lane_outputs.cl). Returns the kernel's event.
 cl::Event enqueue_write_only(Context& context, DeviceBatch& batch, std::size_t vertices,

@@ -12,11 +12,10 @@ out=$2
 shift 2
 rm -rf "$out"
 mkdir -p "$out/bin" "$out/lib"
+# shellcheck source=scripts/device/opencl_env.sh
+source "$(dirname "$0")/opencl_env.sh"
 binaries=("$build/apps/finflex" "$build/bench/bench_deform")
-# Every test program that runs kernels on the default device (test_cli runs the tool
-# from its build path and stays here).
-for test in test_cl_deformer test_rig_deformer test_normal_format test_geometry test_spine \
-    test_swim test_placement; do
+for test in "${device_tests[@]}"; do
   if [ ! -f "$build/tests/$test" ]; then
     echo "bundle.sh: $build/tests/$test is missing (build the tests first)" >&2
     exit 1

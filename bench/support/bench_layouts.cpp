@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <utility>
 
-namespace finflex::cli {
+namespace finflex::bench {
 namespace {
 
 // One vertex struct: position float32x3 at 0, then the normal and the tangent.
@@ -24,30 +25,40 @@ std::size_t written_bytes(const OutputLayout& l) {
          (l.previous_positions ? format_bytes(l.previous_layout.format) : 0);
 }
 
+constexpr std::pair<LayoutKind, const char*> kLayoutNames[] = {
+    {LayoutKind::kPlanes, "planes"},
+    {LayoutKind::kInterleaved, "interleaved"},
+    {LayoutKind::kCompact, "compact"},
+    {LayoutKind::kSnorm, "snorm"},
+    {LayoutKind::kArrays, "arrays"}};
+
 }  // namespace
 
-void check_bench_layout(const std::string& name, const std::string& order) {
-  if (name != "planes" && name != "interleaved" && name != "compact" && name != "snorm" &&
-      name != "arrays") {
-    throw Error(ErrorCode::kInvalidArgument, "--layout",
-                "--layout '" + name +
-                    "' is not a layout (expected planes, interleaved, compact, snorm or arrays)");
+const char* to_string(LayoutKind kind) {
+  for (const auto& [k, name] : kLayoutNames) {
+    if (k == kind) return name;
   }
-  if (order != "slots" && order != "mesh") {
-    throw Error(ErrorCode::kInvalidArgument, "--order",
-                "--order '" + order + "' is not an order (expected slots or mesh)");
-  }
+  return "planes";
 }
 
-BenchLayout bench_layout(const ClDeformer& deformer, NormalFormat format, const std::string& name,
-                         const std::string& order, bool previous) {
-  check_bench_layout(name, order);
+std::optional<LayoutKind> layout_named(const std::string& name) {
+  for (const auto& [kind, n] : kLayoutNames) {
+    if (name == n) return kind;
+  }
+  return std::nullopt;
+}
+
+const char* layout_names() { return "planes, interleaved, compact, snorm or arrays"; }
+
+BenchLayout bench_layout(const ClDeformer& deformer, NormalFormat format,
+                         const OutputsChoice& choice) {
   BenchLayout out;
-  const VertexOrder vertex_order = order == "mesh" ? VertexOrder::kMesh : VertexOrder::kSlots;
+  const LayoutKind kind = choice.layout;
+  const VertexOrder vertex_order = choice.order;
   out.vertices = deformer.output_vertices(vertex_order);
   const bool tangents = deformer.model().mesh().has_tangents();
   const bool half = format == NormalFormat::kHalf;
-  if (name == "planes") {
+  if (kind == LayoutKind::kPlanes) {
     const std::size_t stride = padded_plane_stride(out.vertices);
     const AttributeFormat directions =
         half ? AttributeFormat::kFloat16x3 : AttributeFormat::kFloat32x3;
@@ -55,24 +66,25 @@ BenchLayout bench_layout(const ClDeformer& deformer, NormalFormat format, const 
     out.layout.normals = AttributeLayout::planes(directions, stride);
     out.layout.tangents = tangents;
     out.layout.tangent_layout = AttributeLayout::planes(directions, stride);
-  } else if (name == "arrays") {
+  } else if (kind == LayoutKind::kArrays) {
     out.layout.positions = AttributeLayout::packed(AttributeFormat::kFloat32x3, out.vertices);
     out.layout.normals = AttributeLayout::packed(
         half ? AttributeFormat::kFloat16x4 : AttributeFormat::kFloat32x3, out.vertices);
     out.layout.tangents = tangents;
     out.layout.tangent_layout = AttributeLayout::packed(
         half ? AttributeFormat::kFloat16x4 : AttributeFormat::kFloat32x4, out.vertices);
-  } else if (name == "interleaved") {
+  } else if (kind == LayoutKind::kInterleaved) {
     out.layout = interleaved(half ? AttributeFormat::kFloat16x4 : AttributeFormat::kFloat32x3,
                              tangents, out.vertices);
-  } else if (name == "compact") {
+  } else if (kind == LayoutKind::kCompact) {
     out.layout = interleaved(AttributeFormat::kOctahedral16x2, tangents, out.vertices);
-  } else {  // snorm (check_bench_layout)
+  } else {  // kSnorm
     out.layout = interleaved(AttributeFormat::kSnorm16x4, tangents, out.vertices);
   }
-  out.one_buffer = name != "planes" && name != "arrays";
+  out.one_buffer = kind != LayoutKind::kPlanes && kind != LayoutKind::kArrays;
+  out.host = choice.host;
   out.layout.order = vertex_order;
-  if (previous) {
+  if (choice.previous) {
     out.layout.previous_positions = true;
     out.layout.previous_layout =
         AttributeLayout::planes(AttributeFormat::kFloat32x3, padded_plane_stride(out.vertices));
@@ -86,7 +98,7 @@ namespace {
 void* host_block(HostMemory& memory, std::size_t bytes) {
   const std::size_t rounded = (bytes + 63) / 64 * 64;
   void* block = std::aligned_alloc(64, rounded);
-  if (block == nullptr) throw Error(ErrorCode::kOutOfRange, "--host", "out of host memory");
+  if (block == nullptr) throw Error(ErrorCode::kOutOfRange, "host", "host: out of host memory");
   memory.blocks.emplace_back(static_cast<unsigned char*>(block), std::free);
   return block;
 }
@@ -155,4 +167,4 @@ DeviceBatch make_bench_batch(ClDeformer& deformer, std::size_t instances, const 
   return deformer.bind(instances, l, buffers);
 }
 
-}  // namespace finflex::cli
+}  // namespace finflex::bench

@@ -1,4 +1,5 @@
-// The output layouts `finflex bench --layout` measures (finflex/output_layout.hpp):
+// The output layouts the benchmarks measure (finflex/output_layout.hpp, `finflex bench
+// --layout`):
 //   planes       FinFlex's structure-of-arrays planes (the default)
 //   interleaved  one vertex struct: position float32x3, normal float32x3 (float16x4
 //                with --normal-format half), tangent likewise
@@ -13,12 +14,30 @@
 
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "finflex/finflex.hpp"
 
-namespace finflex::cli {
+namespace finflex::bench {
+
+enum class LayoutKind { kPlanes, kInterleaved, kCompact, kSnorm, kArrays };
+
+// The layout's name as above ("planes", ...), and the layout of a name (none for
+// another word).
+const char* to_string(LayoutKind kind);
+std::optional<LayoutKind> layout_named(const std::string& name);
+// The names, for a message: "planes, interleaved, compact, snorm or arrays".
+const char* layout_names();
+
+// Where and how a benchmark's frames are written.
+struct OutputsChoice {
+  LayoutKind layout = LayoutKind::kPlanes;
+  VertexOrder order = VertexOrder::kSlots;
+  bool previous = false;  // previous positions too (float32x3 planes)
+  bool host = false;      // in the caller's host memory (bind_host)
+};
 
 struct BenchLayout {
   OutputLayout layout;
@@ -28,11 +47,8 @@ struct BenchLayout {
   std::size_t bytes_per_vertex = 0;  // written per vertex and instance
 };
 
-// kInvalidArgument naming "--layout" or "--order" for an unknown name.
-void check_bench_layout(const std::string& name, const std::string& order);
-
-BenchLayout bench_layout(const ClDeformer& deformer, NormalFormat format, const std::string& name,
-                         const std::string& order, bool previous);
+BenchLayout bench_layout(const ClDeformer& deformer, NormalFormat format,
+                         const OutputsChoice& choice);
 
 // The caller's host memory of a --host batch: 64-byte aligned, one block per buffer.
 struct HostMemory {
@@ -44,4 +60,4 @@ struct HostMemory {
 DeviceBatch make_bench_batch(ClDeformer& deformer, std::size_t instances, const BenchLayout& layout,
                              HostMemory& memory);
 
-}  // namespace finflex::cli
+}  // namespace finflex::bench

@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-namespace finflex::cli {
+namespace finflex::bench {
 
 // The system's transparent huge page mode ("always", "madvise" or "never"): the word in
 // brackets in /sys/kernel/mm/transparent_hugepage/enabled; "unknown" where that file is
@@ -24,4 +24,4 @@ std::string glibc_malloc_hugetlb();
 // whether the system gave them. Empty where the file is missing or unreadable.
 std::optional<std::uint64_t> process_huge_page_bytes();
 
-}  // namespace finflex::cli
+}  // namespace finflex::bench

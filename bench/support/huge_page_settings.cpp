@@ -4,7 +4,7 @@
 #include <fstream>
 #include <sstream>
 
-namespace finflex::cli {
+namespace finflex::bench {
 
 std::string transparent_huge_pages() {
   std::ifstream file("/sys/kernel/mm/transparent_hugepage/enabled");
@@ -45,4 +45,4 @@ std::optional<std::uint64_t> process_huge_page_bytes() {
   return std::nullopt;
 }
 
-}  // namespace finflex::cli
+}  // namespace finflex::bench
