@@ -1,20 +1,30 @@
 // FinFlex: secant-surface deformation of static meshes in OpenCL, for thousands of
 // instances per frame. One include for the whole public API.
 //
-// Layers, each header including only those above it:
-//   error, export                     the error type; the shared-library export macro
-//   mesh, mesh_io, subdivide          triangle meshes and their files
-//   body_frame                        the local frame of a transform (METHOD.md 3)
-//   deformer_type                     the deformer registry (bend, hinge, ...)
-//   rig                               rig files and rigs resolved against a mesh
-//   model                             a mesh with its rig: what a job deforms
-//   parameters                        per-instance parameter values and their checks
-//   job                               the job both backends run
-//   batch                             deformed batches on the host; the planes layout
-//   placement                         world placement of an instance
-//   reference, accuracy, instance_mesh    the CPU reference and its diagnostics
-//   swim                              swimming: kinematics and the CPU driver
-//   context, device_batch, cl_deformer, cl_swim   the OpenCL backend (needs CL/opencl.hpp)
+// Layers, lowest first: a header includes only headers of its own layer and of the layers
+// listed before it, and every layer before opencl compiles without OpenCL's headers.
+// The table is tests/headers/layers.cmake; the tests' build compiles each header alone
+// with only its layer and those before it (target finflex_header_layers), and the test
+// Headers.LayerTableListsEveryHeader fails on a header the table does not list.
+//   core        error, export, file_kind      the error type; the shared-library export
+//                                             macro; what kind of file a stat() mode names
+//   meshes      mesh, mesh_io, subdivide      triangle meshes, their files, subdivision
+//   frames      body_frame                    the local frame of a transform (METHOD.md 3)
+//   deformers   deformer_type                 the deformer registry (bend, hinge, ...)
+//   rigs        rig                           rig files and rigs resolved against a mesh
+//   models      model                         a mesh with its rig: what a job deforms
+//   parameters  parameters                    per-instance parameter values and their checks
+//   placement   placement                     world placement of an instance
+//   outputs     output_layout, batch          where outputs are written; batches on the host
+//   jobs        job                           the job both backends run
+//   reference   reference, accuracy, instance_mesh
+//                                             the CPU reference and its diagnostics
+//   swim        swim                          swimming: kinematics and the CPU driver
+//   opencl      context, frame_gate, device_batch, cl_outputs, cl_deformer, cl_swim
+//                                             the OpenCL backend (needs CL/opencl.hpp)
+//   all         finflex                       this header: every header listed before it
+//   internal    internal/*                    not installed, not included here: what only
+//                                             the benchmarks and tests use
 #pragma once
 
 #include "finflex/accuracy.hpp"
