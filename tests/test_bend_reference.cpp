@@ -184,7 +184,7 @@ TEST(BendReference, RejectsBadParameters) {
 }
 
 // ---------------------------------------------------------------------------------
-// The hinge (METHOD.md section 6; engine/src/deformers/hinge.cpp): in its frame the
+// The hinge (METHOD.md section 6; engine/src/rig/deformers/hinge.cpp): in its frame the
 // spine's angle ramps linearly from 0 at x = 0 to `angle` at x = width (a step at 0
 // for width 0), |angle| <= pi.
 

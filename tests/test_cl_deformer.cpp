@@ -229,7 +229,7 @@ TEST(ClDeformer, BatchEqualsSingleRuns) {
 }
 
 // On a CPU device a batch's outputs of at least a huge page (2 MiB) are host memory
-// aligned to one (engine/src/host_pages.hpp), smaller ones and a GPU's ordinary
+// aligned to one (engine/src/cl/host_pages.hpp), smaller ones and a GPU's ordinary
 // buffers; both deform alike.
 TEST(ClDeformer, LargeOutputsOfACpuDeviceLieInHugePageAlignedMemory) {
   SmallFish fish;

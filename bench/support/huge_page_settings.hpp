@@ -20,7 +20,7 @@ std::string glibc_malloc_hugetlb();
 
 // The bytes of this process's anonymous memory in transparent huge pages now (the
 // AnonHugePages line of /proc/self/smaps_rollup): on CPU devices the outputs of at
-// least 2 MiB are advised as huge pages (engine/src/host_pages.hpp), and this says
+// least 2 MiB are advised as huge pages (engine/src/cl/host_pages.hpp), and this says
 // whether the system gave them. Empty where the file is missing or unreadable.
 std::optional<std::uint64_t> process_huge_page_bytes();
 

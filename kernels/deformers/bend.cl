@@ -1,6 +1,6 @@
 /* The paper's fish bend (METHOD.md section 5): the spine becomes z = m x^2 while
  * keeping its arc length, in the paper's 4th-order series (15)-(17) or the exact
- * closed form. Registry entry: engine/src/deformers/bend.cpp.
+ * closed form. Registry entry: engine/src/rig/deformers/bend.cpp.
  *
  * Everything is written with u = 2 m x, the slope of the bent spine z = m x^2.
  * Valid range (13): |m| <= 0.5 / x_max, so u lies in [-1, 1]; u is clamped there so

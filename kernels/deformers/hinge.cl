@@ -1,6 +1,6 @@
 /* The hinge (METHOD.md section 6, the general inextensible spine with a linear
  * ramp of its angle): a fin folding about its base. Registry entry:
- * engine/src/deformers/hinge.cpp. */
+ * engine/src/rig/deformers/hinge.cpp. */
 
 /* Hinge (METHOD.md section 6, the general inextensible spine): the spine's angle
  * theta(x) ramps linearly from 0 at x = 0 to `angle` at x = width (a step at 0 when

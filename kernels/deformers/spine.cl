@@ -4,7 +4,7 @@
  *   X(x) = integral_0^x cos theta,  Z(x) = integral_0^x sin theta,
  * so it keeps its arc length exactly at any angle, x = 0 (the pivot) staying fixed;
  * n = (-sin theta, 0, cos theta), curvature k = theta'(x). The paper's bend is the case
- * theta = asin(2 m x). Registry entry: engine/src/deformers/spine.cpp.
+ * theta = asin(2 m x). Registry entry: engine/src/rig/deformers/spine.cpp.
  *
  * Over one segment, with theta linear (slope a) from theta_j, the integrals are closed
  * forms: integral_0^d cos(theta_j + a t) dt = d cos(theta_j + a d / 2) sinc(a d / 2),
@@ -174,7 +174,7 @@ FF_INLINE SecantSample spine_at(LaneFloat x, LaneFloat position, LaneFloat z,
 
 /* The one segment all the work-item's lanes lie in, or -1 where they span more than one
  * or reach beyond the table, for lanes straight from the rest planes: the rig program
- * finds it once (engine/src/segment_tables.cpp slot_segments, the generated
+ * finds it once (engine/src/cl/segment_tables.cpp slot_segments, the generated
  * ff_slot_segments, an entry per 8 rest slots: the segment of its first slot in bits
  * 0-11, as the position below gives it, and bits 12, 13 and 14 set where the 8, 16 or
  * 32 slots from it all lie in that segment), so a frame does not: a sixth of the fused
@@ -236,7 +236,7 @@ FF_INLINE SecantSample spine_stage_from_rest(Vec3 p, StageFrame f, __global cons
  * after one stage of one value, `moved_by`, moved them along it (a fin's hinge): the
  * rig program found, per 8 slots and bin of that value's range [-limit, limit], the two
  * neighbouring segments they stay in for every value in the bin, where they do
- * (engine/src/segment_tables.cpp swept_segments, the generated ff_swept_segments: the
+ * (engine/src/cl/segment_tables.cpp swept_segments, the generated ff_swept_segments: the
  * first of the two, and bits as ff_slot_segments'). Where all the work-item's lanes do,
  * it takes them without finding them (most of a swimming fish's fin work-items). */
 FF_INLINE SecantSample spine_stage_swept(Vec3 p, StageFrame f, __global const float* values,

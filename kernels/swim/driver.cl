@@ -7,7 +7,7 @@
  * samples shared out, FF_SWIM_CHUNK each; engine/src/device_profile.hpp chooses); with
  * one work-item per fish, a program of FF_LANES > 1 (CPUs) takes FF_LANES fish per
  * work-item, one in each lane (common/lanes.cl), so the driver is vector code there.
- * Generated before this file (engine/src/swim/cl_swim_driver.cpp):
+ * Generated before this file (engine/src/swim/cl_driver.cpp):
  *   FF_SWIM_GROUP_SIZE, FF_SWIM_ITEMS, FF_SWIM_SAMPLES, FF_SWIM_VALUES (values per instance),
  *   FF_SWIM_WAVE, FF_SWIM_TAIL, FF_SWIM_RIGHT, FF_SWIM_LEFT (offsets in a row; -1: not
  *   driven), FF_SWIM_X_FIRST, FF_SWIM_SPACING, FF_SWIM_EXTENT, the kinematics FF_K_* and

@@ -9,8 +9,8 @@
 // the rest (frames, normals, tangents, the hierarchy) is shared.
 //
 // Adding a deformer: its OpenCL function in kernels/deformers/<name>.cl, its
-// description (this struct) in engine/src/deformers/<name>.cpp, and one line in
-// engine/src/deformers/registry.cpp. docs/architecture.md walks through it.
+// description (this struct) in engine/src/rig/deformers/<name>.cpp, and one line in
+// engine/src/rig/deformers/registry.cpp. docs/architecture.md walks through it.
 #pragma once
 
 #include <array>

@@ -20,7 +20,7 @@
 //   reference   reference, accuracy, instance_mesh
 //                                             the CPU reference and its diagnostics
 //   swim        swim                          swimming: kinematics and the CPU driver
-//   opencl      context, frame_gate, device_batch, cl_outputs, cl_deformer, cl_swim
+//   opencl      context, frame_gate, device_batch, cl_deformer, cl_swim
 //                                             the OpenCL backend (needs CL/opencl.hpp)
 //   all         finflex                       this header: every header listed before it
 //   internal    internal/*                    not installed, not included here: what only

@@ -1,4 +1,4 @@
-// The component tree of a rig file (rig_tree.hpp): loops and explicit stacks only, so
+// The component tree of a rig file (rig/tree.hpp): loops and explicit stacks only, so
 // a rig nested thousands of levels deep is refused with a message, never a crash.
 #include "rig/tree.hpp"
 

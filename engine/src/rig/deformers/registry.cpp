@@ -1,5 +1,5 @@
 // The deformer registry: every deformer kind FinFlex knows, one line each. A new
-// deformer adds its line here (and its files: engine/src/deformers/<name>.cpp,
+// deformer adds its line here (and its files: engine/src/rig/deformers/<name>.cpp,
 // kernels/deformers/<name>.cl).
 #include "finflex/deformer_type.hpp"
 
