@@ -18,7 +18,7 @@ DeviceBatch& DeviceModel::batch(std::size_t instances, NormalFormat format) {
 
 ClJob DeviceModel::job(const RigParameters& values, DeviceBatch& batch, NormalMode normals,
                        RigPath path) const {
-  return frame_job(model, values, batch, normals, path);
+  return frame_job(values, batch, normals, path);
 }
 
 Setup& Setup::get() {

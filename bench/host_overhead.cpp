@@ -28,7 +28,7 @@ int main(int argc, char** argv) {
     finflex::RigParameters m(model, instances);
     std::fill(m.values().begin(), m.values().end(), 0.1f);
     finflex::ClJob job;
-    job.model = &model;
+    job.instances = m.instance_count();
     job.parameters = m.view();
     job.outputs = &batch;
     finflex::check_cl(deformer.enqueue(job).wait(), "clWaitForEvents");

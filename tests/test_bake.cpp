@@ -209,13 +209,13 @@ TEST(Bake, TheGltfAnimationLoadsBackAndIsTheEnginesCycle) {
   }
   std::vector<Placement> placements(n + 1, fish.placements()[0]);
   ReferenceJob job;
-  job.model = &swim_model().model();
+  job.instances = values.instance_count();
   job.parameters = values.view();
   job.placements = placements.data();
   job.normals = NormalMode::kJacobian;
   DeformedBatch<double> exact;
   job.outputs = &exact;
-  run_reference(job);
+  run_reference(swim_model().model(), job);
   const AccuracyReport report = compare_to_reference(
       swim_model().model(), values.view(), NormalMode::kJacobian, loaded, exact, placements.data());
   EXPECT_TRUE(report.within_tolerance())

@@ -156,13 +156,12 @@ TEST(BendReference, RejectsBadParameters) {
   // No instances: the job names the field.
   ReferenceJob empty;
   DeformedBatch<double> out;
-  empty.model = &model;
   empty.outputs = &out;
   try {
-    run_reference(empty);
+    run_reference(model, empty);
     FAIL() << "expected an error for a job without instances";
   } catch (const Error& e) {
-    EXPECT_EQ(e.field(), "job.parameters.instance_count");
+    EXPECT_EQ(e.field(), "job.instances");
   }
   EXPECT_THROW(run_reference(model, test::values_of(model, {NAN}), normals), Error);
   EXPECT_THROW(run_reference(model, test::values_of(model, {INFINITY}), normals), Error);

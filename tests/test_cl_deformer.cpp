@@ -286,7 +286,7 @@ TEST(ClDeformer, AlternatingBatchesEachGetTheirOwnFrames) {
   };
   auto enqueue = [&](DeviceBatch& batch, const RigParameters& m) {
     ClJob job;
-    job.model = &fish.model;
+    job.instances = m.instance_count();
     job.parameters = m.view();
     job.normals = normals;
     job.outputs = &batch;
@@ -374,7 +374,7 @@ void expect_frames_in_flight_keep_their_parameters(const RiggedMesh& model, RigP
     for (std::size_t f = 0; f < frames; ++f) {
       const RigParameters values = frame_values(f);  // gone before the frame runs
       ClJob job;
-      job.model = &model;
+      job.instances = values.instance_count();
       job.parameters = values.view();
       job.normals = normals;
       job.path = path;
@@ -577,7 +577,7 @@ TEST(ClDeformer, OutputsOfAnotherModelAreRefused) {
     return "accepted";
   };
   ClJob job;
-  job.model = &large;
+  job.instances = m.instance_count();
   job.parameters = m.view();
   job.outputs = &small_batch;  // fewer slots, no tangents
   EXPECT_EQ(field_of(job), "job.outputs");
@@ -587,12 +587,9 @@ TEST(ClDeformer, OutputsOfAnotherModelAreRefused) {
   forged.serial = small_batch.serial + 1000000;
   job.outputs = &forged;
   EXPECT_EQ(field_of(job), "job.outputs.positions");  // the buffer too small
-  // Another model in the job.
+  // The deformer's own batch.
   DeviceBatch right = large_deformer.allocate(2);
   job.outputs = &right;
-  job.model = &small;
-  EXPECT_EQ(field_of(job), "job.model");
-  job.model = &large;
   EXPECT_EQ(field_of(job), "accepted");
   // Nothing was written into the small model's batch.
   const test::Difference untouched =
@@ -658,7 +655,7 @@ void expect_raw_buffers_follow_the_layout(const RiggedMesh& model, const std::st
     SCOPED_TRACE(to_string(format));
     DeviceBatch batch = deformer.allocate(instances, format);
     ClJob job;
-    job.model = &model;
+    job.instances = values.instance_count();
     job.parameters = values.view();
     job.normals = normals;
     job.outputs = &batch;

@@ -64,7 +64,7 @@ TEST(GlOutputs, TheGlBufferHoldsTheFrameAndTheCallersBytes) {
 
   const RigParameters values = test::at_fractions_of_the_limits(model, {0.8, -0.6});
   ClJob job;
-  job.model = &model;
+  job.instances = values.instance_count();
   job.parameters = values.view();
   job.normals = NormalMode::kJacobian;
   job.outputs = &outputs.batch();

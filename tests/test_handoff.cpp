@@ -57,7 +57,7 @@ std::vector<unsigned char> raw(const cl::Buffer& buffer) {
 
 DeformedBatch<float> run(DeviceBatch& batch, const RigParameters& values) {
   ClJob job;
-  job.model = &barramundi();
+  job.instances = values.instance_count();
   job.parameters = values.view();
   job.normals = NormalMode::kJacobian;
   job.outputs = &batch;
@@ -268,7 +268,7 @@ TEST(Handoff, StagedVertexStructsHoldWhatThePlanesHold) {
       DeviceBatch structs = d.bind(kInstances, l, {one, one, one, {}});
       DeviceBatch planes = d.allocate(kInstances);
       ClJob job;
-      job.model = c.model;
+      job.instances = c.values->instance_count();
       job.parameters = c.values->view();
       job.normals = NormalMode::kJacobian;
       job.path = c.path;
@@ -353,7 +353,7 @@ TEST(Handoff, HostMemoryIsWrittenInPlaceOnCpuDevices) {
   DeviceBatch batch = deformer().bind_host(kInstances, l, host);
   EXPECT_EQ(batch.positions(), batch.normals());  // one buffer for the interleaved vertex
   ClJob job;
-  job.model = &barramundi();
+  job.instances = values.instance_count();
   job.parameters = values.view();
   job.normals = NormalMode::kJacobian;
   job.outputs = &batch;
@@ -453,7 +453,7 @@ TEST(Handoff, BadBindingsAreNamedAndNothingIsWritten) {
   batch.outputs.tangent_layout.instance_stride *= 2;
   const RigParameters values = frame_values(1.0);
   ClJob job;
-  job.model = &barramundi();
+  job.instances = values.instance_count();
   job.parameters = values.view();
   job.outputs = &batch;
   EXPECT_EQ(field_of([&] { deformer().enqueue(job); }), "job.outputs.positions");

@@ -36,11 +36,11 @@ TEST(Placement, TheBodyFrameGoesWhereThePlacementSays) {
   ReferenceJob job;
   const RigParameters straight(model, 1);
   DeformedBatch<double> out;
-  job.model = &model;
+  job.instances = straight.instance_count();
   job.parameters = straight.view();
   job.placements = &where;
   job.outputs = &out;
-  run_reference(job);
+  run_reference(model, job);
   double lowest = 1e9, highest = -1e9;
   glm::dvec3 centroid(0.0);
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
@@ -94,7 +94,7 @@ TEST(Placement, DeviceMatchesTheReferenceFromHostAndDeviceBuffers) {
     DeviceBatch batch = deformer.allocate(3);
     for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {
       ClJob job;
-      job.model = model;
+      job.instances = values.instance_count();
       job.parameters = values.view();
       job.normals = normals;
       job.placements = where.data();
@@ -118,7 +118,7 @@ TEST(Placement, DeviceMatchesTheReferenceFromHostAndDeviceBuffers) {
       cl::Buffer buffer(test::shared_context().context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
                         records.size() * sizeof(float), records.data());
       job.placements = nullptr;
-      job.placement_buffer = &buffer;
+      job.device.placements = &buffer;
       deformer.enqueue(job);
       const DeformedBatch<float> from_buffer = deformer.read(batch);
       EXPECT_EQ(from_buffer.positions, from_host.positions);
@@ -150,16 +150,16 @@ TEST(Placement, ARootWithoutStagesIsPlacedFromMeshCoordinates) {
   }
   ReferenceJob reference_job;
   DeformedBatch<double> reference;
-  reference_job.model = &model;
+  reference_job.instances = values.instance_count();
   reference_job.parameters = values.view();
   reference_job.placements = where.data();
   reference_job.outputs = &reference;
-  run_reference(reference_job);
+  run_reference(model, reference_job);
   ClDeformer deformer(test::shared_context(), model);
   DeviceBatch batch = deformer.allocate(2);
   for (RigPath path : {RigPath::kFused, RigPath::kPasses}) {
     ClJob job;
-    job.model = &model;
+    job.instances = values.instance_count();
     job.parameters = values.view();
     job.path = path;
     job.placements = where.data();
@@ -182,7 +182,7 @@ TEST(Placement, BadPlacementsAreNamed) {
   std::vector<Placement> where(2);
   where[1].length = -1.0f;
   ClJob job;
-  job.model = &model;
+  job.instances = values.instance_count();
   job.parameters = values.view();
   job.placements = where.data();
   job.outputs = &batch;
@@ -204,7 +204,7 @@ TEST(Placement, BadPlacementsAreNamed) {
   where[1].position.y = 0.0f;
   EXPECT_EQ(field_of(), "accepted");
   cl::Buffer buffer(test::shared_context().context(), CL_MEM_READ_ONLY, 64 * sizeof(float));
-  job.placement_buffer = &buffer;
+  job.device.placements = &buffer;
   EXPECT_EQ(field_of(), "job.placements");  // both given
 }
 

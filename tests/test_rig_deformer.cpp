@@ -579,7 +579,7 @@ TEST(RigDeformer, AlternatingBatchesAndPathsEachGetTheirOwnFrames) {
   const RigParameters c = random_parameters(rig, 3, 0.7, 23);
   auto enqueue = [&](const RigParameters& values, DeviceBatch& batch, RigPath path) {
     ClJob job;
-    job.model = &model;
+    job.instances = values.instance_count();
     job.parameters = values.view();
     job.path = path;
     job.outputs = &batch;

@@ -324,10 +324,9 @@ TEST(Swim, AFrameFromTheDeviceDriverMatchesTheReference) {
   }
   for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {
     ClJob job;
-    job.model = &swim.model();
-    job.parameters.instance_count = lengths.size();
-    job.parameter_buffer = &driver.parameter_buffer();
-    job.placement_buffer = &driver.placement_buffer();
+    job.instances = lengths.size();
+    job.device.parameters = &driver.parameter_buffer();
+    job.device.placements = &driver.placement_buffer();
     job.normals = normals;
     job.outputs = &batch;
     deformer.enqueue(job);
@@ -361,16 +360,15 @@ TEST(Swim, DriverPreparedRecordsDeformAsRigPrepareDoes) {
     DeviceBatch prepared = deformer.allocate(lengths.size());
     DeviceBatch by_rig_prepare = deformer.allocate(lengths.size());
     ClJob job;
-    job.model = &swim.model();
-    job.parameters.instance_count = lengths.size();
-    job.parameter_buffer = &driver.parameter_buffer();
-    job.placement_buffer = &driver.placement_buffer();
+    job.instances = lengths.size();
+    job.device.parameters = &driver.parameter_buffer();
+    job.device.placements = &driver.placement_buffer();
     for (int frame = 0; frame < 4; ++frame) {
       driver.enqueue(inputs_at(lengths.size(), lengths, frame), 1.0f / 30.0f);
-      job.derived_buffer = driver.derived_buffer();
+      job.device.derived = driver.derived_buffer();
       job.outputs = &prepared;
       deformer.enqueue(job);
-      job.derived_buffer = nullptr;
+      job.device.derived = nullptr;
       job.outputs = &by_rig_prepare;
       deformer.enqueue(job);
       const DeformedBatch<float> a = deformer.read(prepared), b = deformer.read(by_rig_prepare);
@@ -378,15 +376,15 @@ TEST(Swim, DriverPreparedRecordsDeformAsRigPrepareDoes) {
       ASSERT_EQ(a.normals, b.normals) << "frame " << frame;
     }
     job.outputs = &prepared;
-    job.parameters.instance_count = lengths.size() + 1;  // more than the buffer holds
-    job.derived_buffer = driver.derived_buffer();
+    job.instances = lengths.size() + 1;  // more than the buffer holds
+    job.device.derived = driver.derived_buffer();
     DeviceBatch larger = deformer.allocate(lengths.size() + 1);
     job.outputs = &larger;
     try {
       deformer.enqueue(job);
-      FAIL() << "expected an error naming job.derived_buffer";
+      FAIL() << "expected an error naming job.device.derived";
     } catch (const Error& e) {
-      EXPECT_EQ(e.field(), "job.derived_buffer") << e.what();
+      EXPECT_EQ(e.field(), "job.device.derived") << e.what();
     }
   }
   // A model without derived values takes none.

@@ -65,7 +65,7 @@ BakedCycle bake_cycle(Context& context, const SwimModel& swim, const CycleSettin
   ClDeformer deformer(context, swim.model());
   DeviceBatch batch = deformer.allocate(baked.cycle.frames + 1);
   ClJob job;
-  job.model = &swim.model();
+  job.instances = baked.cycle.parameters.instance_count();
   job.parameters = baked.cycle.parameters.view();
   job.placements = baked.cycle.placements.data();
   job.normals = settings.normals;

@@ -53,7 +53,7 @@ bool check_model(Context& context, const RiggedMesh& model, const std::string& l
   bool all_within = true;
   for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {
     ClJob job;
-    job.model = &model;
+    job.instances = view.instance_count;
     job.parameters = view;
     job.normals = normals;
     job.outputs = &batch;
@@ -61,11 +61,11 @@ bool check_model(Context& context, const RiggedMesh& model, const std::string& l
     const DeformedBatch<float> device = deformer.read(batch);
     DeformedBatch<double> reference;
     ReferenceJob reference_job;
-    reference_job.model = &model;
+    reference_job.instances = view.instance_count;
     reference_job.parameters = view;
     reference_job.normals = normals;
     reference_job.outputs = &reference;
-    run_reference(reference_job);
+    run_reference(model, reference_job);
     const AccuracyReport report = compare_to_reference(model, view, normals, device, reference);
     // Face agreement of the instance at 0.6 of the limits (index 3 of the sweep).
     const double face_angle = mean_angle_to_face_normals(instance_mesh(model.mesh(), device, 3));

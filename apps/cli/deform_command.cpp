@@ -92,7 +92,7 @@ RigPath deform_once(Context& context, const RiggedMesh& model, const RigParamete
   ClDeformer deformer(context, model);
   DeviceBatch batch = deformer.allocate(1);
   ClJob job;
-  job.model = &model;
+  job.instances = values.instance_count();
   job.parameters = values.view();
   job.normals = normals;
   job.clamp = clamp;

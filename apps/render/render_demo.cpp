@@ -139,7 +139,7 @@ void pose(Species& species, float t) {
   finflex::RigParameters values(*species.model, species.m.size());
   values.values() = species.m;
   finflex::ClJob job;
-  job.model = species.model.get();
+  job.instances = values.instance_count();
   job.parameters = values.view();
   job.normals = finflex::NormalMode::kJacobian;
   job.outputs = &species.batch;

@@ -90,11 +90,10 @@ SwimScene::SwimScene(Context& context, const std::vector<SpeciesFiles>& files, s
       throw Error(ErrorCode::kInvalidArgument, "outputs",
                   "outputs: the factory made none for species " + std::to_string(s));
     }
-    sp.job.model = &sp.swim.model();
-    sp.job.parameters.instance_count = counts[s];
-    sp.job.parameter_buffer = &sp.driver->parameter_buffer();
-    sp.job.placement_buffer = &sp.driver->placement_buffer();
-    sp.job.derived_buffer = sp.driver->derived_buffer();  // null: rig_prepare runs
+    sp.job.instances = counts[s];
+    sp.job.device.parameters = &sp.driver->parameter_buffer();
+    sp.job.device.placements = &sp.driver->placement_buffer();
+    sp.job.device.derived = sp.driver->derived_buffer();  // null: rig_prepare runs
     sp.job.normals = normals;
     sp.job.outputs = &sp.outputs->batch();
   }

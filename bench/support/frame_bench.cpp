@@ -98,10 +98,9 @@ void animate_parameters(RigParameters& values, std::size_t frame) {
   });
 }
 
-ClJob frame_job(const RiggedMesh& model, const RigParameters& values, DeviceBatch& batch,
-                NormalMode normals, RigPath path) {
+ClJob frame_job(const RigParameters& values, DeviceBatch& batch, NormalMode normals, RigPath path) {
   ClJob job;
-  job.model = &model;
+  job.instances = values.instance_count();
   job.parameters = values.view();
   job.normals = normals;
   job.path = path;
@@ -117,7 +116,7 @@ Measured measure_deform(Context& context, const RiggedMesh& model, const std::st
   const BenchLayout layout = bench_layout(deformer, settings.format, settings.outputs);
   bench.batch = make_bench_batch(deformer, instances, layout, bench.host);
   RigParameters values(model, instances);
-  ClJob job = frame_job(model, values, bench.batch, settings.normals, settings.path);
+  ClJob job = frame_job(values, bench.batch, settings.normals, settings.path);
   Measured measured;
   measured.passes = pass_report(deformer, settings.path);
   measured.shape = kernel_shape(deformer, bench.batch, settings.normals);

@@ -98,9 +98,9 @@ void set_parameters(RigParameters& values,
 // rad, far from folding.
 void animate_parameters(RigParameters& values, std::size_t frame);
 
-// A job of `model` writing `values` into `batch`.
-ClJob frame_job(const RiggedMesh& model, const RigParameters& values, DeviceBatch& batch,
-                NormalMode normals, RigPath path = RigPath::kAuto);
+// A job writing `values` into `batch`.
+ClJob frame_job(const RigParameters& values, DeviceBatch& batch, NormalMode normals,
+                RigPath path = RigPath::kAuto);
 
 // What a deformation bench keeps alive while its result is read: the deformer, the
 // outputs and their host memory.

@@ -55,10 +55,9 @@ extern "C" int oracle_swim(const char* mesh_path, const char* rig_path, size_t f
     finflex::ClDeformer deformer(context, swim.model());
     finflex::DeviceBatch batch = deformer.allocate(fish);
     finflex::ClJob job;
-    job.model = &swim.model();
-    job.parameters.instance_count = fish;
-    job.parameter_buffer = &driver.parameter_buffer();
-    job.placement_buffer = &driver.placement_buffer();
+    job.instances = fish;
+    job.device.parameters = &driver.parameter_buffer();
+    job.device.placements = &driver.placement_buffer();
     job.outputs = &batch;
     for (std::size_t f = 0; f < frames; ++f) {
       driver.enqueue(frame, 1.0f / 30.0f);

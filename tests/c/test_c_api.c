@@ -575,8 +575,7 @@ static void test_reference(void) {
   FAILS(finflex_reference_deform(bend, &job, &outputs), INVALID, NULL, "job.path", NULL);
   job.path = FINFLEX_PATH_AUTO;
   job.instance_count = 0;
-  FAILS(finflex_reference_deform(bend, &job, &outputs), INVALID, NULL,
-        "job.parameters.instance_count", NULL);
+  FAILS(finflex_reference_deform(bend, &job, &outputs), INVALID, NULL, "job.instances", NULL);
   job.instance_count = INSTANCES;
   job.parameters = NULL;
   FAILS(finflex_reference_deform(bend, &job, &outputs), INVALID, NULL, "job.parameters.data", NULL);

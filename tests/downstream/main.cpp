@@ -19,7 +19,7 @@ int main() {
   finflex::ClDeformer deformer(context, model);
   finflex::DeviceBatch batch = deformer.allocate(2);
   finflex::ClJob job;
-  job.model = &model;
+  job.instances = m.instance_count();
   job.parameters = m.view();
   job.normals = finflex::NormalMode::kJacobian;
   job.outputs = &batch;
@@ -28,11 +28,11 @@ int main() {
 
   finflex::DeformedBatch<double> reference;
   finflex::ReferenceJob reference_job;
-  reference_job.model = &model;
+  reference_job.instances = m.instance_count();
   reference_job.parameters = m.view();
   reference_job.normals = finflex::NormalMode::kJacobian;
   reference_job.outputs = &reference;
-  finflex::run_reference(reference_job);
+  finflex::run_reference(model, reference_job);
   for (std::size_t i = 0; i < 2; ++i) {
     for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
       const double error =

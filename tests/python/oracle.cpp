@@ -61,10 +61,9 @@ int swim(char** argv) {
   finflex::ClDeformer deformer(context, swim_model.model());
   finflex::DeviceBatch batch = deformer.allocate(lengths.size());
   finflex::ClJob job;
-  job.model = &swim_model.model();
-  job.parameters.instance_count = lengths.size();
-  job.parameter_buffer = &driver.parameter_buffer();
-  job.placement_buffer = &driver.placement_buffer();
+  job.instances = lengths.size();
+  job.device.parameters = &driver.parameter_buffer();
+  job.device.placements = &driver.placement_buffer();
   job.outputs = &batch;
   for (unsigned long f = 0; f < frames; ++f) {
     driver.enqueue(inputs, 1.0f / 30.0f);
@@ -108,7 +107,7 @@ int main(int argc, char** argv) {
     finflex::ClDeformer deformer(context, model);
     finflex::DeviceBatch batch = deformer.allocate(values.instance_count());
     finflex::ClJob job;
-    job.model = &model;
+    job.instances = values.instance_count();
     job.parameters = values.view();
     job.normals = normals;
     job.outputs = &batch;

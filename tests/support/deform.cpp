@@ -49,7 +49,7 @@ DeformedBatch<float> run_on_device(ClDeformer& deformer, DeviceBatch& batch,
                                    const RigParameters& values, NormalMode normals, RigPath path,
                                    bool clamp, const Placement* placements) {
   ClJob job;
-  job.model = &deformer.model();
+  job.instances = values.instance_count();
   job.parameters = values.view();
   job.normals = normals;
   job.path = path;

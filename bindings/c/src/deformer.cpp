@@ -68,8 +68,8 @@ finflex_status finflex_deformer_enqueue(finflex_deformer* deformer, const finfle
   return guarded(slot_of(deformer), [&] {
     finflex::ClDeformer& d = deformer_of(deformer);
     finflex::ClJob cl_job;
-    cl_job.model = deformer->model.get();
     finflex::c::fill_job(job, cl_job);
+    cl_job.path = finflex::c::rig_path(job->path);
     cl_job.outputs = &require(batch, "batch")->batch;
     const std::vector<cl::Event> events = finflex::c::wait_events(wait, wait_count);
     if (!events.empty()) cl_job.wait = &events;

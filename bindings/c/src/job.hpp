@@ -5,11 +5,11 @@
 
 namespace finflex::c {
 
-// Copies the job's fields into `out` (not its model or outputs). Throws
+// Copies the job's fields into `out` (not its outputs or path). Throws
 // kInvalidArgument naming "job" when it is null, "job.normals" or "job.path" when
 // they are not one of their enum's values.
-template <typename Outputs, typename Event, typename Buffer>
-void fill_job(const finflex_job* job, finflex::BasicDeformJob<Outputs, Event, Buffer>& out);
+template <typename Outputs>
+void fill_job(const finflex_job* job, finflex::BasicDeformJob<Outputs>& out);
 
 finflex::NormalMode normal_mode(finflex_normal_mode mode);
 finflex::RigPath rig_path(finflex_rig_path path);
@@ -32,14 +32,15 @@ void enqueue_with_event(finflex_event** done, Enqueue&& enqueue) {
   }
 }
 
-template <typename Outputs, typename Event, typename Buffer>
-void fill_job(const finflex_job* job, finflex::BasicDeformJob<Outputs, Event, Buffer>& out) {
+template <typename Outputs>
+void fill_job(const finflex_job* job, finflex::BasicDeformJob<Outputs>& out) {
   require(job, "job");
+  out.instances = job->instance_count;
   out.parameters =
       finflex::ParameterView{job->parameters, job->instance_count, job->parameter_stride};
   out.normals = normal_mode(job->normals);
   out.clamp = job->clamp != 0;
-  out.path = rig_path(job->path);
+  rig_path(job->path);  // checked for every backend; ClJob::path is set by its caller
 }
 
 }  // namespace finflex::c

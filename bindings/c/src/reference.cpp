@@ -14,13 +14,12 @@ finflex_status finflex_reference_deform(finflex_model* model, const finflex_job*
     const finflex::RiggedMesh& m = *require(model, "model")->model;
     finflex::DeformedBatch<double> deformed;
     finflex::ReferenceJob reference;
-    reference.model = &m;
     reference.outputs = &deformed;
     finflex::c::fill_job(job, reference);
-    reference.validate();
+    reference.validate(m);
     finflex::c::check_outputs(outputs, job->instance_count, m.vertex_count(),
                               m.mesh().has_tangents());
-    finflex::run_reference(reference);
+    finflex::run_reference(m, reference);
     finflex::c::store_outputs(deformed, *outputs);
   });
 }

@@ -148,12 +148,11 @@ finflex_status finflex_deformer_enqueue_swim(finflex_deformer* deformer,
                            "deformer from finflex_swim_model_get_model)");
     }
     finflex::ClJob job;
-    job.model = deformer->model.get();
     job.normals = finflex::c::normal_mode(normals);
-    job.parameters.instance_count = swim.fish_count();
-    job.parameter_buffer = &swim.parameter_buffer();
-    job.placement_buffer = &swim.placement_buffer();
-    job.derived_buffer = swim.derived_buffer();
+    job.instances = swim.fish_count();
+    job.device.parameters = &swim.parameter_buffer();
+    job.device.placements = &swim.placement_buffer();
+    job.device.derived = swim.derived_buffer();
     job.outputs = &require(batch, "batch")->batch;
     const std::vector<cl::Event> events = finflex::c::wait_events(wait, wait_count);
     if (!events.empty()) job.wait = &events;

@@ -143,7 +143,7 @@ void bind_device(nb::module_& m) {
           [](nb::handle_t<PyDeformer> self, nb::handle parameters, nb::handle_t<PyBatch> batch,
              const std::string& normals, bool clamp, const std::string& path, nb::handle wait) {
             PyDeformer& d = nb::cast<PyDeformer&>(self);
-            ClJob job = describe_frames(d, nb::cast<PyBatch&>(batch), normals, clamp, path);
+            ClJob job = describe_frames(nb::cast<PyBatch&>(batch), normals, clamp, path);
             return enqueue_frame(d, job, parameters, wait);
           },
           nb::arg("parameters"), nb::arg("batch"), nb::arg("normals") = "rotate",
@@ -163,8 +163,7 @@ void bind_device(nb::module_& m) {
           [](nb::handle_t<PyDeformer> self, nb::handle_t<PyBatch> batch, const std::string& normals,
              bool clamp, const std::string& path) {
             return PyJob{nb::borrow(self), nb::borrow(batch),
-                         describe_frames(nb::cast<const PyDeformer&>(self),
-                                         nb::cast<PyBatch&>(batch), normals, clamp, path)};
+                         describe_frames(nb::cast<PyBatch&>(batch), normals, clamp, path)};
           },
           nb::arg("batch"), nb::arg("normals") = "rotate", nb::arg("clamp") = false,
           nb::arg("path") = "auto",
@@ -206,14 +205,14 @@ void bind_device(nb::module_& m) {
         const ParameterArgument rows(parameters, *model.model);
         DeformedBatch<double> out;
         ReferenceJob job;
-        job.model = model.model.get();
+        job.instances = rows.view().instance_count;
         job.parameters = rows.view();
         job.normals = parse_normal_mode(normals);
         job.clamp = clamp;
         job.outputs = &out;
         {
           nb::gil_scoped_release release;
-          run_reference(job);
+          run_reference(*model.model, job);
         }
         return Outputs(std::move(out), model.model);
       },

@@ -22,6 +22,7 @@ std::vector<cl::Event> wait_events(nb::handle wait) {
 PyEvent enqueue_frame(PyDeformer& deformer, ClJob& job, nb::handle parameters, nb::handle wait) {
   const ParameterArgument rows(parameters, *deformer.model);
   job.parameters = rows.view();
+  job.instances = job.parameters.instance_count;
   return enqueue_job(deformer, job, wait);
 }
 
@@ -40,10 +41,9 @@ PyEvent enqueue_job(PyDeformer& deformer, ClJob& job, nb::handle wait) {
   return done;
 }
 
-ClJob describe_frames(const PyDeformer& deformer, PyBatch& batch, const std::string& normals,
-                      bool clamp, const std::string& path) {
+ClJob describe_frames(PyBatch& batch, const std::string& normals, bool clamp,
+                      const std::string& path) {
   ClJob job;
-  job.model = deformer.model.get();
   job.normals = parse_normal_mode(normals);
   job.clamp = clamp;
   job.path = parse_rig_path(path);

@@ -212,11 +212,11 @@ void bind_swim(nb::module_& m) {
                  "Deformer from swim_model.model)");
         }
         PySwimJob job{nb::borrow(self), nb::borrow(batch), nb::borrow(driver),
-                      describe_frames(d, nb::cast<PyBatch&>(batch), normals, false, path)};
-        job.job.parameters.instance_count = swim.driver->fish_count();
-        job.job.parameter_buffer = &swim.driver->parameter_buffer();
-        job.job.placement_buffer = &swim.driver->placement_buffer();
-        job.job.derived_buffer = swim.driver->derived_buffer();
+                      describe_frames(nb::cast<PyBatch&>(batch), normals, false, path)};
+        job.job.instances = swim.driver->fish_count();
+        job.job.device.parameters = &swim.driver->parameter_buffer();
+        job.job.device.placements = &swim.driver->placement_buffer();
+        job.job.device.derived = swim.driver->derived_buffer();
         return job;
       },
       nb::is_method(), nb::scope(deformer_class), nb::name("swim_job"), nb::arg("batch"),

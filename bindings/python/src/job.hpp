@@ -17,8 +17,8 @@ struct PyJob {
 };
 
 // The job of `deformer` into `batch` (normals, clamp, path parsed: errors name them).
-ClJob describe_frames(const PyDeformer& deformer, PyBatch& batch, const std::string& normals,
-                      bool clamp, const std::string& path);
+ClJob describe_frames(PyBatch& batch, const std::string& normals, bool clamp,
+                      const std::string& path);
 
 // The events of `wait`: a sequence of finflex.Event, or None.
 std::vector<cl::Event> wait_events(nb::handle wait);

@@ -7,7 +7,7 @@
 //   DeviceBatch batch = deformer.allocate(4000);       // once
 //   RigParameters values(fish, 4000);
 //   ClJob job;
-//   job.model = &fish;
+//   job.instances = 4000;
 //   job.parameters = values.view();
 //   job.outputs = &batch;
 //   for each frame:
@@ -62,7 +62,30 @@
 
 namespace finflex {
 
-using ClJob = BasicDeformJob<DeviceBatch, cl::Event, cl::Buffer>;
+// A frame's inputs already on the device, written by a kernel of the caller's (a swim
+// driver, finflex/cl_swim.hpp) and used instead of uploading the job's host values.
+struct ClDeviceInputs {
+  // Instead of job.parameters: rows of values_per_instance() floats, packed. The values
+  // are the writer's to keep in range: nothing checks them on the host.
+  const cl::Buffer* parameters = nullptr;
+  // Instead of job.placements: kPlacementFloats per instance.
+  const cl::Buffer* placements = nullptr;
+  // The rig's derived values of this frame (DeformerType::derived_count: a spine's
+  // running integrals), written by the kernel that wrote `parameters`
+  // (ClSwimDriver::derived_buffer()), derived_floats_per_instance() floats per
+  // instance: the frame skips rig_prepare. Null: rig_prepare computes them.
+  const cl::Buffer* derived = nullptr;
+};
+
+// A frame of a ClDeformer: the job of finflex/job.hpp, written into a DeviceBatch, and
+// what only the device has.
+struct ClJob : BasicDeformJob<DeviceBatch> {
+  RigPath path = RigPath::kAuto;
+  // Inputs on the device instead of the host's (each null: the host's).
+  ClDeviceInputs device;
+  // Work the job's first command waits for; none when null.
+  const std::vector<cl::Event>* wait = nullptr;
+};
 
 // The backend's tuning knobs and what a deformer chose: finflex/internal/cl_tuning.hpp
 // (benchmarks and tests; the defaults are the measured choices).
@@ -117,9 +140,9 @@ class FINFLEX_API ClDeformer {
   void map_host(DeviceBatch& batch);
   void unmap_host(DeviceBatch& batch);
 
-  // Validates the job (ClJob::validate, then: the job's model is this deformer's,
-  // and its outputs were allocated for this model with room for its instances:
-  // "job.outputs" names what does not fit), checks its parameters (check_parameters)
+  // Validates the job against this deformer's model (ClJob::validate, then: its
+  // outputs were made by this deformer for job.instances instances: "job.outputs"
+  // names what does not fit), checks its parameters (check_parameters)
   // into the next staging buffer, uploads them without blocking after job.wait, and
   // enqueues the kernels. Returns the last kernel's event. `kernel_events`, when given,
   // receives the event of every kernel launched, in order (profiling): rig_prepare when
@@ -138,7 +161,7 @@ class FINFLEX_API ClDeformer {
   // the deformer's tuning asks for the rig kernels).
   bool uses_single_bend_kernel() const;
   // Derived values per instance (a spine's running integrals; 0 when the rig has none):
-  // the floats a ClJob::derived_buffer holds for each instance.
+  // the floats a ClJob::device.derived holds for each instance.
   std::size_t derived_floats_per_instance() const;
   // The path RigPath::kAuto resolves to for this model.
   RigPath automatic_path() const;

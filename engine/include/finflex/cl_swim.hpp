@@ -6,10 +6,10 @@
 //   ClSwimDriver driver(context, swim, lengths);
 //   ClDeformer deformer(context, swim.model());
 //   ClJob job;  job.model = &swim.model();
-//   job.parameters.instance_count = lengths.size();
-//   job.parameter_buffer = &driver.parameter_buffer();
-//   job.placement_buffer = &driver.placement_buffer();
-//   job.derived_buffer = driver.derived_buffer();  (null: rig_prepare runs)
+//   job.instances = lengths.size();
+//   job.device.parameters = &driver.parameter_buffer();
+//   job.device.placements = &driver.placement_buffer();
+//   job.device.derived = driver.derived_buffer();  (null: rig_prepare runs)
 //   each frame: driver.enqueue(inputs, dt); deformer.enqueue(job);
 //
 // or, with no copy of the inputs, written straight into the upload's staging memory:

@@ -6,11 +6,11 @@
 // OpenCL.
 //
 //   ReferenceJob job;
-//   job.model = &fish;
+//   job.instances = values.instance_count();
 //   job.parameters = values.view();
 //   DeformedBatch<double> out;
 //   job.outputs = &out;
-//   run_reference(job);
+//   run_reference(fish, job);
 //
 // Thread-safety: run_reference only reads the model and the parameters; jobs may run
 // on several threads at once, each with its own outputs.
@@ -25,15 +25,14 @@
 
 namespace finflex {
 
-using ReferenceJob = BasicDeformJob<DeformedBatch<double>, NoEvent, NoBuffer>;
+using ReferenceJob = BasicDeformJob<DeformedBatch<double>>;
 
-// Validates the job (ReferenceJob::validate), checks the parameters
-// (check_parameters), then deforms every instance into *job.outputs, resized to the
-// model's vertices in the mesh's own order (plane_stride padded_plane_stride of the
-// vertex count), placed in the world when job.placements is given. job.path and
-// job.wait are ignored; job.parameter_buffer and job.placement_buffer must be null.
-// On error the outputs are left as they were.
-FINFLEX_API void run_reference(const ReferenceJob& job);
+// Validates the job against `model` (ReferenceJob::validate), checks the parameters
+// (check_parameters), then deforms every instance of `model` into *job.outputs,
+// resized to the model's vertices in the mesh's own order (plane_stride
+// padded_plane_stride of the vertex count), placed in the world when job.placements is
+// given. On error the outputs are left as they were.
+FINFLEX_API void run_reference(const RiggedMesh& model, const ReferenceJob& job);
 
 // The same for a whole RigParameters (with world `placements`, one per instance, or
 // none): a convenience for tests and tools.

@@ -273,10 +273,9 @@ void ClDeformer::Impl::check_outputs(const ClJob& job) const {
                  std::to_string(model.vertex_count()) + (tangents_ ? " with" : " without") +
                  " tangents (make it from this deformer)");
   }
-  if (got.instance_count != job.parameters.instance_count) {
+  if (got.instance_count != job.instances) {
     fail_outputs("the batch holds " + std::to_string(got.instance_count) +
-                 " instances, the job's parameters are for " +
-                 std::to_string(job.parameters.instance_count));
+                 " instances, the job deforms " + std::to_string(job.instances));
   }
 }
 
@@ -315,24 +314,24 @@ void ClDeformer::Impl::check_buffer_sizes(const DeviceBatch& batch) {
 }
 
 void ClDeformer::Impl::check_shape(const ClJob& job) const {
-  job.validate();
-  if (job.model->id() != model.id()) {
-    throw Error(ErrorCode::kInvalidArgument, "job.model",
-                "job.model: this deformer was built for another model");
+  job.validate(model, job.device.parameters != nullptr);
+  if (job.placements != nullptr && job.device.placements != nullptr) {
+    throw Error(ErrorCode::kInvalidArgument, "job.placements",
+                "job.placements and job.device.placements are both set: give one");
   }
   check_outputs(job);
 }
 
 void ClDeformer::Impl::check(const ClJob& job) const {
   check_shape(job);
-  checker_.check(job.parameters, job.clamp);
+  if (job.device.parameters == nullptr) checker_.check(job.rows(), job.clamp);
 }
 
 // ----------------------------------------------------------------------------------
 // Kernels
 
 ClDeformer::Impl::BoundKernel& ClDeformer::Impl::kernel(std::size_t index, const ClJob& job) {
-  const bool placed = job.placements != nullptr || job.placement_buffer != nullptr;
+  const bool placed = job.placements != nullptr || job.device.placements != nullptr;
   const detail::KernelVariant variant{
       index,  job.normals,  batch_options_, batch_per_item(job.normals),
       placed, batch_lanes_, batch_streams_};
@@ -371,10 +370,10 @@ void ClDeformer::Impl::ensure_derived(std::size_t instances) {
   ++generation_;
 }
 
-// A job's own derived values: kInvalidArgument naming "job.derived_buffer" when the
+// A job's own derived values: kInvalidArgument naming "job.device.derived" when the
 // model has none or the buffer is smaller than the frame's.
 void ClDeformer::Impl::check_derived_buffer(const cl::Buffer& buffer, std::size_t instances) const {
-  const std::string field = "job.derived_buffer";
+  const std::string field = "job.device.derived";
   if (derived_per_instance_ == 0) {
     throw Error(ErrorCode::kInvalidArgument, field,
                 field + " is set, but the model's rig has no derived values (no spine)");
@@ -392,12 +391,12 @@ void ClDeformer::Impl::check_derived_buffer(const cl::Buffer& buffer, std::size_
 // rig_prepare over the job's instances: the derived values from the frame's values.
 void ClDeformer::Impl::prepare_derived(const ClJob& job, const FrameInputs& inputs,
                                        std::vector<cl::Event>* kernel_events) {
-  const std::size_t instances = job.parameters.instance_count;
+  const std::size_t instances = job.instances;
   if (instances == 0) return;
   if (!prepare_()) {
     // From a one-lane build of the program the frame's kernels come from (the same
     // build when they have one lane): it works on instances, not on vertex slots.
-    const bool placed = job.placements != nullptr || job.placement_buffer != nullptr;
+    const bool placed = job.placements != nullptr || job.device.placements != nullptr;
     const detail::KernelVariant variant{
         0, job.normals, batch_options_, batch_per_item(job.normals), placed, 1};
     prepare_ = context.kernel("rig_prepare", program_, variant.options());
@@ -455,7 +454,7 @@ cl_uint ClDeformer::Impl::set_arguments(cl::Kernel& kernel, std::size_t index, c
   set(output_layout_argument(batch.outputs, batch.frames_written > 0));
   set(vertex_of_slot_);
   set(static_cast<cl_uint>(slot_count_));
-  set(static_cast<cl_uint>(job.parameters.instance_count));
+  set(static_cast<cl_uint>(job.instances));
   if (single_bend) {
     for (const cl_float4& value : back_transform_) set(value);
   }
@@ -476,9 +475,8 @@ void ClDeformer::Impl::launch(BoundKernel& bound, const ClJob& job, std::size_t 
   // last instance).
   const std::size_t items_per_group = kWorkGroupSize / batch_lanes_;
   const cl::NDRange offset(first_group * items_per_group, 0);
-  const cl::NDRange global(
-      (end_group - first_group) * items_per_group,
-      internal::launch_rows((job.parameters.instance_count + per - 1) / per, batch_lanes_));
+  const cl::NDRange global((end_group - first_group) * items_per_group,
+                           internal::launch_rows((job.instances + per - 1) / per, batch_lanes_));
   check_cl(context.queue().enqueueNDRangeKernel(
                bound.kernel, offset, global,
                cl::NDRange(items_per_group, internal::group_rows(batch_lanes_)), nullptr, event),
@@ -494,11 +492,11 @@ void ClDeformer::Impl::launch(BoundKernel& bound, const ClJob& job, std::size_t 
 // job's own device buffers. The uploads wait for job.wait.
 ClDeformer::Impl::FrameInputs ClDeformer::Impl::upload_inputs(const ClJob& job, bool checked) {
   const std::size_t per_instance = model.values_per_instance();
-  const std::size_t instances = job.parameters.instance_count;
+  const std::size_t instances = job.instances;
   FrameInputs inputs;
   const std::vector<cl::Event>* wait = job.wait;
-  if (job.parameter_buffer) {
-    inputs.parameters = job.parameter_buffer;
+  if (job.device.parameters) {
+    inputs.parameters = job.device.parameters;
   } else {
     const std::size_t values = instances * per_instance;
     float* staged = upload_.acquire(context, values);
@@ -506,14 +504,14 @@ ClDeformer::Impl::FrameInputs ClDeformer::Impl::upload_inputs(const ClJob& job, 
     if (checked && !job.clamp && stride == per_instance && values > 0) {
       std::memcpy(staged, job.parameters.data, values * sizeof(float));
     } else {
-      checker_.check(job.parameters, job.clamp, staged);
+      checker_.check(job.rows(), job.clamp, staged);
     }
     if (upload_.upload(context, wait)) ++generation_;
     wait = nullptr;  // the in-order queue runs the rest after the upload
     inputs.parameters = &upload_.buffer();
   }
-  if (job.placement_buffer) {
-    inputs.placements = job.placement_buffer;
+  if (job.device.placements) {
+    inputs.placements = job.device.placements;
   } else if (job.placements) {
     float* staged = placement_upload_.acquire(context, instances * kPlacementFloats);
     for (std::size_t i = 0; i < instances; ++i) {
@@ -546,20 +544,20 @@ cl::Event ClDeformer::Impl::enqueue(const ClJob& job, std::vector<cl::Event>* ke
   if (kernel_events) kernel_events->clear();
   check_buffer_sizes(*job.outputs);
   if (job.outputs->host_mapped) detail::unmap_host_outputs(context, *job.outputs);
-  const std::size_t instances = job.parameters.instance_count;
+  const std::size_t instances = job.instances;
   FrameInputs inputs = upload_inputs(job, checked);
 
   RigPath path = job.path == RigPath::kAuto ? automatic_path : job.path;
   if (pass_count == 0) path = RigPath::kFused;  // no stage at all: the fused copy
   if (path == RigPath::kPasses && !single_bend) ensure_scratch(instances);
-  if (job.derived_buffer != nullptr) {
+  if (job.device.derived != nullptr) {
     // Checked once per buffer and size (the check queries the buffer's size).
-    if ((*job.derived_buffer)() != checked_derived_() || instances > checked_derived_instances_) {
-      check_derived_buffer(*job.derived_buffer, instances);
-      checked_derived_ = *job.derived_buffer;  // held, so its handle stays this buffer's
+    if ((*job.device.derived)() != checked_derived_() || instances > checked_derived_instances_) {
+      check_derived_buffer(*job.device.derived, instances);
+      checked_derived_ = *job.device.derived;  // held, so its handle stays this buffer's
       checked_derived_instances_ = instances;
     }
-    inputs.derived = job.derived_buffer;
+    inputs.derived = job.device.derived;
   } else {
     if (derived_per_instance_ > 0) {
       ensure_derived(instances);
@@ -607,7 +605,7 @@ cl::Event ClDeformer::Impl::enqueue(const ClJob& job, std::vector<cl::Event>* ke
       run(fused_launches_.size() + q, 0, slot_count_ / kWorkGroupSize, q + 1 == pass_count, &done);
     }
   }
-  if (!job.parameter_buffer) upload_.used(done);
+  if (!job.device.parameters) upload_.used(done);
   if (job.placements) placement_upload_.used(done);
   ++job.outputs->frames_written;
   return done;

@@ -42,7 +42,7 @@ std::vector<cl::Event> RigFrame::enqueue(NormalMode normals, RigPath path, bool 
   for (std::size_t k = 0; k < entries_.size(); ++k) {
     Entry& entry = entries_[k];
     ClJob& job = jobs[k];
-    job.model = &entry.deformer->model();
+    job.instances = entry.parameters.instance_count();
     job.parameters = entry.parameters.view();
     job.normals = normals;
     job.clamp = clamp;

@@ -13,13 +13,12 @@
 
 namespace finflex {
 
-void run_reference(const ReferenceJob& job) {
-  job.validate();
-  const RiggedMesh& model = *job.model;
+void run_reference(const RiggedMesh& model, const ReferenceJob& job) {
+  job.validate(model);
   const std::size_t per_instance = model.values_per_instance();
-  const std::size_t instances = job.parameters.instance_count;
+  const std::size_t instances = job.instances;
   std::vector<float> values(instances * per_instance);
-  detail::ParameterChecker(model.rig()).check(job.parameters, job.clamp, values.data());
+  detail::ParameterChecker(model.rig()).check(job.rows(), job.clamp, values.data());
 
   BatchLayout layout;
   layout.vertex_count = model.vertex_count();
@@ -62,13 +61,13 @@ DeformedBatch<double> run_reference(const RiggedMesh& model, const RigParameters
                                     NormalMode normals, bool clamp, const Placement* placements) {
   DeformedBatch<double> out;
   ReferenceJob job;
-  job.model = &model;
+  job.instances = parameters.instance_count();
   job.parameters = parameters.view();
   job.normals = normals;
   job.clamp = clamp;
   job.placements = placements;
   job.outputs = &out;
-  run_reference(job);
+  run_reference(model, job);
   return out;
 }
 
