@@ -12,7 +12,9 @@
 #include "finflex/error.hpp"
 #include "cl/host_pages.hpp"
 #include "cl/outputs.hpp"
-#include "cl/rig_program.hpp"
+#include "cl/launch_plan.hpp"
+#include "cl/rig_source.hpp"
+#include "cl/slot_layout.hpp"
 
 namespace finflex {
 namespace {
