@@ -78,8 +78,8 @@ PassPlan make_pass_plan(const RiggedMesh& model, const SlotLayout& slots, std::s
 // branch per component with vertices of its own (`branch_ends`: the end group of each
 // branch; its code is the path of `branch_components`). share_code: one kernel for
 // each run of components with the same functions along their paths, whose one-lane
-// build shares one branch of code (PoCL vectorises straight-line kernels best);
-// otherwise one kernel for all (one launch: GPUs).
+// build shares one branch of code (PoCL vectorises straight-line kernels best:
+// docs/benchmarks.md#choice-dispatch); otherwise one kernel for all (one launch: GPUs).
 struct FusedLaunch {
   std::size_t first_group = 0;
   std::size_t end_group = 0;
