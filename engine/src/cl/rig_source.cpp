@@ -171,7 +171,7 @@ std::string rig_dispatch_source(const RiggedMesh& model, const SlotLayout& slots
                                 std::size_t prepare_items, bool share_code, bool lane_tables) {
   const Rig& rig = model.rig();
   std::ostringstream out;
-  out << "/* Generated for one rig by engine/src/rig_program.cpp: which stages apply to\n"
+  out << "/* Generated for one rig by engine/src/cl/rig_source.cpp: which stages apply to\n"
          " * which work-groups (kernels/rig.cl). */\n";
   out << "#define FF_STAGE_COUNT " << stage_table_rows(rig) << "u\n";
   out << stage_table_source(rig);
