@@ -5,7 +5,7 @@
  *
  * Vertices are reordered so each component is a contiguous range of work-groups.
  * Which stages apply to which work-groups is the rig's, so it is generated for each
- * rig (engine/src/rig_program.cpp) as macros over the deformers' stage functions
+ * rig (engine/src/cl/rig_source.cpp) as macros over the deformers' stage functions
  * (kernels/deformers/; enter_frame before every stage but a vertex's first, then
  * s = <function>(p, f, values + <offset of the stage's values>, ...) and
  * leave_frame, or FF_LEAVE_LAST at the root's last stage):
@@ -34,7 +34,7 @@
  * FF_STAGE_COUNT (the stage table's rows), ff_stage_table (the table itself, a
  * program-scope constant: common/stage_frame.cl), FF_ROOT_FRAME (the root frame's row,
  * when the root has no stage), FF_RIG_GROUP_COUNT and the macros above. */
-/* The path table (group_path_table in engine/src/rig_program.cpp): the stage at
+/* The path table (group_path_table in engine/src/cl/launch_plan.cpp): the stage at
  * position j of the path of the work-group's component. Uniform over a work-group. */
 #define FF_PATH_STAGE(j) group_paths[(j) * FF_RIG_GROUP_COUNT + group]
 /* Its link rows (FF_PATH_WIDTH rows further): the index in ff_link_table of the link
@@ -46,7 +46,7 @@
 #define FF_GROUP ((uint)(get_group_id(0) + get_global_offset(0) / get_local_size(0)))
 
 /* Fused path: kernel rig_fused_r covers the work-groups of launch r
- * (engine/src/rig_program.cpp, make_fused_plan) over (its slots, ceil(instances /
+ * (engine/src/cl/launch_plan.cpp, make_fused_plan) over (its slots, ceil(instances /
  * FF_INSTANCES_PER_ITEM)); every vertex walks its whole path in registers and is
  * written once, for each of the work-item's instances. rest_*: one instance's planes;
  * params: param_count values per instance. */
@@ -81,7 +81,7 @@
 
 FF_RIG_FUSED_KERNELS
 
-/* Multi-pass path: pass q (kernel rig_pass_q) runs the steps engine/src/rig_program.cpp
+/* Multi-pass path: pass q (kernel rig_pass_q) runs the steps engine/src/cl/launch_plan.cpp
  * planned for it (make_pass_plan): for each range of work-groups, load the vertex from
  * the set its previous stage wrote (the rest mesh before its first stage), apply the
  * pass's stage, store it to the outputs if that was its last stage, else to the other
@@ -149,12 +149,13 @@ FF_RIG_PASS_KERNELS
  * kernels run, FF_PREPARE_ITEMS work-items per instance: 1 (a work-group's 64 instances
  * side by side) or a power of two up to 64, a work-group of FF_PREPARE_GROUP_SIZE =
  * FF_PREPARE_ITEMS per instance (a spine's table is then shared out and summed by a
- * scan in local memory; engine/src/device_profile.hpp chooses). The stages that have them are listed in the generated FF_RIG_PREPARE
- * (calls "<prepare function>(values + <offset>, derived + <offset>, stages + <k>,
- * scratch, item);" by every work-item of the instance). Launched only when the rig has
- * such stages, always from the one-lane build of the program (it works on instances,
- * not on vertices). Generated with FF_PREPARE_ITEMS: FF_PREPARE_BARRIER(), a barrier
- * between an instance's work-items (none when it has one). */
+ * scan in local memory; engine/src/cl/device_profile.hpp chooses). The stages that
+ * have them are listed in the generated FF_RIG_PREPARE (calls "<prepare
+ * function>(values + <offset>, derived + <offset>, stages + <k>, scratch, item);" by
+ * every work-item of the instance). Launched only when the rig has such stages,
+ * always from the one-lane build of the program (it works on instances, not on
+ * vertices). Generated with FF_PREPARE_ITEMS: FF_PREPARE_BARRIER(), a barrier between
+ * an instance's work-items (none when it has one). */
 #if FF_LANES == 1
 /* An instance's scratch floats in local memory. */
 #define FF_PREPARE_SCRATCH (2 * FF_PREPARE_ITEMS + 2)

@@ -58,7 +58,7 @@ typedef int16 LaneInt;
 #define FF_LANE_IDS ((int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15))
 #elif FF_LANES == 32
 /* 32 lanes: a clang extended vector (OpenCL C has no vector of 32; the host asks for
- * it from PoCL only, engine/src/device_profile.hpp). On AVX-512 each operation is two
+ * it from PoCL only, engine/src/cl/device_profile.hpp). On AVX-512 each operation is two
  * independent ones on native vectors of 16: a work-item's long chain of dependent
  * steps becomes two side by side, which the processor overlaps. OpenCL's builtins have
  * no overloads for it: those the per-vertex code takes are added here, half by half.

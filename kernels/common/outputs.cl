@@ -99,7 +99,7 @@ FF_INLINE void store_half_at(__global float* buffer, size_t index, float value) 
 
 /* Element (instance i, vertex v) of an attribute, in scalars of its format: the first
  * component's index and the distance between components (planes: a plane).
- * Build option FF_PLANE_STRIDE (engine/src/outputs.cpp plane_stride_option): every
+ * Build option FF_PLANE_STRIDE (engine/src/cl/output_options.cpp plane_stride_option): every
  * attribute is in FinFlex's planes (finflex/batch.hpp), offset 0, plane stride
  * FF_PLANE_STRIDE and instance stride three planes, so the places are compiled in: one
  * 32 x 32-bit product for the first component, the others at literal distances that

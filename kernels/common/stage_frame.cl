@@ -16,7 +16,7 @@
  * (the constants: DeformerType::stage_constants, e.g. a hinge's width and 1 / width;
  * derived values: DeformerType::derived_count, written by the rig_prepare kernel).
  * A StageFrame points at stage k's first value; FF_AT(f, c) reads value c. The table
- * is written by stage_table() in engine/src/rig_program.cpp and compiled into the
+ * is written by stage_table() in engine/src/cl/slot_layout.cpp and compiled into the
  * program as the constant array ff_stage_table (stage_table_source()): where a frame's
  * row is known at compile time, which is everywhere but the shared-code dispatch, its
  * values are literals in the instructions, not loads. Measured on the H100, 10,000
@@ -78,7 +78,7 @@ FF_INLINE void leave_frame(Vec3* p, Vec3* n, Vec3* t, StageFrame f, SecantSample
 
 /* From a stage's frame straight into the next stage's, where a fused path has both
  * compiled in: leave_frame and enter_frame composed on the host (link_values() in
- * engine/src/rig_program.cpp), p' = (s_a / s_b) M p + c, d' = M d, M = R_b R_a^T,
+ * engine/src/cl/rig_source.cpp), p' = (s_a / s_b) M p + c, d' = M d, M = R_b R_a^T,
  * c = R_b (o_a - o_b) / s_b. A link (21 values of the generated ff_link_table): 0-8
  * (s_a / s_b) M, 9-11 c, 12-20 M, row-major. Half the arithmetic of the two transforms
  * (a fin's vertices on their way into the body's spine). */

@@ -2,7 +2,7 @@
  * kernels that use them vectorise (PoCL's work-group vectoriser stops at a call to
  * sin, cos or atan: the swim driver took 1.33 ms a frame for 1,000 fish on 2 cores with
  * them, 0.2 ms without). Build
- * option FF_NATIVE_TRIG (the host's, engine/src/device_profile.hpp): 1 where the
+ * option FF_NATIVE_TRIG (the host's, engine/src/cl/device_profile.hpp): 1 where the
  * kernels may take the hardware's native_sin and native_cos instead. */
 #ifndef FF_NATIVE_TRIG
 #define FF_NATIVE_TRIG 0

@@ -40,7 +40,7 @@
  * far: the chord to the vertex has length d sinc(delta) along theta_j + delta. The
  * sines and cosines at the middle and at the end come from those of theta_j (the
  * record) and of delta (short series) by the angle-addition formulas; with
- * FF_NATIVE_TRIG (engine/src/device_profile.hpp: NVIDIA's GPUs) from the hardware's
+ * FF_NATIVE_TRIG (engine/src/cl/device_profile.hpp: NVIDIA's GPUs) from the hardware's
  * sine and cosine of the two angles instead, fewer instructions on the arithmetic
  * units. */
 FF_INLINE SecantSample spine_at(LaneFloat x, LaneFloat position, LaneFloat z,
@@ -60,7 +60,7 @@ FF_INLINE SecantSample spine_at(LaneFloat x, LaneFloat position, LaneFloat z,
   const LaneInt segment_index = known_segments ? (LaneInt)first_segment : FF_LANE_INT(within);
   const LaneFloat segment = within_table ? (LaneFloat)0.0f : FF_LANE_FLOAT(segment_index);
   /* Each lane's own segment's record. The slots of a spine's component are sorted by x
-   * (engine/src/rig_program.hpp, make_slot_layout), so the lanes of most work-items
+   * (engine/src/cl/slot_layout.hpp, make_slot_layout), so the lanes of most work-items
    * share one segment, and those of the rest a few neighbouring ones (a fin's vertices
    * reach the spine after their hinge, which moves them a little along it): the
    * records from the lowest lane's segment to the highest's, up to FF_SPINE_BLEND

@@ -4,7 +4,7 @@
  * does in double precision (engine/src/swim/kinematics.cpp has the formulas and their
  * sources). FF_SWIM_ITEMS is 1 (a work-group's fish side by side) or a power of two up
  * to 64, a work-group of FF_SWIM_GROUP_SIZE = FF_SWIM_ITEMS per fish (the spine's
- * samples shared out, FF_SWIM_CHUNK each; engine/src/device_profile.hpp chooses); with
+ * samples shared out, FF_SWIM_CHUNK each; engine/src/cl/device_profile.hpp chooses); with
  * one work-item per fish, a program of FF_LANES > 1 (CPUs) takes FF_LANES fish per
  * work-item, one in each lane (common/lanes.cl), so the driver is vector code there.
  * Generated before this file (engine/src/swim/cl_driver.cpp):

@@ -8,7 +8,8 @@
 #include <string>
 
 #include "finflex/error.hpp"
-#include "cl/outputs.hpp"
+#include "cl/output_buffers.hpp"
+#include "cl/output_options.hpp"
 
 namespace finflex::detail {
 

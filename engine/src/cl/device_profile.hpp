@@ -1,9 +1,12 @@
-// What the OpenCL backend chooses per device kind, in one place: work-group size,
-// instances and vertex slots per work-item and the rig dispatch (the figures behind
-// them are in docs/benchmarks.md).
+// What the OpenCL backend chooses per device: a table of data, a row per class of
+// device (kDeviceChoices), each column's reason a line with a link to its measurement
+// in docs/benchmarks.md#measured-choices; the device_* functions look a device's row
+// up. The choices that follow a formula (streaming stores, table items) are small
+// functions beside the table.
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <string>
 
@@ -19,82 +22,117 @@ namespace finflex::detail {
 constexpr std::size_t kWorkGroupSize = ClDeformer::kGroupSize;
 static_assert(64 % kWorkGroupSize == 0, "padded_plane_stride must be a multiple of it");
 
-// Instances one work-item deforms. GPUs are limited by the rate of work-items, not of
-// bytes, with one instance per work-item: the single bend takes 2 with float32
-// normals and 4 with half normals (fewer bytes per instance), the rig kernels 4 (a
-// vertex's rest values and path serve four instances): 10,000 swimming fish deformed
-// in 0.866 ms at 4 against 0.876 at 2 on an H100, 0.697 against 0.748 on an H200.
-// `spine_planes`: a rig with a table stage (a spine, whose segment lookup serves them
-// too) writing FinFlex's planes with rotated normals takes 8: on an H200, 10,000
-// swimming fish 0.667-0.669 ms against 0.678-0.679 at 4 (0.674-0.676 at 16), half
-// normals 0.603-0.605 against 0.625. Elsewhere 8 holds more than the registers do:
-// Jacobian normals 0.803 against 0.703, octahedral normals 0.361 against 0.297 for
-// 4,000, interleaved structs 0.311 against 0.306, and a rig without a table (the Blub
-// rig's hinges and bend) 0.247-0.249 against 0.239 for 4,000 (docs/benchmarks.md,
-// Swimming, "Eight fish per work-item"). CPUs take 1.
+// PoCL's platform name. Its OpenCL C compiler (clang) is the only one the kernels of 32
+// lanes are built with (kernels/common/lanes.cl: a vector type of clang's).
+constexpr const char* kPoclPlatform = "Portable Computing Language";
+
+// How many work-items share one instance's table work (rig_prepare, the swim driver).
+enum class TableItems {
+  kOne,        // one work-item per instance (a work-group's instances each one loop)
+  kPerSample,  // one per sample (table_items_for: a power of two up to a work-group)
+};
+
+// A class of devices and what the backend chooses for it, a column a choice with its
+// reason; a device is in the first row it matches (device_choices).
+struct DeviceChoices {
+  const char* name;
+  bool gpu;                   // a GPU, or not (CPUs and any other device)
+  const char* platform;       // a part of the platform's name, "" for any
+  std::size_t native_floats;  // the least CL_DEVICE_NATIVE_VECTOR_WIDTH_FLOAT ("width")
+  // "instances" per work-item: the single bend with float32 normals and with half normals, a
+  // rig, a rig with a table stage (a spine) writing FinFlex's planes with rotated normals.
+  // GPUs go at the rate of work-items (docs/benchmarks.md#choice-gpu-instances-per-item).
+  std::size_t bend_instances, bend_half_instances, rig_instances, spine_planes_instances;
+  // Slots per work-item: a vector on CPUs (docs/benchmarks.md#choice-cpu-lanes), two on PoCL
+  // (#choice-two-vectors, #choice-avx2-lanes); a GPU's warp is its vector.
+  std::size_t lanes;
+  // kAuto's: fewest instructions, or straight-line for PoCL (docs/benchmarks.md#choice-dispatch).
+  RigDispatch dispatch;
+  // The hardware's sin and cos where their error is known (docs/benchmarks.md#choice-native-trig).
+  bool native_trig;
+  // Work-items an instance's table work takes (docs/benchmarks.md#choice-table-items).
+  TableItems table_items;
+  // "swim": fish per work-item of the swim driver, one work-item a fish: a vector's worth on
+  // CPUs (docs/benchmarks.md#choice-driver-lanes).
+  std::size_t driver_lanes;
+};
+
+// The rows, in the order they are matched: the last GPU row and the last row match
+// every GPU and every other device.
+inline constexpr std::array<DeviceChoices, 7> kDeviceChoices = [] {
+  constexpr const char* kAny = "";
+  constexpr const char* kPocl = kPoclPlatform;
+  constexpr RigDispatch kPerComponent = RigDispatch::kPerComponent;
+  constexpr RigDispatch kByPathShape = RigDispatch::kByPathShape;
+  constexpr TableItems kOne = TableItems::kOne;
+  constexpr TableItems kPerSample = TableItems::kPerSample;
+  // clang-format off
+  return std::array<DeviceChoices, 7>{{
+    // name          gpu    platform  width instances   lanes dispatch       trig   items       swim
+    {"NVIDIA GPU",   true,  "NVIDIA", 0,    2, 4, 4, 8, 1,    kPerComponent, true,  kPerSample, 1},
+    {"other GPU",    true,  kAny,     0,    2, 4, 4, 8, 1,    kPerComponent, false, kPerSample, 1},
+    {"PoCL AVX-512", false, kPocl,    16,   1, 1, 1, 1, 32,   kByPathShape,  false, kOne,       16},
+    {"PoCL AVX2",    false, kPocl,    8,    1, 1, 1, 1, 16,   kByPathShape,  false, kOne,       8},
+    {"PoCL",         false, kPocl,    0,    1, 1, 1, 1, 8,    kByPathShape,  false, kOne,       8},
+    {"CPU AVX-512",  false, kAny,     16,   1, 1, 1, 1, 16,   kByPathShape,  false, kOne,       16},
+    {"other CPU",    false, kAny,     0,    1, 1, 1, 1, 8,    kByPathShape,  false, kOne,       8},
+  }};
+  // clang-format on
+}();
+
+// Whether the device's OpenCL C compiler is PoCL's.
+inline bool device_is_pocl(const DeviceDescription& device) {
+  return device.platform_name.find(kPoclPlatform) != std::string::npos;
+}
+
+// The device's row of kDeviceChoices.
+inline const DeviceChoices& device_choices(const DeviceDescription& device) {
+  for (const DeviceChoices& row : kDeviceChoices) {
+    if (row.gpu == device.is_gpu() && device.native_float_vector_width >= row.native_floats &&
+        device.platform_name.find(row.platform) != std::string::npos) {
+      return row;
+    }
+  }
+  return kDeviceChoices.back();
+}
+
+// Instances one work-item deforms. `spine_planes`: a rig with a table stage (a spine)
+// writing FinFlex's planes with rotated normals.
 inline std::size_t device_instances_per_item(const DeviceDescription& device,
                                              bool single_bend_kernel, NormalFormat format,
                                              bool spine_planes) {
-  if (!device.is_gpu()) return 1;
-  if (!single_bend_kernel) return spine_planes ? 8 : 4;
-  return format == NormalFormat::kHalf ? 4 : 2;
+  const DeviceChoices& row = device_choices(device);
+  if (!single_bend_kernel) return spine_planes ? row.spine_planes_instances : row.rig_instances;
+  return format == NormalFormat::kHalf ? row.bend_half_instances : row.bend_instances;
 }
 
 // Whether the kernels take the hardware's sine and cosine (native_sin, native_cos) where
 // a vertex needs one of an angle within [-pi, pi] (kernels/deformers/spine.cl, build
-// option FF_NATIVE_TRIG): on NVIDIA's GPUs, whose special-function unit runs them beside
-// the arithmetic (PTX sin.approx.f32, absolute error about 2^-21 on [-pi, pi]; the
-// spine then deviates from the double-precision reference by less than 1e-6 of a body
-// length, tests/test_spine.cpp). 10,000 swimming fish deform in 0.697 ms against 0.755
-// with the series on an H200 (docs/benchmarks.md). Other devices keep the series: an
-// OpenCL native function's accuracy is the implementation's.
+// option FF_NATIVE_TRIG); the spine then stays within tests/test_spine.cpp's bounds.
 inline bool device_native_trig(const DeviceDescription& device) {
-  return device.is_gpu() && device.platform_name.find("NVIDIA") != std::string::npos;
+  return device_choices(device).native_trig;
 }
 
-// Whether the device's OpenCL C compiler is PoCL's (clang): the only one the kernels of
-// 32 lanes are built with (kernels/common/lanes.cl: a vector type of clang's).
-inline bool device_is_pocl(const DeviceDescription& device) {
-  return device.platform_name.find("Portable Computing Language") != std::string::npos;
-}
-
-// A CPU's vector of floats as the kernels take it: 16 where the native one has 16 lanes
-// (AVX-512), else 8 (AVX2's native vector; two of SSE's).
-inline std::size_t device_vector_lanes(const DeviceDescription& device) {
-  return device.native_float_vector_width >= 16 ? 16 : 8;
-}
-
-// Vertex slots one work-item deforms (kernels/common/lanes.cl). GPUs: 1 (a warp is
-// their vector). CPUs: vectors, so the kernels are vector code whatever the OpenCL
-// compiler's work-group vectoriser does. On PoCL, two native vectors: two independent
-// chains of steps per work-item for one work-item's scalar work. 32 lanes where the
-// native vector has 16 (AVX-512; a clang vector type): 1,000 swimming fish on a Xeon
-// in a median 0.86 of the time of 16 lanes on 2 threads, 0.93 on 16, 0.97 on a 2-core
-// AMD EPYC. 16 where it has 8 (AVX2; PoCL's AVX2 code on those machines): the swim
-// in 0.74 of the time of 8 lanes on the Xeon's 2 threads, 0.54 on 16 (8 lanes' stores
-// of half a cache line stream slowly there), 0.88 on the AMD EPYC (docs/benchmarks.md,
-// "16 lanes on AVX2"). Four native vectors spill: 32 lanes of AVX2 took 1.3 times
-// as long as 16, 64 lanes of AVX-512 3 times as long as 32. Elsewhere one vector
-// (device_vector_lanes).
+// Vertex slots one work-item deforms (kernels/common/lanes.cl).
 inline std::size_t device_lanes(const DeviceDescription& device) {
-  if (device.is_gpu()) return 1;
-  if (!device_is_pocl(device)) return device_vector_lanes(device);
-  const std::size_t native = device.native_float_vector_width;
-  return native >= 16 ? 32 : native >= 8 ? 16 : 8;
+  return device_choices(device).lanes;
 }
 
-// A CPU's cache that a frame's outputs could stay in, per thread: server CPUs have 1.5
-// to 4 MiB of last-level cache and 1 to 2 MiB of L2 per core. The cache size a
-// virtual machine reports is often not the host's (480 MiB on 2 cores, measured), so
-// the reported size alone is not trusted.
+// RigDispatch::kAuto as the device's choice; any other as asked.
+inline RigDispatch device_dispatch(const DeviceDescription& device, RigDispatch asked) {
+  if (asked != RigDispatch::kAuto) return asked;
+  return device_choices(device).dispatch;
+}
+
+// The most cache per compute unit a frame's outputs are taken to stay in: server CPUs
+// have 1.5 to 4 MiB of last-level cache a core, and a virtual machine may report the
+// host's (docs/benchmarks.md#choice-streaming-stores).
 constexpr std::size_t kCacheBytesPerComputeUnit = std::size_t{4} << 20;
 
 // Streaming stores (kernels of more than one lane) for a frame writing `output_bytes`:
 // kAuto streams outputs larger than the caches could hold (the reported global memory
-// cache, at most kCacheBytesPerComputeUnit per compute unit), which go to memory anyway
-// (reading each line before writing it doubles their traffic), and keeps smaller ones
-// in the caches. Measured on 2 cores (docs/benchmarks.md, "Streaming stores"): plain
-// stores win at 1 MB a frame, both alike at 12 MB, streaming 1.7x faster at 260 MB.
+// cache, at most kCacheBytesPerComputeUnit per compute unit), which go to memory anyway,
+// and keeps smaller ones in the caches (docs/benchmarks.md#choice-streaming-stores).
 inline bool device_streaming_stores(const DeviceDescription& device, OutputStores asked,
                                     std::size_t output_bytes) {
   if (asked != OutputStores::kAuto) return asked == OutputStores::kStreaming;
@@ -104,29 +142,28 @@ inline bool device_streaming_stores(const DeviceDescription& device, OutputStore
   return output_bytes > cache_bytes;
 }
 
-// Work-items that share one instance's table work (rig_prepare, the swim driver) of
-// `samples` samples: on GPUs one per sample, the smallest power of two that holds them
-// and at most a work-group (the samples in parallel, summed by a scan in local memory;
-// the swim driver of 10,000 fish of 32 samples took 0.024 ms on an H100 with 32
-// work-items per fish, 0.033-0.048 with 64, 0.06 with 4 or 8, 0.10 with 1:
-// docs/results/2026-11-24_swim_driver_items.txt); 1 on CPUs (a work-group's 64
-// instances each one work-item's loop: PoCL runs the work-items of a group between
-// barriers as loops).
-inline std::size_t device_table_items(const DeviceDescription& device, std::size_t samples,
-                                      std::size_t asked = 0) {
-  if (asked != 0) return asked;
-  if (!device.is_gpu()) return 1;
+// TableItems::kPerSample for `samples` samples: the smallest power of two that holds
+// them, at most a work-group (summed by a scan in local memory,
+// docs/benchmarks.md#choice-table-items).
+inline std::size_t table_items_for(std::size_t samples) {
   std::size_t items = 1;
   while (items < samples && items < kWorkGroupSize) items *= 2;
   return items;
 }
 
-// Fish one work-item of the swim driver takes, one per lane (kernels/swim/driver.cl):
-// on CPUs, with one work-item per fish, a vector's worth (device_vector_lanes), so the driver
-// is vector code (on 2 cores with PoCL, 1,000 fish: 0.45-0.65 ms a frame one fish per
-// work-item, the trigonometry scalar); else 1.
+// Work-items that share one instance's table work (rig_prepare, the swim driver) of
+// `samples` samples: `asked` unless 0, else the device's choice.
+inline std::size_t device_table_items(const DeviceDescription& device, std::size_t samples,
+                                      std::size_t asked = 0) {
+  if (asked != 0) return asked;
+  if (device_choices(device).table_items == TableItems::kOne) return 1;
+  return table_items_for(samples);
+}
+
+// Fish one work-item of the swim driver takes, one per lane (kernels/swim/driver.cl),
+// with `items` work-items per fish: the device's driver lanes for one, else 1.
 inline std::size_t device_driver_lanes(const DeviceDescription& device, std::size_t items) {
-  return items == 1 && !device.is_gpu() ? device_vector_lanes(device) : 1;
+  return items == 1 ? device_choices(device).driver_lanes : 1;
 }
 
 // The swim driver's work-group with that many fish per work-item: a few work-items
@@ -151,15 +188,6 @@ inline void check_table_items(std::size_t items, const char* field) {
 // last (which returns before the barriers the others wait at).
 inline std::size_t table_group_size(std::size_t items) {
   return items == 1 ? kWorkGroupSize : items;
-}
-
-// kPerComponent on GPUs (fewest instructions), kByPathShape on CPUs (straight-line
-// one-lane kernels, which PoCL's work-group vectoriser needs; their kernels of more
-// than one lane are one kernel with each component's stages compiled in,
-// rig_dispatch_source).
-inline RigDispatch device_dispatch(const DeviceDescription& device, RigDispatch asked) {
-  if (asked != RigDispatch::kAuto) return asked;
-  return device.is_gpu() ? RigDispatch::kPerComponent : RigDispatch::kByPathShape;
 }
 
 }  // namespace finflex::detail

@@ -19,7 +19,7 @@ constexpr std::size_t kHugePageBytes = std::size_t{2} << 20;
 // the kernel as huge-page memory (Linux madvise MADV_HUGEPAGE), wrapped with
 // CL_MEM_USE_HOST_PTR (make_buffer_over) and freed by the buffer's destructor callback:
 // the deformation's stores, which visit dozens of planes' pages a work-group, then cross
-// far fewer pages (docs/benchmarks.md, Swimming, "Outputs in huge pages"). Elsewhere, or
+// far fewer pages (docs/benchmarks.md#choice-huge-page-outputs). Elsewhere, or
 // where such memory cannot be had, an ordinary buffer.
 cl::Buffer make_large_buffer(const Context& context, std::size_t bytes);
 

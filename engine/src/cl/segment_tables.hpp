@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "finflex/model.hpp"
-#include "cl/rig_program.hpp"
+#include "cl/slot_layout.hpp"
 
 namespace finflex::detail {
 

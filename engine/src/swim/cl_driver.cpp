@@ -26,7 +26,8 @@
 #include "cl/device_profile.hpp"
 #include "finflex/error.hpp"
 #include "swim/kinematics.hpp"
-#include "cl/rig_program.hpp"
+#include "cl/rig_source.hpp"
+#include "cl/slot_layout.hpp"
 
 namespace finflex {
 namespace {

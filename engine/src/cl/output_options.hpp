@@ -1,14 +1,12 @@
-// A batch's outputs on the device (finflex/device_batch.hpp, finflex/output_layout.hpp):
-// making batches (allocated, the caller's buffers, the caller's host memory), checking
-// them against a deformer's vertex count, mapping host batches, and reading any layout
-// back as float planes.
+// How a batch's outputs shape the kernels that write them: FinFlex's own planes, the
+// layouts whose places the kernels compile in, and the vertex structs and arrays that
+// kernels of more than one lane store as vectors. The build options themselves are
+// finflex/internal/cl_outputs.hpp's.
 #pragma once
 
-#include <cstddef>
 #include <string>
 
 #include "finflex/batch.hpp"
-#include "finflex/context.hpp"
 #include "finflex/device_batch.hpp"
 #include "finflex/output_layout.hpp"
 
@@ -42,32 +40,5 @@ bool in_one_buffer(const DeviceBatch& batch);
 // bytes) in one of fills_word_struct's formats, each on a 4-byte word, in slot order and
 // without previous positions: what lane_struct_options also takes (FF_LANE_ARRAYS).
 bool fills_own_arrays(const OutputLayout& outputs);
-
-// Checks that `batch` holds `counts.instance_count` instances of `vertices` vertices
-// (slots or mesh vertices, as its order says) in its layout, in buffers large enough,
-// tangents only for a mesh that has them. kInvalidArgument naming `field` (e.g.
-// "job.outputs") and the rule broken.
-void check_outputs(const DeviceBatch& batch, std::size_t vertices, bool mesh_tangents,
-                   const std::string& field);
-
-// A batch of `counts` in `outputs`: buffers allocated (one per attribute, sized by the
-// layout), the caller's buffers, or buffers over the caller's host memory. Checked as
-// check_outputs does, naming "outputs".
-DeviceBatch allocate_outputs(Context& context, const BatchLayout& counts,
-                             const OutputLayout& outputs, std::size_t vertices);
-DeviceBatch bind_outputs(Context& context, const BatchLayout& counts, const OutputLayout& outputs,
-                         const OutputBuffers& buffers, std::size_t vertices);
-DeviceBatch bind_host_outputs(Context& context, const BatchLayout& counts,
-                              const OutputLayout& outputs, const HostOutputs& host,
-                              std::size_t vertices);
-
-// Host batches: map their buffers for reading on the host (blocking: the caller's
-// memory holds the frame when it returns), and unmap them before the next frame.
-void map_host_outputs(Context& context, DeviceBatch& batch);
-void unmap_host_outputs(Context& context, DeviceBatch& batch);
-
-// Blocking read of every attribute of `batch` into float planes of `vertices` a plane
-// (the batch's vertex order; the caller sets slot_of_vertex for slot order).
-DeformedBatch<float> read_outputs(Context& context, const DeviceBatch& batch, std::size_t vertices);
 
 }  // namespace finflex::detail
