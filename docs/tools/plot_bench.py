@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Scaling plots from `bench/sweep.sh` output (one `finflex bench --json` object per line):
+"""Scaling plots from a sweep (`scripts/device/run.sh ... sweep`: one run a line, its
+`finflex bench --json` object under "result"; bare objects a line are read too):
 vertices/s against instances, one panel per mesh, one line per deformation and output
 format, and the write-only kernel's rate for float32 outputs measured in the same runs.
 
@@ -27,7 +28,9 @@ def main():
     args = parser.parse_args()
 
     with open(args.results) as f:
-        rows = [json.loads(line) for line in f if line.strip().startswith("{")]
+        lines = [json.loads(line) for line in f if line.strip().startswith("{")]
+    rows = [r.get("result", r) for r in lines]
+    rows = [r for r in rows if r]
     meshes = sorted({r["vertices"] for r in rows})
     fig, axes = plt.subplots(1, len(meshes), figsize=(4.2 * len(meshes), 3.8), squeeze=False)
     for ax, vertices in zip(axes[0], meshes):

@@ -6,7 +6,7 @@ POCL_CACHE_DIR):
     POCL_VECTORIZER_REMARKS=1 POCL_CACHE_DIR=$(mktemp -d) finflex bench ... 2> remarks.txt
     python3 docs/tools/vectorizer_remarks.py remarks.txt [more.txt ...]
 
-Lines "== <name>" in the file (scripts/device/pocl_cpu_bench.sh writes one before each
+Lines "== <name>" in the file (scripts/device/run.sh remarks writes one before each
 run) start a section: the verdicts are grouped by section and kernel.
 
 PoCL compiles a kernel into work-group functions whose loops run its work-items; the
