@@ -359,14 +359,15 @@ void expect_bench_lanes_apply(const std::vector<BenchLanesCase>& cases) {
 }
 
 TEST(Cli, BenchLanesApplyToEveryLayoutStreamingToPlanesAndStructs) {
-  expect_bench_lanes_apply(
-      {{" --layout planes", true}, {" --layout compact", true}, {" --layout arrays", true}});
+  expect_bench_lanes_apply({{" --layout planes", true}, {" --layout arrays", true}});
 }
 
-// The same for a rig's layouts: a large test (tests/CMakeLists.txt).
-TEST(CliLarge, BenchLanesApplyToARigsLayouts) {
+// The same for the compact layout and a rig's layouts: a large test
+// (tests/CMakeLists.txt).
+TEST(CliLarge, BenchLanesApplyToTheCompactLayoutAndARigsLayouts) {
   const std::string rig = " --rig " + fish("rigs/blub_low_resolution.rig.json");
-  expect_bench_lanes_apply({{rig + " --layout arrays --host", true},
+  expect_bench_lanes_apply({{" --layout compact", true},
+                            {rig + " --layout arrays --host", true},
                             {rig + " --previous", true},
                             {rig + " --order mesh", false}});
 }

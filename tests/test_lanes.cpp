@@ -611,6 +611,7 @@ LANES_TEST(VertexStructsAndAttributeArraysAreTransposedIntoVectors) {
     const RiggedMesh* model;
     const char* name;
     Member position, normal, tangent;
+    bool large = false;  // in the large run only
   };
   const std::vector<Case> cases = {
       {&bend, "float32x3 position, normal", {F::kFloat32x3, 0}, {F::kFloat32x3, 12}, {}},
@@ -627,18 +628,20 @@ LANES_TEST(VertexStructsAndAttributeArraysAreTransposedIntoVectors) {
        "float32x3 tangent, position, normal",
        {F::kFloat32x3, 12},
        {F::kFloat32x3, 24},
-       {F::kFloat32x3, 0}},
+       {F::kFloat32x3, 0},
+       true},
       {&swim,
        "float32x3, float16x4, snorm16x4",
        {F::kFloat32x3, 0},
        {F::kFloat16x4, 12},
-       {F::kSnorm16x4, 20}},
+       {F::kSnorm16x4, 20},
+       true},
       {&swim,
        "octahedral tangent, float32x3, octahedral",
        {F::kFloat32x3, 4},
        {F::kOctahedral16x2, 16},
        {F::kOctahedral16x2, 0}},
-      {&swim, "float32x4 x 3", {F::kFloat32x4, 0}, {F::kFloat32x4, 16}, {F::kFloat32x4, 32}},
+      {&swim, "float32x4 x 3", {F::kFloat32x4, 0}, {F::kFloat32x4, 16}, {F::kFloat32x4, 32}, true},
   };
   // A buffer of `words` words filled with -7, with 64 more after them.
   auto guarded = [](std::size_t words) {
@@ -664,19 +667,21 @@ LANES_TEST(VertexStructsAndAttributeArraysAreTransposedIntoVectors) {
     const std::size_t instances = values.instance_count();
     const std::size_t stride = format_bytes(c.position.format) + format_bytes(c.normal.format) +
                                (tangents ? format_bytes(c.tangent.format) : 0);
-    // The large run's 16 lanes: the plain stores and the run off a vector boundary.
-    std::vector<std::size_t> lane_counts = vector_lanes();
-    if (large_run()) lane_counts.push_back(16);
+    // Every case: streamed with every lane count; plain and off a vector boundary with
+    // 16. The default run takes 16 lanes streamed of the cases not marked large; the
+    // large run, the rest.
+    const std::vector<std::size_t> lane_counts =
+        large_run() ? vector_lanes({8, 16, 32}, /*large_only=*/true)
+                    : (c.large ? std::vector<std::size_t>{} : vector_lanes());
     for (std::size_t lanes : lane_counts) {
-      // Streamed with every lane count (16: the default run); plain and off a vector
-      // boundary with 16 (the large run).
       struct Run {
         OutputStores stores;
         std::size_t lead;  // words before the first struct
       };
-      std::vector<Run> runs = {{OutputStores::kStreaming, 0}};
+      std::vector<Run> runs;
+      if (large_run() != (!c.large && lanes == 16)) runs.push_back({OutputStores::kStreaming, 0});
       if (lanes == 16 && large_run())
-        runs = {{OutputStores::kPlain, 0}, {OutputStores::kStreaming, 3}};
+        runs.insert(runs.end(), {{OutputStores::kPlain, 0}, {OutputStores::kStreaming, 3}});
       for (const Run& run : runs) {
         SCOPED_TRACE(testing::Message()
                      << c.name << ", " << lanes << " lanes, "
