@@ -16,6 +16,7 @@ packages=(
   libegl-dev libgles-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri libepoxy-dev zlib1g-dev ffmpeg
   python3 python3-dev python3-pip python3-venv python3-numpy python3-pytest python3-pyopencl
   clang libclang-rt-14-dev  # libFuzzer and clang's sanitizers (CI's fuzzing step)
+  clang-format  # CI's format check (scripts/check-format.sh)
 )
 
 missing=()

@@ -343,16 +343,14 @@ TEST(Cli, BenchMeasuresOutputLayouts) {
 // vertex struct in one buffer (compact: float32x3 positions, octahedral normals) and
 // attributes in arrays of their own as vectors, which stream; others lane by lane (the
 // rig in mesh order), which do not.
-TEST(Cli, BenchLanesApplyToEveryLayoutStreamingToPlanesAndStructs) {
+struct BenchLanesCase {
+  std::string options;
+  bool streams;
+};
+
+void expect_bench_lanes_apply(const std::vector<BenchLanesCase>& cases) {
   const std::string mesh = fish("blub/fish_low_resolution.obj");
-  const std::string rig = " --rig " + fish("rigs/blub_low_resolution.rig.json");
-  struct Case {
-    std::string options;
-    bool streams;
-  };
-  for (const Case& c : {Case{" --layout planes", true}, Case{" --layout compact", true},
-                        Case{" --layout arrays", true}, Case{rig + " --layout arrays --host", true},
-                        Case{rig + " --previous", true}, Case{rig + " --order mesh", false}}) {
+  for (const BenchLanesCase& c : cases) {
     SCOPED_TRACE(c.options);
     const RunResult r =
         run_cli("bench --mesh " + mesh +
@@ -362,6 +360,20 @@ TEST(Cli, BenchLanesApplyToEveryLayoutStreamingToPlanesAndStructs) {
     EXPECT_EQ(j.at("lanes").get<std::size_t>(), 16u);
     EXPECT_EQ(j.at("streaming_stores").get<bool>(), c.streams);
   }
+}
+
+TEST(Cli, BenchLanesApplyToEveryLayoutStreamingToPlanesAndStructs) {
+  expect_bench_lanes_apply({{" --layout planes", true}, {" --layout arrays", true}});
+}
+
+// The same for the compact layout and a rig's layouts: a large test
+// (tests/CMakeLists.txt).
+TEST(CliLarge, BenchLanesApplyToTheCompactLayoutAndARigsLayouts) {
+  const std::string rig = " --rig " + fish("rigs/blub_low_resolution.rig.json");
+  expect_bench_lanes_apply({{" --layout compact", true},
+                            {rig + " --layout arrays --host", true},
+                            {rig + " --previous", true},
+                            {rig + " --order mesh", false}});
 }
 
 TEST(Cli, InfoListsTheDefaultDevice) {

@@ -149,10 +149,10 @@ TEST(DeviceProfile, TableGroupsAndItemChecks) {
   EXPECT_EQ(table_group_size(32), 32u);
   EXPECT_EQ(table_group_size(64), 64u);
   for (std::size_t items : {0, 1, 2, 4, 8, 16, 32, 64}) {
-    EXPECT_NO_THROW(check_table_items(items, "options.table_items")) << items;
+    EXPECT_NO_THROW(check_table_items(items, "tuning.table_items")) << items;
   }
   for (std::size_t items : {3, 6, 48, 128}) {
-    EXPECT_THROW(check_table_items(items, "options.table_items"), Error) << items;
+    EXPECT_THROW(check_table_items(items, "tuning.table_items"), Error) << items;
   }
 }
 

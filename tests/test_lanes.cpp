@@ -33,11 +33,50 @@ bool device_is_pocl() {
   return platform.find("Portable Computing Language") != std::string::npos;
 }
 
-// Those of `lanes` that the shared context's device builds (32 on PoCL only).
-std::vector<std::size_t> vector_lanes(std::vector<std::size_t> lanes = {8, 16, 32}) {
+// The lane counts the running test takes (LANES_TEST); empty: every one.
+std::vector<std::size_t> lanes_of_this_run;
+
+// Whether the running test is LanesLarge's.
+bool this_run_is_large = false;
+bool large_run() { return this_run_is_large; }
+
+// Those of `lanes` that the shared context's device builds (32 on PoCL only) and this
+// run takes; `large_only`: all of them in the large run, none in the default one.
+std::vector<std::size_t> vector_lanes(std::vector<std::size_t> lanes = {8, 16, 32},
+                                      bool large_only = false) {
   if (!device_is_pocl()) lanes.erase(std::remove(lanes.begin(), lanes.end(), 32), lanes.end());
+  if (large_only) return large_run() ? lanes : std::vector<std::size_t>{};
+  if (!lanes_of_this_run.empty()) {
+    lanes.erase(std::remove_if(lanes.begin(), lanes.end(),
+                               [](std::size_t l) {
+                                 return std::find(lanes_of_this_run.begin(),
+                                                  lanes_of_this_run.end(),
+                                                  l) == lanes_of_this_run.end();
+                               }),
+                lanes.end());
+  }
   return lanes;
 }
+
+// A test over the lane counts, registered twice: Lanes.NAME takes 16 lanes (and one),
+// LanesLarge.NAME 8 and 32 (a large test: registered with FINFLEX_LARGE_TESTS,
+// tests/CMakeLists.txt), and what a test leaves to it besides (large_run(): the
+// full-resolution Blub's rigs, the plain stores of vertex structs). Together they check
+// every case; each builds its own kernels, which is what takes a CPU's OpenCL compiler
+// the time.
+#define LANES_TEST(name)         \
+  void name##_over_lanes();      \
+  TEST(Lanes, name) {            \
+    lanes_of_this_run = {16};    \
+    this_run_is_large = false;   \
+    name##_over_lanes();         \
+  }                              \
+  TEST(LanesLarge, name) {       \
+    lanes_of_this_run = {8, 32}; \
+    this_run_is_large = true;    \
+    name##_over_lanes();         \
+  }                              \
+  void name##_over_lanes()
 
 ClTuning with_lanes(std::size_t lanes, std::size_t per_item = 0) {
   ClTuning options;
@@ -172,7 +211,7 @@ TEST(Lanes, OtherLaneCountsAreRefusedByName) {
   }
 }
 
-TEST(Lanes, BendOnEveryBundledFishMatchesOneLaneAndTheReference) {
+LANES_TEST(BendOnEveryBundledFishMatchesOneLaneAndTheReference) {
   for (const char* fish : test::kBundledFish) {
     const Mesh mesh = load_mesh(test::data_path(fish));
     const BodyFrame frame = find_body_frame(mesh);
@@ -201,20 +240,22 @@ TEST(Lanes, BendOnEveryBundledFishMatchesOneLaneAndTheReference) {
 
 // Every shipped rig: bends, hinges and the swim rigs' spines (a vertex's own segment
 // gathered lane by lane), both dispatches of the rig kernels, both paths.
-TEST(Lanes, ShippedRigsWithSpinesMatchOneLaneAndTheReference) {
+LANES_TEST(ShippedRigsWithSpinesMatchOneLaneAndTheReference) {
   struct Shipped {
     const char* fish;
     const char* rig;
     std::vector<std::size_t> lanes;  // besides 1: 16 everywhere, 8 and 32 on some
+    bool large = false;              // every lane count in the large run only
   };
   const Shipped shipped[] = {
-      {"blub/fish.obj", "rigs/blub.rig.json", {16}},
-      {"blub/fish.obj", "rigs/blub_swim.rig.json", {16, 32}},
+      {"blub/fish.obj", "rigs/blub.rig.json", {16}, true},
+      {"blub/fish.obj", "rigs/blub_swim.rig.json", {16, 32}, true},
       {"blub/fish_low_resolution.obj", "rigs/blub_low_resolution.rig.json", {8, 16, 32}},
       {"blub/fish_low_resolution.obj", "rigs/blub_low_resolution_swim.rig.json", {8, 16, 32}},
       {"barramundi/BarramundiFish.gltf", "rigs/barramundi.rig.json", {16}},
       {"barramundi/BarramundiFish.gltf", "rigs/barramundi_swim.rig.json", {8, 16, 32}}};
   for (const Shipped& c : shipped) {
+    if (c.large && !large_run()) continue;  // the full-resolution Blub's kernels
     const Mesh mesh = load_mesh(test::data_path(c.fish));
     const RiggedMesh model(mesh, resolve_rig(load_rig_file(test::data_path(c.rig)), mesh));
     const RigParameters values = swimming_values(model, 4);
@@ -225,7 +266,7 @@ TEST(Lanes, ShippedRigsWithSpinesMatchOneLaneAndTheReference) {
       const DeformedBatch<double> reference = run_reference(model, values, normals);
       const DeformedBatch<float> scalar =
           test::run_on_device(one_lane, values, normals, RigPath::kFused);
-      for (std::size_t lanes : vector_lanes(c.lanes)) {
+      for (std::size_t lanes : vector_lanes(c.lanes, c.large)) {
         for (RigDispatch dispatch : {RigDispatch::kByPathShape, RigDispatch::kPerComponent}) {
           ClTuning options = with_lanes(lanes);
           options.dispatch = dispatch;
@@ -250,7 +291,7 @@ TEST(Lanes, ShippedRigsWithSpinesMatchOneLaneAndTheReference) {
 // would fold the surface, which the rig refuses) and whose others turn gently (the short
 // ones), so that work-items of every lane count take both and some blend a sharp and a
 // gentle segment.
-TEST(Lanes, SharplyAndGentlyTurningSpineSegmentsMatchOneLaneAndTheReference) {
+LANES_TEST(SharplyAndGentlyTurningSpineSegmentsMatchOneLaneAndTheReference) {
   const Mesh mesh = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
   const RiggedMesh model(
       mesh,
@@ -276,7 +317,7 @@ TEST(Lanes, SharplyAndGentlyTurningSpineSegmentsMatchOneLaneAndTheReference) {
 // angles stepped through the table's range [-0.8, 0.8] rad by a little less than a bin
 // (so that they land in every bin, next to its edges too) and beyond it, its spine a
 // travelling wave.
-TEST(Lanes, FinsSweptAlongTheSpineMatchOneLaneAndTheReference) {
+LANES_TEST(FinsSweptAlongTheSpineMatchOneLaneAndTheReference) {
   struct Shipped {
     const char* fish;
     const char* rig;
@@ -307,7 +348,7 @@ TEST(Lanes, FinsSweptAlongTheSpineMatchOneLaneAndTheReference) {
 
 // World placement as the last stage (kernels/common/placement.cl), from the job's host
 // records: the whole-body bend and the swim rig of the Barramundi (tangents too).
-TEST(Lanes, PlacedInstancesMatchOneLaneAndTheReference) {
+LANES_TEST(PlacedInstancesMatchOneLaneAndTheReference) {
   const Mesh mesh = load_mesh(test::data_path("barramundi/BarramundiFish.gltf"));
   const RiggedMesh bend = RiggedMesh::single_bend(mesh, find_body_frame(mesh), BendMode::kExact);
   const RiggedMesh swim = barramundi_swim();
@@ -489,7 +530,7 @@ TEST(Lanes, OtherOutputLayoutsStoreLaneByLaneAndMatchTheReference) {
 // positions, normals and tangents are the same bits as the same lanes write without
 // previous positions; and a caller's buffers one float off a vector boundary (vloadn,
 // vstoren) hold the same bits again.
-TEST(Lanes, PreviousPositionPlanesAreVectorsHoldingTheFrameBefore) {
+LANES_TEST(PreviousPositionPlanesAreVectorsHoldingTheFrameBefore) {
   const RiggedMesh bend = blub_exact_bend();
   const RiggedMesh swim = barramundi_swim();
   for (const RiggedMesh* model : {&bend, &swim}) {
@@ -560,7 +601,7 @@ TEST(Lanes, PreviousPositionPlanesAreVectorsHoldingTheFrameBefore) {
 // (vstoren): both hold exactly what the same lanes write into arrays of the same
 // formats padded by a word a vertex (stored lane by lane), and the words around each
 // run stay as they were.
-TEST(Lanes, VertexStructsAndAttributeArraysAreTransposedIntoVectors) {
+LANES_TEST(VertexStructsAndAttributeArraysAreTransposedIntoVectors) {
   if (test::shared_context().description().is_gpu()) GTEST_SKIP() << "CPUs' kernels";
   const RiggedMesh bend = blub_exact_bend();
   const RiggedMesh swim = barramundi_swim();
@@ -573,6 +614,7 @@ TEST(Lanes, VertexStructsAndAttributeArraysAreTransposedIntoVectors) {
     const RiggedMesh* model;
     const char* name;
     Member position, normal, tangent;
+    bool large = false;  // in the large run only
   };
   const std::vector<Case> cases = {
       {&bend, "float32x3 position, normal", {F::kFloat32x3, 0}, {F::kFloat32x3, 12}, {}},
@@ -589,18 +631,20 @@ TEST(Lanes, VertexStructsAndAttributeArraysAreTransposedIntoVectors) {
        "float32x3 tangent, position, normal",
        {F::kFloat32x3, 12},
        {F::kFloat32x3, 24},
-       {F::kFloat32x3, 0}},
+       {F::kFloat32x3, 0},
+       true},
       {&swim,
        "float32x3, float16x4, snorm16x4",
        {F::kFloat32x3, 0},
        {F::kFloat16x4, 12},
-       {F::kSnorm16x4, 20}},
+       {F::kSnorm16x4, 20},
+       true},
       {&swim,
        "octahedral tangent, float32x3, octahedral",
        {F::kFloat32x3, 4},
        {F::kOctahedral16x2, 16},
        {F::kOctahedral16x2, 0}},
-      {&swim, "float32x4 x 3", {F::kFloat32x4, 0}, {F::kFloat32x4, 16}, {F::kFloat32x4, 32}},
+      {&swim, "float32x4 x 3", {F::kFloat32x4, 0}, {F::kFloat32x4, 16}, {F::kFloat32x4, 32}, true},
   };
   // A buffer of `words` words filled with -7, with 64 more after them.
   auto guarded = [](std::size_t words) {
@@ -626,14 +670,20 @@ TEST(Lanes, VertexStructsAndAttributeArraysAreTransposedIntoVectors) {
     const std::size_t instances = values.instance_count();
     const std::size_t stride = format_bytes(c.position.format) + format_bytes(c.normal.format) +
                                (tangents ? format_bytes(c.tangent.format) : 0);
-    for (std::size_t lanes : vector_lanes()) {
-      // Streamed with every lane count; plain and off a vector boundary with 16.
+    // Every case: streamed with every lane count; plain and off a vector boundary with
+    // 16. The default run takes 16 lanes streamed of the cases not marked large; the
+    // large run, the rest.
+    const std::vector<std::size_t> lane_counts =
+        large_run() ? vector_lanes({8, 16, 32}, /*large_only=*/true)
+                    : (c.large ? std::vector<std::size_t>{} : vector_lanes());
+    for (std::size_t lanes : lane_counts) {
       struct Run {
         OutputStores stores;
         std::size_t lead;  // words before the first struct
       };
-      std::vector<Run> runs = {{OutputStores::kStreaming, 0}};
-      if (lanes == 16)
+      std::vector<Run> runs;
+      if (large_run() != (!c.large && lanes == 16)) runs.push_back({OutputStores::kStreaming, 0});
+      if (lanes == 16 && large_run())
         runs.insert(runs.end(), {{OutputStores::kPlain, 0}, {OutputStores::kStreaming, 3}});
       for (const Run& run : runs) {
         SCOPED_TRACE(testing::Message()
@@ -706,7 +756,7 @@ TEST(Lanes, VertexStructsAndAttributeArraysAreTransposedIntoVectors) {
 // instance. Other layouts of the bend in mesh order take one lane. GPUs (one lane) stage
 // the float32 struct through local memory in mesh order too, and store the others
 // attribute by attribute: the same checks.
-TEST(Lanes, TheBendInMeshOrderStoresStructsAndArraysAsVectors) {
+LANES_TEST(TheBendInMeshOrderStoresStructsAndArraysAsVectors) {
   const bool gpu = test::shared_context().description().is_gpu();
   const RiggedMesh bend = blub_exact_bend();
   const Mesh barramundi = load_mesh(test::data_path("barramundi/BarramundiFish.gltf"));
@@ -865,7 +915,7 @@ void expect_rounded_to_half(const DeformedBatch<float>& half, const DeformedBatc
 // count, on both paths and in both normal modes, the same deformer's float32 positions
 // and its directions rounded to the nearest half; streamed, plain, and into a caller's
 // host memory that is not aligned to the vectors, the same bits.
-TEST(Lanes, HalfNormalPlanesTakeLanesAndRoundTheFloat32Outputs) {
+LANES_TEST(HalfNormalPlanesTakeLanesAndRoundTheFloat32Outputs) {
   const RiggedMesh model = barramundi_swim();
   ASSERT_TRUE(model.mesh().has_tangents());
   const RigParameters values = swimming_values(model, 5);

@@ -321,22 +321,30 @@ TEST(RigDeformer, PassesMoveEachVertexOnlyThroughItsOwnStages) {
   EXPECT_DOUBLE_EQ(internal::scratch_records_per_slot(one_stage), 0.0);
 }
 
-TEST(RigDeformer, ShippedRigsFusedPassesAndReferenceAgree) {
-  struct Shipped {
-    const char* fish;
-    const char* rig;
-    std::size_t skipped_at_limits;
-  };
-  const Shipped shipped[] = {
-      {"blub/fish.obj", "rigs/blub.rig.json", 107},
-      {"blub/fish_low_resolution.obj", "rigs/blub_low_resolution.rig.json", 17},
-      {"barramundi/BarramundiFish.gltf", "rigs/barramundi.rig.json", 0}};
-  for (const Shipped& c : shipped) {
+struct ShippedRig {
+  const char* fish;
+  const char* rig;
+  std::size_t skipped_at_limits;
+};
+
+void expect_shipped_rigs_agree(const std::vector<ShippedRig>& shipped) {
+  for (const ShippedRig& c : shipped) {
     const Mesh mesh = load_mesh(test::data_path(c.fish));
     const Rig rig = resolve_rig(load_rig_file(test::data_path(c.rig)), mesh);
     EXPECT_GE(rig.components.size(), 3u) << c.rig;  // body, caudal fin, a paired fin
     expect_paths_agree_with_each_other_and_the_reference(mesh, rig, c.fish, c.skipped_at_limits);
   }
+}
+
+TEST(RigDeformer, ShippedRigsFusedPassesAndReferenceAgree) {
+  expect_shipped_rigs_agree(
+      {{"blub/fish_low_resolution.obj", "rigs/blub_low_resolution.rig.json", 17},
+       {"barramundi/BarramundiFish.gltf", "rigs/barramundi.rig.json", 0}});
+}
+
+// The full-resolution Blub's rig: a large test (tests/CMakeLists.txt).
+TEST(RigDeformerLarge, FullResolutionShippedRigFusedPassesAndReferenceAgree) {
+  expect_shipped_rigs_agree({{"blub/fish.obj", "rigs/blub.rig.json", 107}});
 }
 
 TEST(RigDeformer, SingleBendRigMatchesTheBendKernel) {
@@ -650,6 +658,11 @@ void expect_several_per_item_match_one(const std::string& rig_file) {
 
 TEST(RigDeformer, SeveralInstancesPerWorkItemGiveTheSameResult) {
   expect_several_per_item_match_one("rigs/barramundi.rig.json");
+}
+
+// The same with a spine (its derived values per instance): a large test (its kernels
+// take a CPU's OpenCL compiler minutes; tests/CMakeLists.txt).
+TEST(RigDeformerLarge, SeveralInstancesPerWorkItemWithASpineGiveTheSameResult) {
   expect_several_per_item_match_one("rigs/barramundi_swim.rig.json");
 }
 

@@ -154,7 +154,8 @@ TEST(Spine, ThePaperBendIsTheCaseThetaEqualsAsinTwoMX) {
   EXPECT_GT(position, 0.0);
 }
 
-TEST(Spine, DeviceMatchesTheReference) {
+// Every dispatch, normal mode and path against the reference on `mesh`.
+void expect_device_matches_the_reference(const Mesh& mesh, FrameSpec::Mode frame) {
   std::mt19937 random(3);
   std::uniform_real_distribution<double> amplitude(-0.8, 0.8), phase(0.0, 2.0 * kPi);
   std::vector<std::function<double(double)>> waves;
@@ -162,10 +163,7 @@ TEST(Spine, DeviceMatchesTheReference) {
     const double a = amplitude(random), b = amplitude(random), p = phase(random);
     waves.push_back([a, b, p](double x) { return a * std::sin(6.0 * x + p) + b * x; });
   }
-  const std::pair<Mesh, FrameSpec::Mode> meshes[] = {
-      {test::synthetic_fish(64, 32, true), FrameSpec::Mode::kIdentity},
-      {load_mesh(test::data_path("barramundi/BarramundiFish.gltf")), FrameSpec::Mode::kAuto}};
-  for (const auto& [mesh, frame] : meshes) {
+  {
     const RiggedMesh model = spine_model(mesh, 32, frame);
     const RigParameters values = angles(model, waves);
     for (const ClTuning& options :
@@ -187,17 +185,34 @@ TEST(Spine, DeviceMatchesTheReference) {
   }
 }
 
-void expect_every_table_size_matches(std::size_t table_items);
+TEST(Spine, DeviceMatchesTheReference) {
+  expect_device_matches_the_reference(test::synthetic_fish(64, 32, true),
+                                      FrameSpec::Mode::kIdentity);
+}
+
+// The same on the Barramundi (its spine's segment tables from a scanned mesh): a large
+// test (tests/CMakeLists.txt).
+TEST(SpineLarge, DeviceMatchesTheReferenceOnTheBarramundi) {
+  expect_device_matches_the_reference(load_mesh(test::data_path("barramundi/BarramundiFish.gltf")),
+                                      FrameSpec::Mode::kAuto);
+}
+
+void expect_every_table_size_matches(std::size_t table_items,
+                                     const std::vector<std::size_t>& sample_counts);
 
 // rig_prepare shares a table's samples out over several work-items per instance on
 // GPUs, one work-item per instance on CPUs (kernels/deformers/spine.cl): 1, 8 and 64,
 // on every device, with tables smaller than the work-items, one sample per work-item,
 // more than one (up to the 256 allowed), and x = 0 inside the table or beyond its end.
-// Only powers of two up to 64 are taken.
+// Only powers of two up to 64 are taken. The default run takes tables of 3 and 65
+// samples (fewer than 8 work-items, more than 64) with 1 and 64 work-items; SpineLarge
+// the others (8 work-items; 2, 63, 64, 129, 200 and 256 samples: one sample per
+// work-item, up to the 256 allowed), each a program of its own to build (a large test:
+// tests/CMakeLists.txt).
 TEST(Spine, DeviceMatchesTheReferenceForEveryTableSize) {
-  for (std::size_t items : {1u, 8u, 64u}) {
+  for (std::size_t items : {1u, 64u}) {
     SCOPED_TRACE("table items " + std::to_string(items));
-    expect_every_table_size_matches(items);
+    expect_every_table_size_matches(items, {3, 65});
   }
   ClTuning odd;
   odd.table_items = 3;
@@ -226,12 +241,21 @@ AccuracyReport fused_against_reference(const RiggedMesh& model, const RigParamet
                               run_reference(model, values, NormalMode::kRotate));
 }
 
-void expect_every_table_size_matches(std::size_t table_items) {
+TEST(SpineLarge, DeviceMatchesTheReferenceForEveryTableSizeAndSampleCount) {
+  expect_every_table_size_matches(8, {3, 65});
+  for (std::size_t items : {1u, 8u, 64u}) {
+    SCOPED_TRACE("table items " + std::to_string(items));
+    expect_every_table_size_matches(items, {2, 63, 64, 129, 200, 256});
+  }
+}
+
+void expect_every_table_size_matches(std::size_t table_items,
+                                     const std::vector<std::size_t>& sample_counts) {
   const Mesh mesh = test::synthetic_fish(64, 32, true);
   Mesh shifted = mesh;  // in the identity frame, x = 0 lies before the table's start
   for (glm::vec3& p : shifted.positions) p.x += 2.0f;
   const auto wave = [](double x) { return 0.4 * std::sin(5.0 * x + 0.3) + 0.2 * x; };
-  for (std::size_t samples : {2u, 3u, 63u, 64u, 65u, 129u, 200u, 256u}) {
+  for (std::size_t samples : sample_counts) {
     for (const FrameSpec::Mode frame : {FrameSpec::Mode::kIdentity, FrameSpec::Mode::kAuto}) {
       SCOPED_TRACE("samples " + std::to_string(samples));
       const RiggedMesh model = spine_model(mesh, samples, frame);
