@@ -9,9 +9,8 @@
 // enqueuing the next, and waits between the two for the launch; each enqueue also
 // submits its command to the device as it comes. Behind a closed gate (an OpenCL user
 // event) the commands only queue on the host, and open() hands them over together.
-// Measured on an H100 with 10,000 swimming fish (docs/swimming.md, "Host time"): a
-// frame 0.883-0.896 ms against 0.895-0.906, the host's enqueue 71-83 us against
-// 123-165; on PoCL the host's part alike or less.
+// A frame goes faster and the host's enqueue takes less time behind a gate
+// (docs/benchmarks.md#choice-frame-gate).
 //
 // Nothing may wait for work behind a closed gate (a blocking read or map, finish(),
 // an event's wait()): that would wait forever. Open it first. The destructor opens a

@@ -176,9 +176,8 @@ std::size_t ClDeformer::Impl::per_item(NormalFormat format, bool rotated_planes)
 // shape of half normals. The single-bend kernel writing packed positions (a vertex
 // struct or separate arrays) that are not staged through local memory (stages_structs,
 // detail::fills_vertex_struct) takes one instance per work-item on GPUs: a warp's
-// strided stores then stay within one instance's vertices. Measured on the H100, 4,000
-// fish (docs/handoff.md): the bend's octahedral struct 0.41 ms at one, 0.44 at two; the
-// rig's kernels are faster at their usual four (0.32 against 0.42).
+// strided stores then stay within one instance's vertices (the rig's kernels keep their
+// usual shape; docs/benchmarks.md#choice-gpu-instances-per-item).
 std::size_t ClDeformer::Impl::per_item(const OutputLayout& outputs, NormalMode normals) const {
   const bool staged = stages_structs() && detail::fills_vertex_struct(outputs);
   if (tuning.instances_per_item == 0 && context.description().is_gpu() && single_bend &&
@@ -200,19 +199,14 @@ std::size_t ClDeformer::Impl::lanes() const {
 
 // Lanes store FinFlex's planes (normals float32 or half; previous positions in float32
 // planes) and vertex structs in one buffer as vectors (kernels/cpu/lane_outputs.cl) and,
-// on CPUs, any other layout
-// lane by lane through the one-slot stores (kernels/common/outputs.cl): the arithmetic
-// stays vector code. Before the structs were transposed, lane by lane too: 1,000
-// instances on a Xeon with PoCL 5 (which does not vectorise one-lane kernels), 16
-// threads: the interleaved struct 10.0 ms a frame against 17.0 with one lane (bend),
-// 11.6 against 30.7 (rig); on 2 AMD EPYC cores with PoCL 3.1, 22.6 against 45.7 and
-// 25.6 against 84.9 (docs/benchmarks.md, "Every output layout on CPUs"). But the
-// single bend in mesh order (but for a struct or arrays of their own, which its lanes
-// store as vectors: its slots are its vertices) or with previous positions in another
-// layout: one lane, which PoCL 3.1's work-group vectoriser makes faster there (14.8 ms
-// against 27 lane by lane, mesh order). GPUs: one lane for any layout but the planes,
-// whatever ClTuning::lanes asks; and so does a vertex struct staged through local
-// memory (ClTuning::struct_stores, a work-item a vertex).
+// on CPUs, any other layout lane by lane through the one-slot stores
+// (kernels/common/outputs.cl): the arithmetic stays vector code
+// (docs/benchmarks.md#choice-cpu-struct-transpose). But the single bend in mesh order
+// (but for a struct or arrays of their own, which its lanes store as vectors: its slots
+// are its vertices) or with previous positions in another layout: one lane, which
+// PoCL's work-group vectoriser makes faster. GPUs: one lane for any layout but the
+// planes, whatever ClTuning::lanes asks; and so does a vertex struct staged through
+// local memory (ClTuning::struct_stores, a work-item a vertex).
 std::size_t ClDeformer::Impl::lanes(const OutputLayout& outputs) const {
   if (writes_planes(outputs)) return lanes();
   if (context.description().is_gpu()) return 1;

@@ -7,9 +7,9 @@
 #include <limits>
 #include <string>
 
-#include "finflex/error.hpp"
 #include "cl/output_buffers.hpp"
 #include "cl/output_options.hpp"
+#include "finflex/error.hpp"
 
 namespace finflex::detail {
 

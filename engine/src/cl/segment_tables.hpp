@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "finflex/model.hpp"
 #include "cl/slot_layout.hpp"
+#include "finflex/model.hpp"
 
 namespace finflex::detail {
 

@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
+#include "core/regular_file.hpp"
 #include "finflex/error.hpp"
 #include "io/formats.hpp"
-#include "core/regular_file.hpp"
 
 namespace finflex::io {
 namespace {

@@ -17,10 +17,10 @@
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
+#include "core/regular_file.hpp"
 #include "finflex/deformer_type.hpp"
 #include "finflex/error.hpp"
 #include "finflex/rig.hpp"
-#include "core/regular_file.hpp"
 #include "rig/json_document.hpp"
 
 namespace finflex {

@@ -24,10 +24,10 @@
 
 #include "cl/device_buffers.hpp"
 #include "cl/device_profile.hpp"
-#include "finflex/error.hpp"
-#include "swim/kinematics.hpp"
 #include "cl/rig_source.hpp"
 #include "cl/slot_layout.hpp"
+#include "finflex/error.hpp"
+#include "swim/kinematics.hpp"
 
 namespace finflex {
 namespace {
@@ -62,9 +62,8 @@ bool has_avx2() {
 
 // copy_valid_inputs' check without a copy, 8 lanes wide: blocks of 8 inputs (56 floats
 // in 7 vectors), whose speeds are floats 5, 12, ..., 54: one lane of each vector, two
-// of the sixth. 4.3 us for 10,000 fish against 9.6 with SSE2 on an EPYC (in cache); in
-// an H100 machine's frames 13-16 us, as with SSE2 (waiting on memory there;
-// docs/results/2026-11-28_h100_swim_host_breakdown_final.txt).
+// of the sixth: half the time of SSE2's in cache, alike when waiting on memory
+// (docs/results/h100/swim_host_breakdown.txt).
 __attribute__((target("avx2"))) bool valid_inputs_avx2(const SwimInput* inputs, std::size_t fish) {
   constexpr std::size_t kBlock = 8 * kInputFloats;
   const std::size_t count = fish * kInputFloats;
@@ -106,11 +105,9 @@ __attribute__((target("avx2"))) bool valid_inputs_avx2(const SwimInput* inputs, 
 // exponent is all ones, which adding 1 to the exponent carries into bit 31; below 0
 // when, as a 32-bit integer, it is negative and not -0 (INT32_MIN). The checks read the
 // caller's floats, never the staging copy: staging memory the copy streamed to is slow
-// to read back (75 us for 10,000 fish on an H100 machine, against 20 us from the
-// caller's; docs/swimming.md, "Host time"). With SSE2 the copy streams past the caches
-// (the host never reads the staging memory; a cached store would read each line first):
-// 31-35 us for 10,000 fish on an H200 machine, 44 us without; 24-55 against 48-57 in an
-// H100 machine's frames (docs/results/2026-11-28_h100_swim_host_breakdown.txt).
+// to read back (docs/swimming.md, "Host time"). With SSE2 the copy streams past the
+// caches (the host never reads the staging memory; a cached store would read each line
+// first; docs/benchmarks.md#choice-staged-inputs).
 bool copy_valid_inputs(const SwimInput* inputs, float* staged, std::size_t fish) {
 #if FINFLEX_AVX2_CHECK
   if (staged == nullptr && has_avx2()) return valid_inputs_avx2(inputs, fish);
