@@ -5,7 +5,7 @@
 //
 //   ClSwimDriver driver(context, swim, lengths);
 //   ClDeformer deformer(context, swim.model());
-//   ClJob job;  job.model = &swim.model();
+//   ClJob job;
 //   job.instances = lengths.size();
 //   job.device.parameters = &driver.parameter_buffer();
 //   job.device.placements = &driver.placement_buffer();
@@ -70,7 +70,7 @@ class FINFLEX_API ClSwimDriver {
   const cl::Buffer& placement_buffer() const;
   // The rig's derived values of the frame (the body spine's records), written by the
   // driver kernel itself when the spine is the rig's only stage with derived values,
-  // for ClJob::derived_buffer: the frame then skips rig_prepare (one launch less).
+  // for ClJob::device.derived: the frame then skips rig_prepare (one launch less).
   // Null otherwise.
   const cl::Buffer* derived_buffer() const;
 
