@@ -1125,7 +1125,9 @@ TEST(ShippedRigs, ComponentsLimitsAndFoldOverAsDocumented) {
       EXPECT_EQ(rig.components[k].vertices.size(), c.own_vertices[k]) << names[k];
     }
     EXPECT_NEAR(rig.parameters[rig.param_index("body_m")].limit, c.body_m_limit, 5e-4);
-    for (const auto& [name, from] : c.fold_from) {
+    for (const auto& fold : c.fold_from) {
+      const char* name = fold.first;
+      const auto& from = fold.second;
       for (double sign : {1.0, -1.0}) {
         const double angle = sign > 0 ? from.first : from.second;
         auto folded = [&](double a) {

@@ -12,7 +12,7 @@
 # out-of-memory or a broken contract; the input is saved as
 # <build>/findings/<target>/crash-* (or timeout-*, oom-*) and the run continues
 # with the next target. The build folder is build-fuzz/ in the project root, or
-# $FINFLEX_FUZZ_BUILD.
+# $FINFLEX_FUZZ_BUILD (configured here when it is not yet).
 set -euo pipefail
 
 seconds="${1:-60}"
@@ -44,9 +44,13 @@ for target in "${targets[@]}"; do
   fi
 done
 
-cmake -S "$root" -B "$build" -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
-  -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFINFLEX_FUZZ=ON -DFINFLEX_BUILD_TESTS=OFF \
-  -DFINFLEX_BUILD_APPS=OFF -DFINFLEX_BUILD_BENCH=OFF >/dev/null
+# A build folder configured already (with FINFLEX_FUZZ=ON: CI's sanitized build) is
+# used as it is; otherwise one with only the harnesses is configured.
+if [[ ! -f "$build/CMakeCache.txt" ]]; then
+  cmake -S "$root" -B "$build" -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
+    -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFINFLEX_FUZZ=ON -DFINFLEX_BUILD_TESTS=OFF \
+    -DFINFLEX_BUILD_APPS=OFF -DFINFLEX_BUILD_BENCH=OFF >/dev/null
+fi
 cmake --build "$build" -j"$(nproc)" --target "${targets[@]/#/fuzz_}"
 
 failed=()

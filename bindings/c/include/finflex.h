@@ -59,15 +59,16 @@ extern "C" {
 
 typedef enum finflex_status {
   FINFLEX_OK = 0,
-  FINFLEX_ERROR_INVALID_ARGUMENT = 1, /* a value outside its domain, a NULL handle, a size */
-  FINFLEX_ERROR_OUT_OF_RANGE = 2,     /* a deformation parameter outside its valid range */
-  FINFLEX_ERROR_INVALID_MESH = 3,     /* empty, inconsistent or non-finite mesh data */
-  FINFLEX_ERROR_IO = 4,               /* a file could not be read or written */
-  FINFLEX_ERROR_FORMAT = 5,           /* a file's content is not a supported mesh or rig */
-  FINFLEX_ERROR_DEVICE = 6,           /* no OpenCL device, or the named one does not exist */
-  FINFLEX_ERROR_OPENCL = 7,           /* an OpenCL call failed */
-  FINFLEX_ERROR_OUT_OF_MEMORY = 8,    /* a host allocation failed */
-  FINFLEX_ERROR_INTERNAL = 9          /* anything else (a bug: please report it) */
+  FINFLEX_ERROR_INVALID_ARGUMENT = 1,  /* a value outside its domain, a NULL handle, a size */
+  FINFLEX_ERROR_OUT_OF_RANGE = 2,      /* a deformation parameter outside its valid range */
+  FINFLEX_ERROR_INVALID_MESH = 3,      /* empty, inconsistent or non-finite mesh data */
+  FINFLEX_ERROR_IO = 4,                /* a file could not be read or written */
+  FINFLEX_ERROR_FORMAT = 5,            /* a file's content is not a supported mesh or rig */
+  FINFLEX_ERROR_DEVICE = 6,            /* no OpenCL device, or the named one does not exist */
+  FINFLEX_ERROR_OPENCL = 7,            /* an OpenCL call failed */
+  FINFLEX_ERROR_OUT_OF_MEMORY = 8,     /* a host allocation failed */
+  FINFLEX_ERROR_INTERNAL = 9,          /* anything else (a bug: please report it) */
+  FINFLEX_STATUS_MAX_ENUM = 0x7fffffff /* every int is a value (named "unknown"), not a status */
 } finflex_status;
 
 /* A short stable name: "ok", "invalid_argument", "out_of_range", ... (the C++

@@ -66,6 +66,8 @@ const char* finflex_status_name(finflex_status status) {
       return "out_of_memory";
     case FINFLEX_ERROR_INTERNAL:
       return "internal";
+    case FINFLEX_STATUS_MAX_ENUM:
+      break;
   }
   return "unknown";
 }

@@ -6,7 +6,9 @@
 // OpenMesh's templates trip GCC's -Wmaybe-uninitialized (and its own sign and
 // shadowing habits) when instantiated here; they are not ours to fix.
 #pragma GCC diagnostic push
+#if !defined(__clang__)
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 #pragma GCC diagnostic ignored "-Wshadow"
 #pragma GCC diagnostic ignored "-Wconversion"
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
