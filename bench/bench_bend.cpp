@@ -15,17 +15,17 @@ void BM_WriteOnly(benchmark::State& state, NormalFormat format, std::size_t per_
   if (per_item == 0) per_item = shape.instances_per_item;
   if (lanes == 0) lanes = shape.lanes;
   const double seconds = time_iterations(state, [&] {
-    return event_seconds(enqueue_write_only(setup.context, batch, batch.layout.plane_stride,
+    return event_seconds(enqueue_write_only(setup.context, batch, batch.shape.plane_stride,
                                             per_item, values, lanes, streaming));
   });
   // The reference of write_fraction: the fastest write-only shape measured writing the
   // device's default values (never uniform data on GPUs, which they may compress).
   if (values == WriteValues::kDeviceDefault) {
-    double& reference = setup.write_only_bytes_per_second[{batch.layout.instance_count, format}];
+    double& reference = setup.write_only_bytes_per_second[{batch.shape.instance_count, format}];
     reference = std::max(
-        reference, written_bytes(batch.layout) * static_cast<double>(state.iterations()) / seconds);
+        reference, written_bytes(batch.shape) * static_cast<double>(state.iterations()) / seconds);
   }
-  set_counters(state, batch.layout, 0.0);
+  set_counters(state, batch.shape, 0.0);
   state.counters["per_item"] = static_cast<double>(per_item);
   state.counters["lanes"] = static_cast<double>(lanes);
   state.counters["streaming"] = lanes > 1 && streaming ? 1.0 : 0.0;
@@ -34,7 +34,7 @@ void BM_WriteOnly(benchmark::State& state, NormalFormat format, std::size_t per_
 void BM_CopyRest(benchmark::State& state) {
   Setup& setup = Setup::get();
   DeviceBatch& batch = setup.bend(BendMode::kPaper).batch(static_cast<std::size_t>(state.range(0)));
-  set_counters(state, batch.layout, time_iterations(state, [&] {
+  set_counters(state, batch.shape, time_iterations(state, [&] {
                  return event_seconds(enqueue_copy_rest(setup.context, setup.copy_source, batch));
                }));
 }
@@ -51,7 +51,7 @@ void BM_Bend(benchmark::State& state, BendMode mode, NormalMode normals, NormalF
   const ClJob job = bend.job(m, batch, normals);
   const double seconds =
       time_iterations(state, [&] { return event_seconds(bend.deformer.enqueue(job)); });
-  set_counters(state, batch.layout, seconds);
+  set_counters(state, batch.shape, seconds);
 }
 
 // Host time of one frame's enqueue (parameter check, non-blocking upload, launch),

@@ -30,7 +30,7 @@ void BM_Rig(benchmark::State& state, RigPath path) {
     rig.deformer.enqueue(job, &kernels);
     return span_seconds(kernels.front(), kernels.back());
   });
-  set_counters(state, batch.layout, seconds);
+  set_counters(state, batch.shape, seconds);
   // Bytes each vertex of each instance moves: its output written once (24 B; the rest
   // mesh is shared by all instances), and on the multi-pass path its intermediate
   // results written and read again (24 B each way per stage after its first).

@@ -53,19 +53,19 @@ std::vector<float> baseline_bend_values(std::size_t instances, double x_max) {
 }
 
 void set_baseline_counters(benchmark::State& state, std::size_t instances, double seconds) {
-  BatchLayout layout;
+  BatchShape layout;
   layout.vertex_count = Setup::get().mesh.vertex_count();
   layout.instance_count = instances;
   layout.plane_stride = layout.vertex_count;
   set_counters(state, layout, seconds);
 }
 
-double written_bytes(const BatchLayout& layout) {
+double written_bytes(const BatchShape& layout) {
   return static_cast<double>(layout.plane_stride * layout.instance_count *
                              layout.bytes_per_vertex());
 }
 
-void set_counters(benchmark::State& state, const BatchLayout& layout, double seconds) {
+void set_counters(benchmark::State& state, const BatchShape& layout, double seconds) {
   const double vertices = static_cast<double>(layout.vertex_count * layout.instance_count);
   const auto rate = benchmark::Counter::kIsIterationInvariantRate;
   state.counters["vertices/s"] = benchmark::Counter(vertices, rate);

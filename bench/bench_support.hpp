@@ -66,11 +66,11 @@ struct Setup {
 
 // Bytes one launch writes: positions and normals (in the layout's format) over the
 // padded planes.
-double written_bytes(const BatchLayout& layout);
+double written_bytes(const BatchShape& layout);
 
 // vertices/s, bytes/s (written), instances, vertices; and write_fraction when the
 // write-only kernel was measured for this instance count.
-void set_counters(benchmark::State& state, const BatchLayout& layout, double seconds);
+void set_counters(benchmark::State& state, const BatchShape& layout, double seconds);
 
 // The baselines' values of m for `instances` instances: fractions of the limit for
 // x_max, both signs (the same for every baseline).

@@ -17,6 +17,7 @@ packages=(
   python3 python3-dev python3-pip python3-venv python3-numpy python3-pytest python3-pyopencl
   clang libclang-rt-14-dev  # libFuzzer and clang's sanitizers (CI's fuzzing step)
   clang-format  # CI's format check (scripts/check-format.sh)
+  ninja-build  # CI's builds (CMAKE_GENERATOR=Ninja: .ci/run)
 )
 
 missing=()

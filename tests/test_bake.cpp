@@ -177,7 +177,7 @@ TEST(Bake, TheGltfAnimationLoadsBackAndIsTheEnginesCycle) {
 
   // Base + target k is the engine's frame k (float rounding of the difference).
   DeformedBatch<float> loaded;
-  BatchLayout layout;
+  BatchShape layout;
   layout.vertex_count = mesh.vertex_count();
   layout.instance_count = n + 1;
   layout.plane_stride = padded_plane_stride(mesh.vertex_count());

@@ -177,7 +177,7 @@ TEST(ClDeformer, MatchesReferenceWhenTheVertexCountIsAMultipleOf64) {
   ASSERT_EQ(mesh.vertex_count(), 2048u);
   const RiggedMesh model = RiggedMesh::single_bend(mesh, BodyFrame::identity(), BendMode::kExact);
   ClDeformer deformer(test::shared_context(), model);
-  EXPECT_EQ(deformer.layout(1).plane_stride, 2048u);
+  EXPECT_EQ(deformer.layout(1).positions.plane_stride, 2048u);
   expect_matches_reference(mesh, BodyFrame::identity(), "2,048 vertices");
 }
 
@@ -391,7 +391,7 @@ void expect_frames_in_flight_keep_their_parameters(const RiggedMesh& model, RigP
   releaser.thread.join();
   for (std::size_t f = 0; f < frames; ++f) {
     const DeformedBatch<float> got = deformer.read(kept[f]);
-    ASSERT_TRUE(got.layout.tangents);
+    ASSERT_TRUE(got.shape.tangents);
     for (std::size_t i = 0; i < instances; ++i) {
       for (std::size_t v = 0; v < model.vertex_count(); ++v) {
         ASSERT_EQ(got.position(i, v), expected[f].position(i, v))
@@ -601,13 +601,13 @@ TEST(ClDeformer, OutputsOfAnotherModelAreRefused) {
 // ----------------------------------------------------------------------------------
 // The batch layout (finflex/batch.hpp), read by hand
 
-TEST(BatchLayout, PlaneStrideIsTheVertexCountRoundedUpTo64) {
+TEST(BatchShape, PlaneStrideIsTheVertexCountRoundedUpTo64) {
   const std::pair<std::size_t, std::size_t> cases[] = {
       {0, 0},     {1, 64},      {63, 64},     {64, 64},       {65, 128},
       {945, 960}, {2048, 2048}, {2049, 2112}, {10786, 10816}, {112642, 112704}};
   for (const auto& [vertices, stride] : cases)
     EXPECT_EQ(padded_plane_stride(vertices), stride) << vertices << " vertices";
-  BatchLayout layout;
+  BatchShape layout;
   layout.vertex_count = 100;
   layout.instance_count = 3;
   layout.plane_stride = 128;
@@ -636,7 +636,7 @@ std::size_t buffer_bytes(const cl::Buffer& buffer) {
 
 // Element (instance i, component c, slot s) of an attribute at (i * 3 + c) *
 // plane_stride + s, s = slot_of_vertex()[v]: read from the raw buffers with
-// enqueueReadBuffer, without BatchLayout::index or the batch's accessors, and
+// enqueueReadBuffer, without BatchShape::index or the batch's accessors, and
 // compared with the reference (mesh order). Normals and tangents as float32, or as
 // IEEE halves whose rounding adds at most 2^-12 per component (|component| <= 1).
 void expect_raw_buffers_follow_the_layout(const RiggedMesh& model, const std::string& name) {
@@ -660,7 +660,7 @@ void expect_raw_buffers_follow_the_layout(const RiggedMesh& model, const std::st
     job.normals = normals;
     job.outputs = &batch;
     deformer.enqueue(job);
-    const std::size_t stride = batch.layout.plane_stride;
+    const std::size_t stride = batch.shape.plane_stride;
     ASSERT_EQ(stride % 64, 0u);
     ASSERT_GE(stride, model.vertex_count());
     const std::size_t elements = instances * 3 * stride;
@@ -720,24 +720,25 @@ void expect_raw_buffers_follow_the_layout(const RiggedMesh& model, const std::st
   }
 }
 
-TEST(BatchLayout, RawBuffersOfTheSingleBendFollowTheDocumentedLayout) {
+TEST(BatchShape, RawBuffersOfTheSingleBendFollowTheDocumentedLayout) {
   // 2,048 vertices: no padding between planes. The whole-body bend keeps the mesh's
   // order: slot = vertex.
   const RiggedMesh model =
       RiggedMesh::single_bend(fish_of_2048_vertices(), BodyFrame::identity(), BendMode::kExact);
   ClDeformer deformer(test::shared_context(), model);
   ASSERT_TRUE(deformer.uses_single_bend_kernel());
-  EXPECT_EQ(deformer.layout(3).plane_stride, padded_plane_stride(model.vertex_count()));
+  EXPECT_EQ(deformer.layout(3).positions.plane_stride, padded_plane_stride(model.vertex_count()));
   for (std::size_t v = 0; v < model.vertex_count(); ++v) ASSERT_EQ(deformer.slot_of_vertex()[v], v);
   expect_raw_buffers_follow_the_layout(model, "single bend, 2,048 vertices");
   // The bundled Blub: 10,786 vertices on 10,816 slots (README's memory figures).
   const Mesh blub = load_mesh(test::data_path("blub/fish.obj"));
   const RiggedMesh blub_model =
       RiggedMesh::single_bend(blub, find_body_frame(blub), BendMode::kPaper);
-  EXPECT_EQ(ClDeformer(test::shared_context(), blub_model).layout(4000).plane_stride, 10816u);
+  EXPECT_EQ(ClDeformer(test::shared_context(), blub_model).layout(4000).positions.plane_stride,
+            10816u);
 }
 
-TEST(BatchLayout, RawBuffersOfARigFollowTheDocumentedLayoutOverSlots) {
+TEST(BatchShape, RawBuffersOfARigFollowTheDocumentedLayoutOverSlots) {
   // A rig reorders vertices: each component a contiguous range of whole work-groups.
   const RiggedMesh model = body_and_tail(test::synthetic_fish(24, 16, true));
   ClDeformer deformer(test::shared_context(), model);

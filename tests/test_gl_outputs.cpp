@@ -26,8 +26,7 @@ OutputLayout vertex_layout(std::size_t vertices) {
   l.order = VertexOrder::kMesh;
   l.positions = AttributeLayout::packed(AttributeFormat::kFloat32x3, vertices, kStride, 0);
   l.normals = AttributeLayout::packed(AttributeFormat::kOctahedral16x2, vertices, kStride, 12);
-  l.tangents = true;
-  l.tangent_layout = AttributeLayout::packed(AttributeFormat::kSnorm16x4, vertices, kStride, 24);
+  l.tangents = AttributeLayout::packed(AttributeFormat::kSnorm16x4, vertices, kStride, 24);
   return l;
 }
 

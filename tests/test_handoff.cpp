@@ -116,7 +116,7 @@ void expect_matches(const DeformedBatch<float>& got, const DeformedBatch<float>&
           normal, direction_error(got.normal(i, v), want.normal(i, v), layout.normals.format));
       if (layout.tangents) {
         tangent = std::max(tangent, direction_error(got.tangent(i, v), want.tangent(i, v),
-                                                    layout.tangent_layout.format));
+                                                    layout.tangents->format));
       }
     }
   }
@@ -125,8 +125,7 @@ void expect_matches(const DeformedBatch<float>& got, const DeformedBatch<float>&
   EXPECT_EQ(position, 0.0);  // float32 positions: the same bits
   EXPECT_LE(normal, bound(layout.normals.format)) << to_string(layout.normals.format);
   if (layout.tangents) {
-    EXPECT_LE(tangent, bound(layout.tangent_layout.format))
-        << to_string(layout.tangent_layout.format);
+    EXPECT_LE(tangent, bound(layout.tangents->format)) << to_string(layout.tangents->format);
   }
   // Each format is actually rounded (not float32 underneath), except float32.
   if (layout.normals.format != AttributeFormat::kFloat32x3) {
@@ -140,14 +139,13 @@ OutputLayout interleaved_layout(std::size_t vertices) {
   OutputLayout l;
   l.positions = AttributeLayout::packed(AttributeFormat::kFloat32x3, vertices, 28, 0);
   l.normals = AttributeLayout::packed(AttributeFormat::kFloat16x4, vertices, 28, 12);
-  l.tangents = true;
-  l.tangent_layout = AttributeLayout::packed(AttributeFormat::kSnorm16x4, vertices, 28, 20);
+  l.tangents = AttributeLayout::packed(AttributeFormat::kSnorm16x4, vertices, 28, 20);
   return l;
 }
 
 // Its buffer: up to the last vertex's tangent.
 std::size_t interleaved_bytes(const OutputLayout& l, std::size_t vertices) {
-  return OutputLayout::required_bytes(l.tangent_layout, kInstances, vertices);
+  return OutputLayout::required_bytes(*l.tangents, kInstances, vertices);
 }
 
 TEST(Handoff, EveryFormatDecodesToTheDefaultPlanesWithinItsPrecision) {
@@ -181,11 +179,9 @@ TEST(Handoff, EveryFormatDecodesToTheDefaultPlanesWithinItsPrecision) {
     const std::size_t after_positions = kInstances * mesh_vertices * 16;
     l.normals = AttributeLayout::packed(AttributeFormat::kOctahedral16x2, mesh_vertices, 0,
                                         after_positions);
-    l.tangents = true;
-    l.tangent_layout = AttributeLayout::packed(AttributeFormat::kFloat32x4, mesh_vertices, 0,
-                                               after_positions + kInstances * mesh_vertices * 4);
-    const std::size_t bytes =
-        OutputLayout::required_bytes(l.tangent_layout, kInstances, mesh_vertices);
+    l.tangents = AttributeLayout::packed(AttributeFormat::kFloat32x4, mesh_vertices, 0,
+                                         after_positions + kInstances * mesh_vertices * 4);
+    const std::size_t bytes = OutputLayout::required_bytes(*l.tangents, kInstances, mesh_vertices);
     cl::Buffer one = device_buffer(bytes);
     DeviceBatch batch = deformer().bind(kInstances, l, {one, one, one, {}});
     expect_matches(run(batch, values), want, l, "arrays float32x4 / octahedral16x2 / float32x4");
@@ -195,8 +191,8 @@ TEST(Handoff, EveryFormatDecodesToTheDefaultPlanesWithinItsPrecision) {
       for (std::size_t v = 0; v < mesh_vertices; ++v) {
         float w_position = 0.0f, w_tangent = 0.0f;
         std::memcpy(&w_position, out.data() + (i * mesh_vertices + v) * 16 + 12, 4);
-        std::memcpy(&w_tangent,
-                    out.data() + l.tangent_layout.offset + (i * mesh_vertices + v) * 16 + 12, 4);
+        std::memcpy(&w_tangent, out.data() + l.tangents->offset + (i * mesh_vertices + v) * 16 + 12,
+                    4);
         ASSERT_EQ(w_position, 1.0f);
         ASSERT_EQ(w_tangent, mesh.tangents[v].w);
       }
@@ -208,8 +204,7 @@ TEST(Handoff, EveryFormatDecodesToTheDefaultPlanesWithinItsPrecision) {
     l.order = VertexOrder::kMesh;
     l.positions = AttributeLayout::planes(AttributeFormat::kFloat32x3, mesh_vertices);
     l.normals = AttributeLayout::planes(AttributeFormat::kFloat16x3, mesh_vertices + 3);
-    l.tangents = true;
-    l.tangent_layout = AttributeLayout::packed(AttributeFormat::kFloat16x3, mesh_vertices);
+    l.tangents = AttributeLayout::packed(AttributeFormat::kFloat16x3, mesh_vertices);
     DeviceBatch batch = deformer().allocate(kInstances, l);
     expect_matches(run(batch, values), want, l, "planes float32x3 / float16x3, packed float16x3");
   }
@@ -224,7 +219,7 @@ TEST(Handoff, InterleavedAndSeparateArraysHoldTheSameData) {
   OutputLayout separate = l;
   separate.positions = AttributeLayout::packed(AttributeFormat::kFloat32x3, slots);
   separate.normals = AttributeLayout::packed(AttributeFormat::kFloat16x4, slots);
-  separate.tangent_layout = AttributeLayout::packed(AttributeFormat::kSnorm16x4, slots);
+  separate.tangents = AttributeLayout::packed(AttributeFormat::kSnorm16x4, slots);
   DeviceBatch apart = deformer().allocate(kInstances, separate);
   const DeformedBatch<float> a = run(interleaved, values);
   const DeformedBatch<float> b = run(apart, values);
@@ -262,8 +257,8 @@ TEST(Handoff, StagedVertexStructsHoldWhatThePlanesHold) {
       OutputLayout l;
       l.positions = AttributeLayout::packed(AttributeFormat::kFloat32x3, slots, stride, first);
       l.normals = AttributeLayout::packed(AttributeFormat::kFloat32x3, slots, stride, first + 12);
-      l.tangents = tangents;
-      l.tangent_layout = AttributeLayout::packed(AttributeFormat::kFloat32x3, slots, stride, 0);
+      if (tangents)
+        l.tangents = AttributeLayout::packed(AttributeFormat::kFloat32x3, slots, stride, 0);
       cl::Buffer one = device_buffer(OutputLayout::required_bytes(l.normals, kInstances, slots));
       DeviceBatch structs = d.bind(kInstances, l, {one, one, one, {}});
       DeviceBatch planes = d.allocate(kInstances);
@@ -291,8 +286,7 @@ TEST(Handoff, MeshOrderWritesEveryVertexOnceAndNoPadding) {
   l.order = VertexOrder::kMesh;
   l.positions = AttributeLayout::packed(AttributeFormat::kFloat32x3, vertices);
   l.normals = AttributeLayout::packed(AttributeFormat::kFloat32x3, vertices);
-  l.tangents = true;
-  l.tangent_layout = AttributeLayout::packed(AttributeFormat::kFloat32x3, vertices);
+  l.tangents = AttributeLayout::packed(AttributeFormat::kFloat32x3, vertices);
   const std::size_t bytes = OutputLayout::required_bytes(l.positions, kInstances, vertices);
   EXPECT_EQ(bytes, kInstances * vertices * 12);
   // 256 bytes of sentinel past the end: padding slots must not land there.
@@ -319,9 +313,8 @@ TEST(Handoff, MeshOrderWritesEveryVertexOnceAndNoPadding) {
 
 TEST(Handoff, PreviousPositionsAreTheFrameBefore) {
   const std::size_t slots = deformer().output_vertices(VertexOrder::kSlots);
-  OutputLayout l = deformer().planes_layout(kInstances);
-  l.previous_positions = true;
-  l.previous_layout = AttributeLayout::packed(AttributeFormat::kFloat32x4, slots);
+  OutputLayout l = deformer().layout(kInstances);
+  l.previous_positions = AttributeLayout::packed(AttributeFormat::kFloat32x4, slots);
   DeviceBatch batch = deformer().allocate(kInstances, l);
   const RigParameters first = frame_values(1.0);
   const RigParameters second = frame_values(-0.5);
@@ -408,8 +401,8 @@ TEST(Handoff, BadBindingsAreNamedAndNothingIsWritten) {
   ASSERT_FALSE(plain.has_tangents());
   const RiggedMesh blub = RiggedMesh::single_bend(plain, find_body_frame(plain), BendMode::kExact);
   ClDeformer blub_deformer(test::shared_context(), blub);
-  OutputLayout with_tangents = blub_deformer.planes_layout(1);
-  with_tangents.tangents = true;
+  OutputLayout with_tangents = blub_deformer.layout(1);
+  with_tangents.tangents = with_tangents.normals;
   EXPECT_EQ(field_of([&] { blub_deformer.allocate(1, with_tangents); }), "outputs.tangents");
   // Host memory: the same pointer with two sizes.
   std::vector<float> memory(bytes / 4 + 1);
@@ -428,8 +421,9 @@ TEST(Handoff, BadBindingsAreNamedAndNothingIsWritten) {
       reinterpret_cast<unsigned char*>(memory.data()) + 2;
   shifted.positions_bytes = shifted.normals_bytes = shifted.tangents_bytes = bytes - 2;
   EXPECT_EQ(field_of([&] { deformer().bind_host(kInstances, l, shifted); }), "outputs.positions");
-  const OutputLayout half_planes = deformer().planes_layout(kInstances, NormalFormat::kHalf);
-  const std::size_t plane_floats = deformer().layout(kInstances).attribute_elements();
+  const OutputLayout half_planes = deformer().layout(kInstances, NormalFormat::kHalf);
+  const std::size_t plane_floats =
+      kInstances * 3 * deformer().layout(kInstances).positions.plane_stride;
   std::vector<float> positions(plane_floats + 1), directions(plane_floats + 1);
   HostOutputs planes;
   planes.positions = positions.data();
@@ -450,7 +444,7 @@ TEST(Handoff, BadBindingsAreNamedAndNothingIsWritten) {
   DeviceBatch batch = deformer().bind(kInstances, l, {enough, enough, enough, {}});
   batch.outputs.positions.instance_stride *= 2;
   batch.outputs.normals.instance_stride *= 2;
-  batch.outputs.tangent_layout.instance_stride *= 2;
+  batch.outputs.tangents->instance_stride *= 2;
   const RigParameters values = frame_values(1.0);
   ClJob job;
   job.instances = values.instance_count();

@@ -116,8 +116,7 @@ std::vector<OutputLayout> layouts(const ClDeformer& deformer) {
     halves.order = order;
     halves.positions = AttributeLayout::packed(F::kFloat32x3, vertices);
     halves.normals = AttributeLayout::packed(F::kFloat16x3, vertices);
-    halves.tangents = tangents;
-    halves.tangent_layout = AttributeLayout::packed(F::kFloat16x3, vertices);
+    if (tangents) halves.tangents = AttributeLayout::packed(F::kFloat16x3, vertices);
     out.push_back(halves);
     for (const Formats& f :
          {Formats{F::kFloat32x3, F::kFloat32x3}, Formats{F::kFloat32x4, F::kFloat16x4},
@@ -127,8 +126,7 @@ std::vector<OutputLayout> layouts(const ClDeformer& deformer) {
       arrays.order = order;
       arrays.positions = AttributeLayout::packed(f.position, vertices);
       arrays.normals = AttributeLayout::packed(f.normal, vertices);
-      arrays.tangents = tangents;
-      arrays.tangent_layout = AttributeLayout::packed(f.normal, vertices);
+      if (tangents) arrays.tangents = AttributeLayout::packed(f.normal, vertices);
       out.push_back(arrays);
       // One vertex struct.
       const std::size_t stride =
@@ -137,18 +135,18 @@ std::vector<OutputLayout> layouts(const ClDeformer& deformer) {
       structs.positions = AttributeLayout::packed(f.position, vertices, stride, 0);
       structs.normals =
           AttributeLayout::packed(f.normal, vertices, stride, format_bytes(f.position));
-      structs.tangent_layout = AttributeLayout::packed(
-          f.normal, vertices, stride, format_bytes(f.position) + format_bytes(f.normal));
+      if (tangents) {
+        structs.tangents = AttributeLayout::packed(
+            f.normal, vertices, stride, format_bytes(f.position) + format_bytes(f.normal));
+      }
       out.push_back(structs);
     }
     OutputLayout previous;
     previous.order = order;
     previous.positions = AttributeLayout::packed(F::kFloat32x3, vertices);
     previous.normals = AttributeLayout::packed(F::kFloat32x3, vertices);
-    previous.tangents = tangents;
-    previous.tangent_layout = previous.normals;
-    previous.previous_positions = true;
-    previous.previous_layout = AttributeLayout::packed(F::kFloat32x4, vertices);
+    if (tangents) previous.tangents = previous.normals;
+    previous.previous_positions = AttributeLayout::packed(F::kFloat32x4, vertices);
     out.push_back(previous);
   }
   return out;

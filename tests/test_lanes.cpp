@@ -179,13 +179,12 @@ TEST(Lanes, CpusTakeVectorsGpusOneLaneWhateverTheNormalFormat) {
   std::size_t expected = native >= 16 ? 16 : 8;
   if (device_is_pocl()) expected = native >= 16 ? 32 : native >= 8 ? 16 : 8;
   if (device.is_gpu()) expected = 1;
-  EXPECT_EQ(internal::lanes(automatic, automatic.planes_layout(1, NormalFormat::kFloat32)),
-            expected);
-  EXPECT_EQ(internal::lanes(automatic, automatic.planes_layout(1, NormalFormat::kHalf)), expected);
+  EXPECT_EQ(internal::lanes(automatic, automatic.layout(1, NormalFormat::kFloat32)), expected);
+  EXPECT_EQ(internal::lanes(automatic, automatic.layout(1, NormalFormat::kHalf)), expected);
   for (std::size_t lanes : vector_lanes({1, 8, 16, 32})) {
     ClDeformer forced(test::shared_context(), model, with_lanes(lanes));
-    EXPECT_EQ(internal::lanes(forced, forced.planes_layout(1, NormalFormat::kFloat32)), lanes);
-    EXPECT_EQ(internal::lanes(forced, forced.planes_layout(1, NormalFormat::kHalf)), lanes);
+    EXPECT_EQ(internal::lanes(forced, forced.layout(1, NormalFormat::kFloat32)), lanes);
+    EXPECT_EQ(internal::lanes(forced, forced.layout(1, NormalFormat::kHalf)), lanes);
   }
 }
 
@@ -231,7 +230,7 @@ LANES_TEST(BendOnEveryBundledFishMatchesOneLaneAndTheReference) {
           expect_within_reference_bounds(model, m, normals, device, reference);
           expect_close_to_one_lane(device, scalar, mesh.vertex_count(), m.instance_count(),
                                    glm::length(frame.origin) + frame.length);
-          EXPECT_EQ(device.layout.tangents, mesh.has_tangents());
+          EXPECT_EQ(device.shape.tangents, mesh.has_tangents());
         }
       }
     }
@@ -396,8 +395,7 @@ TEST(Lanes, SeveralInstancesPerWorkItemGiveTheSameResult) {
     const RigParameters values = swimming_values(*model, 5);
     ClDeformer one(test::shared_context(), *model, with_lanes(16, 1));
     ClDeformer three(test::shared_context(), *model, with_lanes(16, 3));
-    EXPECT_EQ(internal::instances_per_item(three, three.planes_layout(1, NormalFormat::kFloat32)),
-              3u);
+    EXPECT_EQ(internal::instances_per_item(three, three.layout(1, NormalFormat::kFloat32)), 3u);
     for (RigPath path : {RigPath::kFused, RigPath::kPasses}) {
       SCOPED_TRACE(std::string(model == &bend ? "bend " : "swim rig ") + to_string(path));
       const DeformedBatch<float> a = test::run_on_device(one, values, NormalMode::kJacobian, path);
@@ -430,7 +428,7 @@ TEST(Lanes, StreamingPlainAndUnalignedStoresWriteTheSameBits) {
 
     // The same outputs in host memory one float past a vector boundary.
     DeviceBatch unaligned = streaming.allocate(values.instance_count());
-    const std::size_t floats = unaligned.layout.attribute_elements();
+    const std::size_t floats = unaligned.shape.attribute_elements();
     std::vector<std::vector<float>> memory(3, std::vector<float>(floats + 16));
     cl::Buffer* buffers[] = {&unaligned.positions, &unaligned.normals, &unaligned.tangents};
     for (std::size_t k = 0; k < 3; ++k) {
@@ -457,9 +455,9 @@ TEST(Lanes, OtherOutputLayoutsStoreLaneByLaneAndMatchTheReference) {
   const std::size_t instances = values.instance_count();
   ClDeformer sixteen(test::shared_context(), model, with_lanes(16));
   ClDeformer one_lane(test::shared_context(), model, with_lanes(1));
-  const OutputLayout planes = sixteen.planes_layout(instances);
+  const OutputLayout planes = sixteen.layout(instances);
   EXPECT_EQ(internal::lanes(sixteen, planes), 16u);
-  EXPECT_EQ(internal::lanes(sixteen, sixteen.planes_layout(instances, NormalFormat::kHalf)), 16u);
+  EXPECT_EQ(internal::lanes(sixteen, sixteen.layout(instances, NormalFormat::kHalf)), 16u);
   // Other layouts lane by lane on CPUs; on GPUs one lane whatever the options ask.
   const std::size_t by_lane = test::shared_context().description().is_gpu() ? 1u : 16u;
 
@@ -472,18 +470,18 @@ TEST(Lanes, OtherOutputLayoutsStoreLaneByLaneAndMatchTheReference) {
   OutputLayout packed = planes;
   packed.positions = AttributeLayout::packed(AttributeFormat::kFloat32x3, slots);
   packed.normals = AttributeLayout::packed(AttributeFormat::kFloat32x3, slots);
-  packed.tangent_layout = AttributeLayout::packed(AttributeFormat::kFloat32x4, slots);
+  if (packed.tangents)
+    packed.tangents = AttributeLayout::packed(AttributeFormat::kFloat32x4, slots);
   cases.push_back({"packed float32", packed});
   OutputLayout mesh_order = planes;
   mesh_order.order = VertexOrder::kMesh;
   const std::size_t vertices = sixteen.output_vertices(VertexOrder::kMesh);
   mesh_order.positions = AttributeLayout::planes(AttributeFormat::kFloat32x3, vertices);
   mesh_order.normals = mesh_order.positions;
-  mesh_order.tangent_layout = mesh_order.positions;
+  if (mesh_order.tangents) mesh_order.tangents = mesh_order.positions;
   cases.push_back({"mesh order", mesh_order});
   OutputLayout previous = planes;
-  previous.previous_positions = true;
-  previous.previous_layout = AttributeLayout::packed(AttributeFormat::kFloat32x4, slots);
+  previous.previous_positions = AttributeLayout::packed(AttributeFormat::kFloat32x4, slots);
   cases.push_back({"packed previous positions", previous});
   OutputLayout offset = planes;
   offset.positions.offset = 64;
@@ -508,25 +506,23 @@ TEST(Lanes, OtherOutputLayoutsStoreLaneByLaneAndMatchTheReference) {
   // The single bend in mesh order or with previous positions in another layout: one lane.
   const RiggedMesh bend = blub_exact_bend();
   ClDeformer bend_sixteen(test::shared_context(), bend, with_lanes(16));
-  OutputLayout bend_mesh_order = bend_sixteen.planes_layout(instances);
+  OutputLayout bend_mesh_order = bend_sixteen.layout(instances);
   bend_mesh_order.order = VertexOrder::kMesh;
-  OutputLayout bend_previous = bend_sixteen.planes_layout(instances);
-  bend_previous.previous_positions = true;
-  bend_previous.previous_layout = AttributeLayout::packed(
+  OutputLayout bend_previous = bend_sixteen.layout(instances);
+  bend_previous.previous_positions = AttributeLayout::packed(
       AttributeFormat::kFloat32x3, bend_sixteen.output_vertices(VertexOrder::kSlots));
   EXPECT_EQ(internal::lanes(bend_sixteen, bend_mesh_order), 1u);
   EXPECT_EQ(internal::lanes(bend_sixteen, bend_previous), 1u);
-  OutputLayout bend_packed = bend_sixteen.planes_layout(instances);
+  OutputLayout bend_packed = bend_sixteen.layout(instances);
   bend_packed.positions = AttributeLayout::packed(
       AttributeFormat::kFloat32x3, bend_sixteen.output_vertices(VertexOrder::kSlots));
   EXPECT_EQ(internal::lanes(bend_sixteen, bend_packed), by_lane);
 }
 
-// Previous positions in float32 planes laid out as the positions (planes_layout's
-// previous_layout) take the vector stores too: each lane count, streamed and plain, the
-// bend on Blub and the Barramundi's swim rig (tangents), two frames on one batch. The
-// first frame's previous positions are its own positions (no motion), the second's
-// exactly the first's positions, read back as vectors before they were overwritten; the
+// Previous positions in float32 planes laid out as the positions take the vector stores too: each
+// lane count, streamed and plain, the bend on Blub and the Barramundi's swim rig (tangents), two
+// frames on one batch. The first frame's previous positions are its own positions (no motion), the
+// second's exactly the first's positions, read back as vectors before they were overwritten; the
 // positions, normals and tangents are the same bits as the same lanes write without
 // previous positions; and a caller's buffers one float off a vector boundary (vloadn,
 // vstoren) hold the same bits again.
@@ -549,9 +545,8 @@ LANES_TEST(PreviousPositionPlanesAreVectorsHoldingTheFrameBefore) {
         ClTuning options = with_lanes(lanes);
         options.stores = stores;
         ClDeformer deformer(test::shared_context(), *model, options);
-        OutputLayout layout = deformer.planes_layout(instances);
-        layout.previous_positions = true;
-        ASSERT_EQ(layout.previous_layout, layout.positions);
+        OutputLayout layout = deformer.layout(instances);
+        layout.previous_positions = layout.positions;
         EXPECT_EQ(internal::lanes(deformer, layout), lanes);
         DeviceBatch batch = deformer.allocate(instances, layout);
         EXPECT_EQ(internal::streams_outputs(deformer, batch), stores == OutputStores::kStreaming);
@@ -567,7 +562,7 @@ LANES_TEST(PreviousPositionPlanesAreVectorsHoldingTheFrameBefore) {
         test::expect_same_outputs(two, without);
 
         // The same two frames in a caller's memory one float past a vector boundary.
-        const std::size_t floats = batch.layout.attribute_elements();
+        const std::size_t floats = batch.shape.attribute_elements();
         std::vector<std::vector<float>> memory(4, std::vector<float>(floats + 16));
         cl::Buffer buffers[4];
         for (std::size_t k = 0; k < 4; ++k) {
@@ -703,8 +698,7 @@ LANES_TEST(VertexStructsAndAttributeArraysAreTransposedIntoVectors) {
         };
         l.positions = member(c.position);
         l.normals = member(c.normal);
-        l.tangents = tangents;
-        l.tangent_layout = tangents ? member(c.tangent) : l.positions;
+        if (tangents) l.tangents = member(c.tangent);
         EXPECT_EQ(internal::lanes(d, l), lanes);
         const std::size_t words = (lead_bytes + instances * slots * stride) / 4;
         const cl::Buffer one = guarded(words);
@@ -718,7 +712,7 @@ LANES_TEST(VertexStructsAndAttributeArraysAreTransposedIntoVectors) {
           };
           a.positions = array(c.position);
           a.normals = array(c.normal);
-          a.tangent_layout = tangents ? array(c.tangent) : a.positions;
+          if (tangents) a.tangents = array(c.tangent);
           return a;
         };
         const OutputLayout tight = arrays_of(0, lead_bytes);
@@ -790,15 +784,16 @@ LANES_TEST(TheBendInMeshOrderStoresStructsAndArraysAsVectors) {
                                      (tangents ? format_bytes(c.tangent) : 0);
           OutputLayout l;
           l.order = order;
-          l.tangents = tangents;
           std::size_t at = 0;
-          for (auto [layout, format] : {std::pair{&l.positions, c.position},
-                                        {&l.normals, c.normal},
-                                        {&l.tangent_layout, c.tangent}}) {
-            *layout = c.one_buffer ? AttributeLayout::packed(format, n, stride, at)
-                                   : AttributeLayout::packed(format, n);
+          auto next = [&](AttributeFormat format) {
+            const AttributeLayout a = c.one_buffer ? AttributeLayout::packed(format, n, stride, at)
+                                                   : AttributeLayout::packed(format, n);
             at += format_bytes(format);
-          }
+            return a;
+          };
+          l.positions = next(c.position);
+          l.normals = next(c.normal);
+          if (tangents) l.tangents = next(c.tangent);
           return l;
         };
         const OutputLayout mesh = layout_in(VertexOrder::kMesh);
@@ -806,13 +801,11 @@ LANES_TEST(TheBendInMeshOrderStoresStructsAndArraysAsVectors) {
         // Each buffer as long as its attributes need, and 64 words of -7 after them.
         std::vector<std::size_t> bytes;
         std::vector<cl::Buffer> buffers;
-        for (const AttributeLayout* a : {&mesh.positions, &mesh.normals, &mesh.tangent_layout}) {
-          if ((c.one_buffer && !buffers.empty()) || (a == &mesh.tangent_layout && !tangents)) {
-            break;
-          }
+        const AttributeLayout* tangent = mesh.tangents ? &*mesh.tangents : nullptr;
+        for (const AttributeLayout* a : {&mesh.positions, &mesh.normals, tangent}) {
+          if ((c.one_buffer && !buffers.empty()) || a == nullptr) break;
           bytes.push_back(OutputLayout::required_bytes(
-              c.one_buffer ? (tangents ? mesh.tangent_layout : mesh.normals) : *a, instances,
-              vertices));
+              c.one_buffer ? (tangent ? *tangent : mesh.normals) : *a, instances, vertices));
           std::vector<float> filled(bytes.back() / 4 + 64, -7.0f);
           cl_int status = CL_SUCCESS;
           buffers.emplace_back(test::shared_context().context(),
@@ -852,7 +845,7 @@ LANES_TEST(TheBendInMeshOrderStoresStructsAndArraysAsVectors) {
   if (gpu) return;
   // Planes in mesh order: one lane.
   ClDeformer sixteen(test::shared_context(), bend, with_lanes(16));
-  OutputLayout planes = sixteen.planes_layout(3);
+  OutputLayout planes = sixteen.layout(3);
   planes.order = VertexOrder::kMesh;
   planes.positions = AttributeLayout::planes(AttributeFormat::kFloat32x3, bend.vertex_count());
   planes.normals = planes.positions;
@@ -870,17 +863,16 @@ TEST(Lanes, AutomaticStoresStreamOutputsLargerThanTheCache) {
   const std::size_t cache = std::min(device.global_memory_cache_bytes,
                                      std::max<std::size_t>(device.compute_units, 1) * (4u << 20));
   ClDeformer automatic(test::shared_context(), model, with_lanes(16));
-  const BatchLayout one = automatic.layout(1);
-  const std::size_t per_instance = one.plane_stride * one.bytes_per_vertex();
-  const std::size_t fitting = std::max<std::size_t>(1, cache / per_instance);
-  // A batch's size as its layout says (streams_outputs allocates nothing; a batch that
+  // A batch's size as its shape says (streams_outputs allocates nothing; a batch that
   // large would be the cache's size).
   DeviceBatch batch = automatic.allocate(1);
-  batch.layout.instance_count = fitting;
+  const std::size_t per_instance = batch.shape.plane_stride * batch.shape.bytes_per_vertex();
+  const std::size_t fitting = std::max<std::size_t>(1, cache / per_instance);
+  batch.shape.instance_count = fitting;
   if (fitting * per_instance <= cache) {
     EXPECT_FALSE(internal::streams_outputs(automatic, batch));
   }
-  batch.layout.instance_count = cache / per_instance + 1;
+  batch.shape.instance_count = cache / per_instance + 1;
   EXPECT_TRUE(internal::streams_outputs(automatic, batch));
   ClTuning plain = with_lanes(16), streaming = with_lanes(16);
   plain.stores = OutputStores::kPlain;
@@ -944,7 +936,7 @@ LANES_TEST(HalfNormalPlanesTakeLanesAndRoundTheFloat32Outputs) {
     // to a float at least: the kernels take every output buffer as floats): the
     // unaligned stores.
     DeviceBatch unaligned = streamed.allocate(instances, NormalFormat::kHalf);
-    const std::size_t elements = unaligned.layout.attribute_elements();
+    const std::size_t elements = unaligned.shape.attribute_elements();
     std::vector<std::vector<std::uint16_t>> memory(3,
                                                    std::vector<std::uint16_t>(2 * elements + 32));
     cl::Buffer* buffers[] = {&unaligned.positions, &unaligned.normals, &unaligned.tangents};

@@ -44,7 +44,7 @@ void expect_half_matches_float(const Batch& full, const Batch& half, std::size_t
       ASSERT_EQ(full.position(i, v), half.position(i, v)) << "instance " << i << " vertex " << v;
       ASSERT_LT(glm::length(full.normal(i, v) - half.normal(i, v)), 1e-3f) << "vertex " << v;
       expect_nearest_half(full.normal(i, v), half.normal(i, v), v);
-      if (full.layout.tangents) {
+      if (full.shape.tangents) {
         ASSERT_LT(glm::length(full.tangent(i, v) - half.tangent(i, v)), 1e-3f) << "vertex " << v;
         expect_nearest_half(full.tangent(i, v), half.tangent(i, v), v);
       }
@@ -53,7 +53,7 @@ void expect_half_matches_float(const Batch& full, const Batch& half, std::size_t
 }
 
 TEST(NormalFormat, LayoutBytesAndNames) {
-  BatchLayout layout;
+  BatchShape layout;
   EXPECT_EQ(layout.bytes_per_vertex(), 24u);
   layout.normal_format = NormalFormat::kHalf;
   EXPECT_EQ(layout.bytes_per_vertex(), 18u);
@@ -71,7 +71,7 @@ TEST(NormalFormat, HalfBendKeepsPositionsAndRoundsNormals) {
   const RigParameters m = test::values_of(model, {0.0f, 0.3f, -0.6f});
   DeviceBatch full = deformer.allocate(3);
   DeviceBatch half = deformer.allocate(3, NormalFormat::kHalf);
-  EXPECT_EQ(half.layout.normal_format, NormalFormat::kHalf);
+  EXPECT_EQ(half.shape.normal_format, NormalFormat::kHalf);
   for (NormalMode normals : {NormalMode::kRotate, NormalMode::kJacobian}) {
     expect_half_matches_float(test::run_on_device(deformer, full, m, normals),
                               test::run_on_device(deformer, half, m, normals), mesh.vertex_count(),

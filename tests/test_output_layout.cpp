@@ -13,8 +13,7 @@ OutputLayout interleaved(std::size_t vertices) {
   OutputLayout layout;
   layout.positions = AttributeLayout::packed(AttributeFormat::kFloat32x3, vertices, 24, 0);
   layout.normals = AttributeLayout::packed(AttributeFormat::kOctahedral16x2, vertices, 24, 12);
-  layout.tangents = true;
-  layout.tangent_layout = AttributeLayout::packed(AttributeFormat::kSnorm16x4, vertices, 24, 16);
+  layout.tangents = AttributeLayout::packed(AttributeFormat::kSnorm16x4, vertices, 24, 16);
   return layout;
 }
 
@@ -92,7 +91,7 @@ TEST(OutputLayout, EveryBrokenRuleIsNamed) {
   }
   {
     OutputLayout l = interleaved(10);
-    l.tangent_layout.vertex_stride = 23;
+    l.tangents->vertex_stride = 23;
     cases.push_back(
         {"misaligned stride", l, "outputs.tangents.vertex_stride", "not a multiple of 2"});
   }
@@ -122,8 +121,7 @@ TEST(OutputLayout, EveryBrokenRuleIsNamed) {
   }
   {
     OutputLayout l = interleaved(10);
-    l.previous_positions = true;
-    l.previous_layout = AttributeLayout::packed(AttributeFormat::kOctahedral16x2, 10);
+    l.previous_positions = AttributeLayout::packed(AttributeFormat::kOctahedral16x2, 10);
     cases.push_back(
         {"previous format", l, "outputs.previous_positions.format", "not a position format"});
   }
@@ -134,10 +132,9 @@ TEST(OutputLayout, EveryBrokenRuleIsNamed) {
     EXPECT_NE(message.find(c.words), std::string::npos) << message;
     EXPECT_EQ(message.rfind(c.field + ": ", 0), 0u) << message;
   }
-  // Tangents not written: their layout is not looked at.
+  // Tangents not written: nothing of theirs to check.
   OutputLayout unused = interleaved(10);
-  unused.tangents = false;
-  unused.tangent_layout.vertex_stride = 1;
+  unused.tangents.reset();
   EXPECT_EQ(problem(unused, 3, 10).first, "");
 }
 
@@ -154,14 +151,13 @@ TEST(OutputLayout, AttributesOfOneBufferMustNotShareBytes) {
   EXPECT_EQ(problem(l, 2, 10, apart).first, "");
   // Interleaved attributes with different strides are refused in one buffer.
   OutputLayout mixed = interleaved(10);
-  mixed.tangent_layout.vertex_stride = 26;
-  mixed.tangent_layout.instance_stride = 260;
+  mixed.tangents->vertex_stride = 26;
+  mixed.tangents->instance_stride = 260;
   const auto refused = problem(mixed, 2, 10, one);
   EXPECT_EQ(refused.first, "outputs.tangents");
   // Previous positions over the positions' own bytes.
   OutputLayout previous = interleaved(10);
-  previous.previous_positions = true;
-  previous.previous_layout = previous.positions;
+  previous.previous_positions = previous.positions;
   const std::uintptr_t same[4] = {1, 1, 1, 1};
   EXPECT_EQ(problem(previous, 2, 10, same).first, "outputs.previous_positions");
 }

@@ -198,8 +198,8 @@ TEST(TankPictures, TheHandOffDrawsWhatTheEngineComputed) {
   for (int frame = 0; frame < kFrames; ++frame) plain.enqueue_frame(1.0 / 30.0);
   tank::Species& species = plain.species()[0];
   const DeformedBatch<float> host = species.deformer->read(species.batch());
-  const std::size_t instances = host.layout.instance_count;
-  const std::size_t vertices = host.layout.vertex_count;
+  const std::size_t instances = host.shape.instance_count;
+  const std::size_t vertices = host.shape.vertex_count;
 
   // The GL buffers the picture was drawn from hold exactly the engine's vertices, in
   // FinFlex's planes over the deformer's slots.

@@ -88,7 +88,7 @@ MeshId blub_mesh() {
 // Instance `instance` of the pair as planes straight from the batch (an offset picks it).
 FishDraw planes_draw(std::size_t instance) {
   const DeformedBatch<float>& batch = fish_pair().batch;
-  StreamLayout layout = StreamLayout::planes(batch.layout.plane_stride);
+  StreamLayout layout = StreamLayout::planes(batch.shape.plane_stride);
   layout.offset = instance * layout.instance_stride;
   FishDraw draw;
   draw.mesh = blub_mesh();
@@ -197,8 +197,8 @@ TEST(Render, PlanesInterleavedHalfAndDeviceBuffersGiveTheSamePicture) {
   std::vector<std::uint16_t> half_normals;
   for (std::size_t v = 0; v < vertices; ++v) {
     for (int c = 0; c < 3; ++c) {
-      positions.push_back(pair.batch.positions[pair.batch.layout.index(1, c, v)]);
-      normals.push_back(pair.batch.normals[pair.batch.layout.index(1, c, v)]);
+      positions.push_back(pair.batch.positions[pair.batch.shape.index(1, c, v)]);
+      normals.push_back(pair.batch.normals[pair.batch.shape.index(1, c, v)]);
       half_normals.push_back(glm::packHalf1x16(normals.back()));
     }
   }
@@ -241,7 +241,7 @@ TEST(Render, ManyInstancesInOneDraw) {
       transforms.push_back(shift * glm::mat4(glm::mat3(0.3f)) * placement(pair.frame));
     }
   }
-  StreamLayout layout = StreamLayout::planes(pair.batch.layout.plane_stride);
+  StreamLayout layout = StreamLayout::planes(pair.batch.shape.plane_stride);
   layout.instance_stride = 0;  // every instance reads instance 0's vertices
   FishDraw draw = planes_draw(0);
   draw.instance_count = transforms.size();
@@ -267,7 +267,7 @@ TEST(Render, DrawsSplitIntoRunsGiveTheSamePicture) {
   // second renderer whose buffer textures address only a little over two instances
   // draws them in runs, binding each run's range: the picture must not change.
   const FishPair& pair = fish_pair();
-  const BatchLayout& source = pair.batch.layout;
+  const BatchShape& source = pair.batch.shape;
   const std::size_t count = 9;
   const std::size_t plane = source.plane_stride;
   std::vector<float> positions(count * 3 * plane);

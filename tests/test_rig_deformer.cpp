@@ -154,7 +154,7 @@ DeformedBatch<double> rounding_spread(const RiggedMesh& model, const RigParamete
       for (std::size_t i = 0; i < values.instance_count(); ++i) {
         for (std::size_t v = 0; v < model.vertex_count(); ++v) {
           const double move = glm::length(there.normal(i, v) - exact.normal(i, v));
-          const std::size_t at = spread.layout.index(i, 0, v);
+          const std::size_t at = spread.shape.index(i, 0, v);
           spread.normals[at] = std::max(spread.normals[at], move);
         }
       }
@@ -246,7 +246,7 @@ void expect_paths_agree_with_each_other_and_the_reference(const Mesh& mesh, cons
               std::max<std::size_t>(model.paths()[model.component_of_vertex()[v]].size(), 1));
           const double error = glm::length(glm::dvec3(fused.normal(i, v)) - exact.normal(i, v));
           const double ratio =
-              error / (2e-5 * stages + 2.0 * spread.normals[spread.layout.index(i, 0, v)]);
+              error / (2e-5 * stages + 2.0 * spread.normals[spread.shape.index(i, 0, v)]);
           if (ratio > worst_ratio) {
             worst_ratio = ratio;
             worst_instance = i;
@@ -423,7 +423,7 @@ TEST(RigDeformer, SlotsKeepComponentsContiguousAndIndicesRemapped) {
   const Rig rig = resolve_rig(deep_tail_rig(), mesh);
   ClDeformer deformer(test::shared_context(), RiggedMesh(mesh, rig), rig_kernels());
   const std::vector<std::uint32_t>& slots = deformer.slot_of_vertex();
-  const std::size_t slot_count = deformer.layout(1).plane_stride;
+  const std::size_t slot_count = deformer.layout(1).positions.plane_stride;
   EXPECT_EQ(slot_count % ClDeformer::kGroupSize, 0u);
   std::vector<bool> used(slot_count, false);
   for (std::uint32_t slot : slots) {
@@ -480,7 +480,7 @@ TEST(RigDeformer, HeterogeneousFrameEqualsSeparateRuns) {
     const std::size_t first = frame.add(a, 7, format);
     const std::size_t second = frame.add(b, 3, format);
     EXPECT_EQ(frame.size(), 2u);
-    EXPECT_EQ(frame.batch(first).layout.normal_format, format);
+    EXPECT_EQ(frame.batch(first).shape.normal_format, format);
     frame.parameters(first) = random_parameters(synthetic_rig, 7, 0.7, 1);
     frame.parameters(second) = random_parameters(blub_rig, 3, 0.7, 2);
     SCOPED_TRACE(std::string(to_string(format)) + " " + to_string(normals) + " " + to_string(path));
@@ -638,9 +638,8 @@ void expect_several_per_item_match_one(const std::string& rig_file) {
                                                           {RigDispatch::kPerComponent, 8}};
     for (const auto& [dispatch, per_item] : shapes) {
       ClDeformer several(test::shared_context(), model, rig_kernels(dispatch, per_item));
-      EXPECT_EQ(
-          internal::instances_per_item(several, several.planes_layout(1, NormalFormat::kFloat32)),
-          per_item);
+      EXPECT_EQ(internal::instances_per_item(several, several.layout(1, NormalFormat::kFloat32)),
+                per_item);
       const DeformedBatch<float> got =
           test::run_on_device(several, values, NormalMode::kJacobian, path);
       const Difference d = max_difference(got, expected, mesh.vertex_count(), 7);

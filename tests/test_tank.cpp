@@ -100,7 +100,7 @@ TEST(SwimScene, DeformedFishAreWhereTheTankPutsThem) {
   for (std::size_t s = 0; s < 2; ++s) {
     Species& species = scene.species()[s];
     const DeformedBatch<float> batch = species.deformer->read(species.batch());
-    for (std::size_t i = 0; i < batch.layout.instance_count; ++i, ++index) {
+    for (std::size_t i = 0; i < batch.shape.instance_count; ++i, ++index) {
       // The fish (in tank order, species by species) is within a body length of where
       // the tank says its pivot is.
       const Fish* fish = nullptr;
@@ -110,9 +110,9 @@ TEST(SwimScene, DeformedFishAreWhereTheTankPutsThem) {
       }
       ASSERT_NE(fish, nullptr);
       glm::dvec3 centre(0.0);
-      for (std::size_t v = 0; v < batch.layout.vertex_count; ++v)
+      for (std::size_t v = 0; v < batch.shape.vertex_count; ++v)
         centre += glm::dvec3(batch.position(i, v));
-      centre /= double(batch.layout.vertex_count);
+      centre /= double(batch.shape.vertex_count);
       EXPECT_LT(glm::length(centre - fish->position), fish->length) << species.name << " " << i;
     }
   }
@@ -150,9 +150,9 @@ TEST(SwimScene, FramesFromTheCallersInputsMatchTheTanksOwn) {
     const DeformedBatch<float> a = own->species()[s].deformer->read(own->species()[s].batch());
     const DeformedBatch<float> b =
         written->species()[s].deformer->read(written->species()[s].batch());
-    ASSERT_EQ(a.layout.instance_count, b.layout.instance_count);
-    for (std::size_t i = 0; i < a.layout.instance_count; ++i) {
-      for (std::size_t v = 0; v < a.layout.vertex_count; ++v) {
+    ASSERT_EQ(a.shape.instance_count, b.shape.instance_count);
+    for (std::size_t i = 0; i < a.shape.instance_count; ++i) {
+      for (std::size_t v = 0; v < a.shape.vertex_count; ++v) {
         ASSERT_EQ(a.position(i, v), b.position(i, v)) << i << " " << v;
         ASSERT_EQ(a.normal(i, v), b.normal(i, v)) << i << " " << v;
       }

@@ -9,13 +9,13 @@ namespace finflex::bake {
 namespace {
 
 std::vector<glm::vec3> positions(const DeformedBatch<float>& batch, std::size_t instance) {
-  std::vector<glm::vec3> out(batch.layout.vertex_count);
+  std::vector<glm::vec3> out(batch.shape.vertex_count);
   for (std::size_t v = 0; v < out.size(); ++v) out[v] = batch.position(instance, v);
   return out;
 }
 
 std::vector<glm::vec3> normals(const DeformedBatch<float>& batch, std::size_t instance) {
-  std::vector<glm::vec3> out(batch.layout.vertex_count);
+  std::vector<glm::vec3> out(batch.shape.vertex_count);
   for (std::size_t v = 0; v < out.size(); ++v) out[v] = batch.normal(instance, v);
   return out;
 }

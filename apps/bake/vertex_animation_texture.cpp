@@ -33,7 +33,7 @@ render::Image16 encode(const BakedCycle& baked, const VatLayout& layout, bool no
   const glm::dvec3 lo(layout.bounds_min);
   const glm::dvec3 range = glm::dvec3(layout.bounds_max) - lo;
   for (std::size_t k = 0; k < baked.cycle.frames; ++k) {
-    for (std::size_t v = 0; v < batch.layout.vertex_count; ++v) {
+    for (std::size_t v = 0; v < batch.shape.vertex_count; ++v) {
       const std::size_t row = k * layout.rows_per_frame + v / layout.width;
       std::uint16_t* texel = image.samples.data() + (row * layout.width + v % layout.width) * 3;
       const glm::dvec3 value =
@@ -123,7 +123,7 @@ void write_mesh(const fs::path& path, const std::string& name, const Mesh& mesh,
                 const BakedCycle& baked, const VatLayout& layout) {
   const DeformedBatch<float>& batch = baked.batch;
   const std::size_t rest = baked.cycle.frames;
-  std::vector<glm::vec3> positions(batch.layout.vertex_count), normals(positions.size());
+  std::vector<glm::vec3> positions(batch.shape.vertex_count), normals(positions.size());
   std::vector<glm::vec2> lookup(positions.size());
   for (std::size_t v = 0; v < positions.size(); ++v) {
     positions[v] = batch.position(rest, v);
@@ -150,7 +150,7 @@ VatLayout vat_layout(const BakedCycle& baked, std::size_t max_width) {
     throw Error(ErrorCode::kInvalidArgument, "max_width",
                 "--vat-width " + std::to_string(max_width) + " (expected 1 to 16384)");
   }
-  const std::size_t vertices = baked.batch.layout.vertex_count;
+  const std::size_t vertices = baked.batch.shape.vertex_count;
   VatLayout layout;
   layout.width = std::min(vertices, max_width);
   layout.rows_per_frame = (vertices + layout.width - 1) / layout.width;
@@ -183,7 +183,7 @@ VatLayout write_vertex_animation_texture(const std::string& folder, const std::s
     return nlohmann::ordered_json{double(v.x), double(v.y), double(v.z)};
   };
   nlohmann::ordered_json json;
-  json["vertex_count"] = baked.batch.layout.vertex_count;
+  json["vertex_count"] = baked.batch.shape.vertex_count;
   json["frames"] = baked.cycle.frames;
   json["period_s"] = baked.cycle.period_s;
   json["frame_dt_s"] = baked.cycle.dt_s;

@@ -52,7 +52,7 @@ Mesh tank_mesh(tank::SwimScene& scene) {
     rest.tangents.clear();
     rest.texcoords.clear();
     rest.groups.clear();
-    for (std::size_t i = 0; i < batch.layout.instance_count; ++i) {
+    for (std::size_t i = 0; i < batch.shape.instance_count; ++i) {
       const Mesh fish = instance_mesh(rest, batch, i);
       const auto base = static_cast<std::uint32_t>(all.positions.size());
       all.positions.insert(all.positions.end(), fish.positions.begin(), fish.positions.end());

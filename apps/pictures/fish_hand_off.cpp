@@ -8,9 +8,9 @@ namespace {
 
 // FinFlex's planes of positions and normals for the renderer: no tangents (not drawn).
 OutputLayout drawn_planes(const ClDeformer& deformer, std::size_t instances, NormalFormat format) {
-  OutputLayout layout = deformer.planes_layout(instances, format);
-  layout.tangents = false;
-  layout.previous_positions = false;
+  OutputLayout layout = deformer.layout(instances, format);
+  layout.tangents.reset();
+  layout.previous_positions.reset();
   return layout;
 }
 

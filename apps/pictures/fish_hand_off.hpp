@@ -3,7 +3,7 @@
 // draws them as they are. This is the one point of hand-off between the engine and the
 // renderer.
 //
-// The buffers hold FinFlex's planes (ClDeformer::planes_layout: positions, normals;
+// The buffers hold FinFlex's planes (ClDeformer::layout: positions, normals;
 // no tangents, which the renderer does not draw) over the deformer's slots, in world
 // space (the tank's placements are the deformation's last stage), so they are drawn
 // with StreamLayout::planes over remapped_indices() and no transform. Two paths, as

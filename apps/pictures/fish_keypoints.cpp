@@ -6,7 +6,7 @@ namespace finflex::pictures {
 
 std::vector<glm::vec3> read_slot_positions(cl::CommandQueue& queue, const DeviceBatch& batch,
                                            std::uint32_t slot) {
-  const BatchLayout& layout = batch.layout;
+  const BatchShape& layout = batch.shape;
   if (slot >= layout.plane_stride) {
     throw Error(ErrorCode::kInvalidArgument, "slot",
                 "slot " + std::to_string(slot) + " is not below the plane stride " +

@@ -150,7 +150,7 @@ void pose(Species& species, float t) {
 finflex::render::FishDraw draw_of(const Species& species) {
   using finflex::render::StreamLayout;
   using finflex::render::VertexStream;
-  const finflex::BatchLayout& layout = species.host.layout;
+  const finflex::BatchShape& layout = species.host.shape;
   finflex::render::FishDraw draw;
   draw.mesh = species.mesh_id;
   draw.albedo = species.albedo;

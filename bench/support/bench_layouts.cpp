@@ -14,15 +14,15 @@ OutputLayout interleaved(AttributeFormat directions, bool tangents, std::size_t 
   OutputLayout l;
   l.positions = AttributeLayout::packed(AttributeFormat::kFloat32x3, vertices, stride, 0);
   l.normals = AttributeLayout::packed(directions, vertices, stride, 12);
-  l.tangents = tangents;
-  l.tangent_layout = AttributeLayout::packed(directions, vertices, stride, 12 + direction_bytes);
+  if (tangents)
+    l.tangents = AttributeLayout::packed(directions, vertices, stride, 12 + direction_bytes);
   return l;
 }
 
 std::size_t written_bytes(const OutputLayout& l) {
   return format_bytes(l.positions.format) + format_bytes(l.normals.format) +
-         (l.tangents ? format_bytes(l.tangent_layout.format) : 0) +
-         (l.previous_positions ? format_bytes(l.previous_layout.format) : 0);
+         (l.tangents ? format_bytes(l.tangents->format) : 0) +
+         (l.previous_positions ? format_bytes(l.previous_positions->format) : 0);
 }
 
 constexpr std::pair<LayoutKind, const char*> kLayoutNames[] = {
@@ -64,15 +64,15 @@ BenchLayout bench_layout(const ClDeformer& deformer, NormalFormat format,
         half ? AttributeFormat::kFloat16x3 : AttributeFormat::kFloat32x3;
     out.layout.positions = AttributeLayout::planes(AttributeFormat::kFloat32x3, stride);
     out.layout.normals = AttributeLayout::planes(directions, stride);
-    out.layout.tangents = tangents;
-    out.layout.tangent_layout = AttributeLayout::planes(directions, stride);
+    if (tangents) out.layout.tangents = AttributeLayout::planes(directions, stride);
   } else if (kind == LayoutKind::kArrays) {
     out.layout.positions = AttributeLayout::packed(AttributeFormat::kFloat32x3, out.vertices);
     out.layout.normals = AttributeLayout::packed(
         half ? AttributeFormat::kFloat16x4 : AttributeFormat::kFloat32x3, out.vertices);
-    out.layout.tangents = tangents;
-    out.layout.tangent_layout = AttributeLayout::packed(
-        half ? AttributeFormat::kFloat16x4 : AttributeFormat::kFloat32x4, out.vertices);
+    if (tangents) {
+      out.layout.tangents = AttributeLayout::packed(
+          half ? AttributeFormat::kFloat16x4 : AttributeFormat::kFloat32x4, out.vertices);
+    }
   } else if (kind == LayoutKind::kInterleaved) {
     out.layout = interleaved(half ? AttributeFormat::kFloat16x4 : AttributeFormat::kFloat32x3,
                              tangents, out.vertices);
@@ -85,8 +85,7 @@ BenchLayout bench_layout(const ClDeformer& deformer, NormalFormat format,
   out.host = choice.host;
   out.layout.order = vertex_order;
   if (choice.previous) {
-    out.layout.previous_positions = true;
-    out.layout.previous_layout =
+    out.layout.previous_positions =
         AttributeLayout::planes(AttributeFormat::kFloat32x3, padded_plane_stride(out.vertices));
   }
   out.bytes_per_vertex = written_bytes(out.layout);
@@ -119,12 +118,12 @@ DeviceBatch bind_host_batch(ClDeformer& deformer, std::size_t instances, const B
     host.normals_bytes = bytes_of(l.normals);
     host.normals = host_block(memory, host.normals_bytes);
     if (l.tangents) {
-      host.tangents_bytes = bytes_of(l.tangent_layout);
+      host.tangents_bytes = bytes_of(*l.tangents);
       host.tangents = host_block(memory, host.tangents_bytes);
     }
   } else {
     std::size_t bytes = std::max(bytes_of(l.positions), bytes_of(l.normals));
-    if (l.tangents) bytes = std::max(bytes, bytes_of(l.tangent_layout));
+    if (l.tangents) bytes = std::max(bytes, bytes_of(*l.tangents));
     void* block = host_block(memory, bytes);
     host.positions = host.normals = block;
     host.positions_bytes = host.normals_bytes = bytes;
@@ -134,7 +133,7 @@ DeviceBatch bind_host_batch(ClDeformer& deformer, std::size_t instances, const B
     }
   }
   if (l.previous_positions) {
-    host.previous_positions_bytes = bytes_of(l.previous_layout);
+    host.previous_positions_bytes = bytes_of(*l.previous_positions);
     host.previous_positions = host_block(memory, host.previous_positions_bytes);
   }
   return deformer.bind_host(instances, l, host);
@@ -150,8 +149,7 @@ DeviceBatch make_bench_batch(ClDeformer& deformer, std::size_t instances, const 
   // One buffer for the vertex struct, up to its last attribute's end.
   std::size_t bytes = OutputLayout::required_bytes(l.normals, instances, layout.vertices);
   if (l.tangents) {
-    bytes =
-        std::max(bytes, OutputLayout::required_bytes(l.tangent_layout, instances, layout.vertices));
+    bytes = std::max(bytes, OutputLayout::required_bytes(*l.tangents, instances, layout.vertices));
   }
   cl_int status = CL_SUCCESS;
   cl::Buffer vertices(deformer.context().context(), CL_MEM_READ_WRITE, bytes, nullptr, &status);
@@ -160,7 +158,7 @@ DeviceBatch make_bench_batch(ClDeformer& deformer, std::size_t instances, const 
   if (l.previous_positions) {
     buffers.previous_positions =
         cl::Buffer(deformer.context().context(), CL_MEM_READ_WRITE,
-                   OutputLayout::required_bytes(l.previous_layout, instances, layout.vertices),
+                   OutputLayout::required_bytes(*l.previous_positions, instances, layout.vertices),
                    nullptr, &status);
     check_cl(status, "clCreateBuffer");
   }

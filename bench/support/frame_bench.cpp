@@ -152,7 +152,7 @@ nlohmann::ordered_json frame_bench_record(Context& context, const std::string& m
     frame_fractions.push_back(m.times.reference[f] / m.times.device[f]);
   }
   const double vertices = double(m.vertices) * double(instances);
-  const BatchLayout& layout = m.batch->layout;
+  const BatchShape& layout = m.batch->shape;
   const double bytes_per_vertex = double(m.bytes_per_vertex);
   const double written = double(m.output_vertices) * double(instances) * bytes_per_vertex;
 

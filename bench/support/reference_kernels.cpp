@@ -66,9 +66,9 @@ cl::Event enqueue_write_only(Context& context, DeviceBatch& batch, std::size_t v
   set(output_layout_argument(batch.outputs, true));
   set(batch.positions);  // vertex_of_slot: unread (write_outputs indexes by v)
   set(static_cast<cl_uint>(vertices));
-  set(static_cast<cl_uint>(batch.layout.instance_count));
+  set(static_cast<cl_uint>(batch.shape.instance_count));
   set(1.0f);
-  return launch(context, kernel, vertices, batch.layout.instance_count, instances_per_item, lanes);
+  return launch(context, kernel, vertices, batch.shape.instance_count, instances_per_item, lanes);
 }
 
 cl::Event enqueue_copy_rest(Context& context, const cl::Buffer& source, DeviceBatch& batch) {
@@ -78,8 +78,8 @@ cl::Event enqueue_copy_rest(Context& context, const cl::Buffer& source, DeviceBa
   set(source);
   set(batch.positions);
   set(batch.normals);
-  set(static_cast<cl_uint>(batch.layout.plane_stride));
-  return launch(context, kernel, batch.layout.plane_stride, batch.layout.instance_count, 1, 1);
+  set(static_cast<cl_uint>(batch.shape.plane_stride));
+  return launch(context, kernel, batch.shape.plane_stride, batch.shape.instance_count, 1, 1);
 }
 
 }  // namespace finflex::bench

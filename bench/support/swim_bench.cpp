@@ -59,7 +59,7 @@ Measured measure_swim(Context& context, const std::string& mesh, const std::stri
         },
         true);
   };
-  const std::size_t output_vertices = species.batch().layout.plane_stride;
+  const std::size_t output_vertices = species.batch().shape.plane_stride;
   measured.shape = kernel_shape(*species.deformer, species.batch(), settings.normals);
   measured.write_only =
       fastest_write_only(context, species.batch(), output_vertices, measured.shape, frames);
@@ -82,7 +82,7 @@ Measured measure_swim(Context& context, const std::string& mesh, const std::stri
   measured.batch = &species.batch();
   measured.vertices = species.swim.model().vertex_count();
   measured.output_vertices = output_vertices;
-  measured.bytes_per_vertex = species.batch().layout.bytes_per_vertex();
+  measured.bytes_per_vertex = species.batch().shape.bytes_per_vertex();
   return measured;
 }
 

@@ -20,8 +20,8 @@ template <typename T, typename Batch>
 void write(const std::string& path, const Batch& batch) {
   std::vector<T> out;
   for (int attribute = 0; attribute < 2; ++attribute) {
-    for (std::size_t i = 0; i < batch.layout.instance_count; ++i) {
-      for (std::size_t v = 0; v < batch.layout.vertex_count; ++v) {
+    for (std::size_t i = 0; i < batch.shape.instance_count; ++i) {
+      for (std::size_t v = 0; v < batch.shape.vertex_count; ++v) {
         const auto value = attribute == 0 ? batch.position(i, v) : batch.normal(i, v);
         for (int c = 0; c < 3; ++c) out.push_back(static_cast<T>(value[c]));
       }

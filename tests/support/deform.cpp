@@ -120,7 +120,7 @@ double expected_limit(const Mesh& mesh, const Rig& rig, std::size_t parameter) {
 }
 
 void enqueue_copy(Context& context, const DeviceBatch& from, DeviceBatch& to) {
-  const BatchLayout& layout = from.layout;
+  const BatchShape& layout = from.shape;
   const std::size_t positions = layout.attribute_elements() * sizeof(float);
   const std::size_t directions = layout.attribute_elements() * layout.normal_component_bytes();
   cl::CommandQueue& queue = context.queue();

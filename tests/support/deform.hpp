@@ -70,7 +70,7 @@ struct Difference {
 template <typename A, typename B>
 Difference max_difference(const A& a, const B& b, std::size_t vertices, std::size_t instances) {
   Difference d;
-  d.tangents_compared = a.layout.tangents && b.layout.tangents;
+  d.tangents_compared = a.shape.tangents && b.shape.tangents;
   for (std::size_t i = 0; i < instances; ++i) {
     for (std::size_t v = 0; v < vertices; ++v) {
       d.position = std::max(

@@ -82,14 +82,14 @@ finflex_status finflex_deformer_read(finflex_deformer* deformer, const finflex_b
   return guarded(slot_of(deformer), [&] {
     finflex::ClDeformer& d = deformer_of(deformer);
     const finflex::DeviceBatch& b = batch_of(batch);
-    if (b.layout.vertex_count != d.model().vertex_count()) {
+    if (b.shape.vertex_count != d.model().vertex_count()) {
       throw finflex::Error(finflex::ErrorCode::kInvalidArgument, "batch",
-                           "batch holds " + std::to_string(b.layout.vertex_count) +
+                           "batch holds " + std::to_string(b.shape.vertex_count) +
                                " vertices per instance, the deformer's model " +
                                std::to_string(d.model().vertex_count()));
     }
-    finflex::c::check_outputs(outputs, b.layout.instance_count, b.layout.vertex_count,
-                              b.layout.tangents);
+    finflex::c::check_outputs(outputs, b.shape.instance_count, b.shape.vertex_count,
+                              b.shape.tangents);
     finflex::c::store_outputs(d.read(b), *outputs);
   });
 }
@@ -101,9 +101,9 @@ finflex_status finflex_deformer_save_instance(finflex_deformer* deformer,
     finflex::ClDeformer& d = deformer_of(deformer);
     const finflex::DeviceBatch& b = batch_of(batch);
     require(path, "path");
-    if (b.layout.vertex_count != d.model().vertex_count()) {
+    if (b.shape.vertex_count != d.model().vertex_count()) {
       throw finflex::Error(finflex::ErrorCode::kInvalidArgument, "batch",
-                           "batch holds " + std::to_string(b.layout.vertex_count) +
+                           "batch holds " + std::to_string(b.shape.vertex_count) +
                                " vertices per instance, the deformer's model " +
                                std::to_string(d.model().vertex_count()));
     }
@@ -128,14 +128,14 @@ finflex_status finflex_deformer_slot_of_vertex(finflex_deformer* deformer, uint3
 void finflex_batch_destroy(finflex_batch* batch) { delete batch; }
 
 size_t finflex_batch_instance_count(const finflex_batch* batch) {
-  return batch == nullptr ? 0 : batch->batch.layout.instance_count;
+  return batch == nullptr ? 0 : batch->batch.shape.instance_count;
 }
 
 void finflex_batch_get_layout(const finflex_batch* batch, finflex_batch_layout* layout) {
   if (layout == nullptr) return;
   *layout = finflex_batch_layout{};
   if (batch == nullptr) return;
-  const finflex::BatchLayout& l = batch->batch.layout;
+  const finflex::BatchShape& l = batch->batch.shape;
   layout->vertex_count = l.vertex_count;
   layout->instance_count = l.instance_count;
   layout->plane_stride = l.plane_stride;
@@ -152,7 +152,7 @@ void* finflex_batch_cl_buffer(const finflex_batch* batch, finflex_attribute attr
     case FINFLEX_NORMALS:
       return batch->batch.normals();
     case FINFLEX_TANGENTS:
-      return batch->batch.layout.tangents ? batch->batch.tangents() : nullptr;
+      return batch->batch.shape.tangents ? batch->batch.tangents() : nullptr;
     default:  // not a value of the enum: refused below
       break;
   }

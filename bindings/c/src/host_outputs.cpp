@@ -52,8 +52,8 @@ float* element(const finflex_attribute_layout& a, std::size_t instance, std::siz
 
 template <typename T>
 void store(const finflex::DeformedBatch<T>& batch, const finflex_host_outputs& outputs) {
-  const std::size_t instances = batch.layout.instance_count;
-  const std::size_t vertices = batch.layout.vertex_count;
+  const std::size_t instances = batch.shape.instance_count;
+  const std::size_t vertices = batch.shape.vertex_count;
   using Gather = typename finflex::DeformedBatch<T>::Vec3 (finflex::DeformedBatch<T>::*)(
       std::size_t, std::size_t) const;
   const auto copy = [&](const finflex_attribute_layout& a, Gather gather) {
@@ -67,7 +67,7 @@ void store(const finflex::DeformedBatch<T>& batch, const finflex_host_outputs& o
   };
   copy(outputs.positions, &finflex::DeformedBatch<T>::position);
   copy(outputs.normals, &finflex::DeformedBatch<T>::normal);
-  if (batch.layout.tangents) copy(outputs.tangents, &finflex::DeformedBatch<T>::tangent);
+  if (batch.shape.tangents) copy(outputs.tangents, &finflex::DeformedBatch<T>::tangent);
 }
 
 }  // namespace

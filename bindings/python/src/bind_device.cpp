@@ -4,6 +4,7 @@
 #include <optional>
 
 #include <nanobind/ndarray.h>
+#include <nanobind/stl/optional.h>
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/vector.h>
 
@@ -93,32 +94,38 @@ void bind_device(nb::module_& m) {
 
   nb::class_<PyBatch>(m, "Batch",
                       "Device outputs of a number of instances: positions, normals (and "
-                      "tangents) in structure-of-arrays planes over slots (finflex/batch.hpp).")
-      .def_prop_ro("instance_count", [](const PyBatch& b) { return b.batch.layout.instance_count; })
-      .def_prop_ro("vertex_count", [](const PyBatch& b) { return b.batch.layout.vertex_count; })
+                      "tangents, previous positions) where its layout says (Batch.layout; "
+                      "Deformer.allocate(n): FinFlex's planes over slots).")
+      .def_prop_ro("instance_count", [](const PyBatch& b) { return b.batch.shape.instance_count; })
+      .def_prop_ro("vertex_count", [](const PyBatch& b) { return b.batch.shape.vertex_count; })
       .def_prop_ro(
-          "plane_stride", [](const PyBatch& b) { return b.batch.layout.plane_stride; },
+          "plane_stride", [](const PyBatch& b) { return b.batch.shape.plane_stride; },
           "Elements from one (instance, component) plane to the next.")
       .def_prop_ro(
           "normal_format",
-          [](const PyBatch& b) { return std::string(to_string(b.batch.layout.normal_format)); })
-      .def_prop_ro("has_tangents", [](const PyBatch& b) { return b.batch.layout.tangents; })
+          [](const PyBatch& b) { return std::string(to_string(b.batch.shape.normal_format)); })
+      .def_prop_ro("has_tangents", [](const PyBatch& b) { return b.batch.shape.tangents; })
+      .def_prop_ro(
+          "layout", [](const PyBatch& b) { return b.batch.outputs; },
+          "Where each attribute is written (an OutputLayout, a copy).")
       .def(
           "cl_buffer",
           [](const PyBatch& b, const std::string& attribute) -> std::uintptr_t {
+            const OutputLayout& l = b.batch.outputs;
             if (attribute == "positions") return handle_of(b.batch.positions);
             if (attribute == "normals") return handle_of(b.batch.normals);
-            if (attribute == "tangents" && b.batch.layout.tangents) {
-              return handle_of(b.batch.tangents);
+            if (attribute == "tangents" && l.tangents) return handle_of(b.batch.tangents);
+            if (attribute == "previous_positions" && l.previous_positions) {
+              return handle_of(b.batch.previous_positions);
             }
             reject("attribute", "attribute = '" + attribute +
-                                    "': expected 'positions', 'normals' or 'tangents' (when "
-                                    "the mesh has tangents)");
+                                    "': expected 'positions', 'normals', or 'tangents' or "
+                                    "'previous_positions' where the layout writes them");
           },
           nb::arg("attribute"),
           "The attribute's cl_mem as an integer (e.g. pyopencl.Buffer.from_int_ptr), owned "
-          "by this batch: element (instance i, component c, slot s) at (i * 3 + c) * "
-          "plane_stride + s.");
+          "by this batch, laid out as Batch.layout says (FinFlex's planes: element "
+          "(instance i, component c, slot s) at (i * 3 + c) * plane_stride + s).");
 
   nb::class_<PyDeformer>(m, "Deformer",
                          "A model uploaded to a context's device: enqueues frames, each "
@@ -138,6 +145,30 @@ void bind_device(nb::module_& m) {
           nb::arg("instances"), nb::arg("normal_format") = "float32",
           "Device outputs for `instances` instances; normals and tangents 'float32' or "
           "'half'.")
+      .def(
+          "allocate",
+          [](const PyDeformer& d, std::size_t instances, const OutputLayout& layout) {
+            return PyBatch{d.deformer->allocate(instances, layout)};
+          },
+          nb::arg("instances"), nb::arg("layout"),
+          "Device outputs for `instances` instances in `layout` (a buffer per attribute); "
+          "finflex.Error naming the attribute ('outputs.normals.vertex_stride', ...) when "
+          "the layout does not fit.")
+      .def(
+          "layout",
+          [](const PyDeformer& d, std::size_t instances, const std::string& normal_format) {
+            return d.deformer->layout(instances, parse_normal_format(normal_format));
+          },
+          nb::arg("instances"), nb::arg("normal_format") = "float32",
+          "FinFlex's planes for `instances` instances (what allocate(instances) writes), an "
+          "OutputLayout to start another from.")
+      .def(
+          "output_vertices",
+          [](const PyDeformer& d, const std::string& order) {
+            return d.deformer->output_vertices(vertex_order_named(order));
+          },
+          nb::arg("order") = "slots",
+          "The vertices a layout in `order` covers: 'slots' (padding included) or 'mesh'.")
       .def(
           "enqueue",
           [](nb::handle_t<PyDeformer> self, nb::handle parameters, nb::handle_t<PyBatch> batch,

@@ -50,12 +50,17 @@ struct PyEvent {
 // finflex.Error.
 [[noreturn]] void reject(const std::string& field, const std::string& message);
 
+// "slots" or "mesh" as a VertexOrder; finflex.Error naming "order" otherwise.
+VertexOrder vertex_order_named(const std::string& text);
+
 void bind_errors(nb::module_& m);
 void bind_mesh(nb::module_& m);
 void bind_model(nb::module_& m);
+void bind_layout(nb::module_& m);
 void bind_outputs(nb::module_& m);
 void bind_device(nb::module_& m);
 void bind_job(nb::module_& m);
+void bind_frame(nb::module_& m);
 void bind_swim(nb::module_& m);
 
 }  // namespace finflex::python

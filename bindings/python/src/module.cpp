@@ -10,8 +10,10 @@ NB_MODULE(_finflex, m) {
   bind_errors(m);
   bind_mesh(m);
   bind_model(m);
+  bind_layout(m);
   bind_outputs(m);
   bind_device(m);
   bind_job(m);
+  bind_frame(m);
   bind_swim(m);
 }

@@ -12,14 +12,17 @@ template <typename T>
 DeformedBatch<T> in_mesh_order(DeformedBatch<T> batch) {
   if (batch.slot_of_vertex.empty()) return batch;
   DeformedBatch<T> out;
-  BatchLayout layout = batch.layout;
-  layout.plane_stride = padded_plane_stride(layout.vertex_count);
-  out.resize(layout);
-  for (std::size_t i = 0; i < layout.instance_count; ++i) {
-    for (std::size_t v = 0; v < layout.vertex_count; ++v) {
+  BatchShape shape = batch.shape;
+  shape.plane_stride = padded_plane_stride(shape.vertex_count);
+  out.resize(shape);
+  const bool previous = !batch.previous_positions.empty();
+  if (previous) out.previous_positions.assign(shape.attribute_elements(), T(0));
+  for (std::size_t i = 0; i < shape.instance_count; ++i) {
+    for (std::size_t v = 0; v < shape.vertex_count; ++v) {
       out.scatter(out.positions, i, v, batch.position(i, v));
       out.scatter(out.normals, i, v, batch.normal(i, v));
-      if (layout.tangents) out.scatter(out.tangents, i, v, batch.tangent(i, v));
+      if (shape.tangents) out.scatter(out.tangents, i, v, batch.tangent(i, v));
+      if (previous) out.scatter(out.previous_positions, i, v, batch.previous_position(i, v));
     }
   }
   return out;
@@ -29,8 +32,9 @@ template <typename T>
 Array3 plane_view(const DeformedBatch<T>& batch, int attribute, nb::handle owner) {
   const std::vector<T>& data = attribute == 0   ? batch.positions
                                : attribute == 1 ? batch.normals
-                                                : batch.tangents;
-  const BatchLayout& l = batch.layout;
+                               : attribute == 2 ? batch.tangents
+                                                : batch.previous_positions;
+  const BatchShape& l = batch.shape;
   const std::size_t shape[3] = {l.instance_count, l.vertex_count, 3};
   const std::int64_t plane = static_cast<std::int64_t>(l.plane_stride);
   const std::int64_t strides[3] = {3 * plane, 1, plane};
@@ -44,8 +48,8 @@ Outputs::Outputs(DeformedBatch<float> batch, std::shared_ptr<const RiggedMesh> m
 Outputs::Outputs(DeformedBatch<double> batch, std::shared_ptr<const RiggedMesh> model)
     : batch_(in_mesh_order(std::move(batch))), model_(std::move(model)) {}
 
-const BatchLayout& Outputs::layout() const {
-  return std::visit([](const auto& b) -> const BatchLayout& { return b.layout; }, batch_);
+const BatchShape& Outputs::shape() const {
+  return std::visit([](const auto& b) -> const BatchShape& { return b.shape; }, batch_);
 }
 
 Array3 Outputs::view(nb::handle self, int attribute) const {
@@ -55,8 +59,14 @@ Array3 Outputs::view(nb::handle self, int attribute) const {
 Array3 Outputs::positions(nb::handle self) const { return view(self, 0); }
 Array3 Outputs::normals(nb::handle self) const { return view(self, 1); }
 std::optional<Array3> Outputs::tangents(nb::handle self) const {
-  if (!layout().tangents) return std::nullopt;
+  if (!shape().tangents) return std::nullopt;
   return view(self, 2);
+}
+std::optional<Array3> Outputs::previous_positions(nb::handle self) const {
+  const bool written =
+      std::visit([](const auto& b) { return !b.previous_positions.empty(); }, batch_);
+  if (!written) return std::nullopt;
+  return view(self, 3);
 }
 
 Mesh Outputs::instance_mesh(std::size_t instance) const {
@@ -68,8 +78,8 @@ void bind_outputs(nb::module_& m) {
   nb::class_<Outputs>(m, "Outputs",
                       "Deformed instances on the host (Deformer.read: float32; "
                       "deform_reference: float64). Arrays are views of this object's memory.")
-      .def_prop_ro("instance_count", [](const Outputs& o) { return o.layout().instance_count; })
-      .def_prop_ro("vertex_count", [](const Outputs& o) { return o.layout().vertex_count; })
+      .def_prop_ro("instance_count", [](const Outputs& o) { return o.shape().instance_count; })
+      .def_prop_ro("vertex_count", [](const Outputs& o) { return o.shape().vertex_count; })
       .def_prop_ro(
           "positions",
           [](nb::handle_t<Outputs> self) { return nb::cast<const Outputs&>(self).positions(self); },
@@ -82,6 +92,13 @@ void bind_outputs(nb::module_& m) {
           "tangents",
           [](nb::handle_t<Outputs> self) { return nb::cast<const Outputs&>(self).tangents(self); },
           "Unit tangents, shape (instances, vertices, 3), or None when the mesh has none.")
+      .def_prop_ro(
+          "previous_positions",
+          [](nb::handle_t<Outputs> self) {
+            return nb::cast<const Outputs&>(self).previous_positions(self);
+          },
+          "The frame before's positions, shape (instances, vertices, 3), where the batch's "
+          "layout writes them (Batch.layout.previous_positions), else None.")
       .def("instance_mesh", &Outputs::instance_mesh, nb::arg("instance"),
            "The rest mesh with this instance's positions, normals and tangents.")
       .def(

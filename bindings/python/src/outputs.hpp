@@ -22,11 +22,12 @@ class Outputs {
   Outputs(DeformedBatch<float> batch, std::shared_ptr<const RiggedMesh> model);
   Outputs(DeformedBatch<double> batch, std::shared_ptr<const RiggedMesh> model);
 
-  const BatchLayout& layout() const;
+  const BatchShape& shape() const;
   // The attribute's values, owned by `self` (this object's Python handle).
   Array3 positions(nb::handle self) const;
   Array3 normals(nb::handle self) const;
-  std::optional<Array3> tangents(nb::handle self) const;  // none when the mesh has none
+  std::optional<Array3> tangents(nb::handle self) const;            // none when the mesh has none
+  std::optional<Array3> previous_positions(nb::handle self) const;  // none when not written
   // The rest mesh with this instance's positions, normals and tangents.
   Mesh instance_mesh(std::size_t instance) const;
 

@@ -81,7 +81,8 @@ GlOutputs::GlOutputs(ClDeformer& deformer, std::size_t instances, const OutputLa
                                   layout.previous_positions ? buffers.previous_positions : 0u};
   const char* fields[4] = {"outputs.positions", "outputs.normals", "outputs.tangents",
                            "outputs.previous_positions"};
-  const bool used[4] = {true, true, layout.tangents, layout.previous_positions};
+  const bool used[4] = {true, true, layout.tangents.has_value(),
+                        layout.previous_positions.has_value()};
   for (std::size_t k = 0; k < 4; ++k) {
     if (used[k] && names[k] == 0) fail(fields[k], "no GL buffer given");
   }

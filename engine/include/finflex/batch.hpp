@@ -38,7 +38,10 @@ FINFLEX_API const char* to_string(NormalFormat format);
 FINFLEX_API NormalFormat parse_normal_format(const std::string& text,
                                              const std::string& field = "normal_format");
 
-struct BatchLayout {
+// A batch's counts and the shape of its planes: what a host copy (DeformedBatch) holds,
+// and what a device batch (DeviceBatch) was made for. Where a device batch's outputs go
+// is its OutputLayout (finflex/output_layout.hpp).
+struct BatchShape {
   std::size_t vertex_count = 0;  // the mesh's vertices (slots may be more, with padding)
   std::size_t instance_count = 0;
   std::size_t plane_stride = 0;  // >= vertex_count, in elements
@@ -70,10 +73,10 @@ template <typename T>
 struct DeformedBatch {
   using Vec3 = glm::vec<3, T, glm::defaultp>;
 
-  BatchLayout layout;
+  BatchShape shape;
   std::vector<T> positions;
   std::vector<T> normals;
-  std::vector<T> tangents;                    // empty unless layout.tangents
+  std::vector<T> tangents;                    // empty unless shape.tangents
   std::vector<T> previous_positions;          // empty unless the batch writes them
   std::vector<std::uint32_t> slot_of_vertex;  // empty: slot = vertex
 
@@ -90,21 +93,21 @@ struct DeformedBatch {
     return gather(previous_positions, instance, vertex);
   }
 
-  void resize(const BatchLayout& new_layout) {
-    layout = new_layout;
-    positions.assign(layout.attribute_elements(), T(0));
-    normals.assign(layout.attribute_elements(), T(0));
-    tangents.assign(layout.tangents ? layout.attribute_elements() : 0, T(0));
+  void resize(const BatchShape& new_shape) {
+    shape = new_shape;
+    positions.assign(shape.attribute_elements(), T(0));
+    normals.assign(shape.attribute_elements(), T(0));
+    tangents.assign(shape.tangents ? shape.attribute_elements() : 0, T(0));
   }
   void scatter(std::vector<T>& data, std::size_t instance, std::size_t vertex, const Vec3& value) {
-    for (int c = 0; c < 3; ++c) data[layout.index(instance, c, vertex)] = value[c];
+    for (int c = 0; c < 3; ++c) data[shape.index(instance, c, vertex)] = value[c];
   }
 
  private:
   Vec3 gather(const std::vector<T>& data, std::size_t instance, std::size_t vertex) const {
     const std::size_t slot = slot_of_vertex.empty() ? vertex : slot_of_vertex[vertex];
-    return Vec3(data[layout.index(instance, 0, slot)], data[layout.index(instance, 1, slot)],
-                data[layout.index(instance, 2, slot)]);
+    return Vec3(data[shape.index(instance, 0, slot)], data[shape.index(instance, 1, slot)],
+                data[shape.index(instance, 2, slot)]);
   }
 };
 

@@ -108,7 +108,9 @@ class FINFLEX_API ClDeformer {
   const RiggedMesh& model() const;
   Context& context() const;
 
-  BatchLayout layout(std::size_t instances, NormalFormat format = NormalFormat::kFloat32) const;
+  // FinFlex's planes for `instances` instances, normals and tangents (where the mesh
+  // has them) in `format`: allocate's layout, and the one to start another from.
+  OutputLayout layout(std::size_t instances, NormalFormat format = NormalFormat::kFloat32) const;
   // Allocates the outputs of `instances` instances in FinFlex's planes, normals and
   // tangents in `format`. kInvalidArgument for 0, kOutOfRange naming "instances" when
   // one attribute array would exceed the device's largest allocation or above
@@ -122,9 +124,6 @@ class FINFLEX_API ClDeformer {
   // The vertices an output layout in `order` covers: the slots (slot_of_vertex(),
   // padding included) or the mesh's vertices.
   std::size_t output_vertices(VertexOrder order) const;
-  // FinFlex's planes for `instances` instances as an OutputLayout, to start from.
-  OutputLayout planes_layout(std::size_t instances,
-                             NormalFormat format = NormalFormat::kFloat32) const;
   // Outputs in any layout: allocated by the deformer (a buffer per attribute), in the
   // caller's buffers, or in the caller's host memory. Every descriptor and buffer is
   // checked (validate_output_layout, sizes against OutputLayout::required_bytes):

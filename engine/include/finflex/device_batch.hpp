@@ -33,8 +33,8 @@ constexpr std::size_t kMaxDeviceInstances = 0xffffffffu;
 struct DeviceBatch {
   // The counts: instances, the mesh's vertices, whether the mesh has tangents; for the
   // default planes also their stride and the normals' format (as DeformedBatch reads).
-  BatchLayout layout;
-  // Where each attribute goes (ClDeformer::allocate: the planes of `layout`).
+  BatchShape shape;
+  // Where each attribute goes (ClDeformer::allocate: the planes of `shape`).
   OutputLayout outputs;
   cl::Buffer positions;
   cl::Buffer normals;

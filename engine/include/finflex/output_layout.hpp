@@ -21,6 +21,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "finflex/export.hpp"
@@ -85,10 +86,10 @@ struct FINFLEX_API OutputLayout {
   VertexOrder order = VertexOrder::kSlots;
   AttributeLayout positions;  // kFloat32x3 or kFloat32x4
   AttributeLayout normals;
-  bool tangents = false;  // written (the mesh must have them)
-  AttributeLayout tangent_layout;
-  bool previous_positions = false;  // each frame's positions before it (motion vectors)
-  AttributeLayout previous_layout;  // kFloat32x3 or kFloat32x4
+  // Written when set: the mesh's tangents (the mesh must have them), and each frame's
+  // positions before it (motion vectors; kFloat32x3 or kFloat32x4).
+  std::optional<AttributeLayout> tangents;
+  std::optional<AttributeLayout> previous_positions;
 
   // The bytes a buffer needs to hold `attribute` for `instances` instances of
   // `vertices` vertices (slots or mesh vertices, as `order` says): the end of its last
@@ -99,8 +100,7 @@ struct FINFLEX_API OutputLayout {
 
 inline bool operator==(const OutputLayout& a, const OutputLayout& b) {
   return a.order == b.order && a.positions == b.positions && a.normals == b.normals &&
-         a.tangents == b.tangents && a.tangent_layout == b.tangent_layout &&
-         a.previous_positions == b.previous_positions && a.previous_layout == b.previous_layout;
+         a.tangents == b.tangents && a.previous_positions == b.previous_positions;
 }
 inline bool operator!=(const OutputLayout& a, const OutputLayout& b) { return !(a == b); }
 

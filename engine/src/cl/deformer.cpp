@@ -155,8 +155,8 @@ ClDeformer::Impl::Impl(Context& context_in, const RiggedMesh& model_in, const Cl
   derived_ = detail::make_buffer(cl_context, CL_MEM_READ_WRITE, sizeof(float));
 }
 
-BatchLayout ClDeformer::Impl::layout(std::size_t instances, NormalFormat format) const {
-  BatchLayout layout;
+BatchShape ClDeformer::Impl::shape(std::size_t instances, NormalFormat format) const {
+  BatchShape layout;
   layout.normal_format = format;
   layout.vertex_count = model.vertex_count();
   layout.instance_count = instances;
@@ -224,7 +224,7 @@ std::size_t ClDeformer::Impl::lanes(const OutputLayout& outputs) const {
 }
 
 bool ClDeformer::Impl::writes_planes(const OutputLayout& outputs) const {
-  return detail::writes_finflex_planes(outputs, layout(1, NormalFormat::kFloat32));
+  return detail::writes_finflex_planes(outputs, shape(1, NormalFormat::kFloat32));
 }
 
 // Vertex structs in one buffer and attributes in arrays of their own
@@ -246,9 +246,9 @@ bool ClDeformer::Impl::streams_outputs(const DeviceBatch& batch) const {
   // struct's members fill its stride).
   const std::size_t vertex_bytes =
       format_bytes(l.positions.format) + format_bytes(l.normals.format) +
-      (l.tangents ? format_bytes(l.tangent_layout.format) : 0) +
-      (l.previous_positions ? format_bytes(l.previous_layout.format) : 0);
-  const BatchLayout& counts = batch.layout;
+      (l.tangents ? format_bytes(l.tangents->format) : 0) +
+      (l.previous_positions ? format_bytes(l.previous_positions->format) : 0);
+  const BatchShape& counts = batch.shape;
   const std::size_t bytes = counts.plane_stride * counts.instance_count * vertex_bytes;
   return detail::device_streaming_stores(context.description(), tuning.stores, bytes);
 }
@@ -258,7 +258,7 @@ bool ClDeformer::Impl::streams_outputs(const DeviceBatch& batch) const {
 
 void ClDeformer::Impl::check_outputs(const ClJob& job) const {
   const DeviceBatch& batch = *job.outputs;
-  const BatchLayout& got = batch.layout;
+  const BatchShape& got = batch.shape;
   if (batch.serial == 0) {
     fail_outputs("the batch was not made by a deformer (ClDeformer::allocate, bind or bind_host)");
   }
@@ -285,11 +285,11 @@ void ClDeformer::Impl::check_buffer_sizes(const DeviceBatch& batch) {
   const std::array<cl_mem, 4> buffers = {batch.positions(), batch.normals(), batch.tangents(),
                                          batch.previous_positions()};
   if (batch.serial == validated_.serial && batch.outputs == validated_.outputs &&
-      buffers == validated_.buffers && batch.layout.instance_count == validated_.instances) {
+      buffers == validated_.buffers && batch.shape.instance_count == validated_.instances) {
     return;
   }
   detail::check_outputs(batch, output_vertices(batch.outputs.order), tangents_, "job.outputs");
-  validated_ = {batch.serial, batch.outputs, buffers, batch.layout.instance_count};
+  validated_ = {batch.serial, batch.outputs, buffers, batch.shape.instance_count};
   // Slot s is mesh vertex s (a plain bend): mesh order is slot order without the
   // padding, stored without the vertex_of_slot indirection (and by kernels of more than
   // one lane as vectors, as slot order is).
@@ -301,7 +301,7 @@ void ClDeformer::Impl::check_buffer_sizes(const DeviceBatch& batch) {
       (writes_lane_words(written) ? lane_struct_options(written) : std::string()) +
       (mesh_as_slots
            ? " -DFF_OUTPUT_LIMIT=" + std::to_string(model.vertex_count()) + "u"
-           : detail::plane_stride_option(batch.outputs, layout(1, NormalFormat::kFloat32)));
+           : detail::plane_stride_option(batch.outputs, shape(1, NormalFormat::kFloat32)));
   // Lanes (and their kind of store) for this batch (lanes(outputs): FinFlex's planes as
   // vectors, other layouts lane by lane or with one lane).
   batch_lanes_ = lanes(batch.outputs);
@@ -348,7 +348,7 @@ ClDeformer::Impl::BoundKernel& ClDeformer::Impl::kernel(std::size_t index, const
 
 void ClDeformer::Impl::ensure_scratch(std::size_t instances) {
   if (scratch_sets_ == 0 || instances <= scratch_instances_) return;
-  const BatchLayout scratch_layout = layout(instances, NormalFormat::kFloat32);
+  const BatchShape scratch_layout = shape(instances, NormalFormat::kFloat32);
   const std::size_t bytes = detail::position_bytes(scratch_layout);
   scratch_.clear();
   for (std::size_t k = 0; k < 3 * scratch_sets_; ++k) {
@@ -623,8 +623,8 @@ ClDeformer::~ClDeformer() = default;
 const RiggedMesh& ClDeformer::model() const { return impl_->model; }
 Context& ClDeformer::context() const { return impl_->context; }
 
-BatchLayout ClDeformer::layout(std::size_t instances, NormalFormat format) const {
-  return impl_->layout(instances, format);
+OutputLayout ClDeformer::layout(std::size_t instances, NormalFormat format) const {
+  return detail::planes_outputs(impl_->shape(instances, format));
 }
 
 namespace {
@@ -638,32 +638,30 @@ DeviceBatch made_for(const RiggedMesh& model, DeviceBatch batch) {
 }  // namespace
 
 DeviceBatch ClDeformer::allocate(std::size_t instances, NormalFormat format) const {
-  return made_for(impl_->model, detail::allocate_batch(impl_->context, layout(instances, format)));
+  return made_for(impl_->model,
+                  detail::allocate_batch(impl_->context, impl_->shape(instances, format)));
 }
 
 std::size_t ClDeformer::output_vertices(VertexOrder order) const {
   return impl_->output_vertices(order);
 }
 
-OutputLayout ClDeformer::planes_layout(std::size_t instances, NormalFormat format) const {
-  return detail::planes_outputs(layout(instances, format));
-}
-
 DeviceBatch ClDeformer::allocate(std::size_t instances, const OutputLayout& outputs) const {
-  return made_for(impl_->model, detail::allocate_outputs(impl_->context, layout(instances), outputs,
-                                                         output_vertices(outputs.order)));
+  return made_for(impl_->model, detail::allocate_outputs(impl_->context, impl_->shape(instances),
+                                                         outputs, output_vertices(outputs.order)));
 }
 
 DeviceBatch ClDeformer::bind(std::size_t instances, const OutputLayout& outputs,
                              const OutputBuffers& buffers) const {
-  return made_for(impl_->model, detail::bind_outputs(impl_->context, layout(instances), outputs,
-                                                     buffers, output_vertices(outputs.order)));
+  return made_for(impl_->model,
+                  detail::bind_outputs(impl_->context, impl_->shape(instances), outputs, buffers,
+                                       output_vertices(outputs.order)));
 }
 
 DeviceBatch ClDeformer::bind_host(std::size_t instances, const OutputLayout& outputs,
                                   const HostOutputs& host) const {
   return made_for(impl_->model,
-                  detail::bind_host_outputs(impl_->context, layout(instances), outputs, host,
+                  detail::bind_host_outputs(impl_->context, impl_->shape(instances), outputs, host,
                                             output_vertices(outputs.order)));
 }
 

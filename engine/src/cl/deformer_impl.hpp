@@ -29,7 +29,7 @@ class ClDeformer::Impl {
   cl::Event enqueue(const ClJob& job, std::vector<cl::Event>* kernel_events, bool checked);
   void check(const ClJob& job) const;
 
-  BatchLayout layout(std::size_t instances, NormalFormat format) const;
+  BatchShape shape(std::size_t instances, NormalFormat format = NormalFormat::kFloat32) const;
   // Instances per work-item for FinFlex's planes in `format` (rotated_planes: with
   // rotated normals), and for `outputs` with `normals`.
   std::size_t per_item(NormalFormat format, bool rotated_planes) const;

@@ -22,15 +22,15 @@ cl::Buffer make_buffer(const cl::Context& context, cl_mem_flags flags, std::size
   return buffer;
 }
 
-std::size_t position_bytes(const BatchLayout& layout) {
+std::size_t position_bytes(const BatchShape& layout) {
   return layout.attribute_elements() * sizeof(float);
 }
 
-std::size_t direction_bytes(const BatchLayout& layout) {
+std::size_t direction_bytes(const BatchShape& layout) {
   return layout.attribute_elements() * layout.normal_component_bytes();
 }
 
-DeviceBatch allocate_batch(Context& context, const BatchLayout& layout) {
+DeviceBatch allocate_batch(Context& context, const BatchShape& layout) {
   return allocate_outputs(context, layout, planes_outputs(layout), layout.plane_stride);
 }
 

@@ -23,15 +23,15 @@ cl::Buffer make_buffer(const cl::Context& context, cl_mem_flags flags, std::size
 // The outputs of `layout` in FinFlex's planes, one buffer per attribute.
 // kInvalidArgument for no instances, kOutOfRange naming "instances" above the device's
 // largest allocation.
-DeviceBatch allocate_batch(Context& context, const BatchLayout& layout);
+DeviceBatch allocate_batch(Context& context, const BatchShape& layout);
 
 // A buffer over the caller's host memory (CL_MEM_USE_HOST_PTR).
 cl::Buffer make_buffer_over(const cl::Context& context, void* host, std::size_t bytes);
 
 // Bytes the outputs of `layout` need per attribute: positions, and normals and
 // tangents (in the layout's normal format).
-std::size_t position_bytes(const BatchLayout& layout);
-std::size_t direction_bytes(const BatchLayout& layout);
+std::size_t position_bytes(const BatchShape& layout);
+std::size_t direction_bytes(const BatchShape& layout);
 
 // The per-frame upload of a deformer's (or a driver's) inputs, for frames in flight:
 // a ring of staging areas in pinned host memory (a mapped CL_MEM_ALLOC_HOST_PTR

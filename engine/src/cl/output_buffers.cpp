@@ -42,9 +42,9 @@ std::uintptr_t buffer_host_memory(const cl::Buffer& buffer) {
 template <typename Batch, typename Buffer>
 struct Attribute {
   const char* name;
-  const AttributeLayout* layout;
+  const AttributeLayout* layout;  // null: not written
   Buffer* buffer;
-  bool used;
+  bool used() const { return layout != nullptr; }
 };
 
 template <typename Batch>
@@ -52,11 +52,11 @@ auto attributes_of(Batch& batch) {
   using Buffer = std::conditional_t<std::is_const_v<Batch>, const cl::Buffer, cl::Buffer>;
   const OutputLayout& o = batch.outputs;
   return std::array<Attribute<Batch, Buffer>, 4>{
-      {{"positions", &o.positions, &batch.positions, true},
-       {"normals", &o.normals, &batch.normals, true},
-       {"tangents", &o.tangent_layout, &batch.tangents, o.tangents},
-       {"previous_positions", &o.previous_layout, &batch.previous_positions,
-        o.previous_positions}}};
+      {{"positions", &o.positions, &batch.positions},
+       {"normals", &o.normals, &batch.normals},
+       {"tangents", o.tangents ? &*o.tangents : nullptr, &batch.tangents},
+       {"previous_positions", o.previous_positions ? &*o.previous_positions : nullptr,
+        &batch.previous_positions}}};
 }
 
 // The index of the first attribute with the same host memory as attribute k (k itself
@@ -73,7 +73,7 @@ cl::Buffer placeholder(Context& context) {
   return make_buffer(context.context(), CL_MEM_READ_WRITE, sizeof(float));
 }
 
-DeviceBatch new_batch(Context& context, const BatchLayout& counts, const OutputLayout& outputs) {
+DeviceBatch new_batch(Context& context, const BatchShape& counts, const OutputLayout& outputs) {
   if (counts.instance_count == 0) {
     throw Error(ErrorCode::kInvalidArgument, "instances", "instances = 0: at least one is needed");
   }
@@ -84,7 +84,7 @@ DeviceBatch new_batch(Context& context, const BatchLayout& counts, const OutputL
                     " of one batch (the kernels count instances in 32 bits)");
   }
   DeviceBatch batch;
-  batch.layout = counts;
+  batch.shape = counts;
   batch.outputs = outputs;
   batch.serial = next_serial();
   if (!outputs.tangents) batch.tangents = placeholder(context);
@@ -103,7 +103,7 @@ void check_outputs(const DeviceBatch& batch, std::size_t vertices, bool mesh_tan
   for (std::size_t k = 0; k < 4; ++k)
     ids[k] = reinterpret_cast<std::uintptr_t>((*attributes[k].buffer)());
   try {
-    validate_output_layout(outputs, batch.layout.instance_count, vertices, ids);
+    validate_output_layout(outputs, batch.shape.instance_count, vertices, ids);
   } catch (const Error& e) {
     // "outputs.normals..." under the caller's name for the batch.
     const std::string inner = e.field().rfind("outputs", 0) == 0 ? e.field().substr(7) : e.field();
@@ -113,15 +113,15 @@ void check_outputs(const DeviceBatch& batch, std::size_t vertices, bool mesh_tan
     throw Error(e.code(), field + inner, field + inner + message);
   }
   for (const auto& a : attributes) {
-    if (!a.used) continue;
+    if (!a.used()) continue;
     const std::size_t need =
-        OutputLayout::required_bytes(*a.layout, batch.layout.instance_count, vertices);
+        OutputLayout::required_bytes(*a.layout, batch.shape.instance_count, vertices);
     const std::size_t have = buffer_bytes(*a.buffer);
     if (have < need) {
       fail(field + "." + a.name, "the buffer holds " + std::to_string(have) + " bytes, " +
-                                     std::to_string(batch.layout.instance_count) +
-                                     " instances of " + std::to_string(vertices) +
-                                     " vertices in this layout need " + std::to_string(need));
+                                     std::to_string(batch.shape.instance_count) + " instances of " +
+                                     std::to_string(vertices) + " vertices in this layout need " +
+                                     std::to_string(need));
     }
     // The kernels take every output buffer as floats and store whole scalars, or
     // vectors of them where the address is aligned to the vector
@@ -136,14 +136,14 @@ void check_outputs(const DeviceBatch& batch, std::size_t vertices, bool mesh_tan
   }
 }
 
-DeviceBatch allocate_outputs(Context& context, const BatchLayout& counts,
+DeviceBatch allocate_outputs(Context& context, const BatchShape& counts,
                              const OutputLayout& outputs, std::size_t vertices) {
   if (outputs.tangents && !counts.tangents) fail("outputs.tangents", "the mesh has no tangents");
   DeviceBatch batch = new_batch(context, counts, outputs);
   validate_output_layout(outputs, counts.instance_count, vertices);
   const DeviceDescription& device = context.description();
   for (const auto& a : attributes_of(batch)) {
-    if (!a.used) continue;
+    if (!a.used()) continue;
     const std::size_t bytes =
         OutputLayout::required_bytes(*a.layout, counts.instance_count, vertices);
     if (bytes > device.max_allocation_bytes) {
@@ -159,7 +159,7 @@ DeviceBatch allocate_outputs(Context& context, const BatchLayout& counts,
   return batch;
 }
 
-DeviceBatch bind_outputs(Context& context, const BatchLayout& counts, const OutputLayout& outputs,
+DeviceBatch bind_outputs(Context& context, const BatchShape& counts, const OutputLayout& outputs,
                          const OutputBuffers& buffers, std::size_t vertices) {
   DeviceBatch batch = new_batch(context, counts, outputs);
   batch.positions = buffers.positions;
@@ -167,13 +167,13 @@ DeviceBatch bind_outputs(Context& context, const BatchLayout& counts, const Outp
   if (outputs.tangents) batch.tangents = buffers.tangents;
   if (outputs.previous_positions) batch.previous_positions = buffers.previous_positions;
   for (const auto& a : attributes_of(batch)) {
-    if (a.used && !(*a.buffer)()) fail(std::string("outputs.") + a.name, "no buffer given");
+    if (a.used() && !(*a.buffer)()) fail(std::string("outputs.") + a.name, "no buffer given");
   }
   check_outputs(batch, vertices, counts.tangents, "outputs");
   return batch;
 }
 
-DeviceBatch bind_host_outputs(Context& context, const BatchLayout& counts,
+DeviceBatch bind_host_outputs(Context& context, const BatchShape& counts,
                               const OutputLayout& outputs, const HostOutputs& host,
                               std::size_t vertices) {
   DeviceBatch batch = new_batch(context, counts, outputs);
@@ -185,12 +185,12 @@ DeviceBatch bind_host_outputs(Context& context, const BatchLayout& counts,
        host.previous_positions_bytes}};
   const auto attributes = attributes_of(batch);
   for (std::size_t k = 0; k < 4; ++k) {
-    if (!attributes[k].used) continue;
+    if (!attributes[k].used()) continue;
     const std::string field = std::string("outputs.") + attributes[k].name;
     if (!given[k].first || given[k].second == 0) fail(field, "no host memory given");
     cl::Buffer* buffer = attributes[k].buffer;
     for (std::size_t earlier = 0; earlier < k; ++earlier) {
-      if (attributes[earlier].used && given[earlier].first == given[k].first) {
+      if (attributes[earlier].used() && given[earlier].first == given[k].first) {
         if (given[earlier].second != given[k].second) {
           fail(field + "_bytes", "the same memory as " + std::string(attributes[earlier].name) +
                                      " with another size (" + std::to_string(given[k].second) +

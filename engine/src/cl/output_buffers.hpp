@@ -23,11 +23,11 @@ void check_outputs(const DeviceBatch& batch, std::size_t vertices, bool mesh_tan
 // A batch of `counts` in `outputs`: buffers allocated (one per attribute, sized by the
 // layout), the caller's buffers, or buffers over the caller's host memory. Checked as
 // check_outputs does, naming "outputs".
-DeviceBatch allocate_outputs(Context& context, const BatchLayout& counts,
+DeviceBatch allocate_outputs(Context& context, const BatchShape& counts,
                              const OutputLayout& outputs, std::size_t vertices);
-DeviceBatch bind_outputs(Context& context, const BatchLayout& counts, const OutputLayout& outputs,
+DeviceBatch bind_outputs(Context& context, const BatchShape& counts, const OutputLayout& outputs,
                          const OutputBuffers& buffers, std::size_t vertices);
-DeviceBatch bind_host_outputs(Context& context, const BatchLayout& counts,
+DeviceBatch bind_host_outputs(Context& context, const BatchShape& counts,
                               const OutputLayout& outputs, const HostOutputs& host,
                               std::size_t vertices);
 

@@ -79,7 +79,7 @@ glm::vec3 decode(const std::vector<unsigned char>& raw, const AttributeLayout& a
 }
 
 void read_attribute(Context& context, const cl::Buffer& buffer, const AttributeLayout& a,
-                    const BatchLayout& planes, std::size_t vertices, std::vector<float>& out) {
+                    const BatchShape& planes, std::size_t vertices, std::vector<float>& out) {
   std::vector<unsigned char> raw(OutputLayout::required_bytes(a, planes.instance_count, vertices));
   check_cl(context.queue().enqueueReadBuffer(buffer, CL_TRUE, 0, raw.size(), raw.data()),
            "clEnqueueReadBuffer outputs");
@@ -95,20 +95,20 @@ void read_attribute(Context& context, const cl::Buffer& buffer, const AttributeL
 
 DeformedBatch<float> read_outputs(Context& context, const DeviceBatch& batch,
                                   std::size_t vertices) {
-  BatchLayout planes = batch.layout;
+  BatchShape planes = batch.shape;
   planes.plane_stride = vertices;
   planes.normal_format = NormalFormat::kFloat32;
-  planes.tangents = batch.outputs.tangents;
+  planes.tangents = batch.outputs.tangents.has_value();
   DeformedBatch<float> out;
   out.resize(planes);
   const OutputLayout& o = batch.outputs;
   read_attribute(context, batch.positions, o.positions, planes, vertices, out.positions);
   read_attribute(context, batch.normals, o.normals, planes, vertices, out.normals);
   if (o.tangents)
-    read_attribute(context, batch.tangents, o.tangent_layout, planes, vertices, out.tangents);
+    read_attribute(context, batch.tangents, *o.tangents, planes, vertices, out.tangents);
   if (o.previous_positions) {
     out.previous_positions.assign(planes.attribute_elements(), 0.0f);
-    read_attribute(context, batch.previous_positions, o.previous_layout, planes, vertices,
+    read_attribute(context, batch.previous_positions, *o.previous_positions, planes, vertices,
                    out.previous_positions);
   }
   return out;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <optional>
 #include <string>
 
 #include "finflex/internal/cl_outputs.hpp"
@@ -17,7 +18,8 @@ template <typename Takes>
 bool fills_struct(const OutputLayout& l, Takes takes) {
   if (l.order != VertexOrder::kSlots || l.previous_positions) return false;
   // No allocation: ClDeformer asks this every frame (its work-item shape).
-  const std::array<const AttributeLayout*, 3> all = {&l.positions, &l.normals, &l.tangent_layout};
+  const std::array<const AttributeLayout*, 3> all = {&l.positions, &l.normals,
+                                                     l.tangents ? &*l.tangents : nullptr};
   const std::size_t count = l.tangents ? 3 : 2;
   const std::size_t stride = l.positions.vertex_stride;
   std::size_t start = l.positions.offset, bytes = 0;
@@ -46,38 +48,35 @@ bool word_format(AttributeFormat f) {
 }
 
 // `outputs` are FinFlex's planes of `counts`, normals (and tangents) in `format`.
-bool writes_planes_in(const OutputLayout& outputs, const BatchLayout& counts, NormalFormat format) {
-  BatchLayout in_format = counts;
+bool writes_planes_in(const OutputLayout& outputs, const BatchShape& counts, NormalFormat format) {
+  BatchShape in_format = counts;
   in_format.normal_format = format;
   const OutputLayout planes = planes_outputs(in_format);
   return outputs.order == VertexOrder::kSlots &&
-         (!outputs.previous_positions || outputs.previous_layout == planes.positions) &&
+         (!outputs.previous_positions || *outputs.previous_positions == planes.positions) &&
          outputs.positions == planes.positions && outputs.normals == planes.normals &&
-         outputs.tangents == planes.tangents &&
-         (!outputs.tangents || outputs.tangent_layout == planes.tangent_layout);
+         outputs.tangents == planes.tangents;
 }
 
 }  // namespace
 
-OutputLayout planes_outputs(const BatchLayout& layout) {
+OutputLayout planes_outputs(const BatchShape& layout) {
   const AttributeFormat directions = layout.normal_format == NormalFormat::kHalf
                                          ? AttributeFormat::kFloat16x3
                                          : AttributeFormat::kFloat32x3;
   OutputLayout outputs;
   outputs.positions = AttributeLayout::planes(AttributeFormat::kFloat32x3, layout.plane_stride);
   outputs.normals = AttributeLayout::planes(directions, layout.plane_stride);
-  outputs.tangents = layout.tangents;
-  outputs.tangent_layout = AttributeLayout::planes(directions, layout.plane_stride);
-  outputs.previous_layout = outputs.positions;
+  if (layout.tangents) outputs.tangents = AttributeLayout::planes(directions, layout.plane_stride);
   return outputs;
 }
 
-bool writes_finflex_planes(const OutputLayout& outputs, const BatchLayout& counts) {
+bool writes_finflex_planes(const OutputLayout& outputs, const BatchShape& counts) {
   return writes_planes_in(outputs, counts, NormalFormat::kFloat32) ||
          writes_planes_in(outputs, counts, NormalFormat::kHalf);
 }
 
-std::string plane_stride_option(const OutputLayout& outputs, const BatchLayout& counts) {
+std::string plane_stride_option(const OutputLayout& outputs, const BatchShape& counts) {
   return writes_finflex_planes(outputs, counts)
              ? " -DFF_PLANE_STRIDE=" + std::to_string(counts.plane_stride) + "u"
              : "";
@@ -97,7 +96,8 @@ bool in_one_buffer(const DeviceBatch& batch) {
 bool fills_own_arrays(const OutputLayout& l) {
   if (l.order != VertexOrder::kSlots || l.previous_positions) return false;
   // No allocation: ClDeformer asks this every frame (its work-item shape).
-  const std::array<const AttributeLayout*, 3> all = {&l.positions, &l.normals, &l.tangent_layout};
+  const std::array<const AttributeLayout*, 3> all = {&l.positions, &l.normals,
+                                                     l.tangents ? &*l.tangents : nullptr};
   const std::size_t count = l.tangents ? 3 : 2;
   for (std::size_t k = 0; k < count; ++k) {
     const AttributeLayout* a = all[k];
@@ -125,13 +125,20 @@ std::string vertex_struct_options(const DeviceBatch& batch, bool fills, const ch
   const OutputLayout& l = batch.outputs;
   if (!fills || !detail::in_one_buffer(batch)) return "";
   std::size_t start = std::min(l.positions.offset, l.normals.offset);
-  if (l.tangents) start = std::min(start, l.tangent_layout.offset);
+  if (l.tangents) start = std::min(start, l.tangents->offset);
   auto floats_in = [&](const AttributeLayout& a) { return std::to_string((a.offset - start) / 4); };
   return std::string(" -D") + flag +
          "=1 -DFF_STAGED_FLOATS=" + std::to_string(l.positions.vertex_stride / 4) +
          " -DFF_STAGED_POSITION=" + floats_in(l.positions) +
          " -DFF_STAGED_NORMAL=" + floats_in(l.normals) +
-         " -DFF_STAGED_TANGENT=" + (l.tangents ? floats_in(l.tangent_layout) : std::string("0"));
+         " -DFF_STAGED_TANGENT=" + (l.tangents ? floats_in(*l.tangents) : std::string("0"));
+}
+
+// An attribute's layout, or the default one when it is not written (the kernels do not
+// touch it then; its numbers only keep the build options and arguments complete).
+const AttributeLayout& or_default(const std::optional<AttributeLayout>& a) {
+  static const AttributeLayout unused;
+  return a ? *a : unused;
 }
 
 }  // namespace
@@ -142,8 +149,8 @@ std::string output_build_options(const OutputLayout& layout) {
            " -DFF_" + name + "_PACKED=" + (a.arrangement == Arrangement::kPacked ? "1" : "0");
   };
   return attribute("POSITION", layout.positions) + attribute("NORMAL", layout.normals) +
-         attribute("TANGENT", layout.tangent_layout) +
-         attribute("PREVIOUS", layout.previous_layout) +
+         attribute("TANGENT", or_default(layout.tangents)) +
+         attribute("PREVIOUS", or_default(layout.previous_positions)) +
          " -DFF_TANGENTS=" + (layout.tangents ? "1" : "0") +
          " -DFF_PREVIOUS=" + (layout.previous_positions ? "1" : "0") +
          " -DFF_MESH_ORDER=" + (layout.order == VertexOrder::kMesh ? "1" : "0");
@@ -172,8 +179,8 @@ cl_ulong16 output_layout_argument(const OutputLayout& layout, bool previous_vali
   };
   put(0, layout.positions);
   put(3, layout.normals);
-  put(6, layout.tangent_layout);
-  put(9, layout.previous_layout);
+  put(6, or_default(layout.tangents));
+  put(9, or_default(layout.previous_positions));
   out.s[12] = previous_valid ? 1 : 0;
   return out;
 }

@@ -13,7 +13,7 @@
 namespace finflex::detail {
 
 // FinFlex's planes for `layout` (its plane stride, normal format and tangents).
-OutputLayout planes_outputs(const BatchLayout& layout);
+OutputLayout planes_outputs(const BatchShape& layout);
 
 // True when `outputs` writes what planes_outputs(counts) writes with normals in float32
 // or half, where it does: float32 planes for positions, normals (and tangents when
@@ -21,10 +21,10 @@ OutputLayout planes_outputs(const BatchLayout& layout);
 // slot order, previous positions (if any) in float32 planes laid out as the positions.
 // The outputs kernels of more than one lane store as vectors
 // (kernels/cpu/lane_outputs.cl).
-bool writes_finflex_planes(const OutputLayout& outputs, const BatchLayout& counts);
+bool writes_finflex_planes(const OutputLayout& outputs, const BatchShape& counts);
 // " -DFF_PLANE_STRIDE=<stride>u" when `outputs` are FinFlex's planes of `counts`
 // (kernels/common/outputs.cl compiles their places in), else "".
-std::string plane_stride_option(const OutputLayout& outputs, const BatchLayout& counts);
+std::string plane_stride_option(const OutputLayout& outputs, const BatchShape& counts);
 
 // Whether positions, normals (and tangents) are float32x3 members that fill one vertex
 // struct (the same vertex and instance strides, 12 bytes a member), in slot order and

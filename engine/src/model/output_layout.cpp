@@ -192,23 +192,24 @@ std::size_t OutputLayout::required_bytes(const AttributeLayout& a, std::size_t i
 void validate_output_layout(const OutputLayout& layout, std::size_t instances, std::size_t vertices,
                             const std::uintptr_t buffer_ids[4]) {
   struct Named {
-    const AttributeLayout* layout;
+    const AttributeLayout* layout;  // null: not written
     const char* name;
     bool position;
-    bool used;
   };
+  const auto written = [](const std::optional<AttributeLayout>& a) { return a ? &*a : nullptr; };
   const Named attributes[4] = {
-      {&layout.positions, "outputs.positions", true, true},
-      {&layout.normals, "outputs.normals", false, true},
-      {&layout.tangent_layout, "outputs.tangents", false, layout.tangents},
-      {&layout.previous_layout, "outputs.previous_positions", true, layout.previous_positions}};
+      {&layout.positions, "outputs.positions", true},
+      {&layout.normals, "outputs.normals", false},
+      {written(layout.tangents), "outputs.tangents", false},
+      {written(layout.previous_positions), "outputs.previous_positions", true}};
   for (const Named& a : attributes) {
-    if (a.used) check_attribute(*a.layout, a.name, a.position, instances, vertices);
+    if (a.layout) check_attribute(*a.layout, a.name, a.position, instances, vertices);
   }
   if (!buffer_ids) return;
   for (std::size_t x = 0; x < 4; ++x) {
     for (std::size_t y = x + 1; y < 4; ++y) {
-      if (!attributes[x].used || !attributes[y].used || buffer_ids[x] != buffer_ids[y]) continue;
+      if (!attributes[x].layout || !attributes[y].layout || buffer_ids[x] != buffer_ids[y])
+        continue;
       check_shared(*attributes[x].layout, attributes[x].name, *attributes[y].layout,
                    attributes[y].name, instances, vertices);
     }

@@ -31,8 +31,8 @@ AccuracyReport compare_to_reference(const RiggedMesh& model, const ParameterView
                                     NormalMode normals, const DeformedBatch<float>& device,
                                     const DeformedBatch<double>& reference,
                                     const Placement* placements) {
-  const BatchLayout& a = device.layout;
-  const BatchLayout& b = reference.layout;
+  const BatchShape& a = device.shape;
+  const BatchShape& b = reference.shape;
   const std::size_t instances = parameters.instance_count;
   if (a.vertex_count != model.vertex_count() || b.vertex_count != model.vertex_count() ||
       a.instance_count != instances || b.instance_count != instances || a.tangents != b.tangents) {

@@ -9,18 +9,18 @@ namespace {
 
 template <typename T>
 Mesh instance_mesh_impl(const Mesh& rest, const DeformedBatch<T>& batch, std::size_t instance) {
-  if (instance >= batch.layout.instance_count) {
+  if (instance >= batch.shape.instance_count) {
     throw Error(ErrorCode::kInvalidArgument, "instance",
                 "instance = " + std::to_string(instance) + " is out of range (batch of " +
-                    std::to_string(batch.layout.instance_count) + ")");
+                    std::to_string(batch.shape.instance_count) + ")");
   }
-  if (batch.layout.vertex_count != rest.vertex_count()) {
+  if (batch.shape.vertex_count != rest.vertex_count()) {
     throw Error(ErrorCode::kInvalidArgument, "batch",
-                "the batch has " + std::to_string(batch.layout.vertex_count) +
+                "the batch has " + std::to_string(batch.shape.vertex_count) +
                     " vertices per instance, the rest mesh " + std::to_string(rest.vertex_count()));
   }
   Mesh out = rest;
-  const bool tangents = rest.has_tangents() && batch.layout.tangents;
+  const bool tangents = rest.has_tangents() && batch.shape.tangents;
   for (std::size_t v = 0; v < rest.vertex_count(); ++v) {
     out.positions[v] = glm::vec3(batch.position(instance, v));
     out.normals[v] = glm::vec3(batch.normal(instance, v));

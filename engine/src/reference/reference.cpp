@@ -20,7 +20,7 @@ void run_reference(const RiggedMesh& model, const ReferenceJob& job) {
   std::vector<float> values(instances * per_instance);
   detail::ParameterChecker(model.rig()).check(job.rows(), job.clamp, values.data());
 
-  BatchLayout layout;
+  BatchShape layout;
   layout.vertex_count = model.vertex_count();
   layout.instance_count = instances;
   layout.plane_stride = padded_plane_stride(layout.vertex_count);
