@@ -15,12 +15,12 @@ mkdir -p "$out/bin" "$out/lib"
 # shellcheck source=scripts/device/opencl_env.sh
 source "$(dirname "$0")/opencl_env.sh"
 binaries=("$build/apps/finflex" "$build/bench/bench_deform")
-for test in "${device_tests[@]}" "${large_tests[@]}"; do
+for test in "${device_tests[@]}"; do
   if [ ! -f "$build/tests/$test" ]; then
     echo "bundle.sh: $build/tests/$test is missing (build the tests first)" >&2
     exit 1
   fi
-  [[ " ${binaries[*]} " == *" $build/tests/$test "* ]] || binaries+=("$build/tests/$test")
+  binaries+=("$build/tests/$test")
 done
 binaries+=("$@")
 for binary in "${binaries[@]}"; do

@@ -7,9 +7,6 @@
 # shellcheck disable=SC2034 # used by the scripts that source this file
 device_tests=(test_cl_deformer test_rig_deformer test_normal_format test_geometry test_spine
               test_swim test_placement)
-# The test programs with large tests (*Large.* suites: tests/CMakeLists.txt) that run
-# without the finflex tool beside them (test_cli's CliLarge runs with ctest -L large).
-large_tests=(test_lanes test_spine test_rig_deformer test_kernel_warnings)
 
 # Registers NVIDIA's OpenCL driver with the loader when it is installed but not
 # registered (no /etc/OpenCL/vendors/nvidia.icd).

@@ -38,9 +38,6 @@
 #                          device, `finflex check` of the bundled fish and rigs on the GPU;
 #                          the run exits 1 when one fails
 #   cpu_checks     .txt    `finflex check` of the same on the CPU
-#   large_tests    .txt    the large tests (opencl_env.sh large_tests: their *Large.* suites)
-#                          on the default device (with --cpu: PoCL), the programs side by
-#                          side; the run exits 1 when one fails
 #   finflex_bench  .jsonl  the standard cases at 4,000 fish (GPUs) or 1,000 (CPUs): the
 #                          bend (paper, half normals, exact), the Blub rig (fused, passes),
 #                          the swim rig (no driver), the swim; on CPUs also plain stores
@@ -311,31 +308,6 @@ cpu_checks() {
   done
 }
 
-# The large tests of each program in large_tests, the programs at once (a CPU's OpenCL
-# compiler builds one kernel at a time per program), their output in program order.
-large_tests() {
-  local side test scratch
-  scratch=$(mktemp -d)
-  for side in "${sides[@]}"; do
-    for test in "${large_tests[@]}"; do
-      {
-        # shellcheck disable=SC2046
-        run env $(side_env "$side" -) "$(program "$side" "$test")" --gtest_filter='*Large.*' \
-          --gtest_brief=1 > "$scratch/$test.$side.log" 2>&1
-        echo $? > "$scratch/$test.$side.status"
-      } &
-    done
-    wait
-    for test in "${large_tests[@]}"; do
-      echo "== $test --gtest_filter='*Large.*' $(side_label "$side")"
-      cat "$scratch/$test.$side.log"
-      [ "$(cat "$scratch/$test.$side.status")" = 0 ] || failed+=("$test")
-    done
-  done
-  rm -rf "$scratch"
-  if [ ${#failed[@]} = 0 ]; then echo "== all passed"; else echo "== FAILED: ${failed[*]}"; fi
-}
-
 bench_deform() {
   local round count side
   local -a extra=(--benchmark_counters_tabular=true)
@@ -541,7 +513,7 @@ for suite in "${suites[@]}"; do
         done
       done
       ;;
-    gpu_checks | cpu_checks | large_tests | bench_deform | render_speed | remarks) text_suite "$suite" ;;
+    gpu_checks | cpu_checks | bench_deform | render_speed | remarks) text_suite "$suite" ;;
     *) echo "run.sh: '$suite' is not a suite (see --help)" >&2; exit 2 ;;
   esac
   if [ $dry = 0 ] && [ -e "$out/$suite.jsonl" ]; then

@@ -8,6 +8,17 @@ import finflex
 from conftest import spread_values
 
 
+def mesh_order_vertex(deformer, normal_format, stride, normal_stride=None):
+    """A vertex struct in the mesh's order: a float32x3 position at 0, the normal at 12."""
+    vertices = deformer.output_vertices("mesh")
+    layout = finflex.OutputLayout()
+    layout.order = "mesh"
+    layout.positions = finflex.AttributeLayout.packed("float32x3", vertices, stride, 0)
+    layout.normals = finflex.AttributeLayout.packed(normal_format, vertices,
+                                                    normal_stride or stride, 12)
+    return layout
+
+
 def test_planes_layout_is_what_allocate_writes(context, rigged):
     deformer = finflex.Deformer(context, rigged)
     layout = deformer.layout(3)
@@ -29,12 +40,8 @@ def test_interleaved_mesh_order_matches_the_planes(context, rigged):
     deformer.enqueue(values, planes).wait()
     want = deformer.read(planes)
 
-    vertices = deformer.output_vertices("mesh")
-    assert vertices == rigged.vertex_count
-    layout = finflex.OutputLayout()
-    layout.order = "mesh"
-    layout.positions = finflex.AttributeLayout.packed("float32x3", vertices, 24, 0)
-    layout.normals = finflex.AttributeLayout.packed("float32x3", vertices, 24, 12)
+    assert deformer.output_vertices("mesh") == rigged.vertex_count
+    layout = mesh_order_vertex(deformer, "float32x3", 24)
     assert layout.positions.vertex_stride == 24 and layout.normals.offset == 12
     interleaved = deformer.allocate(4, layout)
     assert interleaved.layout == layout
@@ -49,11 +56,7 @@ def test_compact_normals_within_their_precision(context, rigged):
     deformer = finflex.Deformer(context, rigged)
     values = spread_values(rigged, 2, seed=3)
     reference = finflex.deform_reference(rigged, values)
-    vertices = deformer.output_vertices("mesh")
-    layout = finflex.OutputLayout()
-    layout.order = "mesh"
-    layout.positions = finflex.AttributeLayout.packed("float32x3", vertices, 16, 0)
-    layout.normals = finflex.AttributeLayout.packed("octahedral16x2", vertices, 16, 12)
+    layout = mesh_order_vertex(deformer, "octahedral16x2", 16)
     batch = deformer.allocate(2, layout)
     deformer.enqueue(values, batch).wait()
     got = deformer.read(batch)
@@ -79,10 +82,7 @@ def test_previous_positions_hold_the_frame_before(context, rigged):
 def test_layout_errors_name_the_field(context, rigged):
     deformer = finflex.Deformer(context, rigged)
     vertices = deformer.output_vertices("mesh")
-    layout = finflex.OutputLayout()
-    layout.order = "mesh"
-    layout.positions = finflex.AttributeLayout.packed("float32x3", vertices, 24, 0)
-    layout.normals = finflex.AttributeLayout.packed("float32x3", vertices, 8, 12)
+    layout = mesh_order_vertex(deformer, "float32x3", 24, normal_stride=8)
     with pytest.raises(finflex.Error) as error:
         deformer.allocate(2, layout)
     assert error.value.field == "outputs.normals.vertex_stride"
