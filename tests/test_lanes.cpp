@@ -801,7 +801,7 @@ LANES_TEST(TheBendInMeshOrderStoresStructsAndArraysAsVectors) {
         // Each buffer as long as its attributes need, and 64 words of -7 after them.
         std::vector<std::size_t> bytes;
         std::vector<cl::Buffer> buffers;
-        const AttributeLayout* tangent = mesh.tangents ? &*mesh.tangents : nullptr;
+        const AttributeLayout* tangent = mesh.written()[2];
         for (const AttributeLayout* a : {&mesh.positions, &mesh.normals, tangent}) {
           if ((c.one_buffer && !buffers.empty()) || a == nullptr) break;
           bytes.push_back(OutputLayout::required_bytes(

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "finflex/finflex.hpp"
+#include "support/throws_error.hpp"
 
 namespace finflex {
 namespace {
@@ -175,6 +176,31 @@ TEST(OutputLayout, FormatNamesRoundTrip) {
     EXPECT_EQ(e.field(), "--normal-layout");
     EXPECT_NE(std::string(e.what()).find("'rgb565' is not a format"), std::string::npos);
   }
+  for (VertexOrder order : {VertexOrder::kSlots, VertexOrder::kMesh}) {
+    EXPECT_EQ(parse_vertex_order(to_string(order)), order);
+  }
+  for (Arrangement a : {Arrangement::kPlanes, Arrangement::kPacked}) {
+    EXPECT_EQ(parse_arrangement(to_string(a)), a);
+  }
+  EXPECT_TRUE(test::ThrowsError([] { parse_vertex_order("columns"); }, ErrorCode::kInvalidArgument,
+                                "order", "'columns' is not a vertex order"));
+  EXPECT_TRUE(test::ThrowsError([] { parse_arrangement("rows", "outputs.normals.arrangement"); },
+                                ErrorCode::kInvalidArgument, "outputs.normals.arrangement",
+                                "'rows' is not an arrangement"));
+}
+
+TEST(OutputLayout, WrittenListsTheAttributesInTheKernelsOrder) {
+  OutputLayout l = interleaved(10);
+  auto written = l.written();
+  EXPECT_EQ(written[0], &l.positions);
+  EXPECT_EQ(written[1], &l.normals);
+  EXPECT_EQ(written[2], &*l.tangents);
+  EXPECT_EQ(written[3], nullptr);
+  l.tangents.reset();
+  l.previous_positions = l.positions;
+  written = l.written();
+  EXPECT_EQ(written[2], nullptr);
+  EXPECT_EQ(written[3], &*l.previous_positions);
 }
 
 }  // namespace

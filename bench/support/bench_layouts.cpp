@@ -19,12 +19,6 @@ OutputLayout interleaved(AttributeFormat directions, bool tangents, std::size_t 
   return l;
 }
 
-std::size_t written_bytes(const OutputLayout& l) {
-  return format_bytes(l.positions.format) + format_bytes(l.normals.format) +
-         (l.tangents ? format_bytes(l.tangents->format) : 0) +
-         (l.previous_positions ? format_bytes(l.previous_positions->format) : 0);
-}
-
 constexpr std::pair<LayoutKind, const char*> kLayoutNames[] = {
     {LayoutKind::kPlanes, "planes"},
     {LayoutKind::kInterleaved, "interleaved"},
@@ -88,7 +82,6 @@ BenchLayout bench_layout(const ClDeformer& deformer, NormalFormat format,
     out.layout.previous_positions =
         AttributeLayout::planes(AttributeFormat::kFloat32x3, padded_plane_stride(out.vertices));
   }
-  out.bytes_per_vertex = written_bytes(out.layout);
   return out;
 }
 

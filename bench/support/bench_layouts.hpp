@@ -41,10 +41,9 @@ struct OutputsChoice {
 
 struct BenchLayout {
   OutputLayout layout;
-  bool host = false;                 // in the caller's host memory (bind_host)
-  bool one_buffer = false;           // a vertex struct: every attribute in one buffer
-  std::size_t vertices = 0;          // the outputs' vertex count (slots or mesh vertices)
-  std::size_t bytes_per_vertex = 0;  // written per vertex and instance
+  bool host = false;         // in the caller's host memory (bind_host)
+  bool one_buffer = false;   // a vertex struct: every attribute in one buffer
+  std::size_t vertices = 0;  // the outputs' vertex count (slots or mesh vertices)
 };
 
 BenchLayout bench_layout(const ClDeformer& deformer, NormalFormat format,

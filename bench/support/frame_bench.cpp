@@ -136,7 +136,7 @@ Measured measure_deform(Context& context, const RiggedMesh& model, const std::st
   measured.batch = &bench.batch;
   measured.vertices = model.mesh().vertex_count();
   measured.output_vertices = layout.vertices;
-  measured.bytes_per_vertex = layout.bytes_per_vertex;
+  measured.bytes_per_vertex = layout.layout.bytes_per_vertex();
   return measured;
 }
 

@@ -104,7 +104,9 @@ void bind_device(nb::module_& m) {
       .def_prop_ro(
           "normal_format",
           [](const PyBatch& b) { return std::string(to_string(b.batch.shape.normal_format)); })
-      .def_prop_ro("has_tangents", [](const PyBatch& b) { return b.batch.shape.tangents; })
+      .def_prop_ro(
+          "has_tangents", [](const PyBatch& b) { return b.batch.outputs.tangents.has_value(); },
+          "Whether the batch writes tangents (its layout's tangents are set).")
       .def_prop_ro(
           "layout", [](const PyBatch& b) { return b.batch.outputs; },
           "Where each attribute is written (an OutputLayout, a copy).")
@@ -165,7 +167,7 @@ void bind_device(nb::module_& m) {
       .def(
           "output_vertices",
           [](const PyDeformer& d, const std::string& order) {
-            return d.deformer->output_vertices(vertex_order_named(order));
+            return d.deformer->output_vertices(parse_vertex_order(order));
           },
           nb::arg("order") = "slots",
           "The vertices a layout in `order` covers: 'slots' (padding included) or 'mesh'.")

@@ -18,13 +18,6 @@ struct PyRigFrame {
   std::vector<nb::object> deformers;  // each entry's PyDeformer, kept alive
 };
 
-void check_entry(const PyRigFrame& f, std::size_t entry) {
-  if (entry >= f.frame->size()) {
-    reject("entry", "entry = " + std::to_string(entry) + ": the frame has " +
-                        std::to_string(f.frame->size()) + " entries");
-  }
-}
-
 }  // namespace
 
 void bind_frame(nb::module_& m) {
@@ -50,7 +43,6 @@ void bind_frame(nb::module_& m) {
           "values",
           [](nb::handle_t<PyRigFrame> self, std::size_t entry) {
             PyRigFrame& f = nb::cast<PyRigFrame&>(self);
-            check_entry(f, entry);
             RigParameters& p = f.frame->parameters(entry);
             const std::size_t shape[2] = {p.instance_count(), p.values_per_instance()};
             return nb::ndarray<nb::numpy, float, nb::shape<-1, -1>>(p.values().data(), 2, shape,
@@ -60,11 +52,7 @@ void bind_frame(nb::module_& m) {
           "The entry's parameter rows, float32 (instances, values_per_instance), writable, "
           "without a copy: fill them each frame.")
       .def(
-          "batch",
-          [](PyRigFrame& f, std::size_t entry) {
-            check_entry(f, entry);
-            return PyBatch{f.frame->batch(entry)};
-          },
+          "batch", [](PyRigFrame& f, std::size_t entry) { return PyBatch{f.frame->batch(entry)}; },
           nb::arg("entry"), "The entry's outputs (read them with its Deformer.read).")
       .def(
           "enqueue",

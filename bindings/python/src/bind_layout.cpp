@@ -13,25 +13,9 @@
 namespace finflex::python {
 namespace {
 
-const char* arrangement_name(Arrangement a) {
-  return a == Arrangement::kPacked ? "packed" : "planes";
-}
-
-Arrangement parse_arrangement(const std::string& text) {
-  if (text == "planes") return Arrangement::kPlanes;
-  if (text == "packed") return Arrangement::kPacked;
-  reject("arrangement", "arrangement = '" + text + "': expected 'planes' or 'packed'");
-}
-
-VertexOrder parse_vertex_order(const std::string& text) {
-  if (text == "slots") return VertexOrder::kSlots;
-  if (text == "mesh") return VertexOrder::kMesh;
-  reject("order", "order = '" + text + "': expected 'slots' or 'mesh'");
-}
-
 std::string describe(const AttributeLayout& a) {
   std::string text = std::string("finflex.AttributeLayout(") + to_string(a.format) + ", " +
-                     arrangement_name(a.arrangement) + ", offset=" + std::to_string(a.offset);
+                     to_string(a.arrangement) + ", offset=" + std::to_string(a.offset);
   if (a.arrangement == Arrangement::kPacked) {
     text += ", vertex_stride=" + std::to_string(a.vertex_stride);
   } else {
@@ -41,8 +25,6 @@ std::string describe(const AttributeLayout& a) {
 }
 
 }  // namespace
-
-VertexOrder vertex_order_named(const std::string& text) { return parse_vertex_order(text); }
 
 void bind_layout(nb::module_& m) {
   nb::class_<AttributeLayout>(
@@ -58,7 +40,7 @@ void bind_layout(nb::module_& m) {
           "'octahedral16x2'.")
       .def_prop_rw(
           "arrangement",
-          [](const AttributeLayout& a) { return std::string(arrangement_name(a.arrangement)); },
+          [](const AttributeLayout& a) { return std::string(to_string(a.arrangement)); },
           [](AttributeLayout& a, const std::string& t) { a.arrangement = parse_arrangement(t); },
           "'planes' (structure of arrays) or 'packed' (an element's components together).")
       .def_rw("offset", &AttributeLayout::offset, "Bytes from the buffer's start.")

@@ -50,9 +50,6 @@ struct PyEvent {
 // finflex.Error.
 [[noreturn]] void reject(const std::string& field, const std::string& message);
 
-// "slots" or "mesh" as a VertexOrder; finflex.Error naming "order" otherwise.
-VertexOrder vertex_order_named(const std::string& text);
-
 void bind_errors(nb::module_& m);
 void bind_mesh(nb::module_& m);
 void bind_model(nb::module_& m);

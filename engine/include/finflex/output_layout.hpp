@@ -19,6 +19,7 @@
 // different offsets) are both packed layouts.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -49,6 +50,9 @@ FINFLEX_API std::size_t format_bytes(AttributeFormat format);
 FINFLEX_API std::size_t scalar_bytes(AttributeFormat format);
 
 enum class Arrangement { kPlanes, kPacked };
+FINFLEX_API const char* to_string(Arrangement arrangement);  // "planes", "packed"
+FINFLEX_API Arrangement parse_arrangement(const std::string& text,
+                                          const std::string& field = "arrangement");
 
 struct FINFLEX_API AttributeLayout {
   AttributeFormat format = AttributeFormat::kFloat32x3;
@@ -80,7 +84,9 @@ inline bool operator!=(const AttributeLayout& a, const AttributeLayout& b) { ret
 // the fastest) or the mesh's own order (draw with the mesh's index buffer; padding
 // slots are not written).
 enum class VertexOrder { kSlots, kMesh };
-FINFLEX_API const char* to_string(VertexOrder order);
+FINFLEX_API const char* to_string(VertexOrder order);  // "slots", "mesh"
+FINFLEX_API VertexOrder parse_vertex_order(const std::string& text,
+                                           const std::string& field = "order");
 
 struct FINFLEX_API OutputLayout {
   VertexOrder order = VertexOrder::kSlots;
@@ -90,6 +96,19 @@ struct FINFLEX_API OutputLayout {
   // positions before it (motion vectors; kFloat32x3 or kFloat32x4).
   std::optional<AttributeLayout> tangents;
   std::optional<AttributeLayout> previous_positions;
+
+  // Every attribute in the kernels' order (positions, normals, tangents, previous
+  // positions), null where it is not written.
+  std::array<const AttributeLayout*, 4> written() const {
+    return {&positions, &normals, tangents ? &*tangents : nullptr,
+            previous_positions ? &*previous_positions : nullptr};
+  }
+  // The bytes each vertex and instance writes: every written attribute's element.
+  std::size_t bytes_per_vertex() const {
+    std::size_t bytes = 0;
+    for (const AttributeLayout* a : written()) bytes += a ? format_bytes(a->format) : 0;
+    return bytes;
+  }
 
   // The bytes a buffer needs to hold `attribute` for `instances` instances of
   // `vertices` vertices (slots or mesh vertices, as `order` says): the end of its last

@@ -244,12 +244,8 @@ bool ClDeformer::Impl::streams_outputs(const DeviceBatch& batch) const {
   if (lanes(l) == 1 || !(writes_planes(l) || writes_lane_words(batch))) return false;
   // The bytes each vertex slot and instance writes: each attribute's format (a
   // struct's members fill its stride).
-  const std::size_t vertex_bytes =
-      format_bytes(l.positions.format) + format_bytes(l.normals.format) +
-      (l.tangents ? format_bytes(l.tangents->format) : 0) +
-      (l.previous_positions ? format_bytes(l.previous_positions->format) : 0);
   const BatchShape& counts = batch.shape;
-  const std::size_t bytes = counts.plane_stride * counts.instance_count * vertex_bytes;
+  const std::size_t bytes = counts.plane_stride * counts.instance_count * l.bytes_per_vertex();
   return detail::device_streaming_stores(context.description(), tuning.stores, bytes);
 }
 

@@ -50,13 +50,12 @@ struct Attribute {
 template <typename Batch>
 auto attributes_of(Batch& batch) {
   using Buffer = std::conditional_t<std::is_const_v<Batch>, const cl::Buffer, cl::Buffer>;
-  const OutputLayout& o = batch.outputs;
+  const auto written = batch.outputs.written();
   return std::array<Attribute<Batch, Buffer>, 4>{
-      {{"positions", &o.positions, &batch.positions},
-       {"normals", &o.normals, &batch.normals},
-       {"tangents", o.tangents ? &*o.tangents : nullptr, &batch.tangents},
-       {"previous_positions", o.previous_positions ? &*o.previous_positions : nullptr,
-        &batch.previous_positions}}};
+      {{"positions", written[0], &batch.positions},
+       {"normals", written[1], &batch.normals},
+       {"tangents", written[2], &batch.tangents},
+       {"previous_positions", written[3], &batch.previous_positions}}};
 }
 
 // The index of the first attribute with the same host memory as attribute k (k itself

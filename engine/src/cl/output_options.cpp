@@ -18,8 +18,7 @@ template <typename Takes>
 bool fills_struct(const OutputLayout& l, Takes takes) {
   if (l.order != VertexOrder::kSlots || l.previous_positions) return false;
   // No allocation: ClDeformer asks this every frame (its work-item shape).
-  const std::array<const AttributeLayout*, 3> all = {&l.positions, &l.normals,
-                                                     l.tangents ? &*l.tangents : nullptr};
+  const auto all = l.written();
   const std::size_t count = l.tangents ? 3 : 2;
   const std::size_t stride = l.positions.vertex_stride;
   std::size_t start = l.positions.offset, bytes = 0;
@@ -96,8 +95,7 @@ bool in_one_buffer(const DeviceBatch& batch) {
 bool fills_own_arrays(const OutputLayout& l) {
   if (l.order != VertexOrder::kSlots || l.previous_positions) return false;
   // No allocation: ClDeformer asks this every frame (its work-item shape).
-  const std::array<const AttributeLayout*, 3> all = {&l.positions, &l.normals,
-                                                     l.tangents ? &*l.tangents : nullptr};
+  const auto all = l.written();
   const std::size_t count = l.tangents ? 3 : 2;
   for (std::size_t k = 0; k < count; ++k) {
     const AttributeLayout* a = all[k];

@@ -153,6 +153,22 @@ std::size_t scalar_bytes(AttributeFormat format) { return info(format).scalar; }
 
 const char* to_string(VertexOrder order) { return order == VertexOrder::kMesh ? "mesh" : "slots"; }
 
+VertexOrder parse_vertex_order(const std::string& text, const std::string& field) {
+  if (text == "slots") return VertexOrder::kSlots;
+  if (text == "mesh") return VertexOrder::kMesh;
+  fail(field, "'" + text + "' is not a vertex order (slots, mesh)");
+}
+
+const char* to_string(Arrangement arrangement) {
+  return arrangement == Arrangement::kPacked ? "packed" : "planes";
+}
+
+Arrangement parse_arrangement(const std::string& text, const std::string& field) {
+  if (text == "planes") return Arrangement::kPlanes;
+  if (text == "packed") return Arrangement::kPacked;
+  fail(field, "'" + text + "' is not an arrangement (planes, packed)");
+}
+
 AttributeLayout AttributeLayout::planes(AttributeFormat format, std::size_t plane_stride,
                                         std::size_t offset) {
   AttributeLayout layout;
@@ -196,12 +212,11 @@ void validate_output_layout(const OutputLayout& layout, std::size_t instances, s
     const char* name;
     bool position;
   };
-  const auto written = [](const std::optional<AttributeLayout>& a) { return a ? &*a : nullptr; };
-  const Named attributes[4] = {
-      {&layout.positions, "outputs.positions", true},
-      {&layout.normals, "outputs.normals", false},
-      {written(layout.tangents), "outputs.tangents", false},
-      {written(layout.previous_positions), "outputs.previous_positions", true}};
+  const auto written = layout.written();
+  const Named attributes[4] = {{written[0], "outputs.positions", true},
+                               {written[1], "outputs.normals", false},
+                               {written[2], "outputs.tangents", false},
+                               {written[3], "outputs.previous_positions", true}};
   for (const Named& a : attributes) {
     if (a.layout) check_attribute(*a.layout, a.name, a.position, instances, vertices);
   }
