@@ -10,6 +10,7 @@
 //                [--size WxH] [--camera above|oblique|side] [--samples N]
 //                [--image-frames all|none|LIST] [--video auto|none|mp4,gif,apng]
 //                [--annotate] [--render | --no-render]
+//                [--hand-off auto|external-memory|shared|copy]
 #include <unistd.h>
 
 #include <algorithm>
@@ -106,14 +107,26 @@ double mean(const std::vector<double>& values) {
   return values.empty() ? 0.0 : sum(values) / double(values.size());
 }
 
-// How the deformed fish reach the renderer (fish_hand_off.hpp), and why not shared.
-struct HandOff {
-  GlPath path = GlPath::kCopy;
-  std::string why_not_shared;  // empty when shared
-};
+// The summary line's words on the hand-off: how it runs, and why not faster.
+std::string hand_off_line(const pictures::HandOff& hand_off) {
+  switch (hand_off.path) {
+    case pictures::HandOffPath::kExternal:
+      return std::string("Vulkan memory of ") + hand_off.device->name() + ", " +
+             to_string(hand_off.import) + " by OpenCL, imported by GL; " +
+             (hand_off.device_ordered ? "semaphores order the frame on the device"
+                                      : "waited for on the host");
+    case pictures::HandOffPath::kShared:
+      return "OpenCL writes the GL buffers: acquire, kernels, release; no external memory: " +
+             hand_off.why_not_external;
+    case pictures::HandOffPath::kCopy:
+      break;
+  }
+  return "read back and glBufferSubData; no external memory: " + hand_off.why_not_external +
+         "; no sharing: " + hand_off.why_not_shared;
+}
 
 nlohmann::ordered_json rendering_summary(const SwimPlan& plan, pictures::TankPictures& pictures,
-                                         const HandOff& hand_off, const FrameTimes& t,
+                                         const pictures::HandOff& hand_off, const FrameTimes& t,
                                          double frames_per_second) {
   const render::DeviceInfo& device = pictures.renderer().device();
   const double frame = mean(t.total);
@@ -128,6 +141,13 @@ nlohmann::ordered_json rendering_summary(const SwimPlan& plan, pictures::TankPic
   out["frames_per_second"] = frames_per_second;
   out["hand_off"] = {{"path", to_string(hand_off.path)},
                      {"seconds_per_frame_mean", mean(t.hand_off)}};
+  if (hand_off.path == pictures::HandOffPath::kExternal) {
+    out["hand_off"]["vulkan_device"] = hand_off.device->name();
+    out["hand_off"]["import"] = to_string(hand_off.import);
+    out["hand_off"]["ordered_on_the_device"] = hand_off.device_ordered;
+  }
+  if (!hand_off.why_not_external.empty())
+    out["hand_off"]["why_not_external"] = hand_off.why_not_external;
   if (!hand_off.why_not_shared.empty()) out["hand_off"]["why_not_shared"] = hand_off.why_not_shared;
   out["seconds_per_frame_mean"] = {{"frame", frame},
                                    {"deform", deform},
@@ -160,29 +180,27 @@ int run_swim(const SwimOptions& options) {
     // can, so each species' deformation writes the GL buffers that are drawn.
     std::unique_ptr<render::Renderer> renderer;
     std::unique_ptr<Context> opencl;
-    HandOff hand_off;
+    pictures::HandOff hand_off;
     if (plan.render) {
       renderer = std::make_unique<render::Renderer>(pictures::render_settings(plan.pictures));
       GlSharingContext shared =
           make_gl_sharing_context(options.device, renderer->egl_display(), renderer->egl_context());
       opencl = std::move(shared.context);
-      hand_off.why_not_shared = shared.why_not;
+      hand_off = pictures::choose_hand_off(
+          *renderer, *opencl,
+          shared.sharing ? "" : (shared.why_not.empty() ? "no GL sharing" : shared.why_not),
+          plan.hand_off);
     } else {
       opencl = std::make_unique<Context>(options.device);
     }
     Context& context = *opencl;
-    tank::SwimScene scene(context, plan.species, plan.fish, plan.tank, plan.seed, plan.normals,
-                          NormalFormat::kFloat32, {},
-                          renderer ? pictures::gl_outputs(*renderer) : tank::OutputsFactory());
+    tank::SwimScene scene(
+        context, plan.species, plan.fish, plan.tank, plan.seed, plan.normals,
+        NormalFormat::kFloat32, {},
+        renderer ? pictures::gl_outputs(*renderer, hand_off) : tank::OutputsFactory());
     std::unique_ptr<pictures::TankPictures> pictures;
     if (renderer) {
       pictures = std::make_unique<pictures::TankPictures>(*renderer, scene, plan.pictures);
-      hand_off.path = pictures->hand_off_path();
-      if (hand_off.path == GlPath::kShared)
-        hand_off.why_not_shared.clear();
-      else if (hand_off.why_not_shared.empty()) {
-        hand_off.why_not_shared = "the OpenCL context does not share the renderer's";
-      }
     }
     std::unique_ptr<StagingFolder> staging;
     if (!options.out.empty()) staging = std::make_unique<StagingFolder>(options.out, "--out");
@@ -306,10 +324,7 @@ int run_swim(const SwimOptions& options) {
                   part("deform").c_str(), part("hand_off").c_str(), part("draw").c_str(),
                   part("read_back").c_str(), part("files").c_str(), part("annotation").c_str());
       std::printf("  hand-off: %s (%s), %.2f ms a frame\n", to_string(hand_off.path),
-                  hand_off.path == GlPath::kShared
-                      ? "OpenCL writes the GL buffers: acquire, kernels, release"
-                      : ("read back and glBufferSubData: " + hand_off.why_not_shared).c_str(),
-                  mean(t.hand_off) * 1e3);
+                  hand_off_line(hand_off).c_str(), mean(t.hand_off) * 1e3);
     }
     if (files) {
       std::printf("  wrote %zu frame images, %zu videos%s\n", files->images_written(),
@@ -388,6 +403,10 @@ Command add_swim_command(CLI::App& app) {
       "--render,!--no-render",
       [options](std::int64_t count) { options->render = count > 0 ? 1 : 0; },
       "Draw every frame (default with --out); without --out only the timing is printed");
+  swim->add_option("--hand-off", options->hand_off,
+                   "How the deformed fish reach the renderer: auto (the first that runs), "
+                   "external-memory, shared or copy")
+      ->capture_default_str();
   return {[options] { plan_of(*options); }, [options] { return run_swim(*options); }};
 }
 

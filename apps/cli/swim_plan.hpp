@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -34,6 +35,7 @@ struct SwimOptions {
   std::string video;
   bool annotate = false;
   int render = -1;  // --render: 1, --no-render: 0, neither: -1 (on with --out)
+  std::string hand_off = "auto";
 };
 
 // What the command runs, every value checked.
@@ -47,6 +49,7 @@ struct SwimPlan {
   NormalMode normals = NormalMode::kJacobian;
   std::set<std::size_t> mesh_frames;
   bool render = false;
+  std::optional<pictures::HandOffPath> hand_off;  // nullopt: the first that can run
   pictures::PictureSettings pictures;
   PictureFiles files;
 };

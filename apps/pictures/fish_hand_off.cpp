@@ -1,6 +1,7 @@
 #include "fish_hand_off.hpp"
 
 #include <algorithm>
+#include <chrono>
 
 namespace finflex::pictures {
 
@@ -30,43 +31,188 @@ render::StreamLayout stream_layout(const AttributeLayout& attribute) {
                                           : render::ComponentType::kFloat32);
 }
 
+// Why GL cannot import `device`'s memory (empty: it can).
+std::string why_gl_cannot_import(const render::Renderer& renderer, const vulkan::Device& device) {
+  const render::ExternalSupport& gl = renderer.external_support();
+  if (!gl.memory) return gl.why_not;
+  const bool same = std::find(gl.device_uuids.begin(), gl.device_uuids.end(), device.uuid()) !=
+                    gl.device_uuids.end();
+  if (!same) {
+    std::string seen;
+    for (const auto& uuid : gl.device_uuids)
+      seen += (seen.empty() ? "" : ", ") + vulkan::to_string(uuid);
+    return "OpenGL (" + renderer.device().gl_renderer + ") is not on the Vulkan device " +
+           device.name() + " (" + vulkan::to_string(device.uuid()) +
+           "; GL's: " + (seen.empty() ? "none given" : seen) + ")";
+  }
+  return "";
+}
+
 }  // namespace
 
-GlSpeciesOutputs::GlSpeciesOutputs(render::Renderer& renderer, ClDeformer& deformer,
-                                   std::size_t instances, NormalFormat format)
+const char* to_string(HandOffPath path) {
+  switch (path) {
+    case HandOffPath::kExternal:
+      return "external-memory";
+    case HandOffPath::kShared:
+      return "shared";
+    case HandOffPath::kCopy:
+      return "copy";
+  }
+  return "copy";
+}
+
+std::optional<HandOffPath> parse_hand_off(const std::string& text, const std::string& field) {
+  if (text == "auto") return std::nullopt;
+  for (HandOffPath path : {HandOffPath::kExternal, HandOffPath::kShared, HandOffPath::kCopy}) {
+    if (text == to_string(path)) return path;
+  }
+  throw Error(ErrorCode::kInvalidArgument, field,
+              field + ": '" + text + "' is not auto, external-memory, shared or copy");
+}
+
+HandOff choose_hand_off(render::Renderer& renderer, const Context& context,
+                        const std::string& why_not_shared, std::optional<HandOffPath> wanted) {
+  HandOff out;
+  const bool shares = why_not_shared.empty();
+  if (wanted && *wanted != HandOffPath::kExternal) out.why_not_external = "not asked for";
+  if (!wanted || *wanted == HandOffPath::kExternal) {
+    ExternalChoice choice = choose_external_device(context);
+    if (choice.device) {
+      out.why_not_external = why_gl_cannot_import(renderer, *choice.device);
+      if (out.why_not_external.empty()) {
+        out.path = HandOffPath::kExternal;
+        out.import = choice.import;
+        out.device_ordered =
+            choice.import == ExternalImport::kImported && choice.device->exports_semaphores() &&
+            renderer.external_support().semaphores &&
+            context.description().has_extension("cl_khr_external_semaphore_opaque_fd");
+        out.device = std::move(choice.device);
+        return out;
+      }
+    } else {
+      out.why_not_external = choice.why_not;
+    }
+    if (wanted) {
+      throw Error(ErrorCode::kDevice, "--hand-off",
+                  "--hand-off external-memory: " + out.why_not_external);
+    }
+  }
+  if (!wanted || *wanted == HandOffPath::kShared) {
+    if (shares) {
+      out.path = HandOffPath::kShared;
+      return out;
+    }
+    out.why_not_shared = why_not_shared;
+    if (wanted)
+      throw Error(ErrorCode::kDevice, "--hand-off", "--hand-off shared: " + why_not_shared);
+  } else {
+    out.why_not_shared = "not asked for";
+  }
+  out.path = HandOffPath::kCopy;
+  return out;
+}
+
+GlSpeciesOutputs::GlSpeciesOutputs(render::Renderer& renderer, const HandOff& hand_off,
+                                   ClDeformer& deformer, std::size_t instances, NormalFormat format)
     : renderer_(renderer),
+      path_(hand_off.path),
       layout_(drawn_planes(deformer, instances, format)),
-      positions_(renderer.create_buffer(buffer_bytes(deformer, layout_.positions, instances))),
-      normals_(renderer.create_buffer(buffer_bytes(deformer, layout_.normals, instances))),
       position_layout_(stream_layout(layout_.positions)),
       normal_layout_(stream_layout(layout_.normals)),
-      instances_(instances),
-      // create_buffer left the renderer's context current, as GlOutputs needs.
-      outputs_(deformer, instances, layout_,
-               GlBuffers{renderer.gl_buffer(positions_), renderer.gl_buffer(normals_), 0, 0}) {}
+      instances_(instances) {
+  if (path_ == HandOffPath::kExternal) {
+    external_ = std::make_unique<ExternalOutputs>(deformer, instances, layout_, *hand_off.device);
+    const render::BufferId ids[2] = {
+        renderer.import_buffer(external_->buffer(0).export_fd(),
+                               external_->buffer(0).memory_bytes(), external_->data_bytes(0)),
+        renderer.import_buffer(external_->buffer(1).export_fd(),
+                               external_->buffer(1).memory_bytes(), external_->data_bytes(1))};
+    positions_ = ids[external_->buffer_of(0)];
+    normals_ = ids[external_->buffer_of(1)];
+    device_ordered_ = hand_off.device_ordered && external_->device_ordered();
+    if (device_ordered_) {
+      kernels_done_ = renderer.import_semaphore(external_->kernels_done()->export_fd());
+      drawn_ = renderer.import_semaphore(external_->consumer_done()->export_fd());
+    }
+    return;
+  }
+  positions_ = renderer.create_buffer(buffer_bytes(deformer, layout_.positions, instances));
+  normals_ = renderer.create_buffer(buffer_bytes(deformer, layout_.normals, instances));
+  // create_buffer left the renderer's context current, as GlOutputs needs.
+  gl_ = std::make_unique<GlOutputs>(
+      deformer, instances, layout_,
+      GlBuffers{renderer.gl_buffer(positions_), renderer.gl_buffer(normals_), 0, 0});
+}
+
+DeviceBatch& GlSpeciesOutputs::batch() { return external_ ? external_->batch() : gl_->batch(); }
+
+double GlSpeciesOutputs::handoff_seconds() const {
+  return gl_ ? gl_->last_handoff_seconds() : 0.0;  // external memory: nothing to hand over
+}
 
 cl::Event GlSpeciesOutputs::enqueue(ClDeformer& /*deformer: the outputs'*/, const ClJob& job,
                                     std::vector<cl::Event>* kernel_events) {
   renderer_.make_current();
-  drawable_ = outputs_.enqueue(job, kernel_events);
+  if (!external_) {
+    drawable_ = gl_->enqueue(job, kernel_events);
+    return drawable_;
+  }
+  if (device_ordered_) {
+    // A binary semaphore is waited for once per signal: a frame GL never drew is
+    // waited for now, and GL's signal after its last use lets the kernels go on.
+    if (kernels_signalled_) wait_until_drawable();
+    if (gl_used_frame_) {
+      renderer_.signal_semaphore(drawn_, {positions_, normals_});
+      external_->consumer_signalled();
+      gl_used_frame_ = false;
+    }
+    drawable_ = external_->enqueue(job, kernel_events);
+    kernels_signalled_ = true;
+    return drawable_;
+  }
+  renderer_.finish();  // GL is done with the memory the kernels now write
+  drawable_ = external_->enqueue(job, kernel_events);
   return drawable_;
+}
+
+void GlSpeciesOutputs::wait_until_drawable() {
+  if (device_ordered_) {
+    if (!kernels_signalled_) return;
+    renderer_.wait_semaphore(kernels_done_, {positions_, normals_});
+    kernels_signalled_ = false;
+    gl_used_frame_ = true;
+    return;
+  }
+  if (external_) {
+    external_->wait_for_frame();
+    return;
+  }
+  if (drawable_() != nullptr) check_cl(drawable_.wait(), "clWaitForEvents");
 }
 
 void GlSpeciesOutputs::begin_reading() {
   renderer_.make_current();
-  outputs_.begin_reading();
+  if (external_) {
+    renderer_.finish();  // GL has no commands left on the memory OpenCL now reads
+    external_->begin_reading();
+    return;
+  }
+  gl_->begin_reading();
 }
 
-void GlSpeciesOutputs::end_reading() { outputs_.end_reading(); }
-
-void GlSpeciesOutputs::wait_until_drawable() {
-  if (drawable_() != nullptr) check_cl(drawable_.wait(), "clWaitForEvents");
+void GlSpeciesOutputs::end_reading() {
+  if (external_) {
+    external_->end_reading();
+    return;
+  }
+  gl_->end_reading();
 }
 
-tank::OutputsFactory gl_outputs(render::Renderer& renderer) {
-  return [&renderer](std::size_t, ClDeformer& deformer, std::size_t instances,
-                     NormalFormat format) -> std::unique_ptr<tank::SpeciesOutputs> {
-    return std::make_unique<GlSpeciesOutputs>(renderer, deformer, instances, format);
+tank::OutputsFactory gl_outputs(render::Renderer& renderer, const HandOff& hand_off) {
+  return [&renderer, &hand_off](std::size_t, ClDeformer& deformer, std::size_t instances,
+                                NormalFormat format) -> std::unique_ptr<tank::SpeciesOutputs> {
+    return std::make_unique<GlSpeciesOutputs>(renderer, hand_off, deformer, instances, format);
   };
 }
 

@@ -1,26 +1,34 @@
 // Where the renderer gets the engine's deformed fish: each species' deformation writes
-// GL buffers of the renderer (finflex/gl_outputs.hpp, GlOutputs) and the renderer
-// draws them as they are. This is the one point of hand-off between the engine and the
-// renderer.
+// buffers that the renderer draws as they are. This is the one point of hand-off
+// between the engine and the renderer.
 //
-// The buffers hold FinFlex's planes (ClDeformer::layout: positions, normals;
-// no tangents, which the renderer does not draw) over the deformer's slots, in world
+// The buffers hold FinFlex's planes (ClDeformer::layout: positions, normals; no
+// tangents, which the renderer does not draw) over the deformer's slots, in world
 // space (the tank's placements are the deformation's last stage), so they are drawn
-// with StreamLayout::planes over remapped_indices() and no transform. Two paths, as
-// GlOutputs chooses from the OpenCL context (make_gl_sharing_context):
-//  - shared (cl_khr_gl_sharing, NVIDIA): the kernels write the GL buffers between an
-//    acquire and a release; nothing goes through the host;
-//  - copy (PoCL, or a platform that refused the EGL context): the kernels write a
-//    device mirror of each GL buffer, mapped for reading and uploaded with
-//    glBufferSubData every frame (the positions and normals once through the host).
+// with StreamLayout::planes over remapped_indices() and no transform. Three paths,
+// the first that can run is taken (choose_hand_off), and the summary says why the
+// ones before it could not:
+//  - external memory (finflex/external_outputs.hpp): the buffers live in Vulkan
+//    memory of the OpenCL device (matched by UUID), imported by OpenCL and by GL
+//    (GL_EXT_memory_object_fd). With semaphores on both sides (NVIDIA) the frame
+//    orders itself on the GPU: GL waits for the kernels' semaphore before drawing and
+//    signals its own before the next frame's kernels, which wait for it; nothing
+//    waits on the host. A CPU device (PoCL) writes the memory through its host
+//    mapping (Mesa's lavapipe and llvmpipe share it), waited for on the host.
+//  - shared (cl_khr_gl_sharing): the kernels write the GL buffers between an acquire
+//    and a release (GlOutputs).
+//  - copy: the kernels write a device mirror of each GL buffer, mapped for reading and
+//    uploaded with glBufferSubData every frame (GlOutputs).
 #pragma once
 
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include "finflex/external_outputs.hpp"
 #include "finflex/finflex.hpp"
 #include "finflex/gl_outputs.hpp"
 #include "render/renderer.hpp"
@@ -28,29 +36,51 @@
 
 namespace finflex::pictures {
 
-// One species' outputs: GL buffers of `renderer` holding `instances` instances of the
-// deformer's model in FinFlex's planes (normals in `format`), written through
-// GlOutputs. The deformer's context must share the renderer's GL context for the
-// shared path (else the copy path runs). Errors: as GlOutputs and
-// Renderer::create_buffer.
+enum class HandOffPath { kExternal, kShared, kCopy };
+const char* to_string(HandOffPath path);  // "external-memory", "shared", "copy"
+// "auto" (the first that can run), or a path's name: kInvalidArgument naming `field`.
+std::optional<HandOffPath> parse_hand_off(const std::string& text, const std::string& field);
+
+// The path of a run, chosen once: the Vulkan device of the external path, and why each
+// path before the chosen one could not run.
+struct HandOff {
+  HandOffPath path = HandOffPath::kCopy;
+  std::unique_ptr<vulkan::Device> device;  // kExternal
+  ExternalImport import = ExternalImport::kImported;
+  bool device_ordered = false;  // kExternal: semaphores on both sides
+  std::string why_not_external;
+  std::string why_not_shared;
+};
+
+// The first path of external memory, sharing (when `context` shares the renderer's GL
+// context: make_gl_sharing_context, whose why_not is `why_not_shared`) and copy that
+// can run; `wanted` (not auto) takes that path or fails with kDevice naming why not.
+HandOff choose_hand_off(render::Renderer& renderer, const Context& context,
+                        const std::string& why_not_shared,
+                        std::optional<HandOffPath> wanted = std::nullopt);
+
+// One species' outputs: buffers of `renderer` holding `instances` instances of the
+// deformer's model in FinFlex's planes (normals in `format`), on `hand_off`'s path.
+// Errors: as ExternalOutputs, GlOutputs and Renderer::create_buffer / import_buffer.
 class GlSpeciesOutputs : public tank::SpeciesOutputs {
  public:
-  GlSpeciesOutputs(render::Renderer& renderer, ClDeformer& deformer, std::size_t instances,
-                   NormalFormat format);
+  GlSpeciesOutputs(render::Renderer& renderer, const HandOff& hand_off, ClDeformer& deformer,
+                   std::size_t instances, NormalFormat format);
 
-  DeviceBatch& batch() override { return outputs_.batch(); }
-  // GlOutputs::enqueue with the renderer's context current; keeps the event after
-  // which GL may draw (wait_until_drawable).
+  DeviceBatch& batch() override;
+  // The frame's hand-off with the renderer's context current; external memory with
+  // semaphores first lets GL signal that it is done with the last frame.
   cl::Event enqueue(ClDeformer& deformer, const ClJob& job,
                     std::vector<cl::Event>* kernel_events) override;
-  double handoff_seconds() const override { return outputs_.last_handoff_seconds(); }
+  double handoff_seconds() const override;
   // The copy path waits for the frame's kernels before copying to GL.
-  bool waits_for_device() const override { return path() == GlPath::kCopy; }
+  bool waits_for_device() const override { return path_ == HandOffPath::kCopy; }
   void begin_reading() override;
   void end_reading() override;
 
-  GlPath path() const { return outputs_.path(); }
-  // Blocks until GL may draw the last frame enqueued (its release, on the shared path).
+  HandOffPath path() const { return path_; }
+  // Makes GL's next commands wait until the last frame enqueued is in the buffers: a
+  // GPU-side wait (semaphores), else a host wait (the release event, the CPU's map).
   void wait_until_drawable();
 
   const OutputLayout& layout() const { return layout_; }
@@ -62,19 +92,28 @@ class GlSpeciesOutputs : public tank::SpeciesOutputs {
 
  private:
   render::Renderer& renderer_;
+  HandOffPath path_;
   OutputLayout layout_;
   render::BufferId positions_ = render::kNoBuffer;
   render::BufferId normals_ = render::kNoBuffer;
   render::StreamLayout position_layout_;
   render::StreamLayout normal_layout_;
   std::size_t instances_ = 0;
-  GlOutputs outputs_;
+  std::unique_ptr<ExternalOutputs> external_;  // kExternal
+  std::unique_ptr<GlOutputs> gl_;              // kShared, kCopy
+  // kExternal with semaphores: GL's imports of the kernels' and its own, and whether
+  // the kernels' is signalled and not yet waited for, and GL has drawn since.
+  render::SemaphoreId kernels_done_ = 0;
+  render::SemaphoreId drawn_ = 0;
+  bool device_ordered_ = false;
+  bool kernels_signalled_ = false;
+  bool gl_used_frame_ = false;
   cl::Event drawable_;
 };
 
-// A SwimScene's outputs factory making GlSpeciesOutputs in `renderer` (which must
-// outlive the scene).
-tank::OutputsFactory gl_outputs(render::Renderer& renderer);
+// A SwimScene's outputs factory making GlSpeciesOutputs in `renderer` on `hand_off`'s
+// path (both must outlive the scene).
+tank::OutputsFactory gl_outputs(render::Renderer& renderer, const HandOff& hand_off);
 
 // The renderer's side of one species: its triangles over slots, its outputs' buffers.
 struct SpeciesDrawing {
@@ -90,7 +129,7 @@ SpeciesDrawing prepare_drawing(render::Renderer& renderer, const ClDeformer& def
                                GlSpeciesOutputs& outputs, const glm::vec3& albedo,
                                std::vector<std::uint32_t> ids);
 
-// The draw of a species' last frame, straight from its outputs' GL buffers.
+// The draw of a species' last frame, straight from its outputs' buffers.
 render::FishDraw fish_draw(const SpeciesDrawing& drawing);
 
 }  // namespace finflex::pictures

@@ -47,8 +47,8 @@ class TankPictures {
   // The id pass of the same, read back.
   const render::IdImage& draw_ids();
 
-  // How the deformations reach the renderer: shared (no copy) or copy (GlOutputs).
-  GlPath hand_off_path() const { return path_; }
+  // How the deformations reach the renderer (fish_hand_off.hpp).
+  HandOffPath hand_off_path() const { return path_; }
 
   const render::Camera& camera() const { return camera_; }
   const render::Scene& look() const { return look_; }
@@ -60,7 +60,7 @@ class TankPictures {
   render::Camera camera_;
   std::vector<SpeciesDrawing> drawings_;  // per species with fish, in order
   std::vector<render::FishDraw> draws_;
-  GlPath path_ = GlPath::kCopy;
+  HandOffPath path_ = HandOffPath::kCopy;
   render::Image image_;
   render::IdImage ids_;
 };

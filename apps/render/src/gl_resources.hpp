@@ -4,6 +4,7 @@
 
 #include <cstddef>
 
+#include "external_objects.hpp"
 #include "gl_object.hpp"
 
 namespace finflex::render::detail {
@@ -17,8 +18,10 @@ struct MeshResources {
   std::size_t vertex_count = 0;
 };
 
-// A buffer of Renderer::create_buffer.
+// A buffer of Renderer::create_buffer, or of import_buffer (then its memory object:
+// declared first, so that the buffer goes before the memory it is stored in).
 struct BufferResource {
+  GlMemoryObject memory;
   GlBuffer buffer;
   std::size_t bytes = 0;
 };

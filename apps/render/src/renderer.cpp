@@ -1,5 +1,7 @@
 #include "render/renderer.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cstdio>
 
@@ -82,6 +84,8 @@ struct Renderer::Impl {
   Camera id_camera;  // the last id pass's, for its depth
   std::vector<MeshResources> meshes;
   std::vector<BufferResource> buffers;
+  std::vector<GlSemaphore> semaphores;
+  ExternalSupport external = query_external_support();
 
   explicit Impl(const RenderSettings& requested)
       : settings(validated(requested)),
@@ -169,13 +173,68 @@ MeshId Renderer::add_mesh(const std::vector<std::uint32_t>& indices, std::size_t
 BufferId Renderer::create_buffer(std::size_t bytes) {
   impl_->egl.make_current();
   if (bytes == 0) invalid("bytes", "0");
-  BufferResource resource{GlBuffer::create(), bytes};
+  BufferResource resource{GlMemoryObject(), GlBuffer::create(), bytes};
   glBindBuffer(GL_COPY_WRITE_BUFFER, resource.buffer.get());
   glBufferData(GL_COPY_WRITE_BUFFER, static_cast<GLsizeiptr>(bytes), nullptr, GL_DYNAMIC_DRAW);
   glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
   require_no_gl_error("create_buffer");
   impl_->buffers.push_back(std::move(resource));
   return impl_->buffers.size() - 1;
+}
+
+const ExternalSupport& Renderer::external_support() const { return impl_->external; }
+
+BufferId Renderer::import_buffer(int fd, std::size_t memory_bytes, std::size_t bytes) {
+  impl_->egl.make_current();
+  if (!impl_->external.memory && fd >= 0) {
+    close(fd);
+    throw RenderError(ErrorCode::kGraphics, "gl", "import_buffer: " + impl_->external.why_not);
+  }
+  ImportedBuffer imported = detail::import_buffer(fd, memory_bytes, bytes);
+  impl_->buffers.push_back({std::move(imported.memory), std::move(imported.buffer), bytes});
+  return impl_->buffers.size() - 1;
+}
+
+SemaphoreId Renderer::import_semaphore(int fd) {
+  impl_->egl.make_current();
+  if (!impl_->external.semaphores) {
+    if (fd >= 0) close(fd);
+    throw RenderError(ErrorCode::kGraphics, "gl",
+                      "import_semaphore: OpenGL has no GL_EXT_semaphore_fd");
+  }
+  impl_->semaphores.push_back(detail::import_semaphore(fd));
+  return impl_->semaphores.size() - 1;
+}
+
+namespace {
+std::vector<GLuint> buffer_names(const std::vector<BufferResource>& resources,
+                                 const std::vector<BufferId>& buffers) {
+  std::vector<GLuint> names;
+  for (BufferId b : buffers) {
+    if (b >= resources.size()) invalid("buffers", std::to_string(b) + " is no buffer");
+    names.push_back(resources[b].buffer.get());
+  }
+  return names;
+}
+}  // namespace
+
+void Renderer::wait_semaphore(SemaphoreId semaphore, const std::vector<BufferId>& buffers) {
+  impl_->egl.make_current();
+  if (semaphore >= impl_->semaphores.size()) invalid("semaphore", std::to_string(semaphore));
+  const std::vector<GLuint> names = buffer_names(impl_->buffers, buffers);
+  glWaitSemaphoreEXT(impl_->semaphores[semaphore].get(), static_cast<GLuint>(names.size()),
+                     names.data(), 0, nullptr, nullptr);
+  require_no_gl_error("wait_semaphore");
+}
+
+void Renderer::signal_semaphore(SemaphoreId semaphore, const std::vector<BufferId>& buffers) {
+  impl_->egl.make_current();
+  if (semaphore >= impl_->semaphores.size()) invalid("semaphore", std::to_string(semaphore));
+  const std::vector<GLuint> names = buffer_names(impl_->buffers, buffers);
+  glSignalSemaphoreEXT(impl_->semaphores[semaphore].get(), static_cast<GLuint>(names.size()),
+                       names.data(), 0, nullptr, nullptr);
+  glFlush();
+  require_no_gl_error("signal_semaphore");
 }
 
 void Renderer::write_buffer(BufferId buffer, std::size_t offset, const void* data,

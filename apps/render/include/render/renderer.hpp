@@ -22,6 +22,7 @@
 // share a thread); make_current() does only that, e.g. before OpenCL-GL interop.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -62,6 +63,17 @@ struct DeviceInfo {
                                       // any size are split into ranges that fit
 };
 
+// What the context offers for memory and semaphores of another API (Vulkan's, shared
+// with OpenCL: finflex/external_outputs.hpp).
+struct ExternalSupport {
+  bool memory = false;      // GL_EXT_memory_object_fd: buffers in imported memory
+  bool semaphores = false;  // GL_EXT_semaphore_fd: GPU-side waits and signals
+  std::vector<std::array<std::uint8_t, 16>> device_uuids;  // GL_DEVICE_UUID_EXT
+  std::string why_not;  // why memory cannot be imported (empty: it can)
+};
+
+using SemaphoreId = std::size_t;
+
 class Renderer {
  public:
   // Creates the EGL display and context (made current) and the framebuffers.
@@ -89,6 +101,25 @@ class Renderer {
   void write_buffer(BufferId buffer, std::size_t offset, const void* data, std::size_t bytes);
   std::uint32_t gl_buffer(BufferId buffer) const;
   std::size_t buffer_bytes(BufferId buffer) const;
+
+  // ---- External memory (docs/handoff.md "Zero-copy hand-off") ----
+  const ExternalSupport& external_support() const;
+  // A buffer of `bytes` whose storage is the memory behind `fd` (an opaque fd of a
+  // dedicated allocation of `memory_bytes`, e.g. vkGetMemoryFdKHR's), read in place
+  // like create_buffer's. GL owns the fd from the call on, also when it fails.
+  // Errors: kInvalidArgument naming "fd" (negative) or "bytes" (0, or more than the
+  // memory); kGraphics when the driver refuses (no GL_EXT_memory_object_fd, a closed or
+  // foreign fd).
+  BufferId import_buffer(int fd, std::size_t memory_bytes, std::size_t bytes);
+  // A binary semaphore from an opaque fd (GL owns it from then on); kGraphics without
+  // GL_EXT_semaphore_fd.
+  SemaphoreId import_semaphore(int fd);
+  // GPU-side waits and signals, no host wait: GL's later commands wait for the
+  // semaphore (which another API has signalled, its signal submitted); or GL signals
+  // it after its earlier commands (then flushes, so that another API may wait for it).
+  // `buffers`: the buffers the other API writes or reads.
+  void wait_semaphore(SemaphoreId semaphore, const std::vector<BufferId>& buffers);
+  void signal_semaphore(SemaphoreId semaphore, const std::vector<BufferId>& buffers);
 
   // Draws a frame. Every draw is validated before anything is drawn: kInvalidArgument
   // naming the field, e.g. "fish[1].normals.layout.vertex_stride" or
