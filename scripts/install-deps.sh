@@ -14,6 +14,8 @@ packages=(
   libglm-dev libopenmesh-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev libstb-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libegl-dev libgles-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri libepoxy-dev zlib1g-dev ffmpeg
+  libvulkan-dev libvulkan-volk-dev glslang-tools  # the external-memory hand-off (FinFlex::vulkan)
+  mesa-vulkan-drivers  # lavapipe: Vulkan on the CPU, whose memory llvmpipe and PoCL share
   python3 python3-dev python3-pip python3-venv python3-numpy python3-pytest python3-pyopencl
   clang libclang-rt-14-dev  # libFuzzer and clang's sanitizers (CI's fuzzing step)
   clang-format  # CI's format check (scripts/check-format.sh)

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -84,11 +85,17 @@ TEST(CliPictures, SwimWritesFramesAVideoAndTheCamera) {
     EXPECT_GE(summary["rendering"]["share_of_frame"][share].get<double>(), 0.0) << share;
   }
   EXPECT_GT(summary["rendering"]["frames_per_second"].get<double>(), 0.0);
-  // The hand-off's path (PoCL has no GL sharing: the copy path) and its time.
+  // The hand-off's path (beside PoCL: external memory where Mesa's lavapipe is
+  // installed, else the copy), why each path before it could not run, and its time.
   const nlohmann::json& hand_off = summary["rendering"]["hand_off"];
   const std::string path = hand_off["path"].get<std::string>();
-  EXPECT_TRUE(path == "shared" || path == "copy") << path;
+  EXPECT_TRUE(path == "external-memory" || path == "shared" || path == "copy") << path;
+  EXPECT_EQ(hand_off.contains("why_not_external"), path != "external-memory");
   EXPECT_EQ(hand_off.contains("why_not_shared"), path == "copy");
+  if (path == "external-memory") {
+    EXPECT_TRUE(hand_off.contains("vulkan_device") && hand_off.contains("import"));
+  }
+  if (std::getenv("FINFLEX_EXPECT_EXTERNAL_MEMORY") != nullptr) EXPECT_EQ(path, "external-memory");
   EXPECT_GE(hand_off["seconds_per_frame_mean"].get<double>(), 0.0);
   EXPECT_NE(r.out.find("hand-off: " + path), std::string::npos) << r.out;
   // Nothing else is left next to the output folder (the staging folder is gone).

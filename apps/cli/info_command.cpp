@@ -1,5 +1,6 @@
-// finflex info: the OpenCL platforms and devices, which one is the default, and the
-// extensions each offers for handing outputs to a renderer (docs/handoff.md).
+// finflex info: the OpenCL platforms and devices, which one is the default, the
+// extensions each offers for handing outputs to a renderer, and the hand-off paths it
+// can take (docs/handoff.md).
 #include <iostream>
 #include <string>
 
@@ -7,6 +8,7 @@
 #include "commands.hpp"
 #include "finflex/context.hpp"
 #include "finflex/error.hpp"
+#include "finflex/external_outputs.hpp"
 
 namespace finflex::cli {
 namespace {
@@ -23,6 +25,30 @@ std::string interop_extensions(const DeviceDescription& d) {
   return found.empty() ? "none" : found;
 }
 
+// The hand-off paths the device can take, first to last, and why not external memory.
+// (GL's side, importing the memory, is checked where a renderer exists: finflex swim.)
+std::string hand_off_paths(const DeviceDescription& d) {
+  std::string paths;
+  std::string why_not;
+  try {
+    const Context context(std::to_string(d.platform_index) + ":" + std::to_string(d.device_index));
+    const ExternalChoice choice = choose_external_device(context);
+    if (choice.device) {
+      const bool semaphores = choice.import == ExternalImport::kImported &&
+                              choice.device->exports_semaphores() &&
+                              d.has_extension("cl_khr_external_semaphore_opaque_fd");
+      paths = std::string("external-memory (Vulkan ") + choice.device->name() + ", " +
+              to_string(choice.import) + (semaphores ? ", semaphores" : ", host waits") + "), ";
+    } else {
+      why_not = "; no external memory: " + choice.why_not;
+    }
+  } catch (const std::exception& e) {
+    why_not = std::string("; no external memory: ") + e.what();
+  }
+  if (d.has_extension("cl_khr_gl_sharing")) paths += "shared, ";
+  return paths + "copy" + why_not;
+}
+
 int run_info() {
   try {
     const std::vector<DeviceDescription> devices = list_devices();
@@ -36,7 +62,8 @@ int run_info() {
                 << d.device_name << " [" << d.type << "] on " << d.platform_name << ", "
                 << d.version << ", " << (d.global_memory_bytes >> 20) << " MiB, max allocation "
                 << (d.max_allocation_bytes >> 20) << " MiB\n"
-                << "      graphics interop: " << interop_extensions(d) << "\n";
+                << "      graphics interop: " << interop_extensions(d) << "\n"
+                << "      hand-off paths: " << hand_off_paths(d) << "\n";
     }
     std::cout << "* default device (select another with --device P:D or a name substring)\n";
     return kExitSuccess;

@@ -7,6 +7,10 @@
 # shellcheck disable=SC2034 # used by the scripts that source this file
 device_tests=(test_cl_deformer test_rig_deformer test_normal_format test_geometry test_spine
               test_swim test_placement)
+# The hand-off's programs (the handoff suite of run.sh): the external-memory tests, the
+# pictures' paths side by side, the Vulkan consumer.
+# shellcheck disable=SC2034
+handoff_programs=(test_gl_external test_pictures vulkan_consumer)
 
 # Registers NVIDIA's OpenCL driver with the loader when it is installed but not
 # registered (no /etc/OpenCL/vendors/nvidia.icd).
@@ -42,4 +46,14 @@ find_nvidia_egl() {
   vendor=$(find / -name '10_nvidia.json' -path '*egl_vendor.d*' -not -path '*/proc/*' \
     2>/dev/null | head -n 1)
   if [ -n "$vendor" ]; then export __EGL_VENDOR_LIBRARY_FILENAMES="$vendor"; fi
+}
+
+# The Vulkan loader finds NVIDIA's driver through its ICD file; some images keep it off
+# the default path.
+find_nvidia_vulkan() {
+  ls /usr/share/vulkan/icd.d/*nvidia* /etc/vulkan/icd.d/*nvidia* >/dev/null 2>&1 && return 0
+  local icd
+  icd=$(find / -name 'nvidia_icd*.json' -path '*vulkan/icd.d*' -not -path '*/proc/*' \
+    2>/dev/null | head -n 1)
+  if [ -n "$icd" ]; then export VK_DRIVER_FILES="$icd" VK_ICD_FILENAMES="$icd"; fi
 }

@@ -53,7 +53,11 @@
 #                          Blub rig at 1,000 fish, and the OpenMP baselines (bench_deform)
 #   bench_deform   .txt    the Google Benchmark program (with --cpu: per thread count)
 #   render_speed   .txt    `finflex swim` with rendering on the GPU (EGL, no display):
-#                          drawn only, every frame a PNG, a dataset
+#                          drawn only, every frame a PNG, a dataset; each on the
+#                          external-memory path and the copy path side by side
+#   handoff        .txt    the hand-off's checks: the external-memory tests, every
+#                          path's pictures byte for byte, the Vulkan consumer, and
+#                          `finflex swim` frames of the external and copy paths compared
 #   remarks        .txt    PoCL's vectoriser remarks per kernel (run it first: it
 #                          compiles on an empty cache)
 # and OUT/info.txt: the machine, the devices.
@@ -326,49 +330,89 @@ bench_deform() {
 
 render_speed() {
   find_nvidia_egl
-  local side finflex scratch
+  find_nvidia_vulkan
+  local side finflex scratch path
   local -a species=(--species data/blub/fish.obj:data/rigs/blub_swim.rig.json
     --species data/barramundi/BarramundiFish.gltf:data/rigs/barramundi_swim.rig.json)
   scratch=$(mktemp -d)
+  # One swim of the 1,000 fish on a path: its summary lines, and with --out its
+  # summary.json's rendering part.
+  swim_on() {
+    local what=$1 path=$2
+    shift 2
+    echo "== $what, --hand-off $path"
+    # shellcheck disable=SC2046
+    run env $(side_env "$side" -) "$finflex" swim --fish 1000 "${species[@]}" --size 1280x720 \
+      --hand-off "$path" "${device_option[@]}" "$@" | grep -vE "^ *wrote|put back" ||
+      failed+=("$what on $path")
+  }
   for side in "${sides[@]}"; do
     finflex=$(program "$side" finflex)
     [ ${#sides[@]} = 1 ] || echo "== side $(side_label "$side")"
-    echo "== drawn only: 1,000 fish, 1280x720, 4x multisampling, 60 frames"
-    # shellcheck disable=SC2046
-    if ! run env $(side_env "$side" -) "$finflex" swim --fish 1000 --seconds 2 --fps 30 \
-      "${species[@]}" --render --size 1280x720 "${device_option[@]}"; then
-      echo "== the renderer failed: what EGL can find"
-      ls -l /usr/share/glvnd/egl_vendor.d /usr/local/nvidia/share/glvnd/egl_vendor.d 2>&1
-      find / \( -name 'libEGL_nvidia*' -o -name 'libEGL.so*' \) -not -path '*/proc/*' \
-        2>/dev/null | head
-      failed+=("render")
-      continue
-    fi
-    echo "== every frame a PNG: 1,000 fish, 1280x720, 30 frames"
-    # shellcheck disable=SC2046
-    run env $(side_env "$side" -) "$finflex" swim --fish 1000 --seconds 1 --fps 30 \
-      "${species[@]}" --out "$scratch/tank" --video none --size 1280x720 "${device_option[@]}"
-    echo "== a dataset (--annotate): 1,000 fish, 1280x720, 15 frames"
-    # shellcheck disable=SC2046
-    run env $(side_env "$side" -) "$finflex" swim --fish 1000 --seconds 0.5 --fps 30 \
-      "${species[@]}" --out "$scratch/dataset" --video none --annotate --size 1280x720 \
-      "${device_option[@]}"
-    # Each run's summary without the tracks, and its hand-off's path and time.
-    for summary in "$scratch/tank/summary.json" "$scratch/dataset/summary.json"; do
+    for path in external-memory copy; do
+      swim_on "drawn only: 60 frames" "$path" --seconds 2 --fps 30 --render
+    done
+    for path in external-memory copy; do
+      swim_on "every frame a PNG: 30 frames" "$path" --seconds 1 --fps 30 \
+        --out "$scratch/tank-$path" --video none
+    done
+    for path in external-memory copy; do
+      swim_on "a dataset (--annotate): 15 frames" "$path" --seconds 0.5 --fps 30 \
+        --out "$scratch/dataset-$path" --video none --annotate
+    done
+    for summary in "$scratch"/*/summary.json; do
       [ -e "$summary" ] || continue
       python3 - "$summary" <<'PY'
 import json, sys
-s = json.load(open(sys.argv[1]))
-s.pop("tracks", None)
-h = s["rendering"]["hand_off"]
-print("==", sys.argv[1].split("/")[-2], "hand-off:", h["path"],
-      "%.3f ms a frame" % (1e3 * h["seconds_per_frame_mean"]), h.get("why_not_shared", ""))
-print(json.dumps(s, indent=1))
+s = json.load(open(sys.argv[1]))["rendering"]
+print("==", sys.argv[1].split("/")[-2], json.dumps(s, indent=1))
 PY
-      rm -f "$summary"
     done
+    rm -rf "${scratch:?}"/*
   done
   rm -rf "$scratch"
+}
+
+handoff() {
+  find_nvidia_egl
+  find_nvidia_vulkan
+  local side finflex scratch program
+  scratch=$(mktemp -d)
+  for side in "${sides[@]}"; do
+    finflex=$(program "$side" finflex)
+    echo "== finflex info $(side_label "$side")"
+    # shellcheck disable=SC2046
+    run env $(side_env "$side" -) "$finflex" info
+    for program in test_gl_external test_pictures; do
+      echo "== $program on the default device"
+      # shellcheck disable=SC2046
+      run env $(side_env "$side" -) FINFLEX_EXPECT_EXTERNAL_MEMORY=1 \
+        "$(program "$side" "$program")" --gtest_brief=1 ||
+        failed+=("$program")
+    done
+    echo "== vulkan_consumer on ${cl_device:-the default device}"
+    # shellcheck disable=SC2046
+    run env $(side_env "$side" -) "$(program "$side" vulkan_consumer)" data/blub/fish.obj \
+      ${cl_device:+"$cl_device"} || failed+=("vulkan_consumer")
+    echo "== the swim's frames on each path: 300 fish, 640x360, 12 frames"
+    for path in external-memory copy; do
+      # shellcheck disable=SC2046
+      run env $(side_env "$side" -) "$finflex" swim --fish 300 --seconds 1 --fps 12 \
+        --out "$scratch/$path" --video none --hand-off "$path" "${device_option[@]}" |
+        grep -E "hand-off|rendered|a frame" || failed+=("swim --hand-off $path")
+    done
+    if [ $dry = 0 ]; then
+      local differ=0
+      for frame in "$scratch/external-memory/frames/"*.png; do
+        cmp -s "$frame" "$scratch/copy/frames/$(basename "$frame")" || differ=$((differ + 1))
+      done
+      echo "== frames differing between the paths: $differ of" \
+        "$(find "$scratch/copy/frames" -name '*.png' | wc -l)"
+      [ "$differ" = 0 ] || failed+=("frames differ")
+    fi
+  done
+  rm -rf "$scratch"
+  if [ ${#failed[@]} = 0 ]; then echo "== all passed"; else echo "== FAILED: ${failed[*]}"; fi
 }
 
 # What the vectoriser says of each kernel: PoCL prints it when it compiles a kernel, on
@@ -513,7 +557,7 @@ for suite in "${suites[@]}"; do
         done
       done
       ;;
-    gpu_checks | cpu_checks | bench_deform | render_speed | remarks) text_suite "$suite" ;;
+    gpu_checks | cpu_checks | bench_deform | render_speed | handoff | remarks) text_suite "$suite" ;;
     *) echo "run.sh: '$suite' is not a suite (see --help)" >&2; exit 2 ;;
   esac
   if [ $dry = 0 ] && [ -e "$out/$suite.jsonl" ]; then

@@ -54,6 +54,7 @@ ExternalBuffer::ExternalBuffer(const Device& device, std::size_t bytes)
     check_vk(allocated, "vkAllocateMemory");
   }
   memory_bytes_ = requirements.size;
+  memory_type_ = *type;
   check_vk(vkBindBufferMemory(vk, buffer_, memory_, 0), "vkBindBufferMemory");
   if (device.memory_type(1u << *type, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
                                           VK_MEMORY_PROPERTY_HOST_COHERENT_BIT)) {

@@ -272,7 +272,8 @@ cl::Event ExternalOutputs::enqueue(const ClJob& job, std::vector<cl::Event>* ker
 }
 
 void ExternalOutputs::wait_for_frame() {
-  if (last_() != nullptr) check_cl(last_.wait(), "clWaitForEvents");
+  if (last_() == nullptr) return;  // no frame yet
+  check_cl(last_.wait(), "clWaitForEvents");
   if (import_ == ExternalImport::kHostMapped && !batch_.host_mapped) deformer_.map_host(batch_);
 }
 

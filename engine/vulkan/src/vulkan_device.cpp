@@ -1,6 +1,7 @@
 #include "finflex/vulkan_device.hpp"
 
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <vector>
 
@@ -110,6 +111,11 @@ std::unique_ptr<Device> Device::open(const std::optional<Uuid>& uuid) {
   static const VkResult loader = volkInitialize();
   if (loader != VK_SUCCESS) no_device("no Vulkan loader (libvulkan.so.1) could be opened");
   if (volkGetInstanceVersion() < VK_API_VERSION_1_1) no_device("the loader is older than 1.1");
+
+  // Mesa's implicit device-selection layer connects to a Wayland or X display to order
+  // the GPUs (and prints an error on a machine without one); FinFlex picks its device
+  // by UUID, so the layer is off unless the caller set NODEVICE_SELECT.
+  setenv("NODEVICE_SELECT", "1", 0);
 
   std::unique_ptr<Device> out(new Device());
   VkApplicationInfo application{};

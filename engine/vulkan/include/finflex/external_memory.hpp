@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 
 #include <vulkan/vulkan_core.h>
 
@@ -32,6 +33,9 @@ class ExternalBuffer {
   VkDeviceMemory memory() const { return memory_; }
   std::size_t bytes() const { return bytes_; }                // the buffer's
   std::size_t memory_bytes() const { return memory_bytes_; }  // the allocation's (>= bytes)
+  // The allocation's memory type: an importer of the fd on the same physical device
+  // allocates memory_bytes() of this type (opaque fds carry no type of their own).
+  std::uint32_t memory_type() const { return memory_type_; }
   bool host_visible() const { return mapped_ != nullptr; }
   void* mapped() const { return mapped_; }  // host-visible memory, mapped whole; else null
 
@@ -44,6 +48,7 @@ class ExternalBuffer {
   VkDeviceMemory memory_ = VK_NULL_HANDLE;
   std::size_t bytes_ = 0;
   std::size_t memory_bytes_ = 0;
+  std::uint32_t memory_type_ = 0;
   void* mapped_ = nullptr;
 };
 
