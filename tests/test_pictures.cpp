@@ -258,9 +258,30 @@ TEST(TankPictures, TheHandOffDrawsWhatTheEngineComputed) {
   EXPECT_NE(handed.rgb, empty_tank(tank.pictures).rgb);  // the fish are in the picture
 }
 
+// A kernel that keeps the OpenCL queue busy for some tens of milliseconds (one
+// work-item's chain of dependent multiply-adds), enqueued before a frame's kernels: a
+// consumer that does not wait for the frame draws the one before it.
+void keep_the_queue_busy(Context& context) {
+  static const char* source = R"(
+    __kernel void busy(__global float* out, int iterations) {
+      float x = 1.0f;
+      for (int k = 0; k < iterations; ++k) x = x * 0.99999f + 0.5f;
+      out[0] = x;
+    })";
+  cl::Program program(context.context(), source, true);
+  cl::Kernel kernel(program, "busy");
+  cl::Buffer out(context.context(), CL_MEM_READ_WRITE, sizeof(float));
+  kernel.setArg(0, out);
+  kernel.setArg(1, 20000000);
+  check_cl(
+      context.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(1), cl::NDRange(1)),
+      "clEnqueueNDRangeKernel (busy)");
+}
+
 // Frames 3..5 of the small tank on `path`, colour and ids; empty when the path cannot
-// run here (its reason printed).
-std::vector<std::vector<std::uint8_t>> frames_on(HandOffPath path) {
+// run here (its reason printed). `busy`: each frame's kernels wait behind
+// keep_the_queue_busy.
+std::vector<std::vector<std::uint8_t>> frames_on(HandOffPath path, bool busy = false) {
   std::vector<std::vector<std::uint8_t>> out;
   std::unique_ptr<SmallTank> tank;
   try {
@@ -271,7 +292,8 @@ std::vector<std::vector<std::uint8_t>> frames_on(HandOffPath path) {
     return out;
   }
   for (int frame = 0; frame < 3; ++frame) {
-    if (frame > 0) tank->scene.enqueue_frame(1.0 / 30.0);
+    if (busy) keep_the_queue_busy(*tank->opencl.context);
+    tank->scene.enqueue_frame(1.0 / 30.0);
     tank->pictures.draw();
     out.push_back(tank->pictures.read_image().rgb);
     const render::IdImage& ids = tank->pictures.draw_ids();
@@ -298,6 +320,18 @@ TEST(TankPictures, EveryHandOffPathDrawsTheSameFramesByteForByte) {
   // Mesa's lavapipe and llvmpipe import each other's memory: on a CPU machine with
   // them (CI) the external path runs.
   if (std::getenv("FINFLEX_EXPECT_EXTERNAL_MEMORY") != nullptr) EXPECT_GE(compared, 1);
+}
+
+// The frame orders itself (semaphores on the GPU, else waits on the host): a frame
+// whose kernels are held back behind a long one is still drawn from its own vertices.
+TEST(TankPictures, AFrameIsNeverDrawnBeforeItsKernelsFinish) {
+  const std::vector<std::vector<std::uint8_t>> copy = frames_on(HandOffPath::kCopy);
+  const std::vector<std::vector<std::uint8_t>> external = frames_on(HandOffPath::kExternal, true);
+  if (external.empty()) GTEST_SKIP() << "no external memory here";
+  ASSERT_EQ(external.size(), copy.size());
+  for (std::size_t k = 0; k < copy.size(); ++k) {
+    EXPECT_TRUE(external[k] == copy[k]) << "picture " << k;
+  }
 }
 
 TEST(TankPictures, TheIdPassCoversTheFishWithTheirTankIds) {

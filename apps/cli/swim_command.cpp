@@ -108,13 +108,15 @@ double mean(const std::vector<double>& values) {
 }
 
 // The summary line's words on the hand-off: how it runs, and why not faster.
-std::string hand_off_line(const pictures::HandOff& hand_off) {
+std::string hand_off_line(const pictures::HandOff& hand_off,
+                          const pictures::TankPictures& pictures) {
   switch (hand_off.path) {
     case pictures::HandOffPath::kExternal:
       return std::string("Vulkan memory of ") + hand_off.device->name() + ", " +
              to_string(hand_off.import) + " by OpenCL, imported by GL; " +
-             (hand_off.device_ordered ? "semaphores order the frame on the device"
-                                      : "waited for on the host");
+             (pictures.device_ordered()
+                  ? std::string("semaphores order the frame on the device")
+                  : "waited for on the host: " + pictures.why_not_device_ordered());
     case pictures::HandOffPath::kShared:
       return "OpenCL writes the GL buffers: acquire, kernels, release; no external memory: " +
              hand_off.why_not_external;
@@ -144,7 +146,9 @@ nlohmann::ordered_json rendering_summary(const SwimPlan& plan, pictures::TankPic
   if (hand_off.path == pictures::HandOffPath::kExternal) {
     out["hand_off"]["vulkan_device"] = hand_off.device->name();
     out["hand_off"]["import"] = to_string(hand_off.import);
-    out["hand_off"]["ordered_on_the_device"] = hand_off.device_ordered;
+    out["hand_off"]["ordered_on_the_device"] = pictures.device_ordered();
+    if (!pictures.device_ordered())
+      out["hand_off"]["why_not_ordered_on_the_device"] = pictures.why_not_device_ordered();
   }
   if (!hand_off.why_not_external.empty())
     out["hand_off"]["why_not_external"] = hand_off.why_not_external;
@@ -324,7 +328,7 @@ int run_swim(const SwimOptions& options) {
                   part("deform").c_str(), part("hand_off").c_str(), part("draw").c_str(),
                   part("read_back").c_str(), part("files").c_str(), part("annotation").c_str());
       std::printf("  hand-off: %s (%s), %.2f ms a frame\n", to_string(hand_off.path),
-                  hand_off_line(hand_off).c_str(), mean(t.hand_off) * 1e3);
+                  hand_off_line(hand_off, *pictures).c_str(), mean(t.hand_off) * 1e3);
     }
     if (files) {
       std::printf("  wrote %zu frame images, %zu videos%s\n", files->images_written(),

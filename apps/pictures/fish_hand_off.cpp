@@ -131,6 +131,11 @@ GlSpeciesOutputs::GlSpeciesOutputs(render::Renderer& renderer, const HandOff& ha
     positions_ = ids[external_->buffer_of(0)];
     normals_ = ids[external_->buffer_of(1)];
     device_ordered_ = hand_off.device_ordered && external_->device_ordered();
+    if (!external_->device_ordered()) {
+      why_not_ordered_ = external_->semaphores_why_not();
+    } else if (!renderer.external_support().semaphores) {
+      why_not_ordered_ = "OpenGL has no GL_EXT_semaphore_fd";
+    }
     if (device_ordered_) {
       kernels_done_ = renderer.import_semaphore(external_->kernels_done()->export_fd());
       drawn_ = renderer.import_semaphore(external_->consumer_done()->export_fd());

@@ -47,7 +47,7 @@ struct HandOff {
   HandOffPath path = HandOffPath::kCopy;
   std::unique_ptr<vulkan::Device> device;  // kExternal
   ExternalImport import = ExternalImport::kImported;
-  bool device_ordered = false;  // kExternal: semaphores on both sides
+  bool device_ordered = false;  // kExternal: semaphores on every side (as far as known)
   std::string why_not_external;
   std::string why_not_shared;
 };
@@ -79,6 +79,9 @@ class GlSpeciesOutputs : public tank::SpeciesOutputs {
   void end_reading() override;
 
   HandOffPath path() const { return path_; }
+  // External memory: whether semaphores order the frame on the GPU, and why not.
+  bool device_ordered() const { return device_ordered_; }
+  const std::string& why_not_device_ordered() const { return why_not_ordered_; }
   // Makes GL's next commands wait until the last frame enqueued is in the buffers: a
   // GPU-side wait (semaphores), else a host wait (the release event, the CPU's map).
   void wait_until_drawable();
@@ -106,6 +109,7 @@ class GlSpeciesOutputs : public tank::SpeciesOutputs {
   render::SemaphoreId kernels_done_ = 0;
   render::SemaphoreId drawn_ = 0;
   bool device_ordered_ = false;
+  std::string why_not_ordered_;
   bool kernels_signalled_ = false;
   bool gl_used_frame_ = false;
   cl::Event drawable_;

@@ -46,6 +46,10 @@ TankPictures::TankPictures(render::Renderer& renderer, tank::SwimScene& scene,
                       "gl_outputs(renderer))");
     }
     path_ = outputs->path();
+    if (!outputs->device_ordered() && device_ordered_) {
+      device_ordered_ = false;
+      why_not_ordered_ = outputs->why_not_device_ordered();
+    }
     drawings_.push_back(prepare_drawing(renderer_, *species.deformer, *outputs,
                                         species_albedo(species.name, s), std::move(ids[s])));
   }

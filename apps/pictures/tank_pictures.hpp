@@ -49,6 +49,10 @@ class TankPictures {
 
   // How the deformations reach the renderer (fish_hand_off.hpp).
   HandOffPath hand_off_path() const { return path_; }
+  // External memory: whether every species' frame orders itself on the GPU
+  // (semaphores), and why not.
+  bool device_ordered() const { return device_ordered_; }
+  const std::string& why_not_device_ordered() const { return why_not_ordered_; }
 
   const render::Camera& camera() const { return camera_; }
   const render::Scene& look() const { return look_; }
@@ -61,6 +65,8 @@ class TankPictures {
   std::vector<SpeciesDrawing> drawings_;  // per species with fish, in order
   std::vector<render::FishDraw> draws_;
   HandOffPath path_ = HandOffPath::kCopy;
+  bool device_ordered_ = true;
+  std::string why_not_ordered_;
   render::Image image_;
   render::IdImage ids_;
 };

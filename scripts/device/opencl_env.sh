@@ -53,7 +53,17 @@ find_nvidia_egl() {
 find_nvidia_vulkan() {
   ls /usr/share/vulkan/icd.d/*nvidia* /etc/vulkan/icd.d/*nvidia* >/dev/null 2>&1 && return 0
   local icd
-  icd=$(find / -name 'nvidia_icd*.json' -path '*vulkan/icd.d*' -not -path '*/proc/*' \
-    2>/dev/null | head -n 1)
+  icd=$(find / -name 'nvidia_icd*.json' -not -path '/proc/*' 2>/dev/null | head -n 1)
   if [ -n "$icd" ]; then export VK_DRIVER_FILES="$icd" VK_ICD_FILENAMES="$icd"; fi
+}
+
+# GPU machines without the GL and Vulkan loaders (GLVND's libEGL, libGL; libvulkan):
+# the Debian packages of them in DIR (.deb files, downloaded beside the bundle), unpacked
+# into / once.
+unpack_loaders() {
+  local dir=$1 deb
+  [ -d "$dir" ] || return 0
+  ldconfig -p | grep -q 'libEGL.so.1 ' && return 0
+  for deb in "$dir"/*.deb; do dpkg -x "$deb" /; done
+  ldconfig
 }

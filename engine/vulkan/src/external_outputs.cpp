@@ -104,15 +104,11 @@ namespace {
 cl_semaphore_khr import_semaphore(const detail::ClExternalFunctions& f, const Context& context,
                                   const vulkan::ExternalSemaphore& semaphore) {
   const int fd = semaphore.export_fd();
+  // No device list: the context has one device (the list's enum differs between
+  // revisions of the extension's headers, 0x2051 and 0x2053).
   const cl_semaphore_properties_khr properties[] = {
-      CL_SEMAPHORE_TYPE_KHR,
-      CL_SEMAPHORE_TYPE_BINARY_KHR,
-      CL_SEMAPHORE_HANDLE_OPAQUE_FD_KHR,
-      static_cast<cl_semaphore_properties_khr>(fd),
-      CL_DEVICE_HANDLE_LIST_KHR,
-      reinterpret_cast<cl_semaphore_properties_khr>(context.device()()),
-      CL_DEVICE_HANDLE_LIST_END_KHR,
-      0};
+      CL_SEMAPHORE_TYPE_KHR, CL_SEMAPHORE_TYPE_BINARY_KHR, CL_SEMAPHORE_HANDLE_OPAQUE_FD_KHR,
+      static_cast<cl_semaphore_properties_khr>(fd), 0};
   cl_int status = CL_SUCCESS;
   cl_semaphore_khr out = f.create_semaphore(context.context()(), properties, &status);
   if (status != CL_SUCCESS) close(fd);
@@ -152,6 +148,7 @@ ExternalOutputs::ExternalOutputs(ClDeformer& deformer, std::size_t instances,
   }
 
   if (import_ == ExternalImport::kHostMapped) {
+    semaphores_why_not_ = "a CPU device writes the memory through its host mapping";
     HostOutputs host;
     void** pointers[4] = {&host.positions, &host.normals, &host.tangents, &host.previous_positions};
     std::size_t* sizes[4] = {&host.positions_bytes, &host.normals_bytes, &host.tangents_bytes,
@@ -200,12 +197,27 @@ ExternalOutputs::ExternalOutputs(ClDeformer& deformer, std::size_t instances,
   }
   batch_ = deformer.bind(instances, layout, buffers);
 
-  if (device.exports_semaphores() && context.description().has_extension(kSemaphoreExtension) &&
-      f.has_semaphores()) {
-    kernels_done_ = std::make_unique<vulkan::ExternalSemaphore>(device);
-    consumer_done_ = std::make_unique<vulkan::ExternalSemaphore>(device);
-    cl_->kernels_done = import_semaphore(f, context, *kernels_done_);
-    cl_->consumer_done = import_semaphore(f, context, *consumer_done_);
+  if (!device.exports_semaphores()) {
+    semaphores_why_not_ = "'" + device.name() + "' exports no semaphores as opaque fds";
+  } else if (!context.description().has_extension(kSemaphoreExtension)) {
+    semaphores_why_not_ =
+        "'" + context.description().device_name + "' has no " + kSemaphoreExtension;
+  } else if (!f.has_semaphores()) {
+    semaphores_why_not_ = "the OpenCL platform lacks clCreateSemaphoreWithPropertiesKHR";
+  } else {
+    try {
+      kernels_done_ = std::make_unique<vulkan::ExternalSemaphore>(device);
+      consumer_done_ = std::make_unique<vulkan::ExternalSemaphore>(device);
+      cl_->kernels_done = import_semaphore(f, context, *kernels_done_);
+      cl_->consumer_done = import_semaphore(f, context, *consumer_done_);
+    } catch (const Error& e) {
+      // Without them the frames are ordered on the host: slower, as correct.
+      semaphores_why_not_ = e.what();
+      if (cl_->kernels_done) f.release_semaphore(cl_->kernels_done);
+      cl_->kernels_done = nullptr;
+      kernels_done_.reset();
+      consumer_done_.reset();
+    }
   }
 }
 

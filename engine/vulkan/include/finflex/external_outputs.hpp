@@ -97,6 +97,8 @@ class ExternalOutputs {
   bool device_ordered() const { return kernels_done_ != nullptr; }
   const vulkan::ExternalSemaphore* kernels_done() const { return kernels_done_.get(); }
   const vulkan::ExternalSemaphore* consumer_done() const { return consumer_done_.get(); }
+  // Why the frame is not device-ordered (empty when it is).
+  const std::string& semaphores_why_not() const { return semaphores_why_not_; }
 
   // Enqueues `job` (its outputs must be batch()) as the import says; returns the
   // event after which the frame is in the memory (device-ordered: the semaphore's
@@ -127,6 +129,7 @@ class ExternalOutputs {
   std::unique_ptr<vulkan::ExternalSemaphore> consumer_done_;
   struct ClImports;  // kImported: OpenCL's entry points and semaphores
   std::unique_ptr<ClImports> cl_;
+  std::string semaphores_why_not_;
   bool consumer_pending_ = false;
   bool reading_ = false;
   DeviceBatch batch_;
