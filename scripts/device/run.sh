@@ -342,7 +342,7 @@ render_speed() {
     shift 2
     echo "== $what, --hand-off $path"
     # shellcheck disable=SC2046
-    run env $(side_env "$side" -) "$finflex" swim --fish 1000 "${species[@]}" --size 1280x720 \
+    run env $(side_env "$side" -) timeout 90 "$finflex" swim --fish 1000 "${species[@]}" --size 1280x720 \
       --hand-off "$path" "${device_option[@]}" "$@" | grep -vE "^ *wrote|put back" ||
       failed+=("$what on $path")
   }
@@ -387,17 +387,17 @@ handoff() {
       echo "== $program on the default device"
       # shellcheck disable=SC2046
       run env $(side_env "$side" -) FINFLEX_EXPECT_EXTERNAL_MEMORY=1 \
-        "$(program "$side" "$program")" --gtest_brief=1 ||
+        timeout 120 "$(program "$side" "$program")" --gtest_brief=1 ||
         failed+=("$program")
     done
     echo "== vulkan_consumer on ${cl_device:-the default device}"
     # shellcheck disable=SC2046
-    run env $(side_env "$side" -) "$(program "$side" vulkan_consumer)" data/blub/fish.obj \
+    run env $(side_env "$side" -) timeout 60 "$(program "$side" vulkan_consumer)" data/blub/fish.obj \
       ${cl_device:+"$cl_device"} || failed+=("vulkan_consumer")
     echo "== the swim's frames on each path: 300 fish, 640x360, 12 frames"
     for path in external-memory copy; do
       # shellcheck disable=SC2046
-      run env $(side_env "$side" -) "$finflex" swim --fish 300 --seconds 1 --fps 12 \
+      run env $(side_env "$side" -) timeout 60 "$finflex" swim --fish 300 --seconds 1 --fps 12 \
         --out "$scratch/$path" --video none --hand-off "$path" "${device_option[@]}" |
         grep -E "hand-off|rendered|a frame" || failed+=("swim --hand-off $path")
     done

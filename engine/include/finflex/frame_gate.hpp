@@ -49,12 +49,16 @@ class FINFLEX_API FrameGate {
 
   // The wait list for the frame's first commands: the gate (complete once open).
   const std::vector<cl::Event>* wait_list() const { return &wait_; }
-  // Lets the work behind the gate run. Opening an open gate does nothing.
+  // Lets the work behind the gate run, and flushes the context's queue so that it
+  // reaches the device now (a semaphore signal among it, which another API's wait
+  // needs submitted first: finflex/external_outputs.hpp). Opening an open gate does
+  // nothing.
   void open();
   bool is_open() const { return open_; }
 
  private:
   std::shared_ptr<detail::GateState> gate_;
+  cl::CommandQueue queue_;
   std::vector<cl::Event> wait_;
   bool open_ = false;
 };

@@ -6,7 +6,7 @@
 
 namespace finflex {
 
-FrameGate::FrameGate(Context& context) {
+FrameGate::FrameGate(Context& context) : queue_(context.queue()) {
   cl_int status = CL_SUCCESS;
   gate_ = std::make_shared<detail::GateState>();
   gate_->event = cl::UserEvent(context.context(), &status);
@@ -27,6 +27,7 @@ void FrameGate::open() {
   open_ = true;
   if (gate_->opened.exchange(true)) return;  // the Context's destructor opened it
   check_cl(gate_->event.setStatus(CL_COMPLETE), "clSetUserEventStatus");
+  check_cl(queue_.flush(), "clFlush");
 }
 
 }  // namespace finflex

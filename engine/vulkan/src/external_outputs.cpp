@@ -196,6 +196,11 @@ ExternalOutputs::ExternalOutputs(ClDeformer& deformer, std::size_t instances,
     if (written[k]) *slots[k] = as_cl[buffer_index_[k]];
   }
   batch_ = deformer.bind(instances, layout, buffers);
+  // OpenCL acquires the imported memory once, for the outputs' life (released in the
+  // destructor): the frames are ordered by the semaphores or by the host, and
+  // NVIDIA's acquire blocks the host until its wait list is complete, which behind a
+  // FrameGate never happens before the frame is enqueued.
+  acquire_or_release(true);
 
   if (!device.exports_semaphores()) {
     semaphores_why_not_ = "'" + device.name() + "' exports no semaphores as opaque fds";
@@ -221,9 +226,22 @@ ExternalOutputs::ExternalOutputs(ClDeformer& deformer, std::size_t instances,
   }
 }
 
+void ExternalOutputs::acquire_or_release(bool acquire) {
+  std::vector<cl_mem> memory;
+  for (const cl::Memory& m : imported_) memory.push_back(m());
+  cl::CommandQueue& queue = deformer_.context().queue();
+  const auto call = acquire ? cl_->f.acquire : cl_->f.release;
+  check_cl(
+      call(queue(), static_cast<cl_uint>(memory.size()), memory.data(), 0, nullptr, nullptr),
+      acquire ? "clEnqueueAcquireExternalMemObjectsKHR" : "clEnqueueReleaseExternalMemObjectsKHR");
+  check_cl(queue.finish(), "clFinish");
+}
+
 ExternalOutputs::~ExternalOutputs() {
-  // The device may still use the memory: let the queue drain before Vulkan frees it.
+  // The device may still use the memory: release it and let the queue drain before
+  // Vulkan frees it.
   try {
+    if (import_ == ExternalImport::kImported && cl_) acquire_or_release(false);
     deformer_.context().queue().finish();
   } catch (...) {
   }
@@ -250,33 +268,12 @@ cl::Event ExternalOutputs::enqueue(const ClJob& job, std::vector<cl::Event>* ker
              "clEnqueueWaitSemaphoresKHR");
     consumer_pending_ = false;
   }
-  std::vector<cl_mem> memory;
-  for (const cl::Memory& m : imported_) memory.push_back(m());
-  std::vector<cl_event> wait;
-  if (job.wait) {
-    for (const cl::Event& e : *job.wait) wait.push_back(e());
-  }
-  cl_event acquired = nullptr;
-  check_cl(
-      f.acquire(queue(), static_cast<cl_uint>(memory.size()), memory.data(),
-                static_cast<cl_uint>(wait.size()), wait.empty() ? nullptr : wait.data(), &acquired),
-      "clEnqueueAcquireExternalMemObjectsKHR");
-  ClJob after = job;
-  std::vector<cl::Event> after_wait = {cl::Event(acquired)};
-  after.wait = &after_wait;
-  const cl::Event done = deformer_.enqueue(after, kernel_events);
-  cl_event kernels = done();
-  cl_event released = nullptr;
-  check_cl(f.release(queue(), static_cast<cl_uint>(memory.size()), memory.data(), 1, &kernels,
-                     &released),
-           "clEnqueueReleaseExternalMemObjectsKHR");
-  last_ = cl::Event(released);
+  last_ = deformer_.enqueue(job, kernel_events);
   if (device_ordered()) {
     cl_event signalled = nullptr;
-    cl_event after_release = last_();
-    check_cl(
-        f.signal_semaphores(queue(), 1, &cl_->kernels_done, nullptr, 1, &after_release, &signalled),
-        "clEnqueueSignalSemaphoresKHR");
+    cl_event kernels = last_();
+    check_cl(f.signal_semaphores(queue(), 1, &cl_->kernels_done, nullptr, 1, &kernels, &signalled),
+             "clEnqueueSignalSemaphoresKHR");
     last_ = cl::Event(signalled);
   }
   check_cl(queue.flush(), "clFlush");  // the consumer's wait needs the signal submitted
@@ -291,31 +288,10 @@ void ExternalOutputs::wait_for_frame() {
 
 void ExternalOutputs::begin_reading() {
   if (reading_) return;
-  wait_for_frame();
-  if (import_ == ExternalImport::kImported) {
-    const detail::ClExternalFunctions& f = cl_->f;
-    std::vector<cl_mem> memory;
-    for (const cl::Memory& m : imported_) memory.push_back(m());
-    check_cl(f.acquire(deformer_.context().queue()(), static_cast<cl_uint>(memory.size()),
-                       memory.data(), 0, nullptr, nullptr),
-             "clEnqueueAcquireExternalMemObjectsKHR");
-  }
+  wait_for_frame();  // OpenCL holds imported memory throughout: nothing to acquire
   reading_ = true;
 }
 
-void ExternalOutputs::end_reading() {
-  if (!reading_) return;
-  reading_ = false;
-  if (import_ == ExternalImport::kImported) {
-    const detail::ClExternalFunctions& f = cl_->f;
-    std::vector<cl_mem> memory;
-    for (const cl::Memory& m : imported_) memory.push_back(m());
-    cl::CommandQueue& queue = deformer_.context().queue();
-    check_cl(
-        f.release(queue(), static_cast<cl_uint>(memory.size()), memory.data(), 0, nullptr, nullptr),
-        "clEnqueueReleaseExternalMemObjectsKHR");
-    check_cl(queue.finish(), "clFinish");
-  }
-}
+void ExternalOutputs::end_reading() { reading_ = false; }
 
 }  // namespace finflex

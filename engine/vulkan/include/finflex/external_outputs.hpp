@@ -15,7 +15,8 @@
 //
 // Two imports, chosen from the OpenCL device:
 //  - kImported: cl_khr_external_memory_opaque_fd (NVIDIA): each buffer's fd imported
-//    with clCreateBufferWithProperties, acquired and released around the kernels.
+//    with clCreateBufferWithProperties and acquired by OpenCL once, for the outputs'
+//    life.
 //    Where both OpenCL (cl_khr_external_semaphore_opaque_fd) and Vulkan export binary
 //    semaphores, the frame orders itself on the device: OpenCL waits for
 //    consumer_done() before the next frame's kernels (once the consumer has signalled
@@ -111,8 +112,7 @@ class ExternalOutputs {
   // mapped for the host; a CPU device wrote it there).
   void wait_for_frame();
   // Blocking OpenCL reads of batch() between frames (ClDeformer::read) go between these:
-  // the imported memory is acquired for them (kImported; the consumer must not write
-  // it meanwhile), the frame waited for (kHostMapped).
+  // the last frame is waited for (kHostMapped: and mapped).
   void begin_reading();
   void end_reading();
 
@@ -127,7 +127,8 @@ class ExternalOutputs {
   std::vector<cl::Memory> imported_;  // kImported: the buffers as OpenCL memory
   std::unique_ptr<vulkan::ExternalSemaphore> kernels_done_;
   std::unique_ptr<vulkan::ExternalSemaphore> consumer_done_;
-  struct ClImports;  // kImported: OpenCL's entry points and semaphores
+  void acquire_or_release(bool acquire);  // kImported: blocking
+  struct ClImports;                       // kImported: OpenCL's entry points and semaphores
   std::unique_ptr<ClImports> cl_;
   std::string semaphores_why_not_;
   bool consumer_pending_ = false;
