@@ -7,6 +7,7 @@
 
 #include "camera_file.hpp"
 #include "render/png.hpp"
+#include "worker_pool.hpp"
 
 namespace finflex::cli {
 
@@ -30,7 +31,10 @@ std::string image_name(std::size_t frame) {
 SwimPictureFiles::SwimPictureFiles(const std::string& folder, pictures::TankPictures& pictures,
                                    tank::SwimScene& scene, const PictureFiles& plan,
                                    const nlohmann::ordered_json& info)
-    : folder_(folder), pictures_(pictures), plan_(plan) {
+    : folder_(folder),
+      pictures_(pictures),
+      plan_(plan),
+      pool_(std::make_unique<WorkerPool>(WorkerPool::default_workers())) {
   const render::RenderSettings& size = pictures.renderer().settings();
   fs::create_directories(fs::path(folder) / "frames");
   render::VideoOptions options;
@@ -50,29 +54,69 @@ SwimPictureFiles::SwimPictureFiles(const std::string& folder, pictures::TankPict
   if (!camera) throw Error(ErrorCode::kIo, "--out", "'" + folder + "/camera.json': write failed");
 }
 
+SwimPictureFiles::~SwimPictureFiles() {
+  // An error left work in flight: let the pool finish it before the folder goes.
+  pool_.reset();
+}
+
 PictureFileTimes SwimPictureFiles::add_frame(std::size_t frame, double time_s) {
   PictureFileTimes times;
   const bool image = plan_.image_of(frame);
   if (!image && videos_.empty()) return times;
-  Clock::time_point start = Clock::now();
-  const render::Image& picture = pictures_.read_image();
-  times.read_back = seconds_since(start);
-  start = Clock::now();
-  if (image) {
-    render::write_png((fs::path(folder_) / image_name(frame)).string(), picture);
-    ++images_;
-  }
-  for (const std::unique_ptr<render::VideoWriter>& video : videos_) video->add_frame(picture);
-  times.files = seconds_since(start);
+  render::Renderer& renderer = pictures_.renderer();
+  renderer.request_image();
+  in_flight_.push_back(frame);
   if (image && dataset_) {
-    start = Clock::now();
-    dataset_->add_frame(frame, time_s, image_name(frame), pictures_.draw_ids());
+    const Clock::time_point start = Clock::now();
+    pictures::CocoDataset::FrameTruth truth =
+        dataset_->capture(frame, time_s, image_name(frame), pictures_.draw_ids());
+    const pictures::CocoDataset* dataset = dataset_.get();
+    annotations_.push_back(
+        pool_->submit([dataset, truth = std::move(truth)] { return dataset->annotate(truth); }));
+    collect(false);
     times.annotation = seconds_since(start);
   }
+  // The oldest frame once the renderer's frames in flight are all taken.
+  if (renderer.images_pending() == renderer.settings().frames_in_flight) take_frame(&times);
   return times;
 }
 
+void SwimPictureFiles::take_frame(PictureFileTimes* times) {
+  const std::size_t frame = in_flight_.front();
+  in_flight_.pop_front();
+  auto picture = std::make_shared<render::Image>();
+  Clock::time_point start = Clock::now();
+  pictures_.renderer().take_image(*picture);
+  if (times) times->read_back = seconds_since(start);
+  start = Clock::now();
+  for (const std::unique_ptr<render::VideoWriter>& video : videos_) video->add_frame(*picture);
+  if (plan_.image_of(frame)) {
+    const std::string path = (fs::path(folder_) / image_name(frame)).string();
+    pngs_.push_back(pool_->submit([path, picture] { render::write_png(path, *picture); }));
+    ++images_;
+  }
+  collect(false);
+  if (times) times->files = seconds_since(start);
+}
+
+void SwimPictureFiles::collect(bool all) {
+  const std::size_t keep = all ? 0 : pool_->size();
+  while (pngs_.size() > keep || (!pngs_.empty() && pngs_.front().wait_for(std::chrono::seconds(
+                                                       0)) == std::future_status::ready)) {
+    pngs_.front().get();
+    pngs_.pop_front();
+  }
+  while (annotations_.size() > keep ||
+         (!annotations_.empty() &&
+          annotations_.front().wait_for(std::chrono::seconds(0)) == std::future_status::ready)) {
+    dataset_->append(annotations_.front().get());
+    annotations_.pop_front();
+  }
+}
+
 void SwimPictureFiles::finish() {
+  while (!in_flight_.empty()) take_frame(nullptr);
+  collect(true);
   for (const std::unique_ptr<render::VideoWriter>& video : videos_) video->finish();
   if (dataset_) dataset_->finish();
 }

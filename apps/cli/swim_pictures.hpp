@@ -3,9 +3,17 @@
 // ffmpeg, swim.png an APNG), camera.json, and with --annotate the dataset
 // (masks/, coco.json: pictures/coco_dataset.hpp). Everything goes into the run's
 // staging folder (staging_folder.hpp).
+//
+// Nothing here waits for the frame just drawn: its colour image is read back
+// asynchronously (Renderer::request_image; the renderer's frames in flight) and taken
+// a few frames later; PNG encoding, masks and annotations run on a pool of threads
+// (worker_pool.hpp); the videos get their frames and coco.json its annotations in
+// frame order, so the files are the same as one thread would write.
 #pragma once
 
 #include <cstddef>
+#include <deque>
+#include <future>
 #include <memory>
 #include <set>
 #include <string>
@@ -29,11 +37,12 @@ struct PictureFiles {
   bool image_of(std::size_t frame) const { return every_image || image_frames.count(frame) > 0; }
 };
 
-// Seconds one frame's files took.
+// Seconds of the frame loop's thread that one frame's files took (the pool's work
+// runs beside it).
 struct PictureFileTimes {
-  double read_back = 0.0;   // the colour image from the renderer
-  double files = 0.0;       // PNG encoding and writing, video encoding
-  double annotation = 0.0;  // the id pass, masks, keypoints, COCO
+  double read_back = 0.0;   // taking colour images from the renderer (their fences)
+  double files = 0.0;       // handing PNGs to the pool, video frames to the encoders
+  double annotation = 0.0;  // the id pass, keypoints, appending to coco.json
 };
 
 class SwimPictureFiles {
@@ -43,10 +52,11 @@ class SwimPictureFiles {
                    tank::SwimScene& scene, const PictureFiles& plan,
                    const nlohmann::ordered_json& info);
 
+  ~SwimPictureFiles();
   // Frame `frame` at time_s, after pictures.draw() of it: its image, video frame and
-  // annotations as the plan says.
+  // annotations as the plan says (written once the frame is taken, a few frames on).
   PictureFileTimes add_frame(std::size_t frame, double time_s);
-  // Completes the videos and coco.json.
+  // Writes what is still in flight, completes the videos and coco.json.
   void finish();
 
   std::size_t images_written() const { return images_; }
@@ -59,6 +69,17 @@ class SwimPictureFiles {
   std::vector<std::unique_ptr<render::VideoWriter>> videos_;
   std::unique_ptr<pictures::CocoDataset> dataset_;
   std::size_t images_ = 0;
+
+  // Takes the oldest frame in flight: its video frame, its PNG to the pool (the
+  // loop's seconds of it into `times`, when given).
+  void take_frame(PictureFileTimes* times);
+  // Waits for finished pool work in order (all of it: `all`; else while more than the
+  // pool's size is waiting), rethrowing its errors, appending annotations.
+  void collect(bool all);
+  std::unique_ptr<class WorkerPool> pool_;
+  std::deque<std::size_t> in_flight_;  // frames requested from the renderer
+  std::deque<std::future<void>> pngs_;
+  std::deque<std::future<pictures::CocoDataset::FrameAnnotations>> annotations_;
 };
 
 }  // namespace finflex::cli

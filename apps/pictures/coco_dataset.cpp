@@ -66,7 +66,11 @@ CocoDataset::CocoDataset(const std::string& folder, tank::SwimScene& scene,
     species_.push_back(truth);
   }
   std::vector<std::size_t> per_species(scene.species().size(), 0);
-  for (const tank::Fish& f : fish) instance_of_fish_.push_back(per_species[f.species]++);
+  for (const tank::Fish& f : fish) {
+    instance_of_fish_.push_back(per_species[f.species]++);
+    fish_.push_back({f.species, f.length});
+  }
+  for (const tank::Species& species : scene.species()) names_.push_back(species.name);
 
   std::filesystem::create_directories(std::filesystem::path(folder) / "masks");
   const std::string path = (std::filesystem::path(folder) / "coco.json").string();
@@ -82,37 +86,53 @@ CocoDataset::CocoDataset(const std::string& folder, tank::SwimScene& scene,
 
 void CocoDataset::add_frame(std::size_t frame, double time_s, const std::string& image_file,
                             const render::IdImage& ids) {
-  const std::size_t image_id = frame + 1;
-  // The mask file: ids as they are (<= 65535).
-  render::Image16 mask;
-  mask.width = ids.width;
-  mask.height = ids.height;
-  mask.samples.assign(ids.ids.begin(), ids.ids.end());
-  render::write_png16((std::filesystem::path(folder_) / mask_name(frame)).string(), mask);
+  append(annotate(capture(frame, time_s, image_file, ids)));
+}
 
+CocoDataset::FrameTruth CocoDataset::capture(std::size_t frame, double time_s,
+                                             const std::string& image_file,
+                                             const render::IdImage& ids) {
+  FrameTruth truth;
+  truth.frame = frame;
+  truth.time_s = time_s;
+  truth.image_file = image_file;
+  truth.ids = ids;
   // Keypoints of every fish, from the engine's deformed vertices.
-  std::vector<std::vector<glm::vec3>> snouts(scene_.species().size());
-  std::vector<std::vector<glm::vec3>> forks(scene_.species().size());
+  truth.snouts.resize(scene_.species().size());
+  truth.forks.resize(scene_.species().size());
   for (std::size_t s = 0; s < scene_.species().size(); ++s) {
     tank::Species& species = scene_.species()[s];
     if (!species.deformer) continue;
     cl::CommandQueue& queue = species.deformer->context().queue();
     const tank::BatchReading reading(species);
-    snouts[s] = read_slot_positions(queue, species.batch(), species_[s].snout_slot);
-    forks[s] = read_slot_positions(queue, species.batch(), species_[s].fork_slot);
+    truth.snouts[s] = read_slot_positions(queue, species.batch(), species_[s].snout_slot);
+    truth.forks[s] = read_slot_positions(queue, species.batch(), species_[s].fork_slot);
   }
+  return truth;
+}
 
-  const std::vector<tank::Fish>& fish = scene_.tank().fish();
+CocoDataset::FrameAnnotations CocoDataset::annotate(const FrameTruth& truth) const {
+  const render::IdImage& ids = truth.ids;
+  const std::size_t image_id = truth.frame + 1;
+  // The mask file: ids as they are (<= 65535).
+  render::Image16 mask;
+  mask.width = ids.width;
+  mask.height = ids.height;
+  mask.samples.assign(ids.ids.begin(), ids.ids.end());
+  render::write_png16((std::filesystem::path(folder_) / mask_name(truth.frame)).string(), mask);
+
+  FrameAnnotations out;
   const std::vector<InstanceMask> masks = instance_masks(ids);
   const render::PinholeIntrinsics k = render::pinhole_intrinsics(camera_, width_, height_);
   for (const InstanceMask& m : masks) {
     const std::size_t f = m.id - 1;
-    const tank::Fish& one = fish[f];
+    const FishTruth& one = fish_[f];
     const std::size_t instance = instance_of_fish_[f];
     nlohmann::ordered_json keypoints = nlohmann::ordered_json::array();
     nlohmann::ordered_json camera_points = nlohmann::ordered_json::array();
     int labelled = 0;
-    for (const glm::vec3& world : {snouts[one.species][instance], forks[one.species][instance]}) {
+    for (const glm::vec3& world :
+         {truth.snouts[one.species][instance], truth.forks[one.species][instance]}) {
       const glm::dvec3 p = glm::dvec3(camera_from_world_ * glm::dvec4(glm::dvec3(world), 1.0));
       camera_points.push_back({p.x, p.y, p.z});
       const double u = k.fx * p.x / p.z + k.cx;
@@ -130,7 +150,7 @@ void CocoDataset::add_frame(std::size_t frame, double time_s, const std::string&
       ++labelled;
     }
     nlohmann::ordered_json annotation;
-    annotation["id"] = next_annotation_++;
+    annotation["id"] = 0;  // append numbers them
     annotation["image_id"] = image_id;
     annotation["category_id"] = one.species + 1;
     annotation["bbox"] = {m.x_min, m.y_min, m.x_max - m.x_min + 1, m.y_max - m.y_min + 1};
@@ -141,21 +161,30 @@ void CocoDataset::add_frame(std::size_t frame, double time_s, const std::string&
     annotation["keypoints"] = keypoints;
     annotation["num_keypoints"] = labelled;
     annotation["fish_id"] = f;
-    annotation["species"] = scene_.species()[one.species].name;
+    annotation["species"] = names_[one.species];
     annotation["length_m"] = one.length;
     annotation["fork_length_m"] = one.length * species_[one.species].landmarks.fork_fraction;
     annotation["keypoints_camera_m"] = camera_points;
+    out.annotations.push_back(std::move(annotation));
+  }
+  out.image = {{"id", image_id},
+               {"file_name", truth.image_file},
+               {"mask_file", mask_name(truth.frame)},
+               {"width", ids.width},
+               {"height", ids.height},
+               {"frame", truth.frame},
+               {"time_s", truth.time_s},
+               {"fish_in_tank", fish_.size()},
+               {"fish_visible", masks.size()}};
+  return out;
+}
+
+void CocoDataset::append(FrameAnnotations frame) {
+  for (nlohmann::ordered_json& annotation : frame.annotations) {
+    annotation["id"] = next_annotation_++;
     coco_ << (annotation_count() == 1 ? "\n" : ",\n") << annotation.dump();
   }
-  images_.push_back({{"id", image_id},
-                     {"file_name", image_file},
-                     {"mask_file", mask_name(frame)},
-                     {"width", ids.width},
-                     {"height", ids.height},
-                     {"frame", frame},
-                     {"time_s", time_s},
-                     {"fish_in_tank", fish.size()},
-                     {"fish_visible", masks.size()}});
+  images_.push_back(std::move(frame.image));
   require_written(coco_, folder_ + "/coco.json");
 }
 

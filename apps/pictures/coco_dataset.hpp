@@ -45,9 +45,30 @@ class CocoDataset {
 
   // Frame `frame` (time_s into the swim), whose colour image is `image_file` (relative
   // to the folder) and whose id pass is `ids`; the scene's batches must still hold
-  // that frame (the keypoints are read from them).
+  // that frame (the keypoints are read from them): append(annotate(capture(...))).
   void add_frame(std::size_t frame, double time_s, const std::string& image_file,
                  const render::IdImage& ids);
+
+  // The same in three steps, so that the work in the middle can run on another thread
+  // while the next frames are drawn:
+  // what must be taken while the batches hold the frame (its thread: the scene's),
+  struct FrameTruth {
+    std::size_t frame = 0;
+    double time_s = 0.0;
+    std::string image_file;
+    render::IdImage ids;
+    std::vector<std::vector<glm::vec3>> snouts, forks;  // per species, per instance
+  };
+  FrameTruth capture(std::size_t frame, double time_s, const std::string& image_file,
+                     const render::IdImage& ids);
+  // the mask file and the frame's annotations (any thread; several frames at once),
+  struct FrameAnnotations {
+    std::vector<nlohmann::ordered_json> annotations;  // their "id"s are given by append
+    nlohmann::ordered_json image;
+  };
+  FrameAnnotations annotate(const FrameTruth& truth) const;
+  // and coco.json's part of it, frames in order (the thread that made the dataset).
+  void append(FrameAnnotations frame);
   // Writes the images' list and closes coco.json. kIo when the file could not be written.
   void finish();
 
@@ -68,6 +89,12 @@ class CocoDataset {
   glm::dmat4 camera_from_world_;
   std::vector<SpeciesTruth> species_;
   std::vector<std::size_t> instance_of_fish_;  // per tank fish, its index in its species
+  struct FishTruth {
+    std::size_t species = 0;
+    double length = 0.0;
+  };
+  std::vector<FishTruth> fish_;     // per tank fish: what does not change in a swim
+  std::vector<std::string> names_;  // per species
   std::ofstream coco_;
   nlohmann::ordered_json images_ = nlohmann::ordered_json::array();
   std::size_t next_annotation_ = 1;

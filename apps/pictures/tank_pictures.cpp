@@ -59,7 +59,6 @@ TankPictures::TankPictures(render::Renderer& renderer, tank::SwimScene& scene,
 void TankPictures::draw() {
   for (SpeciesDrawing& drawing : drawings_) drawing.outputs->wait_until_drawable();
   renderer_.render(look_, camera_, draws_);
-  renderer_.finish();
 }
 
 const render::Image& TankPictures::read_image() {

@@ -40,8 +40,9 @@ class TankPictures {
   // render_settings(settings)) and `scene` must outlive the pictures.
   TankPictures(render::Renderer& renderer, tank::SwimScene& scene, const PictureSettings& settings);
 
-  // The colour pass of every species' last frame (waiting until GL may read it), and
-  // its image.
+  // The colour pass of every species' last frame, once GL may read it (a GPU-side
+  // wait where semaphores order the frame); no wait for the GPU to draw it. Its image:
+  // read_image (waits), or the renderer's request_image and take_image.
   void draw();
   const render::Image& read_image();
   // The id pass of the same, read back.

@@ -10,6 +10,7 @@
 #include "encode_pass.hpp"
 #include "fish_pass.hpp"
 #include "fish_validation.hpp"
+#include "frames_in_flight.hpp"
 #include "gl_resources.hpp"
 #include "id_targets.hpp"
 #include "render_targets.hpp"
@@ -67,6 +68,8 @@ void RenderSettings::validate() const {
   require_in_range("settings.width", width, 1, 16384);
   require_in_range("settings.height", height, 1, 16384);
   require_in_range("settings.samples", samples, 1, 16);
+  require_in_range("settings.frames_in_flight",
+                   static_cast<int>(std::min<std::size_t>(frames_in_flight, 1000)), 1, 16);
 }
 
 struct Renderer::Impl {
@@ -85,6 +88,8 @@ struct Renderer::Impl {
   std::vector<MeshResources> meshes;
   std::vector<BufferResource> buffers;
   std::vector<GlSemaphore> semaphores;
+  ReadbackRing readback;
+  GpuTimer draw_timer;
   ExternalSupport external = query_external_support();
 
   explicit Impl(const RenderSettings& requested)
@@ -93,7 +98,9 @@ struct Renderer::Impl {
         device(describe(egl, limits, std::min(settings.samples, limits.max_samples))),
         targets(settings.width, settings.height, device.samples),
         scene_block(GlBuffer::create()),
-        fish(limits, FishOutput::kLitColour) {
+        fish(limits, FishOutput::kLitColour),
+        readback(settings.width, settings.height, settings.frames_in_flight),
+        draw_timer(settings.frames_in_flight + 1) {
     glBindBuffer(GL_UNIFORM_BUFFER, scene_block.get());
     glBufferData(GL_UNIFORM_BUFFER, sizeof(SceneBlock), nullptr, GL_DYNAMIC_DRAW);
     glBindBuffer(GL_UNIFORM_BUFFER, 0);
@@ -268,6 +275,7 @@ void Renderer::render(const Scene& scene, const Camera& camera, const std::vecto
 
   r.upload_scene_block(scene, camera);
 
+  r.draw_timer.begin();
   r.targets.bind_scene();
   glClearColor(scene.background.r, scene.background.g, scene.background.b, 1.0f);
   glClearDepth(1.0);
@@ -282,6 +290,7 @@ void Renderer::render(const Scene& scene, const Camera& camera, const std::vecto
 
   r.targets.resolve();
   r.encode.draw(r.targets);
+  r.draw_timer.end();
   require_no_gl_error("render");
 }
 
@@ -342,6 +351,31 @@ void Renderer::read_image(Image& out) {
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, out.width, out.height, GL_RGB, GL_UNSIGNED_BYTE, out.rgb.data());
   require_no_gl_error("read_image");
+}
+
+void Renderer::request_image() {
+  impl_->egl.make_current();
+  Impl& r = *impl_;
+  if (r.readback.pending() == r.readback.depth()) {
+    invalid("request_image", std::to_string(r.readback.depth()) +
+                                 " frames are in flight already (take_image first)");
+  }
+  r.targets.bind_output_for_reading();
+  r.readback.request();
+  require_no_gl_error("request_image");
+}
+
+std::size_t Renderer::images_pending() const { return impl_->readback.pending(); }
+
+void Renderer::take_image(Image& out) {
+  impl_->egl.make_current();
+  impl_->readback.take(out);
+  require_no_gl_error("take_image");
+}
+
+double Renderer::gpu_draw_seconds() {
+  impl_->egl.make_current();
+  return impl_->draw_timer.latest_seconds();
 }
 
 Image Renderer::read_image() {

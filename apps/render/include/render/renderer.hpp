@@ -46,6 +46,8 @@ struct RenderSettings {
   // GL_MAX_TEXTURE_BUFFER_SIZE; 0: the driver's. Larger draws go in runs of instances
   // (see DeviceInfo::texture_buffer_range); a smaller cap exercises that path.
   std::size_t max_buffer_texels = 0;
+  // Frames read back asynchronously at once (request_image): 1..16.
+  std::size_t frames_in_flight = 3;
 
   // Throws RenderError (kInvalidArgument) naming "settings.width", ... : sizes 1..16384.
   void validate() const;
@@ -137,8 +139,22 @@ class Renderer {
   IdImage read_ids();
   void read_ids(IdImage& out);  // reuses out's storage
 
-  // Waits until the GPU has drawn the frames rendered so far (glFinish): for timing.
+  // Waits until the GPU has drawn the frames rendered so far (glFinish).
   void finish();
+
+  // ---- Frames in flight (docs/rendering.md "Frames in flight") ----
+  // Starts reading the last frame back (the RGB8 of read_image) into one of
+  // settings.frames_in_flight pixel-pack buffers, with a fence: no wait.
+  // kInvalidArgument when all of them are pending (take_image first).
+  void request_image();
+  std::size_t images_pending() const;
+  // The oldest requested frame, in request order: waits for that frame's fence only
+  // (the GPU may be drawing later ones) and copies it into `out`. kInvalidArgument
+  // when none is pending.
+  void take_image(Image& out);
+  // The GPU time of render()'s passes of the latest frame whose timer query has a
+  // result (GL_TIME_ELAPSED, read without waiting; 0 before the first).
+  double gpu_draw_seconds();
 
   // The last frame as RGB8, sRGB-encoded, rows from the top (waits for the GPU).
   Image read_image();

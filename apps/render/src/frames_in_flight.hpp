@@ -1,0 +1,72 @@
+// The renderer's frames in flight: colour frames read back through a ring of
+// pixel-pack buffers, each with a fence, so that the host takes a frame only when the
+// GPU has drawn it and never waits for the frames drawn after it; and the GPU time of
+// each frame's passes from a ring of timer queries, read once their results are there.
+#pragma once
+
+#include <cstddef>
+#include <deque>
+#include <vector>
+
+#include <epoxy/gl.h>
+
+#include "gl_object.hpp"
+#include "render/image.hpp"
+
+namespace finflex::render::detail {
+
+struct QueryKind {
+  static GLuint create() {
+    GLuint name = 0;
+    glGenQueries(1, &name);
+    return name;
+  }
+  static void destroy(GLuint name) { glDeleteQueries(1, &name); }
+};
+using GlQuery = GlObject<QueryKind>;
+
+class ReadbackRing {
+ public:
+  ReadbackRing(int width, int height, std::size_t depth);
+  ~ReadbackRing();
+  ReadbackRing(const ReadbackRing&) = delete;
+  ReadbackRing& operator=(const ReadbackRing&) = delete;
+
+  std::size_t depth() const { return buffers_.size(); }
+  std::size_t pending() const { return pending_.size(); }
+  // glReadPixels of the bound read framebuffer into the next free buffer, and a fence.
+  // The caller checks pending() < depth().
+  void request();
+  // The oldest pending frame: waits for its fence, copies it out (rows from the top, as
+  // the encode pass wrote them).
+  void take(Image& out);
+
+ private:
+  int width_;
+  int height_;
+  std::vector<GlBuffer> buffers_;
+  std::size_t next_ = 0;
+  struct Pending {
+    std::size_t buffer;
+    GLsync fence;
+  };
+  std::deque<Pending> pending_;
+};
+
+class GpuTimer {
+ public:
+  explicit GpuTimer(std::size_t depth);
+  void begin();
+  void end();
+  // The GPU seconds of the latest timed frame whose result is available, without
+  // waiting (0 before the first).
+  double latest_seconds();
+
+ private:
+  std::vector<GlQuery> queries_;
+  std::vector<bool> issued_;
+  std::size_t next_ = 0;
+  double latest_ = 0.0;
+};
+
+}  // namespace finflex::render::detail
