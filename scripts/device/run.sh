@@ -335,14 +335,14 @@ render_speed() {
   local -a species=(--species data/blub/fish.obj:data/rigs/blub_swim.rig.json
     --species data/barramundi/BarramundiFish.gltf:data/rigs/barramundi_swim.rig.json)
   scratch=$(mktemp -d)
-  # One swim of the 1,000 fish on a path: its summary lines, and with --out its
+  # One swim of FISH fish on a path: its summary lines, and with --out its
   # summary.json's rendering part.
   swim_on() {
-    local what=$1 path=$2
-    shift 2
+    local what=$1 path=$2 fish=$3
+    shift 3
     echo "== $what, --hand-off $path"
     # shellcheck disable=SC2046
-    run env $(side_env "$side" -) timeout 90 "$finflex" swim --fish 1000 "${species[@]}" --size 1280x720 \
+    run env $(side_env "$side" -) timeout 90 "$finflex" swim --fish "$fish" "${species[@]}" --size 1280x720 \
       --hand-off "$path" "${device_option[@]}" "$@" | grep -vE "^ *wrote|put back" ||
       failed+=("$what on $path")
   }
@@ -350,16 +350,18 @@ render_speed() {
     finflex=$(program "$side" finflex)
     [ ${#sides[@]} = 1 ] || echo "== side $(side_label "$side")"
     for path in external-memory copy; do
-      swim_on "drawn only: 60 frames" "$path" --seconds 2 --fps 30 --render
+      swim_on "1,000 fish drawn only: 60 frames" "$path" 1000 --seconds 2 --fps 30 --render
     done
     for path in external-memory copy; do
-      swim_on "every frame a PNG: 30 frames" "$path" --seconds 1 --fps 30 \
+      swim_on "1,000 fish, every frame a PNG: 30 frames" "$path" 1000 --seconds 1 --fps 30 \
         --out "$scratch/tank-$path" --video none
     done
     for path in external-memory copy; do
-      swim_on "a dataset (--annotate): 15 frames" "$path" --seconds 0.5 --fps 30 \
-        --out "$scratch/dataset-$path" --video none --annotate
+      swim_on "1,000 fish, a dataset (--annotate): 15 frames" "$path" 1000 --seconds 0.5 \
+        --fps 30 --out "$scratch/dataset-$path" --video none --annotate
     done
+    swim_on "10,000 fish drawn only: 15 frames" external-memory 10000 --seconds 0.5 --fps 30 \
+      --render
     for summary in "$scratch"/*/summary.json; do
       [ -e "$summary" ] || continue
       python3 - "$summary" <<'PY'
