@@ -306,6 +306,10 @@ TEST(CliPictures, BadPictureInputsExitTwoAndWriteNothing) {
       {" --image-frames 99", "--image-frames '99'"},
       {" --annotate --image-frames none", "--annotate annotates the frames written as images"},
       {" --no-render --video apng", "--video draws frames"},
+      {" --hand-off sideways",
+       "--hand-off: 'sideways' is not auto, external-memory, shared or copy"},
+      // PoCL has no GL sharing: asked for, the path that cannot run is named.
+      {" --hand-off shared", "--hand-off shared: "},
       // Errors found once the renderer is up (test_cli has them without it).
       {" --tank 0.5,0.5", "tank.diameter"},
       {" --species " + fish(kLowResolutionBlub) + ":" +

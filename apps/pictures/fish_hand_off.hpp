@@ -73,8 +73,13 @@ class GlSpeciesOutputs : public tank::SpeciesOutputs {
   cl::Event enqueue(ClDeformer& deformer, const ClJob& job,
                     std::vector<cl::Event>* kernel_events) override;
   double handoff_seconds() const override;
-  // The copy path waits for the frame's kernels before copying to GL.
-  bool waits_for_device() const override { return path_ == HandOffPath::kCopy; }
+  // The copy path waits for the frame's kernels before copying to GL; external memory
+  // imported by OpenCL takes the frame's gate open first, since the driver may wait on
+  // the host for the commands before its semaphore calls.
+  bool waits_for_device() const override {
+    return path_ == HandOffPath::kCopy ||
+           (external_ && external_->import() == ExternalImport::kImported);
+  }
   void begin_reading() override;
   void end_reading() override;
 

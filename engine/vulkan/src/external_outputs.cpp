@@ -270,9 +270,10 @@ cl::Event ExternalOutputs::enqueue(const ClJob& job, std::vector<cl::Event>* ker
   }
   last_ = deformer_.enqueue(job, kernel_events);
   if (device_ordered()) {
+    // No wait list: the in-order queue puts the signal after the kernels, and NVIDIA's
+    // semaphore and acquire calls wait on the host for the events they are given.
     cl_event signalled = nullptr;
-    cl_event kernels = last_();
-    check_cl(f.signal_semaphores(queue(), 1, &cl_->kernels_done, nullptr, 1, &kernels, &signalled),
+    check_cl(f.signal_semaphores(queue(), 1, &cl_->kernels_done, nullptr, 0, nullptr, &signalled),
              "clEnqueueSignalSemaphoresKHR");
     last_ = cl::Event(signalled);
   }
