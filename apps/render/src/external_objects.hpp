@@ -14,26 +14,6 @@
 
 namespace finflex::render::detail {
 
-struct MemoryObjectKind {
-  static GLuint create() {
-    GLuint name = 0;
-    glCreateMemoryObjectsEXT(1, &name);
-    return name;
-  }
-  static void destroy(GLuint name) { glDeleteMemoryObjectsEXT(1, &name); }
-};
-using GlMemoryObject = GlObject<MemoryObjectKind>;
-
-struct SemaphoreKind {
-  static GLuint create() {
-    GLuint name = 0;
-    glGenSemaphoresEXT(1, &name);
-    return name;
-  }
-  static void destroy(GLuint name) { glDeleteSemaphoresEXT(1, &name); }
-};
-using GlSemaphore = GlObject<SemaphoreKind>;
-
 // The current context's extensions and device UUIDs.
 ExternalSupport query_external_support();
 

@@ -15,16 +15,6 @@
 
 namespace finflex::render::detail {
 
-struct QueryKind {
-  static GLuint create() {
-    GLuint name = 0;
-    glGenQueries(1, &name);
-    return name;
-  }
-  static void destroy(GLuint name) { glDeleteQueries(1, &name); }
-};
-using GlQuery = GlObject<QueryKind>;
-
 class ReadbackRing {
  public:
   ReadbackRing(int width, int height, std::size_t depth);

@@ -98,7 +98,38 @@ struct ProgramKind {
   static void destroy(GLuint name) { glDeleteProgram(name); }
 };
 
+struct QueryKind {
+  static GLuint create() {
+    GLuint name = 0;
+    glGenQueries(1, &name);
+    return name;
+  }
+  static void destroy(GLuint name) { glDeleteQueries(1, &name); }
+};
+
+// GL_EXT_memory_object and GL_EXT_semaphore: memory and semaphores of another API.
+struct MemoryObjectKind {
+  static GLuint create() {
+    GLuint name = 0;
+    glCreateMemoryObjectsEXT(1, &name);
+    return name;
+  }
+  static void destroy(GLuint name) { glDeleteMemoryObjectsEXT(1, &name); }
+};
+
+struct SemaphoreKind {
+  static GLuint create() {
+    GLuint name = 0;
+    glGenSemaphoresEXT(1, &name);
+    return name;
+  }
+  static void destroy(GLuint name) { glDeleteSemaphoresEXT(1, &name); }
+};
+
 using GlBuffer = GlObject<BufferKind>;
+using GlQuery = GlObject<QueryKind>;
+using GlMemoryObject = GlObject<MemoryObjectKind>;
+using GlSemaphore = GlObject<SemaphoreKind>;
 using GlTexture = GlObject<TextureKind>;
 using GlVertexArray = GlObject<VertexArrayKind>;
 using GlFramebuffer = GlObject<FramebufferKind>;

@@ -107,6 +107,20 @@ struct Renderer::Impl {
     require_no_gl_error("set-up");
   }
 
+  // glWaitSemaphoreEXT, or glSignalSemaphoreEXT and a flush (another API's wait needs
+  // the signal submitted), over `ids`' buffers.
+  void semaphore_operation(SemaphoreId semaphore, const std::vector<BufferId>& ids, bool signal) {
+    egl.make_current();
+    if (semaphore >= semaphores.size()) invalid("semaphore", std::to_string(semaphore));
+    std::vector<GLuint> names;
+    for (BufferId b : ids) names.push_back(buffer(b).buffer.get());
+    const auto call = signal ? glSignalSemaphoreEXT : glWaitSemaphoreEXT;
+    call(semaphores[semaphore].get(), static_cast<GLuint>(names.size()), names.data(), 0, nullptr,
+         nullptr);
+    if (signal) glFlush();
+    require_no_gl_error(signal ? "signal_semaphore" : "wait_semaphore");
+  }
+
   // GL objects are deleted in the context they belong to, whichever is current now.
   ~Impl() { egl.try_make_current(); }
 
@@ -213,35 +227,12 @@ SemaphoreId Renderer::import_semaphore(int fd) {
   return impl_->semaphores.size() - 1;
 }
 
-namespace {
-std::vector<GLuint> buffer_names(const std::vector<BufferResource>& resources,
-                                 const std::vector<BufferId>& buffers) {
-  std::vector<GLuint> names;
-  for (BufferId b : buffers) {
-    if (b >= resources.size()) invalid("buffers", std::to_string(b) + " is no buffer");
-    names.push_back(resources[b].buffer.get());
-  }
-  return names;
-}
-}  // namespace
-
 void Renderer::wait_semaphore(SemaphoreId semaphore, const std::vector<BufferId>& buffers) {
-  impl_->egl.make_current();
-  if (semaphore >= impl_->semaphores.size()) invalid("semaphore", std::to_string(semaphore));
-  const std::vector<GLuint> names = buffer_names(impl_->buffers, buffers);
-  glWaitSemaphoreEXT(impl_->semaphores[semaphore].get(), static_cast<GLuint>(names.size()),
-                     names.data(), 0, nullptr, nullptr);
-  require_no_gl_error("wait_semaphore");
+  impl_->semaphore_operation(semaphore, buffers, false);
 }
 
 void Renderer::signal_semaphore(SemaphoreId semaphore, const std::vector<BufferId>& buffers) {
-  impl_->egl.make_current();
-  if (semaphore >= impl_->semaphores.size()) invalid("semaphore", std::to_string(semaphore));
-  const std::vector<GLuint> names = buffer_names(impl_->buffers, buffers);
-  glSignalSemaphoreEXT(impl_->semaphores[semaphore].get(), static_cast<GLuint>(names.size()),
-                       names.data(), 0, nullptr, nullptr);
-  glFlush();
-  require_no_gl_error("signal_semaphore");
+  impl_->semaphore_operation(semaphore, buffers, true);
 }
 
 void Renderer::write_buffer(BufferId buffer, std::size_t offset, const void* data,
