@@ -95,7 +95,9 @@ TEST(CliPictures, SwimWritesFramesAVideoAndTheCamera) {
   if (path == "external-memory") {
     EXPECT_TRUE(hand_off.contains("vulkan_device") && hand_off.contains("import"));
   }
-  if (std::getenv("FINFLEX_EXPECT_EXTERNAL_MEMORY") != nullptr) EXPECT_EQ(path, "external-memory");
+  if (std::getenv("FINFLEX_EXPECT_EXTERNAL_MEMORY") != nullptr) {
+    EXPECT_EQ(path, "external-memory");
+  }
   EXPECT_GE(hand_off["seconds_per_frame_mean"].get<double>(), 0.0);
   EXPECT_NE(r.out.find("hand-off: " + path), std::string::npos) << r.out;
   // Nothing else is left next to the output folder (the staging folder is gone).

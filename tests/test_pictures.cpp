@@ -185,9 +185,12 @@ TEST(TankPictures, TheDeformationWritesTheRenderersBuffersOnTheFirstPathThatRuns
               to_string(tank.pictures.hand_off_path()), tank.hand_off.why_not_external.c_str(),
               tank.hand_off.why_not_shared.c_str());
   // Each path before the chosen one says why it could not run.
-  if (tank.hand_off.path != HandOffPath::kExternal)
+  if (tank.hand_off.path != HandOffPath::kExternal) {
     EXPECT_FALSE(tank.hand_off.why_not_external.empty());
-  if (tank.hand_off.path == HandOffPath::kCopy) EXPECT_FALSE(tank.hand_off.why_not_shared.empty());
+  }
+  if (tank.hand_off.path == HandOffPath::kCopy) {
+    EXPECT_FALSE(tank.hand_off.why_not_shared.empty());
+  }
   // A scene whose outputs are the engine's own device buffers cannot be drawn.
   tank::SwimScene plain = small_scene(test::shared_context());
   try {
@@ -319,7 +322,9 @@ TEST(TankPictures, EveryHandOffPathDrawsTheSameFramesByteForByte) {
   std::printf("paths compared with the copy: %d\n", compared);
   // Mesa's lavapipe and llvmpipe import each other's memory: on a CPU machine with
   // them (CI) the external path runs.
-  if (std::getenv("FINFLEX_EXPECT_EXTERNAL_MEMORY") != nullptr) EXPECT_GE(compared, 1);
+  if (std::getenv("FINFLEX_EXPECT_EXTERNAL_MEMORY") != nullptr) {
+    EXPECT_GE(compared, 1);
+  }
 }
 
 // The frame orders itself (semaphores on the GPU, else waits on the host): a frame
