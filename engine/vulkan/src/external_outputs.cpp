@@ -121,7 +121,7 @@ cl_semaphore_khr import_semaphore(const detail::ClExternalFunctions& f, const Co
 ExternalOutputs::ExternalOutputs(ClDeformer& deformer, std::size_t instances,
                                  const OutputLayout& layout, const vulkan::Device& device,
                                  std::array<std::size_t, 4> buffer_of, std::size_t tail_bytes)
-    : deformer_(deformer), device_(device), layout_(layout) {
+    : deformer_(deformer), layout_(layout) {
   Context& context = deformer.context();
   const std::string why = why_not_external(context, device, &import_);
   if (!why.empty()) throw Error(ErrorCode::kDevice, "vulkan", "external memory: " + why);

@@ -118,7 +118,6 @@ class ExternalOutputs {
 
  private:
   ClDeformer& deformer_;
-  const vulkan::Device& device_;
   ExternalImport import_ = ExternalImport::kImported;
   OutputLayout layout_;
   std::vector<std::unique_ptr<vulkan::ExternalBuffer>> buffers_;
