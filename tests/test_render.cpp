@@ -377,3 +377,45 @@ TEST(Render, WithoutAnyEglDeviceTheErrorIsOneLine) {
 
 }  // namespace
 }  // namespace finflex::render
+
+namespace finflex::render {
+namespace {
+
+// Frames in flight: images requested after each frame and taken later, oldest first,
+// are the frames read synchronously; more requests than the ring holds are refused;
+// the GPU's draw time is a plausible one.
+TEST(Render, FramesInFlightAreTheFramesInTheirOrder) {
+  RenderSettings settings{96, 54, 1};
+  settings.frames_in_flight = 3;
+  Renderer renderer(settings);
+  Camera camera;
+  std::vector<Image> now;
+  for (int k = 0; k < 3; ++k) {
+    Scene scene;
+    scene.background = glm::vec3(0.1f * float(k + 1), 0.2f, 0.05f * float(k));
+    renderer.render(scene, camera, {});
+    now.push_back(renderer.read_image());
+    renderer.request_image();
+  }
+  EXPECT_EQ(renderer.images_pending(), 3u);
+  EXPECT_THROW(renderer.request_image(), RenderError);
+  for (int k = 0; k < 3; ++k) {
+    Image later;
+    renderer.take_image(later);
+    EXPECT_EQ(later.rgb, now[std::size_t(k)].rgb) << "frame " << k;
+  }
+  EXPECT_NE(now[0].rgb, now[1].rgb);
+  EXPECT_EQ(renderer.images_pending(), 0u);
+  Image none;
+  EXPECT_THROW(renderer.take_image(none), RenderError);
+  renderer.finish();
+  const double seconds = renderer.gpu_draw_seconds();
+  EXPECT_GT(seconds, 0.0);
+  EXPECT_LT(seconds, 10.0);
+  RenderSettings bad = settings;
+  bad.frames_in_flight = 0;
+  EXPECT_THROW(bad.validate(), RenderError);
+}
+
+}  // namespace
+}  // namespace finflex::render

@@ -60,25 +60,31 @@ void ReadbackRing::take(Image& out) {
   glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
 }
 
-GpuTimer::GpuTimer(std::size_t depth) : issued_(depth, false) {
+GpuTimer::GpuTimer(std::size_t depth) : issued_(depth, false), serial_(depth, 0) {
   for (std::size_t k = 0; k < depth; ++k) queries_.push_back(GlQuery::create());
+}
+
+void GpuTimer::take(std::size_t slot) {
+  GLuint64 ns = 0;
+  glGetQueryObjectui64v(queries_[slot].get(), GL_QUERY_RESULT, &ns);
+  if (serial_[slot] > latest_serial_) {
+    latest_ = double(ns) * 1e-9;
+    latest_serial_ = serial_[slot];
+  }
+  issued_[slot] = false;
 }
 
 void GpuTimer::begin() {
   // A query still waiting for its result is read (waiting) before it is reused: with
   // `depth` frames in flight that is a frame the GPU finished long ago.
-  if (issued_[next_]) {
-    GLuint64 ns = 0;
-    glGetQueryObjectui64v(queries_[next_].get(), GL_QUERY_RESULT, &ns);
-    latest_ = double(ns) * 1e-9;
-    issued_[next_] = false;
-  }
+  if (issued_[next_]) take(next_);
   glBeginQuery(GL_TIME_ELAPSED, queries_[next_].get());
 }
 
 void GpuTimer::end() {
   glEndQuery(GL_TIME_ELAPSED);
   issued_[next_] = true;
+  serial_[next_] = issued_count_++;
   next_ = (next_ + 1) % queries_.size();
 }
 
@@ -90,9 +96,7 @@ double GpuTimer::latest_seconds() {
     GLuint available = 0;
     glGetQueryObjectuiv(queries_[k].get(), GL_QUERY_RESULT_AVAILABLE, &available);
     if (!available) continue;
-    GLuint64 ns = 0;
-    glGetQueryObjectui64v(queries_[k].get(), GL_QUERY_RESULT, &ns);
-    latest_ = double(ns) * 1e-9;
+    take(k);
     break;
   }
   return latest_;

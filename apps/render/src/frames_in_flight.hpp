@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <deque>
 #include <vector>
 
@@ -57,6 +58,13 @@ class GpuTimer {
   std::vector<bool> issued_;
   std::size_t next_ = 0;
   double latest_ = 0.0;
+  // Each slot's query's serial (its frame): the first query's result (serial 0) is
+  // dropped, since llvmpipe counts it from its clock's origin (thousands of seconds),
+  // and latest_ only moves to a newer frame's.
+  std::vector<std::uint64_t> serial_;
+  std::uint64_t issued_count_ = 0;
+  std::uint64_t latest_serial_ = 0;
+  void take(std::size_t slot);
 };
 
 }  // namespace finflex::render::detail
