@@ -339,6 +339,36 @@ TEST(TankPictures, AFrameIsNeverDrawnBeforeItsKernelsFinish) {
   }
 }
 
+// The reference draw: the same triangles the cheapest way, timed on the GPU; the
+// frame's image stays the colour pass's. A stream it cannot read as vertex attributes
+// (host memory) is named.
+TEST(TankPictures, TheReferenceDrawIsTimedAndLeavesTheImage) {
+  SmallTank tank;
+  tank.pictures.draw();
+  const render::Image before = tank.pictures.read_image();
+  tank.pictures.draw_reference();
+  tank.renderer.finish();
+  EXPECT_TRUE(tank.pictures.read_image().rgb == before.rgb);
+  tank.pictures.draw_reference();  // a second frame, so the first timed one has a result
+  tank.renderer.finish();
+  const double seconds = tank.renderer.gpu_reference_seconds();
+  EXPECT_GT(seconds, 0.0);
+  EXPECT_LT(seconds, 10.0);
+  const std::vector<float> host(3 * 64, 0.0f);
+  render::FishDraw draw;
+  draw.mesh = tank.renderer.add_mesh({0, 1, 2}, 64);
+  draw.instance_count = 1;
+  draw.positions = render::VertexStream::from_host(host.data(), host.size() * 4,
+                                                   render::StreamLayout::interleaved(64));
+  draw.normals = draw.positions;
+  try {
+    tank.renderer.render_reference(tank.pictures.look(), tank.pictures.camera(), {draw});
+    ADD_FAILURE() << "a host stream was drawn by the reference draw";
+  } catch (const render::RenderError& e) {
+    EXPECT_EQ(e.field(), "fish[0].positions");
+  }
+}
+
 TEST(TankPictures, TheIdPassCoversTheFishWithTheirTankIds) {
   SmallTank tank;
   tank.pictures.draw();

@@ -10,7 +10,7 @@
 //                [--size WxH] [--camera above|oblique|side] [--samples N]
 //                [--image-frames all|none|LIST] [--video auto|none|mp4,gif,apng]
 //                [--annotate] [--render | --no-render]
-//                [--hand-off auto|external-memory|shared|copy]
+//                [--hand-off auto|external-memory|shared|copy] [--reference-draw]
 #include <unistd.h>
 
 #include <algorithm>
@@ -85,8 +85,8 @@ void progress(std::size_t done, std::size_t total) {
 // Per frame, seconds of each step (frames after the first, whose kernels and shaders
 // are built on first use).
 struct FrameTimes {
-  std::vector<double> simulation, enqueue, kernels, wait, hand_off, draw, draw_gpu, read_back,
-      files, annotation, total;
+  std::vector<double> simulation, enqueue, kernels, wait, hand_off, draw, draw_gpu, reference_gpu,
+      read_back, files, annotation, total;
   std::vector<double> cpu;  // CPU time of every thread of the process (not ffmpeg's)
 };
 
@@ -165,6 +165,12 @@ nlohmann::ordered_json rendering_summary(const SwimPlan& plan, pictures::TankPic
                                    {"read_back", mean(t.read_back)},
                                    {"files", mean(t.files)},
                                    {"annotation", mean(t.annotation)}};
+  if (plan.reference_draw) {
+    // The same triangles drawn the cheapest way (Renderer::render_reference), GPU
+    // times of the same frames: the draw's distance from the geometry rate.
+    out["reference_draw"] = {{"seconds_on_the_gpu_mean", mean(t.reference_gpu)},
+                             {"draw_over_reference", mean(t.draw_gpu) / mean(t.reference_gpu)}};
+  }
   out["cpu_seconds_per_frame_mean"] = mean(t.cpu);
   out["share_of_frame"] = {
       {"deform", deform / frame},       {"hand_off", mean(t.hand_off) / frame},
@@ -247,12 +253,17 @@ int run_swim(const SwimOptions& options) {
       const double wait = seconds_since(step);
       double draw = 0.0;
       double draw_gpu = 0.0;
+      double reference_gpu = 0.0;
       PictureFileTimes file_times;
       if (pictures) {
         step = Clock::now();
         pictures->draw();
         draw = seconds_since(step);
         draw_gpu = pictures->renderer().gpu_draw_seconds();
+        if (plan.reference_draw) {
+          pictures->draw_reference();
+          reference_gpu = pictures->renderer().gpu_reference_seconds();
+        }
         if (files) file_times = files->add_frame(f, scene.tank().time());
       }
       if (f == 0) {
@@ -268,6 +279,7 @@ int run_swim(const SwimOptions& options) {
         t.hand_off.push_back(work.handoff_seconds);
         t.draw.push_back(draw);
         t.draw_gpu.push_back(draw_gpu);
+        t.reference_gpu.push_back(reference_gpu);
         t.read_back.push_back(file_times.read_back);
         t.files.push_back(file_times.files);
         t.annotation.push_back(file_times.annotation);
@@ -339,6 +351,12 @@ int run_swim(const SwimOptions& options) {
           rendering["cpu_seconds_per_frame_mean"].get<double>() * 1e3, part("deform").c_str(),
           part("hand_off").c_str(), part("draw").c_str(), part("read_back").c_str(),
           part("files").c_str(), part("annotation").c_str(), mean(t.draw_gpu) * 1e3);
+      if (plan.reference_draw) {
+        std::printf(
+            "  the reference draw (the same triangles, pass-through) on the GPU %.1f ms: "
+            "the draw is %.2f times it\n",
+            mean(t.reference_gpu) * 1e3, mean(t.draw_gpu) / mean(t.reference_gpu));
+      }
       std::printf("  hand-off: %s (%s), %.2f ms a frame\n", to_string(hand_off.path),
                   hand_off_line(hand_off, *pictures).c_str(), mean(t.hand_off) * 1e3);
     }
@@ -423,6 +441,8 @@ Command add_swim_command(CLI::App& app) {
                    "How the deformed fish reach the renderer: auto (the first that runs), "
                    "external-memory, shared or copy")
       ->capture_default_str();
+  swim->add_flag("--reference-draw", options->reference_draw,
+                 "Each frame also the same triangles drawn the cheapest way, and both GPU times");
   return {[options] { plan_of(*options); }, [options] { return run_swim(*options); }};
 }
 

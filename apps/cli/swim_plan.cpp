@@ -69,6 +69,7 @@ void plan_pictures(const SwimOptions& options, SwimPlan& plan) {
   plan.pictures.view = pictures::parse_camera_view(options.camera, "--camera");
   plan.pictures.samples = static_cast<int>(parse_count(options.samples, "--samples", 1, 16));
   plan.hand_off = pictures::parse_hand_off(options.hand_off, "--hand-off");
+  plan.reference_draw = options.reference_draw;
   for (const auto& [given, option] :
        {std::pair{!options.image_frames.empty(), "--image-frames"},
         std::pair{!options.video.empty(), "--video"}, std::pair{options.annotate, "--annotate"}}) {

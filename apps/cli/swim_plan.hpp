@@ -36,6 +36,7 @@ struct SwimOptions {
   bool annotate = false;
   int render = -1;  // --render: 1, --no-render: 0, neither: -1 (on with --out)
   std::string hand_off = "auto";
+  bool reference_draw = false;
 };
 
 // What the command runs, every value checked.
@@ -50,6 +51,7 @@ struct SwimPlan {
   std::set<std::size_t> mesh_frames;
   bool render = false;
   std::optional<pictures::HandOffPath> hand_off;  // nullopt: the first that can run
+  bool reference_draw = false;                    // each frame also the reference draw
   pictures::PictureSettings pictures;
   PictureFiles files;
 };

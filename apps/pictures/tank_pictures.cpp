@@ -61,6 +61,8 @@ void TankPictures::draw() {
   renderer_.render(look_, camera_, draws_);
 }
 
+void TankPictures::draw_reference() { renderer_.render_reference(look_, camera_, draws_); }
+
 const render::Image& TankPictures::read_image() {
   renderer_.read_image(image_);
   return image_;

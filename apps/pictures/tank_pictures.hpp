@@ -45,6 +45,9 @@ class TankPictures {
   // read_image (waits), or the renderer's request_image and take_image.
   void draw();
   const render::Image& read_image();
+  // The reference draw of the same fish (Renderer::render_reference): the yardstick of
+  // draw()'s GPU time. The image stays draw()'s.
+  void draw_reference();
   // The id pass of the same, read back.
   const render::IdImage& draw_ids();
 

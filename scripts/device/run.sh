@@ -360,6 +360,10 @@ render_speed() {
       swim_on "1,000 fish, a dataset (--annotate): 15 frames" "$path" 1000 --seconds 0.5 \
         --fps 30 --out "$scratch/dataset-$path" --video none --annotate
     done
+    for path in external-memory copy; do
+      swim_on "1,000 fish drawn and the reference draw: 30 frames" "$path" 1000 --seconds 1 \
+        --fps 30 --render --reference-draw
+    done
     swim_on "10,000 fish drawn only: 15 frames" external-memory 10000 --seconds 0.5 --fps 30 \
       --render
     for summary in "$scratch"/*/summary.json; do

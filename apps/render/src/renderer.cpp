@@ -13,6 +13,7 @@
 #include "frames_in_flight.hpp"
 #include "gl_resources.hpp"
 #include "id_targets.hpp"
+#include "reference_pass.hpp"
 #include "render_targets.hpp"
 #include "scene_uniforms.hpp"
 #include "tank_pass.hpp"
@@ -90,6 +91,8 @@ struct Renderer::Impl {
   std::vector<GlSemaphore> semaphores;
   ReadbackRing readback;
   GpuTimer draw_timer;
+  std::unique_ptr<ReferencePass> reference;  // made on its first use
+  GpuTimer reference_timer{4};
   ExternalSupport external = query_external_support();
 
   explicit Impl(const RenderSettings& requested)
@@ -362,6 +365,33 @@ void Renderer::take_image(Image& out) {
   impl_->egl.make_current();
   impl_->readback.take(out);
   require_no_gl_error("take_image");
+}
+
+void Renderer::render_reference(const Scene& scene, const Camera& camera,
+                                const std::vector<FishDraw>& fish) {
+  impl_->egl.make_current();
+  scene.validate();
+  camera.validate();
+  validate_fish(fish, impl_->meshes, impl_->buffers);
+  Impl& r = *impl_;
+  if (!r.reference) r.reference = std::make_unique<ReferencePass>();
+  r.upload_scene_block(scene, camera);
+  r.reference_timer.begin();
+  r.targets.bind_scene();
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glEnable(GL_CULL_FACE);
+  glCullFace(GL_BACK);
+  glFrontFace(GL_CCW);
+  r.reference->draw(fish, r.meshes, r.buffers);
+  r.reference_timer.end();
+  require_no_gl_error("render_reference");
+}
+
+double Renderer::gpu_reference_seconds() {
+  impl_->egl.make_current();
+  return impl_->reference_timer.latest_seconds();
 }
 
 double Renderer::gpu_draw_seconds() {

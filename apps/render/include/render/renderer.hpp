@@ -156,6 +156,17 @@ class Renderer {
   // result (GL_TIME_ELAPSED, read without waiting; 0 before the first).
   double gpu_draw_seconds();
 
+  // The reference draw of `fish` (docs/rendering.md "The reference draw"): the same
+  // triangles, positions as plain vertex attributes, a pass-through shader, one flat
+  // colour, one multi-draw per species, into the colour pass's framebuffer (the last
+  // frame's image is kept). Validated as render(), and each positions stream must be
+  // a renderer buffer of float32 whose instance stride is a multiple of its vertex
+  // stride (kInvalidArgument naming "fish[d].positions"). Its GPU time:
+  // gpu_reference_seconds(), as gpu_draw_seconds().
+  void render_reference(const Scene& scene, const Camera& camera,
+                        const std::vector<FishDraw>& fish);
+  double gpu_reference_seconds();
+
   // The last frame as RGB8, sRGB-encoded, rows from the top (waits for the GPU).
   Image read_image();
   void read_image(Image& out);  // reuses out's storage
