@@ -28,16 +28,18 @@ void ReferencePass::draw(const std::vector<FishDraw>& fish,
         (f.instance_count - 1) * (layout.instance_stride / layout.vertex_stride) >
             static_cast<std::size_t>(INT_MAX)) {
       throw RenderError(ErrorCode::kInvalidArgument, field,
-                        field + ": the reference draw reads float32 positions in a renderer "
-                                "buffer whose instance stride is a multiple of its vertex stride");
+                        field +
+                            ": the reference draw reads float32 positions in a renderer "
+                            "buffer whose instance stride is a multiple of its vertex stride");
     }
     const MeshResources& mesh = meshes[f.mesh];
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.indices.get());
     glBindBuffer(GL_ARRAY_BUFFER, buffers[f.positions.buffer].buffer.get());
     for (GLuint c = 0; c < 3; ++c) {
       glEnableVertexAttribArray(c);
-      glVertexAttribPointer(c, 1, GL_FLOAT, GL_FALSE, static_cast<GLsizei>(layout.vertex_stride),
-                            reinterpret_cast<const void*>(layout.offset + c * layout.component_stride));
+      glVertexAttribPointer(
+          c, 1, GL_FLOAT, GL_FALSE, static_cast<GLsizei>(layout.vertex_stride),
+          reinterpret_cast<const void*>(layout.offset + c * layout.component_stride));
     }
     counts_.assign(f.instance_count, mesh.index_count);
     firsts_.assign(f.instance_count, nullptr);
