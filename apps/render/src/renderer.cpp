@@ -48,6 +48,15 @@ std::string gl_string(GLenum name) {
   return text != nullptr ? text : "";
 }
 
+// Depth-tested, back-face-culled counter-clockwise triangles: every pass's state.
+void opaque_triangles() {
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glEnable(GL_CULL_FACE);
+  glCullFace(GL_BACK);
+  glFrontFace(GL_CCW);
+}
+
 void require_no_gl_error(const char* during) {
   const GLenum error = glGetError();
   if (error != GL_NO_ERROR) {
@@ -108,6 +117,14 @@ struct Renderer::Impl {
     glBufferData(GL_UNIFORM_BUFFER, sizeof(SceneBlock), nullptr, GL_DYNAMIC_DRAW);
     glBindBuffer(GL_UNIFORM_BUFFER, 0);
     require_no_gl_error("set-up");
+  }
+
+  // Every pass's start: the context current, its inputs checked.
+  void validate(const Scene& scene, const Camera& camera, const std::vector<FishDraw>& fish) {
+    egl.make_current();
+    scene.validate();
+    camera.validate();
+    validate_fish(fish, meshes, buffers);
   }
 
   // glWaitSemaphoreEXT, or glSignalSemaphoreEXT and a flush (another API's wait needs
@@ -261,10 +278,7 @@ std::uint32_t Renderer::gl_buffer(BufferId buffer) const {
 std::size_t Renderer::buffer_bytes(BufferId buffer) const { return impl_->buffer(buffer).bytes; }
 
 void Renderer::render(const Scene& scene, const Camera& camera, const std::vector<FishDraw>& fish) {
-  impl_->egl.make_current();
-  scene.validate();
-  camera.validate();
-  validate_fish(fish, impl_->meshes, impl_->buffers);
+  impl_->validate(scene, camera, fish);
   Impl& r = *impl_;
 
   r.upload_scene_block(scene, camera);
@@ -274,11 +288,7 @@ void Renderer::render(const Scene& scene, const Camera& camera, const std::vecto
   glClearColor(scene.background.r, scene.background.g, scene.background.b, 1.0f);
   glClearDepth(1.0);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glEnable(GL_CULL_FACE);
-  glCullFace(GL_BACK);
-  glFrontFace(GL_CCW);
+  opaque_triangles();
   r.tank.draw(scene.tank);
   r.fish.draw(fish, r.meshes, r.buffers);
 
@@ -290,10 +300,7 @@ void Renderer::render(const Scene& scene, const Camera& camera, const std::vecto
 
 void Renderer::render_ids(const Scene& scene, const Camera& camera,
                           const std::vector<FishDraw>& fish) {
-  impl_->egl.make_current();
-  scene.validate();
-  camera.validate();
-  validate_fish(fish, impl_->meshes, impl_->buffers);
+  impl_->validate(scene, camera, fish);
   validate_ids(fish);
   Impl& r = *impl_;
   if (!r.id_targets) {
@@ -303,11 +310,7 @@ void Renderer::render_ids(const Scene& scene, const Camera& camera,
   r.upload_scene_block(scene, camera);
 
   r.id_targets->bind_and_clear();
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glEnable(GL_CULL_FACE);
-  glCullFace(GL_BACK);
-  glFrontFace(GL_CCW);
+  opaque_triangles();
   glDrawBuffer(GL_NONE);  // the tank hides what is behind it, and writes no id
   r.tank.draw(scene.tank);
   glDrawBuffer(GL_COLOR_ATTACHMENT0);
@@ -369,21 +372,14 @@ void Renderer::take_image(Image& out) {
 
 void Renderer::render_reference(const Scene& scene, const Camera& camera,
                                 const std::vector<FishDraw>& fish) {
-  impl_->egl.make_current();
-  scene.validate();
-  camera.validate();
-  validate_fish(fish, impl_->meshes, impl_->buffers);
+  impl_->validate(scene, camera, fish);
   Impl& r = *impl_;
   if (!r.reference) r.reference = std::make_unique<ReferencePass>();
   r.upload_scene_block(scene, camera);
   r.reference_timer.begin();
   r.targets.bind_scene();
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glEnable(GL_CULL_FACE);
-  glCullFace(GL_BACK);
-  glFrontFace(GL_CCW);
+  opaque_triangles();
   r.reference->draw(fish, r.meshes, r.buffers);
   r.reference_timer.end();
   require_no_gl_error("render_reference");
