@@ -120,11 +120,11 @@ struct Renderer::Impl {
   }
 
   // Every pass's start: the context current, its inputs checked.
-  void validate(const Scene& scene, const Camera& camera, const std::vector<FishDraw>& fish) {
+  void validate(const Scene& scene, const Camera& camera, const std::vector<FishDraw>& draws) {
     egl.make_current();
     scene.validate();
     camera.validate();
-    validate_fish(fish, meshes, buffers);
+    validate_fish(draws, meshes, buffers);
   }
 
   // glWaitSemaphoreEXT, or glSignalSemaphoreEXT and a flush (another API's wait needs
