@@ -154,8 +154,7 @@ struct SmallTank {
       : renderer(render_settings(kAbove)),
         opencl(make_gl_sharing_context(test::shared_context().description().device_name,
                                        renderer.egl_display(), renderer.egl_context())),
-        hand_off(choose_hand_off(renderer, *opencl.context, opencl.sharing ? "" : opencl.why_not,
-                                 wanted)),
+        hand_off(choose_hand_off(renderer, *opencl.context, opencl.why_not, wanted)),
         scene(small_scene(*opencl.context, gl_outputs(renderer, hand_off))),
         pictures(renderer, scene, kAbove) {
     for (int frame = 0; frame < kFrames; ++frame) scene.enqueue_frame(1.0 / 30.0);

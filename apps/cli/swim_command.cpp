@@ -197,10 +197,7 @@ int run_swim(const SwimOptions& options) {
       GlSharingContext shared =
           make_gl_sharing_context(options.device, renderer->egl_display(), renderer->egl_context());
       opencl = std::move(shared.context);
-      hand_off = pictures::choose_hand_off(
-          *renderer, *opencl,
-          shared.sharing ? "" : (shared.why_not.empty() ? "no GL sharing" : shared.why_not),
-          plan.hand_off);
+      hand_off = pictures::choose_hand_off(*renderer, *opencl, shared.why_not, plan.hand_off);
     } else {
       opencl = std::make_unique<Context>(options.device);
     }

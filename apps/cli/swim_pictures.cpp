@@ -84,34 +84,54 @@ PictureFileTimes SwimPictureFiles::add_frame(std::size_t frame, double time_s) {
 void SwimPictureFiles::take_frame(PictureFileTimes* times) {
   const std::size_t frame = in_flight_.front();
   in_flight_.pop_front();
-  auto picture = std::make_shared<render::Image>();
+  // An image the pool has handed back, else a new one: no allocation per frame.
+  render::Image picture;
+  if (!free_images_.empty()) {
+    picture = std::move(free_images_.back());
+    free_images_.pop_back();
+  }
   Clock::time_point start = Clock::now();
-  pictures_.renderer().take_image(*picture);
+  pictures_.renderer().take_image(picture);
   if (times) times->read_back = seconds_since(start);
   start = Clock::now();
-  for (const std::unique_ptr<render::VideoWriter>& video : videos_) video->add_frame(*picture);
+  for (const std::unique_ptr<render::VideoWriter>& video : videos_) video->add_frame(picture);
   if (plan_.image_of(frame)) {
     const std::string path = (fs::path(folder_) / image_name(frame)).string();
-    pngs_.push_back(pool_->submit([path, picture] { render::write_png(path, *picture); }));
+    pngs_.push_back(pool_->submit([path, image = std::move(picture)]() mutable {
+      render::write_png(path, image);
+      return std::move(image);
+    }));
     ++images_;
+  } else {
+    free_images_.push_back(std::move(picture));
   }
   collect(false);
   if (times) times->files = seconds_since(start);
 }
 
+namespace {
+
+// Takes the finished results at the front of `waiting` (all of them while more than
+// `keep` wait), in order, into `take`; rethrows a task's error.
+template <typename Result, typename Take>
+void take_finished(std::deque<std::future<Result>>& waiting, std::size_t keep, Take take) {
+  while (!waiting.empty() &&
+         (waiting.size() > keep ||
+          waiting.front().wait_for(std::chrono::seconds(0)) == std::future_status::ready)) {
+    take(waiting.front().get());
+    waiting.pop_front();
+  }
+}
+
+}  // namespace
+
 void SwimPictureFiles::collect(bool all) {
   const std::size_t keep = all ? 0 : pool_->size();
-  while (pngs_.size() > keep || (!pngs_.empty() && pngs_.front().wait_for(std::chrono::seconds(
-                                                       0)) == std::future_status::ready)) {
-    pngs_.front().get();
-    pngs_.pop_front();
-  }
-  while (annotations_.size() > keep ||
-         (!annotations_.empty() &&
-          annotations_.front().wait_for(std::chrono::seconds(0)) == std::future_status::ready)) {
-    dataset_->append(annotations_.front().get());
-    annotations_.pop_front();
-  }
+  take_finished(pngs_, keep,
+                [this](render::Image image) { free_images_.push_back(std::move(image)); });
+  take_finished(annotations_, keep, [this](pictures::CocoDataset::FrameAnnotations frame) {
+    dataset_->append(std::move(frame));
+  });
 }
 
 void SwimPictureFiles::finish() {

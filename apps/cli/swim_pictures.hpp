@@ -77,8 +77,9 @@ class SwimPictureFiles {
   // pool's size is waiting), rethrowing its errors, appending annotations.
   void collect(bool all);
   std::unique_ptr<class WorkerPool> pool_;
-  std::deque<std::size_t> in_flight_;  // frames requested from the renderer
-  std::deque<std::future<void>> pngs_;
+  std::deque<std::size_t> in_flight_;            // frames requested from the renderer
+  std::deque<std::future<render::Image>> pngs_;  // each hands its image back
+  std::vector<render::Image> free_images_;
   std::deque<std::future<pictures::CocoDataset::FrameAnnotations>> annotations_;
 };
 

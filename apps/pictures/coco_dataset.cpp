@@ -84,11 +84,6 @@ CocoDataset::CocoDataset(const std::string& folder, tank::SwimScene& scene,
   require_written(coco_, path);
 }
 
-void CocoDataset::add_frame(std::size_t frame, double time_s, const std::string& image_file,
-                            const render::IdImage& ids) {
-  append(annotate(capture(frame, time_s, image_file, ids)));
-}
-
 CocoDataset::FrameTruth CocoDataset::capture(std::size_t frame, double time_s,
                                              const std::string& image_file,
                                              const render::IdImage& ids) {

@@ -43,15 +43,11 @@ class CocoDataset {
   CocoDataset(const std::string& folder, tank::SwimScene& scene, const render::Camera& camera,
               int width, int height, const nlohmann::ordered_json& info);
 
-  // Frame `frame` (time_s into the swim), whose colour image is `image_file` (relative
-  // to the folder) and whose id pass is `ids`; the scene's batches must still hold
-  // that frame (the keypoints are read from them): append(annotate(capture(...))).
-  void add_frame(std::size_t frame, double time_s, const std::string& image_file,
-                 const render::IdImage& ids);
-
-  // The same in three steps, so that the work in the middle can run on another thread
-  // while the next frames are drawn:
-  // what must be taken while the batches hold the frame (its thread: the scene's),
+  // A frame in three steps, so that the work in the middle can run on another thread
+  // while the next frames are drawn: frame `frame` (time_s into the swim), whose
+  // colour image is `image_file` (relative to the folder) and whose id pass is `ids`;
+  // first what must be taken while the scene's batches hold that frame (the keypoints
+  // are read from them; the scene's thread),
   struct FrameTruth {
     std::size_t frame = 0;
     double time_s = 0.0;

@@ -90,10 +90,6 @@ HandOff choose_hand_off(render::Renderer& renderer, const Context& context,
       if (out.why_not_external.empty()) {
         out.path = HandOffPath::kExternal;
         out.import = choice.import;
-        out.device_ordered =
-            choice.import == ExternalImport::kImported && choice.device->exports_semaphores() &&
-            renderer.external_support().semaphores &&
-            context.description().has_extension("cl_khr_external_semaphore_opaque_fd");
         out.device = std::move(choice.device);
         return out;
       }
@@ -130,14 +126,15 @@ GlSpeciesOutputs::GlSpeciesOutputs(render::Renderer& renderer, const HandOff& ha
       instances_(instances) {
   if (path_ == HandOffPath::kExternal) {
     external_ = std::make_unique<ExternalOutputs>(deformer, instances, layout_, *hand_off.device);
-    const render::BufferId ids[2] = {
-        renderer.import_buffer(external_->buffer(0).export_fd(),
-                               external_->buffer(0).memory_bytes(), external_->data_bytes(0)),
-        renderer.import_buffer(external_->buffer(1).export_fd(),
-                               external_->buffer(1).memory_bytes(), external_->data_bytes(1))};
-    positions_ = ids[external_->buffer_of(0)];
-    normals_ = ids[external_->buffer_of(1)];
-    device_ordered_ = hand_off.device_ordered && external_->device_ordered();
+    std::vector<render::BufferId> imported;
+    for (std::size_t b = 0; b < external_->buffer_count(); ++b) {
+      const vulkan::ExternalBuffer& buffer = external_->buffer(b);
+      imported.push_back(renderer.import_buffer(buffer.export_fd(), buffer.memory_bytes(),
+                                                external_->data_bytes(b)));
+    }
+    positions_ = imported[external_->buffer_of(0)];
+    normals_ = imported[external_->buffer_of(1)];
+    device_ordered_ = external_->device_ordered() && renderer.external_support().semaphores;
     if (!external_->device_ordered()) {
       why_not_ordered_ = external_->semaphores_why_not();
     } else if (!renderer.external_support().semaphores) {
@@ -206,8 +203,7 @@ void GlSpeciesOutputs::wait_until_drawable() {
 void GlSpeciesOutputs::begin_reading() {
   renderer_.make_current();
   if (external_) {
-    renderer_.finish();  // GL has no commands left on the memory OpenCL now reads
-    external_->begin_reading();
+    external_->begin_reading();  // GL only reads the memory too: no wait for it
     return;
   }
   gl_->begin_reading();

@@ -47,14 +47,14 @@ struct HandOff {
   HandOffPath path = HandOffPath::kCopy;
   std::unique_ptr<vulkan::Device> device;  // kExternal
   ExternalImport import = ExternalImport::kImported;
-  bool device_ordered = false;  // kExternal: semaphores on every side (as far as known)
   std::string why_not_external;
   std::string why_not_shared;
 };
 
-// The first path of external memory, sharing (when `context` shares the renderer's GL
-// context: make_gl_sharing_context, whose why_not is `why_not_shared`) and copy that
-// can run; `wanted` (not auto) takes that path or fails with kDevice naming why not.
+// The first path of external memory, sharing (`why_not_shared`: GlSharingContext's
+// why_not from make_gl_sharing_context, empty when `context` shares the renderer's GL
+// context) and copy that can run; `wanted` (not auto) takes that path or fails with kDevice naming
+// why not.
 HandOff choose_hand_off(render::Renderer& renderer, const Context& context,
                         const std::string& why_not_shared,
                         std::optional<HandOffPath> wanted = std::nullopt);

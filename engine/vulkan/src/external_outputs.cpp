@@ -27,6 +27,11 @@ std::size_t attribute_bytes(const AttributeLayout& attribute, std::size_t instan
                   attribute.offset + instances * attribute.instance_stride);
 }
 
+std::string no_uuid(const Context& context) {
+  return "'" + context.description().device_name +
+         "' has no cl_khr_device_uuid to match a Vulkan device by";
+}
+
 }  // namespace
 
 const char* to_string(ExternalImport import) {
@@ -48,7 +53,7 @@ std::string why_not_external(const Context& context, const vulkan::Device& devic
   const std::string name = "'" + cl.device_name + "'";
   if (cl.has_extension(kMemoryExtension)) {
     const std::optional<vulkan::Uuid> uuid = opencl_device_uuid(context);
-    if (!uuid) return name + " has no cl_khr_device_uuid to match a Vulkan device by";
+    if (!uuid) return no_uuid(context);
     if (*uuid != device.uuid()) {
       return name + "'s UUID " + vulkan::to_string(*uuid) + " is not the Vulkan device's (" +
              device.name() + ", " + vulkan::to_string(device.uuid()) + ")";
@@ -73,8 +78,7 @@ ExternalChoice choose_external_device(const Context& context) {
   ExternalChoice out;
   const std::optional<vulkan::Uuid> uuid = opencl_device_uuid(context);
   if (!uuid && context.description().type != "CPU") {
-    out.why_not = "'" + context.description().device_name +
-                  "' has no cl_khr_device_uuid to match a Vulkan device by";
+    out.why_not = no_uuid(context);
     return out;
   }
   try {
@@ -172,7 +176,6 @@ ExternalOutputs::ExternalOutputs(ClDeformer& deformer, std::size_t instances,
   cl_ = std::make_unique<ClImports>();
   cl_->f = detail::load_cl_external_functions(platform_of(context));
   const detail::ClExternalFunctions& f = cl_->f;
-  std::vector<cl::Buffer> as_cl;
   for (std::size_t b = 0; b < buffers_.size(); ++b) {
     const int fd = buffers_[b]->export_fd();
     const cl_ulong properties[] = {CL_EXTERNAL_MEMORY_HANDLE_OPAQUE_FD_KHR,
@@ -186,14 +189,13 @@ ExternalOutputs::ExternalOutputs(ClDeformer& deformer, std::size_t instances,
         context.context()(), properties, CL_MEM_READ_WRITE, data_bytes_[b], nullptr, &status);
     if (status != CL_SUCCESS) close(fd);  // on success the implementation owns it
     check_cl(status, "clCreateBufferWithProperties (external memory, opaque fd)");
-    as_cl.emplace_back(memory);  // takes the reference
-    imported_.push_back(as_cl.back());
+    imported_.emplace_back(memory);  // takes the reference
   }
   OutputBuffers buffers;
   cl::Buffer* slots[4] = {&buffers.positions, &buffers.normals, &buffers.tangents,
                           &buffers.previous_positions};
   for (std::size_t k = 0; k < 4; ++k) {
-    if (written[k]) *slots[k] = as_cl[buffer_index_[k]];
+    if (written[k]) *slots[k] = imported_[buffer_index_[k]];
   }
   batch_ = deformer.bind(instances, layout, buffers);
   // OpenCL acquires the imported memory once, for the outputs' life (released in the
@@ -228,7 +230,7 @@ ExternalOutputs::ExternalOutputs(ClDeformer& deformer, std::size_t instances,
 
 void ExternalOutputs::acquire_or_release(bool acquire) {
   std::vector<cl_mem> memory;
-  for (const cl::Memory& m : imported_) memory.push_back(m());
+  for (const cl::Buffer& m : imported_) memory.push_back(m());
   cl::CommandQueue& queue = deformer_.context().queue();
   const auto call = acquire ? cl_->f.acquire : cl_->f.release;
   check_cl(

@@ -123,7 +123,7 @@ class ExternalOutputs {
   std::vector<std::unique_ptr<vulkan::ExternalBuffer>> buffers_;
   std::array<std::size_t, 4> buffer_index_{};
   std::vector<std::size_t> data_bytes_;
-  std::vector<cl::Memory> imported_;  // kImported: the buffers as OpenCL memory
+  std::vector<cl::Buffer> imported_;  // kImported: the buffers as OpenCL memory
   std::unique_ptr<vulkan::ExternalSemaphore> kernels_done_;
   std::unique_ptr<vulkan::ExternalSemaphore> consumer_done_;
   void acquire_or_release(bool acquire);  // kImported: blocking
