@@ -8,11 +8,14 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <functional>
 #include <set>
 
 #include <epoxy/gl.h>
 #include <gtest/gtest.h>
 
+#include "coco_dataset.hpp"
 #include "instance_masks.hpp"
 #include "landmarks.hpp"
 #include "support/test_support.hpp"
@@ -423,6 +426,62 @@ TEST(TankPictures, TheIdPassCoversTheFishWithTheirTankIds) {
   EXPECT_EQ(seen.size(), 8u);
   EXPECT_EQ(*seen.begin(), 1u);
   EXPECT_EQ(*seen.rbegin(), 8u);
+}
+
+TEST(TankPictures, IdPassesInFlightComeBackInTheirOrderAsDrawn) {
+  SmallTank tank;
+  render::Renderer& renderer = tank.pictures.renderer();
+  const std::size_t in_flight = renderer.settings().frames_in_flight;
+  std::vector<render::IdImage> now;  // each frame's id pass, read at once
+  for (std::size_t k = 0; k < in_flight; ++k) {
+    tank.scene.enqueue_frame(1.0 / 30.0);
+    tank.pictures.draw();
+    now.push_back(tank.pictures.draw_ids());
+    tank.pictures.request_ids();
+  }
+  EXPECT_EQ(renderer.ids_pending(), in_flight);
+  const auto field_of = [](const std::function<void()>& step) {
+    try {
+      step();
+    } catch (const render::RenderError& error) {
+      return error.field();
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(field_of([&] { renderer.request_ids(); }), "request_ids");
+  render::IdImage ids;
+  for (std::size_t k = 0; k < in_flight; ++k) {
+    renderer.take_ids(ids);
+    EXPECT_EQ(ids.ids, now[k].ids) << "frame " << k;
+    EXPECT_EQ(ids.depth, now[k].depth) << "frame " << k;
+  }
+  EXPECT_NE(now.front().ids, now.back().ids);  // the fish swam
+  EXPECT_EQ(field_of([&] { renderer.take_ids(ids); }), "take_ids");
+  renderer.finish();
+  const double seconds = renderer.gpu_id_seconds();
+  EXPECT_GT(seconds, 0.0);
+  EXPECT_LT(seconds, 10.0);
+}
+
+TEST(TankPictures, AnnotationsNeedTheFramesIdPassAndWriteNothingWithout) {
+  SmallTank tank;
+  const std::string folder = test::temp_path("annotate_without_ids");
+  std::filesystem::remove_all(folder);
+  CocoDataset dataset(folder, tank.scene, tank.pictures.camera(), kAbove.width, kAbove.height,
+                      nlohmann::ordered_json::object());
+  CocoDataset::FrameTruth truth = dataset.capture(0, 0.0, "frames/frame_000000.png");
+  try {
+    (void)dataset.annotate(truth);
+    ADD_FAILURE() << "a frame without its id pass was annotated";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::kInvalidArgument);
+    EXPECT_EQ(e.field(), "ids");
+  }
+  EXPECT_TRUE(std::filesystem::is_empty(std::filesystem::path(folder) / "masks"));
+  truth.ids = tank.pictures.draw_ids();
+  EXPECT_NO_THROW((void)dataset.annotate(truth));
+  EXPECT_FALSE(std::filesystem::is_empty(std::filesystem::path(folder) / "masks"));
+  std::filesystem::remove_all(folder);
 }
 
 TEST(TankPictures, TheIdPassNeedsAnIdPerInstance) {

@@ -86,7 +86,7 @@ void progress(std::size_t done, std::size_t total) {
 // are built on first use).
 struct FrameTimes {
   std::vector<double> simulation, enqueue, kernels, wait, hand_off, draw, draw_gpu, reference_gpu,
-      read_back, files, annotation, total;
+      id_gpu, read_back, files, annotation, total;
   std::vector<double> cpu;  // CPU time of every thread of the process (not ffmpeg's)
 };
 
@@ -165,6 +165,10 @@ nlohmann::ordered_json rendering_summary(const SwimPlan& plan, pictures::TankPic
                                    {"read_back", mean(t.read_back)},
                                    {"files", mean(t.files)},
                                    {"annotation", mean(t.annotation)}};
+  if (plan.files.annotate) {
+    // The id pass (the masks' instance ids and depth), GPU time beside the draw's.
+    out["seconds_per_frame_mean"]["id_pass_on_the_gpu"] = mean(t.id_gpu);
+  }
   if (plan.reference_draw) {
     // The same triangles drawn the cheapest way (Renderer::render_reference), GPU
     // times of the same frames: the draw's distance from the geometry rate.
@@ -251,6 +255,7 @@ int run_swim(const SwimOptions& options) {
       double draw = 0.0;
       double draw_gpu = 0.0;
       double reference_gpu = 0.0;
+      double id_gpu = 0.0;
       PictureFileTimes file_times;
       if (pictures) {
         step = Clock::now();
@@ -262,6 +267,7 @@ int run_swim(const SwimOptions& options) {
           reference_gpu = pictures->renderer().gpu_reference_seconds();
         }
         if (files) file_times = files->add_frame(f, scene.tank().time());
+        if (files && plan.files.annotate) id_gpu = pictures->renderer().gpu_id_seconds();
       }
       if (f == 0) {
         // Kernels (PoCL per work-group shape) and shaders are built on the first frame.
@@ -277,6 +283,7 @@ int run_swim(const SwimOptions& options) {
         t.draw.push_back(draw);
         t.draw_gpu.push_back(draw_gpu);
         t.reference_gpu.push_back(reference_gpu);
+        t.id_gpu.push_back(id_gpu);
         t.read_back.push_back(file_times.read_back);
         t.files.push_back(file_times.files);
         t.annotation.push_back(file_times.annotation);
@@ -348,6 +355,9 @@ int run_swim(const SwimOptions& options) {
           rendering["cpu_seconds_per_frame_mean"].get<double>() * 1e3, part("deform").c_str(),
           part("hand_off").c_str(), part("draw").c_str(), part("read_back").c_str(),
           part("files").c_str(), part("annotation").c_str(), mean(t.draw_gpu) * 1e3);
+      if (plan.files.annotate) {
+        std::printf("  the id pass on the GPU %.1f ms\n", mean(t.id_gpu) * 1e3);
+      }
       if (plan.reference_draw) {
         std::printf(
             "  the reference draw (the same triangles, pass-through) on the GPU %.1f ms: "

@@ -68,11 +68,9 @@ PictureFileTimes SwimPictureFiles::add_frame(std::size_t frame, double time_s) {
   in_flight_.push_back(frame);
   if (image && dataset_) {
     const Clock::time_point start = Clock::now();
-    pictures::CocoDataset::FrameTruth truth =
-        dataset_->capture(frame, time_s, image_name(frame), pictures_.draw_ids());
-    const pictures::CocoDataset* dataset = dataset_.get();
-    annotations_.push_back(
-        pool_->submit([dataset, truth = std::move(truth)] { return dataset->annotate(truth); }));
+    truths_.push_back(dataset_->capture(frame, time_s, image_name(frame)));
+    pictures_.request_ids();
+    if (renderer.ids_pending() == renderer.settings().frames_in_flight) take_ids();
     collect(false);
     times.annotation = seconds_since(start);
   }
@@ -109,6 +107,15 @@ void SwimPictureFiles::take_frame(PictureFileTimes* times) {
   if (times) times->files = seconds_since(start);
 }
 
+void SwimPictureFiles::take_ids() {
+  pictures::CocoDataset::FrameTruth truth = std::move(truths_.front());
+  truths_.pop_front();
+  pictures_.renderer().take_ids(truth.ids);
+  const pictures::CocoDataset* dataset = dataset_.get();
+  annotations_.push_back(
+      pool_->submit([dataset, truth = std::move(truth)] { return dataset->annotate(truth); }));
+}
+
 namespace {
 
 // Takes the finished results at the front of `waiting` (all of them while more than
@@ -136,6 +143,7 @@ void SwimPictureFiles::collect(bool all) {
 
 void SwimPictureFiles::finish() {
   while (!in_flight_.empty()) take_frame(nullptr);
+  while (!truths_.empty()) take_ids();
   collect(true);
   for (const std::unique_ptr<render::VideoWriter>& video : videos_) video->finish();
   if (dataset_) dataset_->finish();

@@ -73,6 +73,9 @@ class SwimPictureFiles {
   // Takes the oldest frame in flight: its video frame, its PNG to the pool (the
   // loop's seconds of it into `times`, when given).
   void take_frame(PictureFileTimes* times);
+  // Takes the oldest id pass in flight into its frame's truth and hands the frame's
+  // annotation to the pool.
+  void take_ids();
   // Waits for finished pool work in order (all of it: `all`; else while more than the
   // pool's size is waiting), rethrowing its errors, appending annotations.
   void collect(bool all);
@@ -80,6 +83,7 @@ class SwimPictureFiles {
   std::deque<std::size_t> in_flight_;            // frames requested from the renderer
   std::deque<std::future<render::Image>> pngs_;  // each hands its image back
   std::vector<render::Image> free_images_;
+  std::deque<pictures::CocoDataset::FrameTruth> truths_;  // their id passes in flight
   std::deque<std::future<pictures::CocoDataset::FrameAnnotations>> annotations_;
 };
 

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <string>
 
 #include "fish_keypoints.hpp"
 #include "instance_masks.hpp"
@@ -85,13 +86,11 @@ CocoDataset::CocoDataset(const std::string& folder, tank::SwimScene& scene,
 }
 
 CocoDataset::FrameTruth CocoDataset::capture(std::size_t frame, double time_s,
-                                             const std::string& image_file,
-                                             const render::IdImage& ids) {
+                                             const std::string& image_file) {
   FrameTruth truth;
   truth.frame = frame;
   truth.time_s = time_s;
   truth.image_file = image_file;
-  truth.ids = ids;
   // Keypoints of every fish, from the engine's deformed vertices.
   truth.snouts.resize(scene_.species().size());
   truth.forks.resize(scene_.species().size());
@@ -108,6 +107,14 @@ CocoDataset::FrameTruth CocoDataset::capture(std::size_t frame, double time_s,
 
 CocoDataset::FrameAnnotations CocoDataset::annotate(const FrameTruth& truth) const {
   const render::IdImage& ids = truth.ids;
+  const auto pixels = static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_);
+  if (ids.width != width_ || ids.height != height_ || ids.ids.size() != pixels) {
+    throw Error(ErrorCode::kInvalidArgument, "ids",
+                "ids: an id pass of " + std::to_string(ids.width) + "x" +
+                    std::to_string(ids.height) + " (" + std::to_string(ids.ids.size()) +
+                    " ids) for a " + std::to_string(width_) + "x" + std::to_string(height_) +
+                    " dataset");
+  }
   const std::size_t image_id = truth.frame + 1;
   // The mask file: ids as they are (<= 65535).
   render::Image16 mask;

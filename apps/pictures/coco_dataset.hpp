@@ -45,9 +45,9 @@ class CocoDataset {
 
   // A frame in three steps, so that the work in the middle can run on another thread
   // while the next frames are drawn: frame `frame` (time_s into the swim), whose
-  // colour image is `image_file` (relative to the folder) and whose id pass is `ids`;
-  // first what must be taken while the scene's batches hold that frame (the keypoints
-  // are read from them; the scene's thread),
+  // colour image is `image_file` (relative to the folder); first what must be taken
+  // while the scene's batches hold that frame (the keypoints are read from them; the
+  // scene's thread), to which the caller adds the frame's id pass (`ids`, once read back),
   struct FrameTruth {
     std::size_t frame = 0;
     double time_s = 0.0;
@@ -55,9 +55,9 @@ class CocoDataset {
     render::IdImage ids;
     std::vector<std::vector<glm::vec3>> snouts, forks;  // per species, per instance
   };
-  FrameTruth capture(std::size_t frame, double time_s, const std::string& image_file,
-                     const render::IdImage& ids);
-  // the mask file and the frame's annotations (any thread; several frames at once),
+  FrameTruth capture(std::size_t frame, double time_s, const std::string& image_file);
+  // the mask file and the frame's annotations (any thread; several frames at once;
+  // kInvalidArgument naming "ids" unless they are the dataset's width x height),
   struct FrameAnnotations {
     std::vector<nlohmann::ordered_json> annotations;  // their "id"s are given by append
     nlohmann::ordered_json image;

@@ -78,14 +78,7 @@ HandOff choose_hand_off(render::Renderer& renderer, const Context& context,
   if (wanted && *wanted != HandOffPath::kExternal) out.why_not_external = "not asked for";
   if (!wanted || *wanted == HandOffPath::kExternal) {
     ExternalChoice choice = choose_external_device(context);
-    if (choice.device && !wanted && choice.import == ExternalImport::kImported) {
-      // Drawn by OpenGL from memory a GPU's OpenCL imported: not yet checked on a GPU
-      // (docs/rendering.md "What is not done yet"), so taken only when asked for.
-      out.why_not_external =
-          "OpenGL drawing memory that a GPU's OpenCL imported is not checked on a GPU yet "
-          "(--hand-off external-memory takes it)";
-      choice.device.reset();
-    } else if (choice.device) {
+    if (choice.device) {
       out.why_not_external = why_gl_cannot_import(renderer, *choice.device);
       if (out.why_not_external.empty()) {
         out.path = HandOffPath::kExternal;

@@ -74,4 +74,9 @@ const render::IdImage& TankPictures::draw_ids() {
   return ids_;
 }
 
+void TankPictures::request_ids() {
+  renderer_.render_ids(look_, camera_, draws_);
+  renderer_.request_ids();
+}
+
 }  // namespace finflex::pictures

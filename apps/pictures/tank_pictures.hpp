@@ -10,6 +10,7 @@
 //   each frame: scene.enqueue_frame(dt);    // the deformation writes the GL buffers
 //               pictures.draw();  pictures.read_image();
 //               pictures.draw_ids();        // the instance ids, for datasets
+//               (or request_ids(), and the renderer's take_ids() frames later)
 #pragma once
 
 #include <cstdint>
@@ -48,8 +49,11 @@ class TankPictures {
   // The reference draw of the same fish (Renderer::render_reference): the yardstick of
   // draw()'s GPU time. The image stays draw()'s.
   void draw_reference();
-  // The id pass of the same, read back.
+  // The id pass of the same, read back (waits for the GPU).
   const render::IdImage& draw_ids();
+  // The id pass of the same, its read-back started without a wait: the renderer's
+  // take_ids takes it (at most its settings' frames_in_flight at once).
+  void request_ids();
 
   // How the deformations reach the renderer (fish_hand_off.hpp).
   HandOffPath hand_off_path() const { return path_; }

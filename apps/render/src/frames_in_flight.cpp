@@ -1,18 +1,22 @@
 #include "frames_in_flight.hpp"
 
-#include <cstring>
+#include <string>
+#include <utility>
 
 #include "render/error.hpp"
 
 namespace finflex::render::detail {
 
-ReadbackRing::ReadbackRing(int width, int height, std::size_t depth)
-    : width_(width), height_(height) {
-  const auto bytes = static_cast<GLsizeiptr>(width) * height * 3;
-  for (std::size_t k = 0; k < depth; ++k) {
-    buffers_.push_back(GlBuffer::create());
-    glBindBuffer(GL_PIXEL_PACK_BUFFER, buffers_.back().get());
-    glBufferData(GL_PIXEL_PACK_BUFFER, bytes, nullptr, GL_STREAM_READ);
+ReadbackRing::ReadbackRing(const char* what, int width, int height, std::vector<PixelPlane> planes,
+                           std::size_t depth)
+    : what_(what), width_(width), height_(height), planes_(std::move(planes)), slots_(depth) {
+  for (std::vector<GlBuffer>& slot : slots_) {
+    for (const PixelPlane& plane : planes_) {
+      slot.push_back(GlBuffer::create());
+      glBindBuffer(GL_PIXEL_PACK_BUFFER, slot.back().get());
+      glBufferData(GL_PIXEL_PACK_BUFFER, static_cast<GLsizeiptr>(plane_bytes(plane)), nullptr,
+                   GL_STREAM_READ);
+    }
   }
   glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
 }
@@ -21,43 +25,66 @@ ReadbackRing::~ReadbackRing() {
   for (const Pending& p : pending_) glDeleteSync(p.fence);
 }
 
-void ReadbackRing::request() {
-  const std::size_t buffer = next_;
-  next_ = (next_ + 1) % buffers_.size();
-  glBindBuffer(GL_PIXEL_PACK_BUFFER, buffers_[buffer].get());
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, width_, height_, GL_RGB, GL_UNSIGNED_BYTE, nullptr);
-  glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
-  pending_.push_back({buffer, glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0)});
-  glFlush();  // the read goes to the GPU now, so its fence can signal
+std::size_t ReadbackRing::plane_bytes(const PixelPlane& plane) const {
+  return static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_) * plane.pixel_bytes;
 }
 
-void ReadbackRing::take(Image& out) {
+void ReadbackRing::request() {
+  const std::size_t slot = next_;
+  next_ = (next_ + 1) % slots_.size();
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  for (std::size_t k = 0; k < planes_.size(); ++k) {
+    const PixelPlane& plane = planes_[k];
+    if (plane.source != GL_NONE) glReadBuffer(plane.source);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, slots_[slot][k].get());
+    glReadPixels(0, 0, width_, height_, plane.format, plane.type, nullptr);
+  }
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+  pending_.push_back({slot, glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0)});
+  glFlush();  // the reads go to the GPU now, so the fence can signal
+}
+
+void ReadbackRing::take(const std::function<void(const std::vector<const void*>& planes)>& read) {
   if (pending_.empty()) {
-    throw RenderError(ErrorCode::kInvalidArgument, "take_image", "take_image: no frame requested");
+    throw RenderError(ErrorCode::kInvalidArgument, what_,
+                      std::string(what_) + ": no frame requested");
   }
   const Pending p = pending_.front();
   pending_.pop_front();
   const GLenum waited = glClientWaitSync(p.fence, GL_SYNC_FLUSH_COMMANDS_BIT, GLuint64(60e9));
   glDeleteSync(p.fence);
   if (waited == GL_TIMEOUT_EXPIRED || waited == GL_WAIT_FAILED) {
-    throw RenderError(ErrorCode::kGraphics, "gl", "take_image: the frame's fence never signalled");
-  }
-  out.width = width_;
-  out.height = height_;
-  const std::size_t bytes = out.row_bytes() * static_cast<std::size_t>(height_);
-  out.rgb.resize(bytes);
-  glBindBuffer(GL_PIXEL_PACK_BUFFER, buffers_[p.buffer].get());
-  const void* mapped =
-      glMapBufferRange(GL_PIXEL_PACK_BUFFER, 0, static_cast<GLsizeiptr>(bytes), GL_MAP_READ_BIT);
-  if (mapped == nullptr) {
-    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
     throw RenderError(ErrorCode::kGraphics, "gl",
-                      "take_image: the pixel buffer could not be mapped");
+                      std::string(what_) + ": the frame's fence never signalled");
   }
-  std::memcpy(out.rgb.data(), mapped, bytes);
-  glUnmapBuffer(GL_PIXEL_PACK_BUFFER);
-  glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+  std::vector<const void*> mapped;
+  for (std::size_t k = 0; k < planes_.size(); ++k) {
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, slots_[p.slot][k].get());
+    mapped.push_back(glMapBufferRange(GL_PIXEL_PACK_BUFFER, 0,
+                                      static_cast<GLsizeiptr>(plane_bytes(planes_[k])),
+                                      GL_MAP_READ_BIT));
+  }
+  const auto unmap = [&] {
+    for (std::size_t k = 0; k < planes_.size(); ++k) {
+      if (mapped[k] == nullptr) continue;
+      glBindBuffer(GL_PIXEL_PACK_BUFFER, slots_[p.slot][k].get());
+      glUnmapBuffer(GL_PIXEL_PACK_BUFFER);
+    }
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+  };
+  for (const void* plane : mapped) {
+    if (plane != nullptr) continue;
+    unmap();
+    throw RenderError(ErrorCode::kGraphics, "gl",
+                      std::string(what_) + ": the pixel buffer could not be mapped");
+  }
+  try {
+    read(mapped);
+  } catch (...) {
+    unmap();
+    throw;
+  }
+  unmap();
 }
 
 GpuTimer::GpuTimer(std::size_t depth) : issued_(depth, false), serial_(depth, 0) {

@@ -1,5 +1,5 @@
-// The renderer's frames in flight: colour frames read back through a ring of
-// pixel-pack buffers, each with a fence, so that the host takes a frame only when the
+// The renderer's frames in flight: frames (colour, ids) read back through a ring of
+// pixel-pack buffers, each slot with a fence, so that the host takes a frame only when the
 // GPU has drawn it and never waits for the frames drawn after it; and the GPU time of
 // each frame's passes from a ring of timer queries, read once their results are there.
 #pragma once
@@ -7,41 +7,56 @@
 #include <cstddef>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <vector>
 
 #include <epoxy/gl.h>
 
 #include "gl_object.hpp"
-#include "render/image.hpp"
 
 namespace finflex::render::detail {
 
+// One plane of a frame read back: glReadPixels of `format` and `type` from the bound
+// read framebuffer, after glReadBuffer(source) unless source is GL_NONE (depth, or the
+// read buffer already chosen); pixel_bytes per pixel, rows packed at alignment 1.
+struct PixelPlane {
+  GLenum source = GL_NONE;
+  GLenum format = GL_RGB;
+  GLenum type = GL_UNSIGNED_BYTE;
+  std::size_t pixel_bytes = 3;
+};
+
 class ReadbackRing {
  public:
-  ReadbackRing(int width, int height, std::size_t depth);
+  // `what` names the frames in errors ("take_image", "take_ids").
+  ReadbackRing(const char* what, int width, int height, std::vector<PixelPlane> planes,
+               std::size_t depth);
   ~ReadbackRing();
   ReadbackRing(const ReadbackRing&) = delete;
   ReadbackRing& operator=(const ReadbackRing&) = delete;
 
-  std::size_t depth() const { return buffers_.size(); }
+  std::size_t depth() const { return slots_.size(); }
   std::size_t pending() const { return pending_.size(); }
-  // glReadPixels of the bound read framebuffer into the next free buffer, and a fence.
+  // Every plane of the bound read framebuffer into the next free slot, and a fence.
   // The caller checks pending() < depth().
   void request();
-  // The oldest pending frame: waits for its fence, copies it out (rows from the top, as
-  // the encode pass wrote them).
-  void take(Image& out);
+  // The oldest pending frame: waits for its fence only, then hands `read` each plane's
+  // mapped pixels (rows as glReadPixels wrote them: from the bottom), in plane order.
+  void take(const std::function<void(const std::vector<const void*>& planes)>& read);
 
  private:
+  const char* what_;
   int width_;
   int height_;
-  std::vector<GlBuffer> buffers_;
+  std::vector<PixelPlane> planes_;
+  std::vector<std::vector<GlBuffer>> slots_;  // per slot, a buffer per plane
   std::size_t next_ = 0;
   struct Pending {
-    std::size_t buffer;
+    std::size_t slot;
     GLsync fence;
   };
   std::deque<Pending> pending_;
+  std::size_t plane_bytes(const PixelPlane& plane) const;
 };
 
 class GpuTimer {

@@ -3,7 +3,9 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
+#include <vector>
 
 #include "checks.hpp"
 #include "egl_context.hpp"
@@ -100,6 +102,7 @@ struct Renderer::Impl {
   std::vector<GlSemaphore> semaphores;
   ReadbackRing readback;
   GpuTimer draw_timer;
+  GpuTimer id_timer;
   std::unique_ptr<ReferencePass> reference;  // made on its first use
   GpuTimer reference_timer{4};
   ExternalSupport external = query_external_support();
@@ -111,8 +114,10 @@ struct Renderer::Impl {
         targets(settings.width, settings.height, device.samples),
         scene_block(GlBuffer::create()),
         fish(limits, FishOutput::kLitColour),
-        readback(settings.width, settings.height, settings.frames_in_flight),
-        draw_timer(settings.frames_in_flight + 1) {
+        readback("take_image", settings.width, settings.height, {PixelPlane{}},
+                 settings.frames_in_flight),
+        draw_timer(settings.frames_in_flight + 1),
+        id_timer(settings.frames_in_flight + 1) {
     glBindBuffer(GL_UNIFORM_BUFFER, scene_block.get());
     glBufferData(GL_UNIFORM_BUFFER, sizeof(SceneBlock), nullptr, GL_DYNAMIC_DRAW);
     glBindBuffer(GL_UNIFORM_BUFFER, 0);
@@ -304,17 +309,20 @@ void Renderer::render_ids(const Scene& scene, const Camera& camera,
   validate_ids(fish);
   Impl& r = *impl_;
   if (!r.id_targets) {
-    r.id_targets = std::make_unique<IdTargets>(r.settings.width, r.settings.height);
+    r.id_targets = std::make_unique<IdTargets>(r.settings.width, r.settings.height,
+                                               r.settings.frames_in_flight);
     r.fish_ids = std::make_unique<FishPass>(r.limits, FishOutput::kIds);
   }
   r.upload_scene_block(scene, camera);
 
+  r.id_timer.begin();
   r.id_targets->bind_and_clear();
   opaque_triangles();
   glDrawBuffer(GL_NONE);  // the tank hides what is behind it, and writes no id
   r.tank.draw(scene.tank);
   glDrawBuffer(GL_COLOR_ATTACHMENT0);
   r.fish_ids->draw(fish, r.meshes, r.buffers);
+  r.id_timer.end();
   r.id_camera = camera;
   require_no_gl_error("render_ids");
 }
@@ -325,6 +333,35 @@ void Renderer::read_ids(IdImage& out) {
   if (!r.id_targets) invalid("read_ids", "no id pass was rendered");
   r.id_targets->read(out, r.id_camera.near_plane, r.id_camera.far_plane);
   require_no_gl_error("read_ids");
+}
+
+void Renderer::request_ids() {
+  impl_->egl.make_current();
+  Impl& r = *impl_;
+  if (!r.id_targets) invalid("request_ids", "no id pass was rendered");
+  if (r.id_targets->pending() == r.id_targets->in_flight()) {
+    invalid("request_ids", std::to_string(r.id_targets->in_flight()) +
+                               " id passes are in flight already (take_ids first)");
+  }
+  r.id_targets->request(r.id_camera.near_plane, r.id_camera.far_plane);
+  require_no_gl_error("request_ids");
+}
+
+std::size_t Renderer::ids_pending() const {
+  return impl_->id_targets ? impl_->id_targets->pending() : 0;
+}
+
+void Renderer::take_ids(IdImage& out) {
+  impl_->egl.make_current();
+  Impl& r = *impl_;
+  if (!r.id_targets) invalid("take_ids", "no id pass was requested");
+  r.id_targets->take(out);
+  require_no_gl_error("take_ids");
+}
+
+double Renderer::gpu_id_seconds() {
+  impl_->egl.make_current();
+  return impl_->id_timer.latest_seconds();
 }
 
 IdImage Renderer::read_ids() {
@@ -366,7 +403,14 @@ std::size_t Renderer::images_pending() const { return impl_->readback.pending();
 
 void Renderer::take_image(Image& out) {
   impl_->egl.make_current();
-  impl_->readback.take(out);
+  Impl& r = *impl_;
+  r.readback.take([&](const std::vector<const void*>& planes) {
+    out.width = r.settings.width;
+    out.height = r.settings.height;
+    const std::size_t bytes = out.row_bytes() * static_cast<std::size_t>(out.height);
+    const auto* rgb = static_cast<const std::uint8_t*>(planes[0]);
+    out.rgb.assign(rgb, rgb + bytes);  // rows from the top, as the encode pass wrote them
+  });
   require_no_gl_error("take_image");
 }
 

@@ -135,7 +135,8 @@ class Renderer {
   // "fish[d].ids[i]"). Reuses the streams' uploads of nothing: host streams are
   // copied again, so hand it renderer buffers where both passes run.
   void render_ids(const Scene& scene, const Camera& camera, const std::vector<FishDraw>& fish);
-  // The last id pass (waits for the GPU).
+  // The last id pass (waits for the GPU; id passes in flight stay so). kInvalidArgument
+  // when none was rendered.
   IdImage read_ids();
   void read_ids(IdImage& out);  // reuses out's storage
 
@@ -155,6 +156,13 @@ class Renderer {
   // The GPU time of render()'s passes of the latest frame whose timer query has a
   // result (GL_TIME_ELAPSED, read without waiting; 0 before the first).
   double gpu_draw_seconds();
+  // The same for id passes: request_ids after render_ids starts reading its ids and
+  // depth back (settings.frames_in_flight at once; kInvalidArgument when none was
+  // rendered or all are pending), take_ids waits for the oldest one only.
+  void request_ids();
+  std::size_t ids_pending() const;
+  void take_ids(IdImage& out);
+  double gpu_id_seconds();  // render_ids' GPU time, as gpu_draw_seconds()
 
   // The reference draw of `fish` (docs/rendering.md "The reference draw"): the same
   // triangles, positions as plain vertex attributes, a pass-through shader, one flat
