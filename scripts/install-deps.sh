@@ -11,7 +11,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config
   pocl-opencl-icd ocl-icd-opencl-dev opencl-c-headers opencl-clhpp-headers clinfo
-  libglm-dev libopenmesh-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev libstb-dev
+  libglm-dev libopenmesh-dev libtinygltf-dev libmeshoptimizer-dev nlohmann-json3-dev libcli11-dev libstb-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libegl-dev libgles-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri libepoxy-dev zlib1g-dev ffmpeg
   libvulkan-dev libvulkan-volk-dev glslang-tools  # the external-memory hand-off (FinFlex::vulkan)

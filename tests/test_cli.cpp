@@ -89,6 +89,16 @@ TEST(Cli, CheckPassesOnTheDefaultDevice) {
                                 fish("rigs/blub_low_resolution.rig.json"));
   ASSERT_EQ(rig.exit_code, 0) << rig.err << rig.out;
   EXPECT_NE(rig.out.find("rig            jacobian"), std::string::npos) << rig.out;
+  const RunResult levels =
+      run_cli("check --in " + fish("blub/fish_low_resolution.obj") + " --rig " +
+              fish("rigs/blub_low_resolution.rig.json") + " --levels 2");
+  ASSERT_EQ(levels.exit_code, 0) << levels.err << levels.out;
+  EXPECT_NE(levels.out.find("rig level 1    jacobian"), std::string::npos) << levels.out;
+  EXPECT_EQ(levels.out.find("OUT OF TOLERANCE"), std::string::npos) << levels.out;
+  const RunResult no_rig =
+      run_cli("check --in " + fish("blub/fish_low_resolution.obj") + " --levels 2");
+  EXPECT_EQ(no_rig.exit_code, 2);
+  EXPECT_NE(no_rig.err.find("--levels"), std::string::npos) << no_rig.err;
   const RunResult missing = run_cli("check --in '/nonexistent.obj'");
   EXPECT_EQ(missing.exit_code, 2);
   EXPECT_EQ(line_count(missing.err), 1);
@@ -824,6 +834,14 @@ TEST(Cli, RigInfoPrintsTheRigAndLabelsEveryVertex) {
     EXPECT_NE(r.out.find(range), std::string::npos) << range << " in " << r.out;
   }
   EXPECT_NE(r.out.find("parameter body_m in [-0.8547, 0.8547]"), std::string::npos) << r.out;
+  // The levels of detail (4 by default), each as make_detail_levels makes it.
+  const DetailLevels levels = make_detail_levels(model, LevelOptions{});
+  for (std::size_t k = 0; k < levels.size(); ++k) {
+    char row[128];
+    std::snprintf(row, sizeof row, "  %5zu %9zu %10zu ", k, levels.level(k).vertex_count,
+                  levels.level(k).triangle_count);
+    EXPECT_NE(r.out.find(row), std::string::npos) << row << " in " << r.out;
+  }
 
   // The labels: a comment line, then one line per mesh vertex, in order: its
   // component and its position in the root's body frame (6 decimals).
@@ -851,6 +869,15 @@ TEST(Cli, RigInfoPrintsTheRigAndLabelsEveryVertex) {
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_EQ(line_count(bad.err), 1) << bad.err;
   EXPECT_NE(bad.err.find("--labels"), std::string::npos) << bad.err;
+  for (const std::string& flags :
+       {std::string("--levels 0"), std::string("--levels 9"), std::string("--triangle-ratio 1"),
+        std::string("--triangle-ratio nan")}) {
+    const RunResult refused =
+        run_cli("rig-info --in '" + mesh_path + "' --rig '" + rig_path + "' " + flags);
+    EXPECT_EQ(refused.exit_code, 2) << flags;
+    EXPECT_EQ(line_count(refused.err), 1) << refused.err;
+    EXPECT_NE(refused.err.find(flags.substr(0, flags.find(' '))), std::string::npos) << refused.err;
+  }
   const RunResult no_rig = run_cli("rig-info --in '" + mesh_path + "' --rig '/nonexistent.json'");
   EXPECT_EQ(no_rig.exit_code, 2);
   EXPECT_EQ(line_count(no_rig.err), 1) << no_rig.err;

@@ -3,7 +3,8 @@
 // every parameter across its whole valid range. Prints one row per setting; exit 0
 // when every row is within the tolerances of finflex/accuracy.hpp, 2 otherwise. The
 // mesh's normals are recomputed from its faces first, so the face-angle column shows
-// only what the deformation does to them.
+// only what the deformation does to them. With --levels N (a rig), each of the mesh's
+// first N levels of detail is checked too (finflex/detail_levels.hpp), one row each.
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -13,6 +14,7 @@
 #include "cli_paths.hpp"
 #include "commands.hpp"
 #include "finflex/finflex.hpp"
+#include "level_flags.hpp"
 
 namespace finflex::cli {
 namespace {
@@ -21,6 +23,8 @@ struct CheckOptions {
   std::string in;
   std::string rig;
   std::string device;
+  std::string levels = "1";
+  std::string triangle_ratio = "0.25";
 };
 
 // Instance k: every parameter at a fraction of its limit (0, 0.1, -0.35, 0.6, -0.85
@@ -82,6 +86,11 @@ bool check_model(Context& context, const RiggedMesh& model, const std::string& l
 void check_check(const CheckOptions& options) {
   check_input_file("--in", options.in, mesh_extensions());
   if (!options.rig.empty()) check_input_file("--rig", options.rig);
+  const LevelOptions levels = parse_level_options(options.levels, options.triangle_ratio);
+  if (levels.levels > 1 && options.rig.empty()) {
+    throw Error(ErrorCode::kInvalidArgument, "--levels",
+                "--levels " + options.levels + ": levels of detail are checked with a --rig");
+  }
 }
 
 // After check_check: the device, then the files.
@@ -110,7 +119,20 @@ int run_check(const CheckOptions& options) {
     } else {
       const RiggedMesh model(
           rest, resolve_rig(for_option("--rig", [&] { return load_rig_file(options.rig); }), rest));
-      all_within = check_model(context, model, "rig") && all_within;
+      const LevelOptions level_options =
+          parse_level_options(options.levels, options.triangle_ratio);
+      if (level_options.levels == 1) {
+        all_within = check_model(context, model, "rig") && all_within;
+      } else {
+        const DetailLevels levels =
+            for_option("--levels", [&] { return make_detail_levels(model, level_options); });
+        for (std::size_t k = 0; k < levels.size(); ++k) {
+          all_within =
+              check_model(context, levels.level(k).model, "rig level " + std::to_string(k)) &&
+              all_within;
+        }
+        print_levels(levels, model.rig().components.front().frame.length);
+      }
     }
     if (!all_within) return fail("check", "the device is out of tolerance against the reference");
     return kExitSuccess;
@@ -130,6 +152,14 @@ Command add_check_command(CLI::App& app) {
                     "Rig file: check the rig instead of the whole-body bend");
   check->add_option("--device", options->device,
                     "OpenCL device: 'P:D' indices or a name substring (see finflex info)");
+  check
+      ->add_option("--levels", options->levels,
+                   "With --rig: check this many levels of detail, the full mesh included (1-8)")
+      ->capture_default_str();
+  check
+      ->add_option("--triangle-ratio", options->triangle_ratio,
+                   "Each level's triangles as a fraction of the finer level's")
+      ->capture_default_str();
   return {[options] { check_check(*options); }, [options] { return run_check(*options); }};
 }
 

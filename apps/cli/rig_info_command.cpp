@@ -1,17 +1,20 @@
 // finflex rig-info: what a rig file selects on a mesh, for writing and checking rigs.
 // Prints every component (parent, vertices, frame, stages and their parameters'
 // valid ranges); --labels writes one line per mesh vertex: its component and its
-// position in the root's body frame.
+// position in the root's body frame. Then the mesh's levels of detail (--levels,
+// --triangle-ratio): each level's vertices, triangles and geometric error.
 #include <cstdio>
 #include <memory>
 #include <ostream>
 #include <string>
+#include <utility>
 
 #include "atomic_file.hpp"
 #include "cli_errors.hpp"
 #include "cli_paths.hpp"
 #include "commands.hpp"
 #include "finflex/finflex.hpp"
+#include "level_flags.hpp"
 
 namespace finflex::cli {
 namespace {
@@ -20,6 +23,8 @@ struct RigInfoOptions {
   std::string in;
   std::string rig;
   std::string labels;
+  std::string levels = "4";
+  std::string triangle_ratio = "0.25";
 };
 
 void print_frame(const BodyFrame& f) {
@@ -53,13 +58,13 @@ void check_rig_info(const RigInfoOptions& options) {
   check_input_file("--in", options.in, mesh_extensions());
   check_input_file("--rig", options.rig);
   if (!options.labels.empty()) check_output_file("--labels", options.labels);
+  parse_level_options(options.levels, options.triangle_ratio);
 }
 
 int run_rig_info(const RigInfoOptions& options) {
   try {
     const Mesh mesh = for_option("--in", [&] { return load_mesh(options.in); });
-    const Rig rig =
-        resolve_rig(for_option("--rig", [&] { return load_rig_file(options.rig); }), mesh);
+    Rig rig = resolve_rig(for_option("--rig", [&] { return load_rig_file(options.rig); }), mesh);
     std::printf("rig %s on %s (%zu vertices): %zu components, %zu parameters\n",
                 options.rig.c_str(), options.in.c_str(), mesh.vertex_count(), rig.components.size(),
                 rig.parameters.size());
@@ -83,6 +88,15 @@ int run_rig_info(const RigInfoOptions& options) {
       }
     }
     if (!options.labels.empty()) write_labels(options.labels, mesh, rig);
+    const double length = rig.components.front().frame.length;
+    const RiggedMesh model(mesh, std::move(rig));
+    print_levels(for_option("--levels",
+                            [&] {
+                              return make_detail_levels(
+                                  model,
+                                  parse_level_options(options.levels, options.triangle_ratio));
+                            }),
+                 length);
     return kExitSuccess;
   } catch (const std::exception& error) {
     return fail("rig-info", error.what());
@@ -98,6 +112,14 @@ Command add_rig_info_command(CLI::App& app) {
   command->add_option("--rig", options->rig, "Rig file (JSON)")->required();
   command->add_option("--labels", options->labels,
                       "Write each vertex's component and body-frame position to this file");
+  command
+      ->add_option("--levels", options->levels,
+                   "Levels of detail to make and report, the full mesh included (1-8)")
+      ->capture_default_str();
+  command
+      ->add_option("--triangle-ratio", options->triangle_ratio,
+                   "Each level's triangles as a fraction of the finer level's")
+      ->capture_default_str();
   return {[options] { check_rig_info(*options); }, [options] { return run_rig_info(*options); }};
 }
 

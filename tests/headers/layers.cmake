@@ -16,6 +16,7 @@ set(FINFLEX_HEADER_LAYERS
   deformers    # the deformer registry
   rigs         # rig files and rigs resolved against a mesh
   models       # a mesh with its rig
+  lod          # levels of detail of a rigged mesh
   parameters   # per-instance parameter values and their checks
   placement    # world placement of an instance
   outputs      # output layouts; deformed batches on the host
@@ -33,6 +34,7 @@ set(FINFLEX_LAYER_frames body_frame.hpp)
 set(FINFLEX_LAYER_deformers deformer_type.hpp)
 set(FINFLEX_LAYER_rigs rig.hpp)
 set(FINFLEX_LAYER_models model.hpp)
+set(FINFLEX_LAYER_lod detail_levels.hpp)
 set(FINFLEX_LAYER_parameters parameters.hpp)
 set(FINFLEX_LAYER_placement placement.hpp)
 set(FINFLEX_LAYER_outputs output_layout.hpp batch.hpp)

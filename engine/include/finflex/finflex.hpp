@@ -34,6 +34,7 @@
 #include "finflex/cl_swim.hpp"
 #include "finflex/context.hpp"
 #include "finflex/deformer_type.hpp"
+#include "finflex/detail_levels.hpp"
 #include "finflex/device_batch.hpp"
 #include "finflex/error.hpp"
 #include "finflex/file_kind.hpp"

@@ -1,0 +1,179 @@
+#include "finflex/detail_levels.hpp"
+
+#include <meshoptimizer.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <string>
+#include <utility>
+
+#include "finflex/error.hpp"
+
+namespace finflex {
+
+namespace {
+
+constexpr std::uint32_t kUnplaced = ~std::uint32_t(0);
+
+// The simplifier's error limit, relative to the mesh's extent: none, so each step goes
+// to its triangle target (the level choice decides where the error is acceptable).
+constexpr float kNoErrorLimit = 1.0f;
+
+// A coarser level must keep at most this share of the finer level's triangles.
+constexpr double kLeastReduction = 0.75;
+
+// One step of the cascade: `indices` (the finer level's triangles, input vertex ids)
+// simplified component by component towards `ratio` of each one's triangles, borders
+// locked, triangles across components kept as they are (and a component the
+// simplifier would remove whole). Returns the triangles and
+// the step's error relative to the mesh's extent (the largest component's).
+std::pair<std::vector<std::uint32_t>, float> simplify_step(
+    const RiggedMesh& full, const std::vector<std::uint32_t>& indices, double ratio) {
+  const std::vector<std::size_t>& component_of = full.component_of_vertex();
+  std::vector<std::vector<std::uint32_t>> within(full.rig().components.size());
+  std::vector<std::uint32_t> out;
+  for (std::size_t t = 0; t + 2 < indices.size(); t += 3) {
+    const std::size_t c = component_of[indices[t]];
+    if (component_of[indices[t + 1]] == c && component_of[indices[t + 2]] == c) {
+      within[c].insert(within[c].end(), indices.begin() + std::ptrdiff_t(t),
+                       indices.begin() + std::ptrdiff_t(t + 3));
+    } else {
+      out.insert(out.end(), indices.begin() + std::ptrdiff_t(t),
+                 indices.begin() + std::ptrdiff_t(t + 3));
+    }
+  }
+  const std::vector<glm::vec3>& positions = full.mesh().positions;
+  float worst = 0.0f;
+  std::vector<std::uint32_t> simplified;
+  for (const std::vector<std::uint32_t>& triangles : within) {
+    if (triangles.empty()) continue;
+    const auto target = std::max<std::size_t>(
+        3, std::size_t(std::llround(double(triangles.size() / 3) * ratio)) * 3);
+    simplified.resize(triangles.size());
+    float error = 0.0f;
+    const std::size_t count = meshopt_simplify(
+        simplified.data(), triangles.data(), triangles.size(), &positions[0].x, positions.size(),
+        sizeof(glm::vec3), target, kNoErrorLimit, meshopt_SimplifyLockBorder, &error);
+    if (count == 0) {
+      // Collapsed to nothing (a small closed part): the part stays as it was.
+      out.insert(out.end(), triangles.begin(), triangles.end());
+      continue;
+    }
+    out.insert(out.end(), simplified.begin(), simplified.begin() + std::ptrdiff_t(count));
+    worst = std::max(worst, error);
+  }
+  return {std::move(out), worst};
+}
+
+// The level over the first `vertex_count` vertices of the new order: the input's
+// attributes and rig moved to it, `indices` (input vertex ids) renumbered.
+RiggedMesh level_model(const RiggedMesh& full, const std::vector<std::uint32_t>& new_of,
+                       const std::vector<std::uint32_t>& full_of, std::size_t vertex_count,
+                       const std::vector<std::uint32_t>& indices, bool keep_groups) {
+  const Mesh& in = full.mesh();
+  Mesh mesh;
+  mesh.positions.reserve(vertex_count);
+  for (std::size_t v = 0; v < vertex_count; ++v) {
+    const std::uint32_t from = full_of[v];
+    mesh.positions.push_back(in.positions[from]);
+    if (in.has_normals()) mesh.normals.push_back(in.normals[from]);
+    if (in.has_tangents()) mesh.tangents.push_back(in.tangents[from]);
+    if (!in.texcoords.empty()) mesh.texcoords.push_back(in.texcoords[from]);
+  }
+  mesh.indices.reserve(indices.size());
+  for (std::uint32_t v : indices) mesh.indices.push_back(new_of[v]);
+  if (keep_groups) mesh.groups = in.groups;  // level 0: the same triangles in the same order
+  Rig rig = full.rig();
+  for (RigComponent& component : rig.components) {
+    std::vector<std::uint32_t> kept;
+    for (std::uint32_t v : component.vertices) {
+      if (new_of[v] < vertex_count) kept.push_back(new_of[v]);
+    }
+    std::sort(kept.begin(), kept.end());
+    component.vertices = std::move(kept);
+  }
+  return RiggedMesh(std::move(mesh), std::move(rig));
+}
+
+}  // namespace
+
+void LevelOptions::validate() const {
+  if (levels < 1 || levels > kMaxDetailLevels) {
+    throw Error(
+        ErrorCode::kInvalidArgument, "levels",
+        "levels: " + std::to_string(levels) + " is not 1.." + std::to_string(kMaxDetailLevels));
+  }
+  if (!(triangle_ratio > 0.0 && triangle_ratio < 1.0)) {
+    throw Error(ErrorCode::kInvalidArgument, "triangle_ratio",
+                "triangle_ratio: " + std::to_string(triangle_ratio) + " is not in (0, 1)");
+  }
+}
+
+DetailLevels::DetailLevels(std::vector<DetailLevel> levels,
+                           std::vector<std::uint32_t> full_vertex_of)
+    : levels_(std::move(levels)), full_vertex_of_(std::move(full_vertex_of)) {}
+
+const DetailLevel& DetailLevels::level(std::size_t k) const {
+  if (k >= levels_.size()) {
+    throw Error(
+        ErrorCode::kInvalidArgument, "level",
+        "level: " + std::to_string(k) + " of " + std::to_string(levels_.size()) + " levels");
+  }
+  return levels_[k];
+}
+
+DetailLevels make_detail_levels(const RiggedMesh& full, const LevelOptions& options) {
+  options.validate();
+  const Mesh& mesh = full.mesh();
+  // The cascade: each level from the one before, its error the sum of the steps'.
+  std::vector<std::vector<std::uint32_t>> indices{mesh.indices};
+  std::vector<double> errors{0.0};
+  const double scale =
+      meshopt_simplifyScale(&mesh.positions[0].x, mesh.vertex_count(), sizeof(glm::vec3));
+  for (std::size_t k = 1; k < options.levels; ++k) {
+    const std::vector<std::uint32_t>& finer = indices.back();
+    auto [coarser, relative_error] = simplify_step(full, finer, options.triangle_ratio);
+    const std::size_t kept = coarser.size() / 3;
+    if (double(kept) > kLeastReduction * double(finer.size() / 3)) {
+      throw Error(
+          ErrorCode::kInvalidArgument, "levels",
+          "levels: level " + std::to_string(k) + " keeps " + std::to_string(kept) + " of " +
+              std::to_string(finer.size() / 3) + " triangles (target " +
+              std::to_string(std::llround(double(finer.size() / 3) * options.triangle_ratio)) +
+              "): the mesh is too small or all border for " + std::to_string(options.levels) +
+              " levels");
+    }
+    errors.push_back(errors.back() + double(relative_error) * scale);
+    indices.push_back(std::move(coarser));
+  }
+  // One vertex order: first use over the levels from the coarsest, then the vertices
+  // no triangle uses; level k's vertices are those placed up to its own triangles.
+  const std::size_t vertex_count = mesh.vertex_count();
+  std::vector<std::uint32_t> new_of(vertex_count, kUnplaced);
+  std::vector<std::uint32_t> full_of;
+  full_of.reserve(vertex_count);
+  std::vector<std::size_t> prefix(options.levels);
+  for (std::size_t k = options.levels; k-- > 0;) {
+    for (std::uint32_t v : indices[k]) {
+      if (new_of[v] != kUnplaced) continue;
+      new_of[v] = std::uint32_t(full_of.size());
+      full_of.push_back(v);
+    }
+    prefix[k] = full_of.size();
+  }
+  for (std::uint32_t v = 0; v < vertex_count; ++v) {
+    if (new_of[v] != kUnplaced) continue;
+    new_of[v] = std::uint32_t(full_of.size());
+    full_of.push_back(v);
+  }
+  prefix[0] = vertex_count;
+  std::vector<DetailLevel> levels;
+  for (std::size_t k = 0; k < options.levels; ++k) {
+    levels.push_back(DetailLevel{level_model(full, new_of, full_of, prefix[k], indices[k], k == 0),
+                                 prefix[k], indices[k].size() / 3, errors[k]});
+  }
+  return DetailLevels(std::move(levels), std::move(full_of));
+}
+
+}  // namespace finflex
