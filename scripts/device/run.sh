@@ -55,6 +55,9 @@
 #   render_speed   .txt    `finflex swim` with rendering on the GPU (EGL, no display):
 #                          drawn only, every frame a PNG, a dataset; each on the
 #                          external-memory path and the copy path side by side
+#   level_choice   .txt    levels of detail: `finflex check --levels 4` of the bundled
+#                          fish's swim rigs, and the level choice of 1,000 to 100,000
+#                          fish (bench_deform's BM_LevelChoice)
 #   handoff        .txt    the hand-off's checks: the external-memory tests, every
 #                          path's pictures byte for byte, the Vulkan consumer, and
 #                          `finflex swim` frames of the external and copy paths compared
@@ -379,6 +382,24 @@ PY
   rm -rf "$scratch"
 }
 
+level_choice() {
+  local side mesh
+  for side in "${sides[@]}"; do
+    for mesh in blub/fish.obj:blub_swim barramundi/BarramundiFish.gltf:barramundi_swim; do
+      echo "== finflex check --levels 4: ${mesh%%:*} $(side_label "$side")"
+      # shellcheck disable=SC2046
+      run env $(side_env "$side" -) "$(program "$side" finflex)" check --in "data/${mesh%%:*}" \
+        --rig "data/rigs/${mesh##*:}.rig.json" --levels 4 "${device_option[@]}" ||
+        failed+=("check --levels ${mesh%%:*}")
+    done
+    echo "== the level choice $(side_label "$side")"
+    # shellcheck disable=SC2046
+    run env $(side_env "$side" -) FINFLEX_RIG=data/rigs/blub_swim.rig.json \
+      "$(program "$side" bench_deform)" --benchmark_filter=LevelChoice \
+      --benchmark_counters_tabular=true || failed+=("level choice")
+  done
+}
+
 handoff() {
   find_nvidia_egl
   find_nvidia_vulkan
@@ -563,7 +584,8 @@ for suite in "${suites[@]}"; do
         done
       done
       ;;
-    gpu_checks | cpu_checks | bench_deform | render_speed | handoff | remarks) text_suite "$suite" ;;
+    gpu_checks | cpu_checks | bench_deform | render_speed | handoff | level_choice | remarks)
+      text_suite "$suite" ;;
     *) echo "run.sh: '$suite' is not a suite (see --help)" >&2; exit 2 ;;
   esac
   if [ $dry = 0 ] && [ -e "$out/$suite.jsonl" ]; then

@@ -41,6 +41,7 @@
 #include "finflex/frame_gate.hpp"
 #include "finflex/instance_mesh.hpp"
 #include "finflex/job.hpp"
+#include "finflex/level_choice.hpp"
 #include "finflex/mesh.hpp"
 #include "finflex/mesh_io.hpp"
 #include "finflex/model.hpp"

@@ -1,0 +1,175 @@
+/* The level of detail of every instance, each frame, on the device
+ * (engine/include/finflex/level_choice.hpp has the contract; its host twin is
+ * choose_level_on_host in engine/src/lod/level_choice.cpp). Three kernels, over
+ * groups of FF_LOD_GROUP instances:
+ *   lod_choose   per instance: culled (-1) unless its bounding sphere meets a view's
+ *                frustum; else the coarsest level whose error, projected at the
+ *                sphere's nearest depth in the views that see it, is within the pixel
+ *                budget, held where the finer level it had is (hysteresis). Counts
+ *                the group's instances per level.
+ *   lod_offsets  one group: where each group's instances of each level start in that
+ *                level's list, each level's count and its indirect draw arguments.
+ *   lod_scatter  per instance: its place in its level's list (ascending instance
+ *                order: the same frame always gives the same lists).
+ * Generated before this file: FF_LOD_GROUP (work-items per group, a power of two) and
+ * FF_LOD_LEVELS (1..8).
+ *
+ * A view (at most 4) is FF_VIEW_FLOATS floats: 6 frustum planes (a, b, c, d; a point is inside
+ * where a x + b y + c z + d >= 0, (a, b, c) of unit length), the view depth row
+ * (depth = dot(row.xyz, p) + row.w: the distance in front of the camera), the near
+ * plane's depth and the focal length in pixels. A placement record: kernels/common/
+ * placement.cl (columns of L Q at 0-8, the position at 9-11, 1 / L at 12). */
+#define FF_VIEW_FLOATS 32
+#define FF_LOD_INLINE inline __attribute__((always_inline))
+
+__kernel __attribute__((reqd_work_group_size(FF_LOD_GROUP, 1, 1))) void lod_choose(
+    __global const float* restrict placements, const uint instances, const float4 bounds,
+    __global const float* restrict level_errors, const float16 view0_a, const float16 view0_b,
+    const float16 view1_a, const float16 view1_b, const float16 view2_a, const float16 view2_b,
+    const float16 view3_a, const float16 view3_b, const uint view_count, const float budget,
+    const float keep_budget, __global int* restrict level_of,
+    __global uint* restrict group_counts) {
+  /* The views travel as arguments (no upload to wait for): FF_VIEW_FLOATS floats each. */
+  float views[4 * FF_VIEW_FLOATS];
+  vstore16(view0_a, 0, views);
+  vstore16(view0_b, 1, views);
+  vstore16(view1_a, 2, views);
+  vstore16(view1_b, 3, views);
+  vstore16(view2_a, 4, views);
+  vstore16(view2_b, 5, views);
+  vstore16(view3_a, 6, views);
+  vstore16(view3_b, 7, views);
+  __local uint counts[FF_LOD_LEVELS];
+  const uint item = get_local_id(0);
+  if (item < FF_LOD_LEVELS) counts[item] = 0;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  const size_t i = get_global_id(0);
+  if (i < instances) {
+    __global const float* r = placements + i * 16;
+    /* The sphere in the world: centre position + L Q c, radius L * radius. */
+    const float3 centre = (float3)(r[9], r[10], r[11]) + bounds.x * (float3)(r[0], r[1], r[2]) +
+                          bounds.y * (float3)(r[3], r[4], r[5]) +
+                          bounds.z * (float3)(r[6], r[7], r[8]);
+    const float length = 1.0f / r[12];
+    const float radius = length * bounds.w;
+    /* The largest size of a body length in pixels over the views that see it. */
+    float pixels_per_length = -1.0f;
+    for (uint w = 0; w < view_count; ++w) {
+      const float* view = views + w * FF_VIEW_FLOATS;
+      bool inside = true;
+      for (int q = 0; q < 6; ++q) {
+        const float distance = view[4 * q] * centre.x + view[4 * q + 1] * centre.y +
+                               view[4 * q + 2] * centre.z + view[4 * q + 3];
+        inside = inside && distance >= -radius;
+      }
+      if (!inside) continue;
+      const float depth =
+          view[24] * centre.x + view[25] * centre.y + view[26] * centre.z + view[27] - radius;
+      const float nearest = fmax(depth, view[28]);
+      pixels_per_length = fmax(pixels_per_length, length * view[29] / nearest);
+    }
+    int level = -1;
+    if (pixels_per_length >= 0.0f) {
+      /* The coarsest level within the budget (level 0's error is 0), and the coarsest
+       * within the tighter budget that lets a fish go coarser. */
+      int within = 0, within_keep = 0;
+      for (int k = 1; k < FF_LOD_LEVELS; ++k) {
+        const float pixels = level_errors[k] * pixels_per_length;
+        if (pixels <= budget) within = k;
+        if (pixels <= keep_budget) within_keep = k;
+      }
+      const int before = level_of[i];
+      level = (before < 0 || within < before) ? within : max(before, within_keep);
+    }
+    level_of[i] = level;
+    if (level >= 0) atomic_inc(&counts[level]);
+  }
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (item < FF_LOD_LEVELS) group_counts[get_group_id(0) * FF_LOD_LEVELS + item] = counts[item];
+}
+
+/* One group of FF_LOD_GROUP work-items over `groups` groups' counts: work-item j sums
+ * a contiguous run of groups, work-item 0 scans the runs, each writes its groups'
+ * starts. draw_arguments: per level GL's DrawElementsIndirectCommand (index count,
+ * instance count, first index, base vertex, base instance). */
+__kernel __attribute__((reqd_work_group_size(FF_LOD_GROUP, 1, 1))) void lod_offsets(
+    __global const uint* restrict group_counts, const uint groups,
+    __global uint* restrict group_starts, __global const uint* restrict index_counts,
+    __global uint* restrict level_counts, __global uint* restrict draw_arguments) {
+  __local uint runs[FF_LOD_GROUP * FF_LOD_LEVELS];
+  const uint item = get_local_id(0);
+  const uint per_item = (groups + FF_LOD_GROUP - 1) / FF_LOD_GROUP;
+  const uint first = min(groups, item * per_item);
+  const uint end = min(groups, first + per_item);
+  for (int k = 0; k < FF_LOD_LEVELS; ++k) {
+    uint sum = 0;
+    for (uint g = first; g < end; ++g) sum += group_counts[g * FF_LOD_LEVELS + k];
+    runs[item * FF_LOD_LEVELS + k] = sum;
+  }
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (item == 0) {
+    for (int k = 0; k < FF_LOD_LEVELS; ++k) {
+      uint start = 0;
+      for (uint j = 0; j < FF_LOD_GROUP; ++j) {
+        const uint run = runs[j * FF_LOD_LEVELS + k];
+        runs[j * FF_LOD_LEVELS + k] = start;
+        start += run;
+      }
+      level_counts[k] = start;
+      draw_arguments[5 * k] = index_counts[k];
+      draw_arguments[5 * k + 1] = start;
+      draw_arguments[5 * k + 2] = 0;
+      draw_arguments[5 * k + 3] = 0;
+      draw_arguments[5 * k + 4] = 0;
+    }
+  }
+  barrier(CLK_LOCAL_MEM_FENCE);
+  for (int k = 0; k < FF_LOD_LEVELS; ++k) {
+    uint start = runs[item * FF_LOD_LEVELS + k];
+    for (uint g = first; g < end; ++g) {
+      group_starts[g * FF_LOD_LEVELS + k] = start;
+      start += group_counts[g * FF_LOD_LEVELS + k];
+    }
+  }
+}
+
+/* Each level's count of the group's instances before this one, for all levels at once:
+ * 16 bits a level in a uint4 (a group's counts are at most FF_LOD_GROUP <= 256),
+ * summed by an inclusive scan (Hillis-Steele) in local memory. */
+FF_LOD_INLINE uint4 one_hot(int level) {
+  uint4 v = (uint4)(0);
+  if (level < 0) return v;
+  const uint bit = 1u << (16 * (level & 1));
+  if (level < 2) v.x = bit;
+  else if (level < 4) v.y = bit;
+  else if (level < 6) v.z = bit;
+  else v.w = bit;
+  return v;
+}
+
+FF_LOD_INLINE uint field(uint4 v, int level) {
+  const uint word = level < 2 ? v.x : level < 4 ? v.y : level < 6 ? v.z : v.w;
+  return (word >> (16 * (level & 1))) & 0xffffu;
+}
+
+__kernel __attribute__((reqd_work_group_size(FF_LOD_GROUP, 1, 1))) void lod_scatter(
+    __global const int* restrict level_of, const uint instances,
+    __global const uint* restrict group_starts, const uint capacity,
+    __global uint* restrict instance_lists) {
+  __local uint4 scan[FF_LOD_GROUP];
+  const uint item = get_local_id(0);
+  const size_t i = get_global_id(0);
+  const int level = i < instances ? level_of[i] : -1;
+  const uint4 mine = one_hot(level);
+  scan[item] = mine;
+  for (uint offset = 1; offset < FF_LOD_GROUP; offset <<= 1) {
+    barrier(CLK_LOCAL_MEM_FENCE);
+    const uint4 add = item >= offset ? scan[item - offset] : (uint4)(0);
+    barrier(CLK_LOCAL_MEM_FENCE);
+    scan[item] += add;
+  }
+  if (level < 0) return;
+  const uint before = field(scan[item] - mine, level);
+  const uint at = group_starts[get_group_id(0) * FF_LOD_LEVELS + level] + before;
+  instance_lists[level * capacity + at] = (uint)i;
+}
