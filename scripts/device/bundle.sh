@@ -37,7 +37,7 @@ for binary in "${binaries[@]}"; do
 done
 for binary in "$out"/bin/*; do
   ldd "$binary" | awk '/=> \//{print $3}' |
-    grep -E 'libOpenMesh|libtinygltf|libstb|libbenchmark|libgomp|libepoxy' | xargs -r -I{} cp -L {} "$out/lib/"
+    grep -E 'libOpenMesh|libtinygltf|libmeshoptimizer|libstb|libbenchmark|libgomp|libepoxy' | xargs -r -I{} cp -L {} "$out/lib/"
 done
 for library in libX11.so.6 libxcb.so.1 libXau.so.6 libXdmcp.so.6 libbsd.so.0 libmd.so.0 \
   libvulkan.so.1; do
