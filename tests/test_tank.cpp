@@ -2,6 +2,7 @@
 // the water and never become NaN over 10,000 steps, bad settings named, and a swim
 // scene whose deformed fish are where the tank says.
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <vector>
 
@@ -49,9 +50,28 @@ TEST(Tank, FishStayInTheWaterAndFiniteForTenThousandSteps) {
       ASSERT_LE(std::fabs(fish.turn_rate), settings.max_yaw_rate + 1e-12);
     }
   }
-  // Steering keeps them off the boundaries nearly always (a correction puts a fish back).
-  EXPECT_LT(double(tank.corrections()) / (10000.0 * 200.0), 0.02) << tank.corrections();
+  // Steering and braking keep them in the water: no fish is ever put back.
+  EXPECT_EQ(tank.corrections(), 0u);
 }
+
+// `steps` steps of 1,000 fish (two species) at 30 a second: no correction, braking rare.
+void expect_no_correction(int steps) {
+  Tank tank(TankSettings{}, {500, 500}, 5);
+  for (int step = 0; step < steps; ++step) tank.step(1.0 / 30.0);
+  EXPECT_EQ(tank.corrections(), 0u);
+  for (const Fish& fish : tank.fish()) {
+    ASSERT_TRUE(std::isfinite(fish.position.x) && std::isfinite(fish.position.y) &&
+                std::isfinite(fish.position.z));
+  }
+  // Braking is the exception: a turning fish in front of a boundary, not the rule.
+  EXPECT_LT(double(tank.brakes()) / (double(steps) * 1000.0), 0.01) << tank.brakes();
+  std::printf("1,000 fish, %d steps: %zu corrections, %zu brakes (%.3f %% of fish-steps)\n", steps,
+              tank.corrections(), tank.brakes(),
+              100.0 * double(tank.brakes()) / (double(steps) * 1000.0));
+}
+
+TEST(Tank, AThousandFishNeedNoCorrectionInTwoThousandSteps) { expect_no_correction(2000); }
+TEST(TankLarge, AThousandFishNeedNoCorrectionInTenThousandSteps) { expect_no_correction(10000); }
 
 TEST(Tank, FishSwimAgainstTheCurrent) {
   Tank tank(TankSettings{}, {100}, 11);

@@ -374,8 +374,10 @@ int run_swim(const SwimOptions& options) {
                       ? (", " + std::to_string(files->annotations()) + " annotations").c_str()
                       : "");
     }
-    std::printf("  fish put back inside the water by the tank: %zu times\n",
-                scene.tank().corrections());
+    std::printf(
+        "  fish put back inside the water by the tank: %zu times; braking in front of a "
+        "boundary: %zu fish-steps\n",
+        scene.tank().corrections(), scene.tank().brakes());
     if (staging) {
       nlohmann::ordered_json summary;
       summary["device"] = context.description().device_name;
@@ -395,6 +397,7 @@ int run_swim(const SwimOptions& options) {
       summary["first_frame_seconds"] = first_frame;
       summary["wall_seconds"] = wall;
       summary["corrections"] = scene.tank().corrections();
+      summary["brakes"] = scene.tank().brakes();
       summary["track_columns"] = {"time_s", "x_m", "y_m", "z_m", "yaw_rad", "speed_m_per_s"};
       summary["tracks"] = tracks;
       write_text(folder / "summary.json", summary.dump(1) + "\n");

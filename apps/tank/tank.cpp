@@ -1,7 +1,8 @@
 // The tank's behaviour model (tank.hpp): each step, every fish steers its heading
 // (upstream, away from the wall and from neighbours, with a slow wander), its pitch
 // (towards its preferred depth, away from the floor and the surface) and its speed
-// (cruise with a slow variation, rare bursts); then moves with the water.
+// (cruise with a slow variation, rare bursts); then moves with the water (the current's
+// rotation turned exactly) and swims, braking where its step would leave the water.
 #include "tank.hpp"
 
 #include <algorithm>
@@ -115,9 +116,12 @@ void Tank::steer(Fish& fish, double dt) {
   const glm::dvec3 outward = r > 1e-9 ? horizontal / r : glm::dvec3(1.0, 0.0, 0.0);
   const glm::dvec3 along_current(outward.z, 0.0, -outward.x);
 
-  // Where to head: upstream, away from the wall, away from neighbours.
+  // Where to head: upstream, away from the wall, away from neighbours. The wall is
+  // felt from wall_distance body lengths, or from two turning radii (speed over the
+  // largest yaw rate) when the fish is faster: a bursting fish turns in time too.
   glm::dvec3 want = -along_current;
-  const double wall_margin = s.wall_distance * fish.length;
+  const double wall_margin =
+      std::max(s.wall_distance * fish.length, 2.0 * fish.speed / s.max_yaw_rate);
   want -= outward * 3.0 * std::clamp((wall_margin - (radius - r)) / wall_margin, 0.0, 1.0);
   double vertical_push = 0.0;
   grid_.around(p, [&](std::size_t j) {
@@ -160,6 +164,39 @@ void Tank::steer(Fish& fish, double dt) {
   fish.speed = body_lengths * fish.length;
 }
 
+// The current's part of a step: the solid-body rotation turned exactly (an Euler
+// step would carry every fish outwards by r (w dt)^2 / 2 a step).
+glm::dvec3 Tank::carried(const glm::dvec3& p, double dt) const {
+  const double angle = settings_.wall_current / (0.5 * settings_.diameter) * dt;
+  const double c = std::cos(angle), s = std::sin(angle);
+  return {p.x * c + p.z * s, p.y, -p.x * s + p.z * c};
+}
+
+// The fish's own part of a step, from `p`: where it would leave the water inside the
+// clearances it brakes, covering only the part of the step that stays inside (fish
+// slow down in front of a wall they are still turning away from).
+glm::dvec3 Tank::swum(const Fish& fish, const glm::dvec3& p, const glm::dvec3& step) {
+  const double clearance = settings_.clearance * fish.length;
+  // A hair inside the bounds, so that rounding never takes the fish across them.
+  const double radius = (0.5 * settings_.diameter - clearance) * (1.0 - 1e-9);
+  const double low = clearance * (1.0 + 1e-9);
+  const double high = (settings_.depth - clearance) * (1.0 - 1e-9);
+  double t = 1.0;
+  // Horizontally: the largest t with |p + t step| <= radius (p is inside).
+  const double a = step.x * step.x + step.z * step.z;
+  const double b = p.x * step.x + p.z * step.z;
+  const double c = p.x * p.x + p.z * p.z - radius * radius;
+  if (a > 0.0 &&
+      (p.x + step.x) * (p.x + step.x) + (p.z + step.z) * (p.z + step.z) > radius * radius) {
+    t = std::clamp((-b + std::sqrt(std::max(0.0, b * b - a * c))) / a, 0.0, 1.0);
+  }
+  // Vertically.
+  if (p.y + t * step.y > high) t = std::clamp((high - p.y) / step.y, 0.0, t);
+  if (p.y + t * step.y < low) t = std::clamp((low - p.y) / step.y, 0.0, t);
+  if (t < 1.0) ++brakes_;
+  return p + t * step;
+}
+
 void Tank::keep_inside(Fish& fish) {
   const double radius = 0.5 * settings_.diameter;
   const double clearance = settings_.clearance * fish.length;
@@ -190,7 +227,7 @@ void Tank::step(double dt) {
     fish.yaw = wrapped_angle(fish.yaw + fish.turn_rate * dt);
     const glm::dvec3 swim = fish.speed * std::cos(fish.pitch) * heading(fish.yaw) +
                             glm::dvec3(0.0, fish.speed * std::sin(fish.pitch), 0.0);
-    fish.position += (current(fish.position) + swim) * dt;
+    fish.position = swum(fish, carried(fish.position, dt), swim * dt);
     keep_inside(fish);
   }
   time_ += dt;

@@ -93,8 +93,12 @@ class Tank {
   // ClSwimDriver::staged_inputs()).
   void inputs(std::size_t species, SwimInput* out) const;
   std::vector<float> lengths(std::size_t species) const;
-  // Times a fish had to be put back inside the water (its steering failed).
+  // Times a fish had to be put back inside the water: its steering and braking failed
+  // (0 in the default tank: tests/test_tank.cpp).
   std::size_t corrections() const { return corrections_; }
+  // Fish-steps in which a fish braked in front of the wall, floor or surface (covered
+  // only part of its swim: it was still turning away).
+  std::size_t brakes() const { return brakes_; }
 
  private:
   TankSettings settings_;
@@ -104,8 +108,11 @@ class Tank {
   double neighbour_distance_ = 0.0;  // m
   double time_ = 0.0;
   std::size_t corrections_ = 0;
+  std::size_t brakes_ = 0;
 
   void steer(Fish& fish, double dt);
+  glm::dvec3 carried(const glm::dvec3& p, double dt) const;
+  glm::dvec3 swum(const Fish& fish, const glm::dvec3& p, const glm::dvec3& step);
   void keep_inside(Fish& fish);
 };
 
