@@ -51,6 +51,13 @@ std::array<double, kViewFloats> view_record(const LevelView& view) {
   return out;
 }
 
+// A kernel's arguments, in order.
+template <typename... Values>
+void set_arguments(cl::Kernel& kernel, const Values&... values) {
+  cl_uint arg = 0;
+  (check_cl(kernel.setArg(arg++, values), "clSetKernelArg"), ...);
+}
+
 void check_views(const std::vector<LevelView>& views) {
   if (views.empty() || views.size() > kMaxLevelViews) {
     invalid("views", std::to_string(views.size()) + " views: 1 to " +
@@ -298,35 +305,17 @@ cl::Event LevelChooser::enqueue(const cl::Buffer& placements, std::size_t instan
   }
   d.last_instances = instances;
   const std::size_t groups = std::max<std::size_t>(1, (instances + d.group - 1) / d.group);
-  const auto set = [](cl::Kernel& kernel, cl_uint& arg, const auto& value) {
-    check_cl(kernel.setArg(arg++, value), "clSetKernelArg");
-  };
-  cl_uint arg = 0;
-  set(d.choose, arg, placements);
-  set(d.choose, arg, cl_uint(instances));
-  set(d.choose, arg,
-      cl_float4{{float(d.bounds.centre.x), float(d.bounds.centre.y), float(d.bounds.centre.z),
-                 float(d.bounds.radius)}});
-  set(d.choose, arg, d.errors);
-  for (const cl_float16& half : packed) set(d.choose, arg, half);
-  set(d.choose, arg, cl_uint(views.size()));
-  set(d.choose, arg, float(d.options.pixel_budget));
-  set(d.choose, arg, float(d.options.pixel_budget * (1.0 - d.options.hysteresis)));
-  set(d.choose, arg, d.level_of);
-  set(d.choose, arg, d.group_counts);
-  arg = 0;
-  set(d.offsets, arg, d.group_counts);
-  set(d.offsets, arg, cl_uint(groups));
-  set(d.offsets, arg, d.group_starts);
-  set(d.offsets, arg, d.index_counts);
-  set(d.offsets, arg, d.counts);
-  set(d.offsets, arg, d.draw_arguments);
-  arg = 0;
-  set(d.scatter, arg, d.level_of);
-  set(d.scatter, arg, cl_uint(instances));
-  set(d.scatter, arg, d.group_starts);
-  set(d.scatter, arg, cl_uint(d.capacity));
-  set(d.scatter, arg, d.lists);
+  const cl_float4 bounds{{float(d.bounds.centre.x), float(d.bounds.centre.y),
+                          float(d.bounds.centre.z), float(d.bounds.radius)}};
+  set_arguments(d.choose, placements, cl_uint(instances), bounds, d.errors, packed[0], packed[1],
+                packed[2], packed[3], packed[4], packed[5], packed[6], packed[7],
+                cl_uint(views.size()), float(d.options.pixel_budget),
+                float(d.options.pixel_budget * (1.0 - d.options.hysteresis)), d.level_of,
+                d.group_counts);
+  set_arguments(d.offsets, d.group_counts, cl_uint(groups), d.group_starts, d.index_counts,
+                d.counts, d.draw_arguments);
+  set_arguments(d.scatter, d.level_of, cl_uint(instances), d.group_starts, cl_uint(d.capacity),
+                d.lists);
   cl::CommandQueue& queue = d.context.queue();
   const cl::NDRange local(d.group);
   const cl::NDRange global(groups * d.group);
