@@ -20,7 +20,9 @@
  *
  * The kernels' arguments end with the instances' values (params, param_count values
  * each), their derived values (derived_values, derived_count each), their world
- * placements (common/placement.cl; read when FF_PLACEMENT is 1) and the outputs.
+ * placements (common/placement.cl; read when FF_PLACEMENT is 1), the outputs and, with
+ * FF_INSTANCE_LIST, the list of the instances to deform (common/instance_list.cl: input
+ * `source`, output row `instance`).
  * A placed vertex leaves the root's last stage straight for the world, so placing
  * costs no extra transform (FF_PLACE_FROM_MESH does it only for a root without
  * stages).
@@ -59,23 +61,25 @@
       __global const uint* restrict group_paths,                                        \
       __global const float* restrict derived_values, const uint derived_count,          \
       __global const float* restrict placements, FF_OUTPUT_ARGUMENTS,                   \
-      const uint stride, const uint instances) {                                        \
+      const uint stride, const uint instances FF_INSTANCE_LIST_ARGUMENTS) {             \
     FF_OUTPUT_LOCALS                                                                    \
     const size_t v = FF_FIRST_SLOT;                                                     \
-    const size_t first_instance = get_global_id(1) * FF_INSTANCES_PER_ITEM;            \
     const uint group = FF_GROUP;                                                        \
     const Vec3 rest_p = load_plane3(rest_positions, 0, stride, v);                      \
     const Vec3 rest_n = load_plane3(rest_normals, 0, stride, v);                        \
     const Vec3 rest_t = FF_LOAD_TANGENT(rest_tangents, 0, stride, v);                   \
-    for (uint k = 0; k < FF_INSTANCES_PER_ITEM; ++k) {                                  \
-      const size_t instance = first_instance + k;                                       \
-      if (instance >= instances) break;                                                 \
-      __global const float* values = params + instance * param_count;                   \
-      __global const float* derived = derived_values + instance * derived_count;        \
-      Vec3 p = rest_p, n = rest_n, t = rest_t;                                          \
-      FF_RIG_FUSED_##r                                                                  \
-      FF_PLACE_FROM_MESH                                                                \
-      FF_STORE_OUTPUTS(instance, v)                                                     \
+    FF_EACH_INSTANCE_ROW {                                                              \
+      for (uint k = 0; k < FF_INSTANCES_PER_ITEM; ++k) {                                \
+        const size_t instance = first_instance + k;                                     \
+        if (instance >= listed) break;                                               \
+        FF_SOURCE_OR_SKIP(source)                                                       \
+        __global const float* values = params + source * param_count;                   \
+        __global const float* derived = derived_values + source * derived_count;        \
+        Vec3 p = rest_p, n = rest_n, t = rest_t;                                        \
+        FF_RIG_FUSED_##r                                                                \
+        FF_PLACE_FROM_MESH                                                              \
+        FF_STORE_OUTPUTS(instance, v)                                                   \
+      }                                                                                 \
     }                                                                                   \
   }
 
@@ -127,18 +131,20 @@ FF_RIG_FUSED_KERNELS
       __global const uint* restrict group_paths,                                        \
       __global const float* restrict derived_values, const uint derived_count,          \
       __global const float* restrict placements, FF_OUTPUT_ARGUMENTS,                   \
-      const uint stride, const uint instances) {                                        \
+      const uint stride, const uint instances FF_INSTANCE_LIST_ARGUMENTS) {             \
     FF_OUTPUT_LOCALS                                                                    \
     const size_t v = FF_FIRST_SLOT;                                                     \
-    const size_t first_instance = get_global_id(1) * FF_INSTANCES_PER_ITEM;            \
     const uint group = FF_GROUP;                                                        \
-    for (uint k = 0; k < FF_INSTANCES_PER_ITEM; ++k) {                                  \
-      const size_t instance = first_instance + k;                                       \
-      if (instance >= instances) break;                                                 \
-      __global const float* values = params + instance * param_count;                   \
-      __global const float* derived = derived_values + instance * derived_count;        \
-      Vec3 p, n, t;                                                                     \
-      FF_RIG_PASS_##q                                                                   \
+    FF_EACH_INSTANCE_ROW {                                                              \
+      for (uint k = 0; k < FF_INSTANCES_PER_ITEM; ++k) {                                \
+        const size_t instance = first_instance + k;                                     \
+        if (instance >= listed) break;                                               \
+        FF_SOURCE_OR_SKIP(source)                                                       \
+        __global const float* values = params + source * param_count;                   \
+        __global const float* derived = derived_values + source * derived_count;        \
+        Vec3 p, n, t;                                                                   \
+        FF_RIG_PASS_##q                                                                 \
+      }                                                                                 \
     }                                                                                   \
   }
 

@@ -13,6 +13,8 @@
  * placements: per instance a world placement record (common/placement.cl), read
  *         when FF_PLACEMENT is 1 instead of the back transform.
  * out_*:  the outputs as their layout says (common/outputs.cl).
+ * With FF_INSTANCE_LIST, the instances a list names (common/instance_list.cl): m and
+ *         placements at `source`, the outputs at row `instance`.
  * back_*: the way back to mesh coordinates, M^-1 of (2):
  *         p_b = origin + s (x e_x + y e_y + z e_z), n_b = x e_x + y e_y + z e_z;
  *         scaled_axis_* = s e_*, axis_* = e_* (all in mesh coordinates).
@@ -40,20 +42,22 @@ __kernel void single_bend(__global const float* restrict rest_positions,
                           const float4 origin,
                           const float4 scaled_axis_x, const float4 scaled_axis_y,
                           const float4 scaled_axis_z,
-                          const float4 axis_x, const float4 axis_y, const float4 axis_z) {
+                          const float4 axis_x, const float4 axis_y,
+                          const float4 axis_z FF_INSTANCE_LIST_ARGUMENTS) {
   FF_OUTPUT_LOCALS
   const size_t v = FF_FIRST_SLOT;
-  const size_t first_instance = get_global_id(1) * FF_INSTANCES_PER_ITEM;
   const float4 no_offset = (float4)(0.0f);
   const Vec3 rest_p = load_plane3(rest_positions, 0, stride, v);
   const Vec3 rest_n = load_plane3(rest_normals, 0, stride, v);
   const Vec3 rest_t = FF_LOAD_TANGENT(rest_tangents, 0, stride, v);
+  FF_EACH_INSTANCE_ROW {
   for (uint k = 0; k < FF_INSTANCES_PER_ITEM; ++k) {
     const size_t instance = first_instance + k;
-    if (instance >= instances) break;
-    const SecantSample s = bend_sample(rest_p.x, rest_p.z, m[instance]);
+    if (instance >= listed) break;
+    FF_SOURCE_OR_SKIP(source)
+    const SecantSample s = bend_sample(rest_p.x, rest_p.z, m[source]);
 #if FF_PLACEMENT /* from the body frame straight to the world */
-    FF_READ_PLACEMENT(record, placements + instance * 16)
+    FF_READ_PLACEMENT(record, placements + source * 16)
     const Vec3 p = world_point(secant_position(rest_p, s), record);
     const Vec3 n = world_direction(secant_normal(rest_n, s), record);
     const Vec3 t = world_direction(secant_tangent(rest_t, s), record);
@@ -64,5 +68,6 @@ __kernel void single_bend(__global const float* restrict rest_positions,
     const Vec3 t = to_mesh(secant_tangent(rest_t, s), axis_x, axis_y, axis_z, no_offset);
 #endif
     FF_STORE_OUTPUTS(instance, v)
+  }
   }
 }

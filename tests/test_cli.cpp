@@ -157,6 +157,46 @@ TEST(Cli, BenchSwimsWithRecordedOrLiveInputs) {
       << without_swim.err;
 }
 
+// bench --farm: the hall with levels beside the same hall at full detail, and its bad
+// options named.
+TEST(Cli, BenchFarmComparesLevelsWithFullDetail) {
+  const std::string farm = "bench --mesh " + fish("blub/fish_low_resolution.obj") + " --rig " +
+                           fish("rigs/blub_low_resolution_swim.rig.json") +
+                           " --farm --instances 64 --tanks 4 --frames 2 --levels 3 --json";
+  const RunResult r = run_cli(farm);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_EQ(line_count(r.out), 1) << r.out;
+  const nlohmann::ordered_json j = nlohmann::ordered_json::parse(r.out);
+  EXPECT_EQ(j.at("fish").get<std::size_t>(), 64u);
+  EXPECT_EQ(j.at("tanks").get<std::size_t>(), 4u);
+  EXPECT_EQ(j.at("levels").size(), 3u);
+  std::size_t drawn = 0, fewer = 0;
+  for (const auto& level : j.at("levels")) drawn += level.at("fish").get<std::size_t>();
+  EXPECT_EQ(drawn, j.at("fish_drawn").get<std::size_t>());
+  EXPECT_GT(drawn, 0u);
+  EXPECT_LE(drawn, 64u);
+  fewer = j.at("with_levels").at("vertices_per_frame").get<std::size_t>();
+  EXPECT_LT(fewer, j.at("full_detail").at("vertices_per_frame").get<std::size_t>());
+  EXPECT_EQ(j.at("full_detail").at("vertices_per_frame").get<std::size_t>(), 64u * 945u);
+  EXPECT_GT(j.at("with_levels").at("level_choice_seconds_median").get<double>(), 0.0);
+  const std::string base = "bench --mesh " + fish("blub/fish_low_resolution.obj") + " --farm";
+  const std::string rig = " --rig " + fish("rigs/blub_low_resolution_swim.rig.json");
+  for (const auto& [arguments, expected] : std::vector<std::pair<std::string, std::string>>{
+           {base, "--farm needs --rig"},
+           {base + rig + " --swim", "--farm"},
+           {base + rig + " --tanks 0", "--tanks"},
+           {base + rig + " --tanks 8 --instances 4", "--instances"},
+           {base + rig + " --levels 0", "--levels"},
+           {base + rig + " --pixel-budget -1", "--pixel-budget"}}) {
+    SCOPED_TRACE(arguments);
+    const RunResult bad = run_cli(arguments);
+    EXPECT_EQ(bad.exit_code, 2);
+    EXPECT_EQ(line_count(bad.err), 1) << bad.err;
+    EXPECT_NE(bad.err.find(expected), std::string::npos) << bad.err;
+    EXPECT_TRUE(bad.out.empty()) << bad.out;
+  }
+}
+
 // Every key of `finflex bench --json` with its value: the counts as given, the passes
 // and bytes the library says for the model, and the rates consistent with the times
 // (docs/benchmarks.md's counters).
@@ -659,6 +699,11 @@ TEST(Cli, BadSwimInputsExitTwoAndWriteNothing) {
       {" --seed x", "--seed"},
       {" --normals smooth", "--normals"},
       {" --mesh-frames 99", "--mesh-frames '99'"},
+      {" --levels 9", "--levels '9'"},
+      {" --levels 2 --pixel-budget 0", "--pixel-budget"},
+      {" --levels 2 --pixel-budget nan", "--pixel-budget"},
+      {" --levels 2 --triangle-ratio 1", "--triangle-ratio"},
+      {" --levels 2 --mesh-frames last", "not with --levels"},
       {" --species '/nonexistent.obj:x.rig.json'", "/nonexistent.obj"},
       {" --species nocolon", "MESH:RIG"},
       {" --species " + fish("blub/fish_low_resolution.obj") + ":" + rig_without_body,

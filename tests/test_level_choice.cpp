@@ -177,6 +177,60 @@ TEST(LevelChoice, TheDeviceChoosesAsTheHostAndAsTheCameraSees) {
   EXPECT_EQ(again.lists, choice.lists);
 }
 
+// The lists as the room rule says, from each instance's level: a level's own instances
+// in order, then those past the rows of the finer level, each kept where it has room.
+struct Placed {
+  std::vector<std::vector<std::uint32_t>> lists;
+  std::uint32_t undrawn = 0;
+};
+Placed place_in_rows(const std::vector<int>& level_of, const std::vector<std::size_t>& rows) {
+  Placed out;
+  out.lists.resize(rows.size());
+  std::vector<std::uint32_t> incoming;
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    std::vector<std::uint32_t> sequence;
+    for (std::size_t i = 0; i < level_of.size(); ++i) {
+      if (level_of[i] == int(k)) sequence.push_back(std::uint32_t(i));
+    }
+    sequence.insert(sequence.end(), incoming.begin(), incoming.end());
+    const std::size_t kept = std::min(rows[k], sequence.size());
+    out.lists[k].assign(sequence.begin(), sequence.begin() + std::ptrdiff_t(kept));
+    incoming.assign(sequence.begin() + std::ptrdiff_t(kept), sequence.end());
+  }
+  out.undrawn = std::uint32_t(incoming.size());
+  return out;
+}
+
+TEST(LevelChoice, FishPastALevelsRowsGoToTheNextCoarserLevelWithRoom) {
+  const std::size_t count = 3000;
+  const cl::Buffer buffer = upload(records_of(scattered(count, 7)));
+  for (const std::vector<std::size_t>& rows :
+       {std::vector<std::size_t>{5, 20, 60, 3000}, std::vector<std::size_t>{3, 3, 3, 40}}) {
+    LevelChoiceOptions options;
+    options.level_rows = rows;
+    LevelChooser chooser(test::shared_context(), blub_levels(), count, options);
+    std::size_t first = 0;
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      EXPECT_EQ(chooser.rows(k), rows[k]);
+      EXPECT_EQ(chooser.list_first(k), first);
+      first += rows[k];
+    }
+    chooser.enqueue(buffer, count, {camera()});
+    const LevelChooser::Choice choice = chooser.read();
+    const Placed expected = place_in_rows(choice.level_of, rows);
+    EXPECT_EQ(choice.lists, expected.lists);
+    EXPECT_EQ(choice.undrawn, expected.undrawn);
+    for (std::size_t k = 0; k < rows.size(); ++k)
+      EXPECT_EQ(choice.draw_arguments[5 * k + 1], expected.lists[k].size()) << "level " << k;
+  }
+  // The second rows hold fewer than the fish in view: some are drawn at no level.
+  LevelChoiceOptions small;
+  small.level_rows = {3, 3, 3, 40};
+  LevelChooser chooser(test::shared_context(), blub_levels(), count, small);
+  chooser.enqueue(buffer, count, {camera()});
+  EXPECT_GT(chooser.read().undrawn, 0u);
+}
+
 TEST(LevelChoice, NoFishGoesBackAndForthInsideTheHysteresisBand) {
   // One fish straight ahead, its distance swinging by 2 % around where level 1's error
   // is the budget (well inside the 25 % band); a swing of 50 % moves it both ways.
@@ -249,6 +303,13 @@ TEST(LevelChoice, BadInputIsNamedAndNothingIsEnqueued) {
   options.hysteresis = 1.0;
   EXPECT_EQ(field_of([&] { LevelChooser(context, levels, 4, options); }), "hysteresis");
   EXPECT_EQ(field_of([&] { LevelChooser(context, levels, 0); }), "capacity");
+  options = LevelChoiceOptions{};
+  options.level_rows = {4, 4, 4};
+  EXPECT_EQ(field_of([&] { LevelChooser(context, levels, 4, options); }), "level_rows");
+  options.level_rows = {4, 0, 4, 4};
+  EXPECT_EQ(field_of([&] { LevelChooser(context, levels, 4, options); }), "level_rows[1]");
+  options.level_rows = {4, 4, 5, 4};
+  EXPECT_EQ(field_of([&] { LevelChooser(context, levels, 4, options); }), "level_rows[2]");
 
   LevelChooser chooser(context, levels, 4);
   const cl::Buffer four = upload(records_of(scattered(4, 1)));

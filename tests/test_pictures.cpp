@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <set>
 
 #include <epoxy/gl.h>
@@ -134,12 +135,21 @@ TEST(TankView, EveryViewFramesTheWholeTank) {
 constexpr int kFrames = 3;
 const PictureSettings kAbove{200, 150, 4, CameraView::kAbove};
 
-tank::SwimScene small_scene(Context& context, const tank::OutputsFactory& outputs = {}) {
+tank::SwimScene small_scene(Context& context, const tank::OutputsFactory& outputs = {},
+                            const std::optional<tank::SceneLevels>& levels = std::nullopt) {
   return tank::SwimScene(context,
                          {{test::data_path("blub/fish_low_resolution.obj"),
                            test::data_path("rigs/blub_low_resolution_swim.rig.json")}},
                          8, tank::TankSettings{}, 3, NormalMode::kJacobian, NormalFormat::kFloat32,
-                         {}, outputs);
+                         {}, outputs, levels);
+}
+
+// Three levels of half the triangles, a budget of `pixels`.
+tank::SceneLevels three_levels(double pixels) {
+  tank::SceneLevels levels;
+  levels.levels = {3, 0.5};
+  levels.choice.pixel_budget = pixels;
+  return levels;
 }
 
 // As `finflex swim` draws it: the renderer first, an OpenCL context sharing its GL
@@ -153,12 +163,13 @@ struct SmallTank {
   HandOff hand_off;
   tank::SwimScene scene;
   TankPictures pictures;
-  explicit SmallTank(std::optional<HandOffPath> wanted = std::nullopt)
+  explicit SmallTank(std::optional<HandOffPath> wanted = std::nullopt,
+                     const std::optional<tank::SceneLevels>& levels = std::nullopt)
       : renderer(render_settings(kAbove)),
         opencl(make_gl_sharing_context(test::shared_context().description().device_name,
                                        renderer.egl_display(), renderer.egl_context())),
         hand_off(choose_hand_off(renderer, *opencl.context, opencl.why_not, wanted)),
-        scene(small_scene(*opencl.context, gl_outputs(renderer, hand_off))),
+        scene(small_scene(*opencl.context, gl_outputs(renderer, hand_off), levels)),
         pictures(renderer, scene, kAbove) {
     for (int frame = 0; frame < kFrames; ++frame) scene.enqueue_frame(1.0 / 30.0);
   }
@@ -426,6 +437,45 @@ TEST(TankPictures, TheIdPassCoversTheFishWithTheirTankIds) {
   EXPECT_EQ(seen.size(), 8u);
   EXPECT_EQ(*seen.begin(), 1u);
   EXPECT_EQ(*seen.rbegin(), 8u);
+}
+
+// The same frame at its levels and at full detail: every fish still drawn; with a
+// budget no coarse level meets, at level 0 the very same pixels; at a pixel, coarser
+// levels and the same fish where the same pixels are but along the fish's edges.
+TEST(TankPictures, FishAtTheirLevelsCoverWhatTheFullMeshCovers) {
+  SmallTank full;
+  full.pictures.draw();
+  const render::IdImage want = full.pictures.draw_ids();
+  for (double pixels : {0.01, 1.0}) {
+    SmallTank leveled(std::nullopt, three_levels(pixels));
+    leveled.pictures.draw();
+    const render::IdImage got = leveled.pictures.draw_ids();
+    const tank::SwimScene::LevelCounts counts = leveled.scene.level_counts(0);
+    std::size_t drawn = 0;
+    for (std::size_t n : counts.per_level) drawn += n;
+    EXPECT_EQ(drawn, 8u) << pixels << " pixels";
+    ASSERT_EQ(got.ids.size(), want.ids.size());
+    std::size_t covered = 0, agree = 0;
+    std::set<std::uint32_t> seen;
+    for (std::size_t k = 0; k < want.ids.size(); ++k) {
+      if (got.ids[k] != 0) seen.insert(got.ids[k]);
+      if (want.ids[k] == 0 && got.ids[k] == 0) continue;
+      ++covered;
+      agree += want.ids[k] == got.ids[k];
+    }
+    ASSERT_GT(covered, 100u);
+    std::printf("%g pixels: fish per level %zu/%zu/%zu, %.4f of the fish pixels agree\n", pixels,
+                counts.per_level[0], counts.per_level[1], counts.per_level[2],
+                double(agree) / double(covered));
+    EXPECT_EQ(seen.size(), 8u) << pixels << " pixels";
+    if (pixels < 1.0) {
+      EXPECT_EQ(counts.per_level[0], 8u);
+      EXPECT_EQ(agree, covered);
+    } else {
+      EXPECT_GT(counts.per_level.back(), 0u);
+      EXPECT_GT(double(agree) / double(covered), 0.9);
+    }
+  }
 }
 
 TEST(TankPictures, IdPassesInFlightComeBackInTheirOrderAsDrawn) {

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "hall.hpp"
 #include "support/test_support.hpp"
 #include "swim_scene.hpp"
 #include "tank.hpp"
@@ -30,6 +31,65 @@ TEST(Tank, TheSameSeedGivesTheSameTank) {
     difference = std::max(difference, glm::length(a.fish()[i].position - c.fish()[i].position));
   }
   EXPECT_GT(difference, 0.01);  // another seed, another tank
+}
+
+// A hall of tanks: the fish spread over them, each in its own tank's water (its axis
+// centre(t)), the inputs in hall coordinates tank by tank, bad settings named.
+TEST(Hall, EachTanksFishSwimInThatTankWhereTheHallPutsIt) {
+  HallSettings settings = HallSettings::farm(6, 3000);
+  settings.columns = 3;
+  EXPECT_EQ(settings.tank.diameter, TankSettings{}.diameter);  // 500 a tank: no scaling
+  const HallSettings big = HallSettings::farm(16, 100000);
+  EXPECT_NEAR(big.tank.diameter, TankSettings{}.diameter * std::cbrt(6.25), 1e-12);
+  Hall hall(settings, {1700, 1300}, 9);
+  ASSERT_EQ(hall.tank_count(), 6u);
+  EXPECT_DOUBLE_EQ(hall.spacing(), settings.tank.diameter + settings.walkway);
+  EXPECT_EQ(hall.centre(4), glm::dvec3(hall.spacing(), 0.0, -hall.spacing()));
+  for (int step = 0; step < 60; ++step) hall.step(1.0 / 30.0);
+  ASSERT_EQ(hall.fish().size(), 3000u);
+  std::size_t index = 0;
+  for (std::size_t t = 0; t < hall.tank_count(); ++t) {
+    EXPECT_EQ(hall.tank(t).fish().size(), 500u);
+    for (const Fish& local : hall.tank(t).fish()) {
+      const Fish& fish = hall.fish()[index++];
+      EXPECT_EQ(fish.position, local.position + hall.centre(t));
+      const glm::dvec3 in_tank = fish.position - hall.centre(t);
+      EXPECT_LE(std::hypot(in_tank.x, in_tank.z), 0.5 * settings.tank.diameter);
+    }
+  }
+  EXPECT_EQ(hall.corrections(), 0u);
+  std::vector<SwimInput> inputs;
+  hall.inputs(1, inputs);
+  ASSERT_EQ(inputs.size(), 1300u);
+  std::vector<SwimInput> staged(1300);
+  hall.inputs(1, staged.data());
+  std::size_t k = 0;
+  for (const Fish& fish : hall.fish()) {
+    if (fish.species != 1) continue;
+    EXPECT_EQ(inputs[k].position, glm::vec3(fish.position));
+    EXPECT_EQ(staged[k].position, inputs[k].position);
+    ++k;
+  }
+  EXPECT_EQ(hall.lengths(1).size(), 1300u);
+
+  auto field_of = [](HallSettings bad, std::vector<std::size_t> fish) {
+    try {
+      Hall rejected(bad, fish, 1);
+    } catch (const Error& e) {
+      return e.field();
+    }
+    return std::string("accepted");
+  };
+  HallSettings none = settings;
+  none.tanks = 0;
+  EXPECT_EQ(field_of(none, {10}), "hall.tanks");
+  HallSettings flat = settings;
+  flat.columns = 0;
+  EXPECT_EQ(field_of(flat, {10}), "hall.columns");
+  HallSettings crowded = settings;
+  crowded.walkway = -1.0;
+  EXPECT_EQ(field_of(crowded, {10}), "hall.walkway");
+  EXPECT_EQ(field_of(settings, {3, 2}), "fish");  // 6 tanks, 5 fish
 }
 
 TEST(Tank, FishStayInTheWaterAndFiniteForTenThousandSteps) {
@@ -125,7 +185,7 @@ TEST(SwimScene, DeformedFishAreWhereTheTankPutsThem) {
       // the tank says its pivot is.
       const Fish* fish = nullptr;
       std::size_t seen = 0;
-      for (const Fish& f : scene.tank().fish()) {
+      for (const Fish& f : scene.hall().fish()) {
         if (f.species == s && seen++ == i) fish = &f;
       }
       ASSERT_NE(fish, nullptr);
@@ -151,17 +211,17 @@ TEST(SwimScene, FramesFromTheCallersInputsMatchTheTanksOwn) {
   constexpr double kDt = 1.0 / 30.0;
   for (int frame = 0; frame < 3; ++frame) {
     own->enqueue_frame(kDt);
-    written->tank().step(kDt);
-    const double time = written->tank().time();
+    written->hall().step(kDt);
+    const double time = written->hall().time();
     std::vector<std::size_t> asked;
     const FrameWork work = written->enqueue_frame(
         kDt,
         [&](std::size_t species, SwimInput* staged) {
           asked.push_back(species);
-          written->tank().inputs(species, staged);
+          written->hall().inputs(species, staged);
         },
         true);
-    EXPECT_EQ(written->tank().time(), time);  // no step of its own
+    EXPECT_EQ(written->hall().time(), time);  // no step of its own
     EXPECT_EQ(asked, (std::vector<std::size_t>{0, 1}));
     EXPECT_FALSE(work.kernels.empty());
   }

@@ -27,9 +27,11 @@
 #include "cli_numbers.hpp"
 #include "cli_paths.hpp"
 #include "commands.hpp"
+#include "farm_bench.hpp"
 #include "finflex/finflex.hpp"
 #include "finflex/internal/cl_tuning.hpp"
 #include "frame_bench.hpp"
+#include "level_flags.hpp"
 #include "swim_bench.hpp"
 
 namespace finflex::cli {
@@ -37,7 +39,7 @@ namespace {
 
 struct BenchOptions {
   std::string mesh;
-  std::string instances = "1000";
+  std::string instances;  // empty: 1,000, or 100,000 with --farm
   std::string frames = "100";
   std::string mode = "paper";
   std::string normals = "rotate";
@@ -51,6 +53,11 @@ struct BenchOptions {
   std::string dispatch = "auto";
   bool swim = false;
   std::string swim_inputs;  // --swim only; empty: recorded
+  bool farm = false;
+  std::string tanks = "16";
+  std::string levels = "6";  // the farm's: 6 levels of half the triangles (benchmarks.md)
+  std::string triangle_ratio = "0.5";
+  std::string pixel_budget = "1";
   std::string layout = "planes";
   std::string order = "slots";
   bool previous = false;
@@ -127,11 +134,17 @@ bench::OutputsChoice outputs_choice(const BenchOptions& options) {
   return outputs;
 }
 
+bench::FarmSettings check_farm(const BenchOptions& options,
+                               const bench::FrameBenchSettings& settings);
+
 // Every option that can be checked before a file is read or the device opened, as the
 // harness's settings.
 bench::FrameBenchSettings check_bench(const BenchOptions& options) {
   bench::FrameBenchSettings settings;
-  settings.instances = parse_count(options.instances, "--instances", 1, kMaxDeviceInstances,
+  const std::string instances = !options.instances.empty() ? options.instances
+                                : options.farm             ? "100000"
+                                                           : "1000";
+  settings.instances = parse_count(instances, "--instances", 1, kMaxDeviceInstances,
                                    "the kernels count instances in 32 bits");
   settings.frames =
       parse_count(options.frames, "--frames", 1, kMaxFrames, "bench keeps every frame's time");
@@ -155,7 +168,36 @@ bench::FrameBenchSettings check_bench(const BenchOptions& options) {
     throw Error(ErrorCode::kInvalidArgument, "--swim",
                 "--swim writes the default planes (no --layout, --order, --previous or --host)");
   }
+  if (options.farm) check_farm(options, settings);
   return settings;
+}
+
+// --farm: a swim rig, the default planes, and the hall's and the levels' options.
+bench::FarmSettings check_farm(const BenchOptions& options,
+                               const bench::FrameBenchSettings& settings) {
+  if (options.rig.empty()) {
+    throw Error(ErrorCode::kInvalidArgument, "--farm", "--farm needs --rig (a swim rig)");
+  }
+  if (options.swim || options.layout != "planes" || options.order != "slots" || options.previous ||
+      options.host) {
+    throw Error(ErrorCode::kInvalidArgument, "--farm",
+                "--farm swims the fish itself and writes the default planes (no --swim, "
+                "--layout, --order, --previous or --host)");
+  }
+  bench::FarmSettings farm;
+  farm.fish = settings.instances;
+  farm.frames = settings.frames;
+  farm.normals = settings.normals;
+  farm.format = settings.format;
+  farm.tanks = parse_count(options.tanks, "--tanks", 1, 1024, "tanks in the hall");
+  if (farm.fish < farm.tanks) {
+    throw Error(ErrorCode::kInvalidArgument, "--instances",
+                "--instances '" + std::to_string(farm.fish) + "': every one of the " +
+                    std::to_string(farm.tanks) + " tanks needs a fish");
+  }
+  farm.levels = parse_level_options(options.levels, options.triangle_ratio);
+  farm.choice.pixel_budget = parse_positive(options.pixel_budget, "--pixel-budget");
+  return farm;
 }
 
 // The library's message for `error` said of the option that gave the value, as typed:
@@ -206,6 +248,14 @@ int run_bench(const BenchOptions& options) {
     const bench::FrameBenchSettings settings = check_bench(options);
     const Mesh mesh = for_option("--mesh", [&] { return load_mesh(options.mesh); });
     Context context(options.device);
+    if (options.farm) {
+      const nlohmann::ordered_json farm = with_option_names(options, [&] {
+        return bench::measure_farm(context, options.mesh, options.rig,
+                                   check_farm(options, settings));
+      });
+      std::printf("%s\n", options.json ? farm.dump().c_str() : farm.dump(2).c_str());
+      return kExitSuccess;
+    }
     std::unique_ptr<RiggedMesh> model;
     bench::DeformBench deform;
     std::unique_ptr<tank::SwimScene> scene;
@@ -286,6 +336,21 @@ Command add_bench_command(CLI::App& app) {
   bench->add_option("--swim-inputs", options->swim_inputs,
                     "With --swim: recorded (default; the tank's steps run before the timed "
                     "frames) or live (the tank steps inside the frame loop)");
+  bench->add_flag("--farm", options->farm,
+                  "With a swim rig: a farm hall (100,000 fish by default) with levels of detail "
+                  "and culling, side by side with the same hall at full detail");
+  bench->add_option("--tanks", options->tanks, "With --farm: tanks in the hall (rows of 4)")
+      ->capture_default_str();
+  bench->add_option("--levels", options->levels, "With --farm: levels of detail (1 to 8)")
+      ->capture_default_str();
+  bench
+      ->add_option("--triangle-ratio", options->triangle_ratio,
+                   "With --farm: each level's share of the finer level's triangles")
+      ->capture_default_str();
+  bench
+      ->add_option("--pixel-budget", options->pixel_budget,
+                   "With --farm: the error a level may show, in pixels of a 1920x1080 image")
+      ->capture_default_str();
   bench->add_option("--device", options->device, "OpenCL device: 'P:D' or a name substring");
   bench->add_flag("--json", options->json, "One JSON object on one line");
   return {[options] { check_bench(*options); }, [options] { return run_bench(*options); }};

@@ -21,6 +21,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <numeric>
 #include <string>
 #include <vector>
 
@@ -209,7 +210,14 @@ int run_swim(const SwimOptions& options) {
     tank::SwimScene scene(
         context, plan.species, plan.fish, plan.tank, plan.seed, plan.normals,
         NormalFormat::kFloat32, {},
-        renderer ? pictures::gl_outputs(*renderer, hand_off) : tank::OutputsFactory());
+        renderer ? pictures::gl_outputs(*renderer, hand_off) : tank::OutputsFactory(), plan.levels);
+    if (plan.levels && !renderer) {  // the pictures' camera chooses, drawn or not
+      const render::Camera camera = pictures::tank_camera(
+          plan.tank, plan.pictures.view, plan.pictures.width, plan.pictures.height);
+      scene.set_views({LevelView::look_at(
+          camera.position, camera.target, camera.up, camera.vertical_fov_degrees,
+          plan.pictures.width, plan.pictures.height, camera.near_plane, camera.far_plane)});
+    }
     std::unique_ptr<pictures::TankPictures> pictures;
     if (renderer) {
       pictures = std::make_unique<pictures::TankPictures>(*renderer, scene, plan.pictures);
@@ -233,7 +241,7 @@ int run_swim(const SwimOptions& options) {
     const double dt = 1.0 / plan.fps;
     FrameTimes t;
     nlohmann::ordered_json tracks = nlohmann::ordered_json::array();
-    for (const tank::Fish& fish : scene.tank().fish()) {
+    for (const tank::Fish& fish : scene.hall().fish()) {
       tracks.push_back({{"species", scene.species()[fish.species].name},
                         {"length_m", fish.length},
                         {"samples", nlohmann::ordered_json::array()}});
@@ -266,7 +274,7 @@ int run_swim(const SwimOptions& options) {
           pictures->draw_reference();
           reference_gpu = pictures->renderer().gpu_reference_seconds();
         }
-        if (files) file_times = files->add_frame(f, scene.tank().time());
+        if (files) file_times = files->add_frame(f, scene.hall().time());
         if (files && plan.files.annotate) id_gpu = pictures->renderer().gpu_id_seconds();
       }
       if (f == 0) {
@@ -291,9 +299,9 @@ int run_swim(const SwimOptions& options) {
         t.cpu.push_back(process_cpu_seconds() - cpu_start);
       }
       if (f % track_every == 0) {
-        const std::vector<tank::Fish>& fish = scene.tank().fish();
+        const std::vector<tank::Fish>& fish = scene.hall().fish();
         for (std::size_t i = 0; i < fish.size(); ++i) {
-          tracks[i]["samples"].push_back({scene.tank().time(), fish[i].position.x,
+          tracks[i]["samples"].push_back({scene.hall().time(), fish[i].position.x,
                                           fish[i].position.y, fish[i].position.z, fish[i].yaw,
                                           fish[i].speed});
         }
@@ -326,6 +334,18 @@ int run_swim(const SwimOptions& options) {
         "  %.3g M vertices per frame; %.1f frames/s overall (first frame %.2f s with kernel "
         "builds)\n",
         vertices * 1e-6, double(plan.frames) / wall, first_frame);
+    for (std::size_t s = 0; s < scene.species().size(); ++s) {
+      if (!scene.species()[s].leveled) continue;
+      const tank::SwimScene::LevelCounts counts = scene.level_counts(s);
+      std::string per_level;
+      for (std::size_t n : counts.per_level)
+        per_level += (per_level.empty() ? "" : "/") + std::to_string(n);
+      std::printf(
+          "  %s at levels 0..%zu (last frame): %s fish, %zu culled or in no level's rows\n",
+          scene.species()[s].name.c_str(), counts.per_level.size() - 1, per_level.c_str(),
+          scene.species()[s].driver->fish_count() -
+              std::accumulate(counts.per_level.begin(), counts.per_level.end(), std::size_t{0}));
+    }
     if (!t.kernels.empty()) {
       std::printf(
           "  per frame (median): simulation %.3f ms, upload and launch %.3f ms (host), kernels "
@@ -377,7 +397,7 @@ int run_swim(const SwimOptions& options) {
     std::printf(
         "  fish put back inside the water by the tank: %zu times; braking in front of a "
         "boundary: %zu fish-steps\n",
-        scene.tank().corrections(), scene.tank().brakes());
+        scene.hall().corrections(), scene.hall().brakes());
     if (staging) {
       nlohmann::ordered_json summary;
       summary["device"] = context.description().device_name;
@@ -396,8 +416,8 @@ int run_swim(const SwimOptions& options) {
       if (!rendering.is_null()) summary["rendering"] = rendering;
       summary["first_frame_seconds"] = first_frame;
       summary["wall_seconds"] = wall;
-      summary["corrections"] = scene.tank().corrections();
-      summary["brakes"] = scene.tank().brakes();
+      summary["corrections"] = scene.hall().corrections();
+      summary["brakes"] = scene.hall().brakes();
       summary["track_columns"] = {"time_s", "x_m", "y_m", "z_m", "yaw_rad", "speed_m_per_s"};
       summary["tracks"] = tracks;
       write_text(folder / "summary.json", summary.dump(1) + "\n");
@@ -450,6 +470,15 @@ Command add_swim_command(CLI::App& app) {
   swim->add_option("--hand-off", options->hand_off,
                    "How the deformed fish reach the renderer: auto (the first that runs), "
                    "external-memory, shared or copy")
+      ->capture_default_str();
+  swim->add_option("--levels", options->levels,
+                   "Levels of detail (1 to 8) with culling, chosen from the camera each frame "
+                   "(default: every fish at full detail)");
+  swim->add_option("--pixel-budget", options->pixel_budget,
+                   "With --levels: the error a level may show, in pixels")
+      ->capture_default_str();
+  swim->add_option("--triangle-ratio", options->triangle_ratio,
+                   "With --levels: each level's share of the finer level's triangles")
       ->capture_default_str();
   swim->add_flag("--reference-draw", options->reference_draw,
                  "Each frame also the same triangles drawn the cheapest way, and both GPU times");

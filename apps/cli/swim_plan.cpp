@@ -1,5 +1,7 @@
 #include "swim_plan.hpp"
 
+#include "level_flags.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -149,6 +151,16 @@ SwimPlan plan_of(const SwimOptions& options) {
     throw Error(ErrorCode::kInvalidArgument, "--mesh-frames", "--mesh-frames needs --out");
   }
   plan.mesh_frames = parse_frames(options.mesh_frames, plan.frames, "--mesh-frames");
+  if (!options.levels.empty()) {
+    tank::SceneLevels levels;
+    levels.levels = parse_level_options(options.levels, options.triangle_ratio);
+    levels.choice.pixel_budget = parse_positive(options.pixel_budget, "--pixel-budget");
+    if (!plan.mesh_frames.empty()) {
+      throw Error(ErrorCode::kInvalidArgument, "--mesh-frames",
+                  "--mesh-frames writes every fish at full detail: not with --levels");
+    }
+    plan.levels = levels;
+  }
   plan_pictures(options, plan);
   if (!options.out.empty()) check_output_folder(options.out, "--out");
   return plan;

@@ -37,6 +37,9 @@ struct SwimOptions {
   int render = -1;  // --render: 1, --no-render: 0, neither: -1 (on with --out)
   std::string hand_off = "auto";
   bool reference_draw = false;
+  std::string levels;  // empty: every fish at full detail
+  std::string pixel_budget = "1";
+  std::string triangle_ratio = "0.5";
 };
 
 // What the command runs, every value checked.
@@ -54,6 +57,8 @@ struct SwimPlan {
   bool reference_draw = false;                    // each frame also the reference draw
   pictures::PictureSettings pictures;
   PictureFiles files;
+  // --levels: levels of detail and culling, chosen from the pictures' camera.
+  std::optional<tank::SceneLevels> levels;
 };
 
 // The plan of `options`. finflex::Error (kInvalidArgument or kIo) naming the option and

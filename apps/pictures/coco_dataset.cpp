@@ -50,7 +50,7 @@ CocoDataset::CocoDataset(const std::string& folder, tank::SwimScene& scene,
       width_(width),
       height_(height),
       camera_from_world_(render::camera_from_world(camera)) {
-  const std::vector<tank::Fish>& fish = scene.tank().fish();
+  const std::vector<tank::Fish>& fish = scene.hall().fish();
   if (fish.size() > kMaxAnnotatedFish) {
     throw Error(ErrorCode::kInvalidArgument, "fish",
                 "--annotate: " + std::to_string(fish.size()) +

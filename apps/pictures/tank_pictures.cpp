@@ -8,7 +8,7 @@ namespace {
 
 // Per species, the id of each of its instances: 1 + the fish's index in the tank (the
 // tank lists every species' fish; species s's instances are its fish in that order).
-std::vector<std::vector<std::uint32_t>> instance_ids(const tank::Tank& tank,
+std::vector<std::vector<std::uint32_t>> instance_ids(const tank::Hall& tank,
                                                      std::size_t species_count) {
   std::vector<std::vector<std::uint32_t>> ids(species_count);
   const std::vector<tank::Fish>& fish = tank.fish();
@@ -31,14 +31,12 @@ render::RenderSettings render_settings(const PictureSettings& settings) {
 TankPictures::TankPictures(render::Renderer& renderer, tank::SwimScene& scene,
                            const PictureSettings& settings)
     : renderer_(renderer),
-      look_(tank_scene(scene.tank().settings())),
+      look_(tank_scene(scene.hall().settings())),
       camera_(
-          tank_camera(scene.tank().settings(), settings.view, settings.width, settings.height)) {
-  std::vector<std::vector<std::uint32_t>> ids = instance_ids(scene.tank(), scene.species().size());
-  for (std::size_t s = 0; s < scene.species().size(); ++s) {
-    tank::Species& species = scene.species()[s];
-    if (!species.deformer) continue;
-    auto* outputs = dynamic_cast<GlSpeciesOutputs*>(species.outputs.get());
+          tank_camera(scene.hall().settings(), settings.view, settings.width, settings.height)) {
+  std::vector<std::vector<std::uint32_t>> ids = instance_ids(scene.hall(), scene.species().size());
+  const auto gl_outputs_of = [&](tank::SpeciesOutputs* made, std::size_t s) {
+    auto* outputs = dynamic_cast<GlSpeciesOutputs*>(made);
     if (outputs == nullptr) {
       throw Error(ErrorCode::kInvalidArgument, "scene",
                   "scene: species " + std::to_string(s) +
@@ -50,13 +48,54 @@ TankPictures::TankPictures(render::Renderer& renderer, tank::SwimScene& scene,
       device_ordered_ = false;
       why_not_ordered_ = outputs->why_not_device_ordered();
     }
-    drawings_.push_back(prepare_drawing(renderer_, *species.deformer, *outputs,
-                                        species_albedo(species.name, s), std::move(ids[s])));
+    return outputs;
+  };
+  for (std::size_t s = 0; s < scene.species().size(); ++s) {
+    tank::Species& species = scene.species()[s];
+    const glm::vec3 albedo = species_albedo(species.name, s);
+    if (species.leveled) {
+      tank::SpeciesLevels& lv = *species.leveled;
+      leveled_.push_back({&lv.deformer->chooser(), std::move(ids[s]), drawings_.size()});
+      for (std::size_t k = 0; k < lv.outputs.size(); ++k) {
+        drawings_.push_back(prepare_drawing(renderer_, lv.deformer->deformer(k),
+                                            *gl_outputs_of(lv.outputs[k].get(), s), albedo, {}));
+      }
+      continue;
+    }
+    if (!species.deformer) continue;
+    drawings_.push_back(prepare_drawing(renderer_, *species.deformer,
+                                        *gl_outputs_of(species.outputs.get(), s), albedo,
+                                        std::move(ids[s])));
   }
   for (const SpeciesDrawing& drawing : drawings_) draws_.push_back(fish_draw(drawing));
+  for (const LeveledSpecies& species : leveled_) {  // no fish until a frame's lists
+    for (std::size_t k = 0; k < species.chooser->level_count(); ++k)
+      draws_[species.first_drawing + k].instance_count = 0;
+  }
+  if (!leveled_.empty()) {
+    scene.set_views({LevelView::look_at(camera_.position, camera_.target, camera_.up,
+                                        camera_.vertical_fov_degrees, settings.width,
+                                        settings.height, camera_.near_plane, camera_.far_plane)});
+  }
+}
+
+// Each level's fish of the last frame and their ids, from its chooser's lists.
+void TankPictures::take_lists() {
+  for (LeveledSpecies& species : leveled_) {
+    const LevelChooser::Choice choice = species.chooser->read(false);
+    for (std::size_t k = 0; k < choice.lists.size(); ++k) {
+      SpeciesDrawing& drawing = drawings_[species.first_drawing + k];
+      drawing.ids.clear();
+      for (std::uint32_t fish : choice.lists[k]) drawing.ids.push_back(species.ids[fish]);
+      render::FishDraw& draw = draws_[species.first_drawing + k];
+      draw.instance_count = drawing.ids.size();
+      draw.ids = drawing.ids.data();
+    }
+  }
 }
 
 void TankPictures::draw() {
+  take_lists();
   for (SpeciesDrawing& drawing : drawings_) drawing.outputs->wait_until_drawable();
   renderer_.render(look_, camera_, draws_);
 }

@@ -37,13 +37,16 @@ class TankPictures {
  public:
   // Per species with fish a drawing of its outputs (which must be GlSpeciesOutputs of
   // `renderer`: kInvalidArgument naming "scene" otherwise) whose id pass writes 1 + the
-  // fish's index in the tank (tank().fish()). `renderer` (made with
-  // render_settings(settings)) and `scene` must outlive the pictures.
+  // fish's index in the hall (hall().fish()); with levels of detail, a drawing per
+  // level. `renderer` (made with render_settings(settings)) and `scene` must outlive
+  // the pictures. A scene with levels gets the camera as its view (set_views).
   TankPictures(render::Renderer& renderer, tank::SwimScene& scene, const PictureSettings& settings);
 
   // The colour pass of every species' last frame, once GL may read it (a GPU-side
   // wait where semaphores order the frame); no wait for the GPU to draw it. Its image:
-  // read_image (waits), or the renderer's request_image and take_image.
+  // read_image (waits), or the renderer's request_image and take_image. With levels,
+  // each level's fish and their ids are read from the frame's lists first (a wait for
+  // the frame's kernels on the host).
   void draw();
   const render::Image& read_image();
   // The reference draw of the same fish (Renderer::render_reference): the yardstick of
@@ -70,8 +73,17 @@ class TankPictures {
   render::Renderer& renderer_;
   render::Scene look_;
   render::Camera camera_;
-  std::vector<SpeciesDrawing> drawings_;  // per species with fish, in order
+  std::vector<SpeciesDrawing> drawings_;  // per species with fish (and level), in order
   std::vector<render::FishDraw> draws_;
+  // With levels: per species with levels, its chooser, every fish's id and the first
+  // of its levels' drawings.
+  struct LeveledSpecies {
+    LevelChooser* chooser = nullptr;
+    std::vector<std::uint32_t> ids;
+    std::size_t first_drawing = 0;
+  };
+  std::vector<LeveledSpecies> leveled_;
+  void take_lists();
   HandOffPath path_ = HandOffPath::kCopy;
   bool device_ordered_ = true;
   std::string why_not_ordered_;

@@ -55,9 +55,39 @@ std::vector<SpeciesFiles> bundled_species(const std::string& data_dir) {
       {data_dir + "/barramundi/BarramundiFish.gltf", data_dir + "/rigs/barramundi_swim.rig.json"}};
 }
 
+std::vector<std::size_t> scene_level_rows(const DetailLevels& levels, std::size_t fish) {
+  const double coarsest = double(levels.level(levels.size() - 1).vertex_count);
+  std::vector<std::size_t> rows;
+  for (const DetailLevel& level : levels.levels()) {
+    const double share = 4.0 * double(fish) * coarsest / double(level.vertex_count);
+    rows.push_back(std::min(fish, std::max<std::size_t>(1024, std::size_t(std::ceil(share)))));
+  }
+  return rows;
+}
+
+namespace {
+
+// The species' outputs for `instances` instances of `deformer`'s model: the caller's
+// factory's, or FinFlex's planes on the device.
+std::unique_ptr<SpeciesOutputs> make_outputs(const OutputsFactory& factory, std::size_t species,
+                                             ClDeformer& deformer, std::size_t instances,
+                                             NormalFormat format) {
+  std::unique_ptr<SpeciesOutputs> made =
+      factory ? factory(species, deformer, instances, format)
+              : std::make_unique<DeviceOutputs>(deformer, instances, format);
+  if (!made) {
+    throw Error(ErrorCode::kInvalidArgument, "outputs",
+                "outputs: the factory made none for species " + std::to_string(species));
+  }
+  return made;
+}
+
+}  // namespace
+
 SwimScene::SwimScene(Context& context, const std::vector<SpeciesFiles>& files, std::size_t fish,
-                     const TankSettings& settings, std::uint64_t seed, NormalMode normals,
-                     NormalFormat format, const ClTuning& options, const OutputsFactory& outputs)
+                     const HallSettings& settings, std::uint64_t seed, NormalMode normals,
+                     NormalFormat format, const ClTuning& options, const OutputsFactory& outputs,
+                     const std::optional<SceneLevels>& levels)
     : context_(context) {
   if (files.empty()) {
     throw Error(ErrorCode::kInvalidArgument, "species", "species: at least one is needed");
@@ -71,25 +101,39 @@ SwimScene::SwimScene(Context& context, const std::vector<SpeciesFiles>& files, s
       const Mesh mesh = load_mesh(files[s].mesh);
       SwimModel swim(RiggedMesh(mesh, resolve_rig(load_rig_file(files[s].rig), mesh)));
       species_.push_back(
-          Species{species_name(files[s]), std::move(swim), nullptr, nullptr, nullptr, {}});
+          Species{species_name(files[s]), std::move(swim), nullptr, nullptr, nullptr, {}, nullptr});
     } catch (const Error& e) {
       throw Error(e.code(), at, at + ": " + e.what());
     }
     counts.push_back(fish / files.size() + (s < fish % files.size() ? 1 : 0));
   }
-  tank_ = std::make_unique<Tank>(settings, counts, seed);
+  hall_ = std::make_unique<Hall>(settings, counts, seed);
   for (std::size_t s = 0; s < species_.size(); ++s) {
     Species& sp = species_[s];
     if (counts[s] == 0) continue;
-    sp.deformer = std::make_unique<ClDeformer>(context_, sp.swim.model(), options);
-    sp.driver = std::make_unique<ClSwimDriver>(context_, sp.swim, tank_->lengths(s),
+    sp.driver = std::make_unique<ClSwimDriver>(context_, sp.swim, hall_->lengths(s),
                                                std::vector<float>{}, options.table_items);
-    sp.outputs = outputs ? outputs(s, *sp.deformer, counts[s], format)
-                         : std::make_unique<DeviceOutputs>(*sp.deformer, counts[s], format);
-    if (!sp.outputs) {
-      throw Error(ErrorCode::kInvalidArgument, "outputs",
-                  "outputs: the factory made none for species " + std::to_string(s));
+    ClDeviceInputs inputs{&sp.driver->parameter_buffer(), &sp.driver->placement_buffer(),
+                          sp.driver->derived_buffer()};
+    if (levels) {
+      auto lv =
+          std::make_unique<SpeciesLevels>(make_detail_levels(sp.swim.model(), levels->levels));
+      LevelChoiceOptions choice = levels->choice;
+      if (choice.level_rows.empty()) choice.level_rows = scene_level_rows(lv->levels, counts[s]);
+      lv->deformer =
+          std::make_unique<LevelDeformer>(context_, lv->levels, counts[s], choice, format, false);
+      for (std::size_t k = 0; k < lv->levels.size(); ++k) {
+        ClDeformer& deformer = lv->deformer->deformer(k);
+        lv->outputs.push_back(
+            make_outputs(outputs, s, deformer, lv->deformer->chooser().rows(k), format));
+        lv->jobs.push_back(lv->deformer->job(k, inputs, counts[s], normals));
+        lv->jobs.back().outputs = &lv->outputs.back()->batch();
+      }
+      sp.leveled = std::move(lv);
+      continue;
     }
+    sp.deformer = std::make_unique<ClDeformer>(context_, sp.swim.model(), options);
+    sp.outputs = make_outputs(outputs, s, *sp.deformer, counts[s], format);
     sp.job.instances = counts[s];
     sp.job.device.parameters = &sp.driver->parameter_buffer();
     sp.job.device.placements = &sp.driver->placement_buffer();
@@ -101,11 +145,11 @@ SwimScene::SwimScene(Context& context, const std::vector<SpeciesFiles>& files, s
 
 FrameWork SwimScene::enqueue_frame(double dt, bool profile) {
   const auto start = std::chrono::steady_clock::now();
-  tank_->step(dt);
+  hall_->step(dt);
   const double step_seconds = seconds_since(start);
-  // The tank writes the inputs straight into the drivers' staging memory.
+  // The hall writes the inputs straight into the drivers' staging memory.
   FrameWork work = enqueue_frame(
-      dt, [this](std::size_t species, SwimInput* staged) { tank_->inputs(species, staged); },
+      dt, [this](std::size_t species, SwimInput* staged) { hall_->inputs(species, staged); },
       profile);
   work.simulation_seconds += step_seconds;
   return work;
@@ -125,6 +169,10 @@ FrameWork SwimScene::enqueue_frame(double dt, const InputWriter& write_inputs, b
   }
   work.simulation_seconds = seconds_since(start) - staging_seconds;
   work.driver_seconds = staging_seconds;
+  if (has_levels() && views_.empty()) {
+    throw Error(ErrorCode::kInvalidArgument, "views",
+                "views: a scene with levels of detail needs its views (set_views)");
+  }
   const auto enqueue_start = std::chrono::steady_clock::now();
   std::vector<cl::Event> events;
   FrameGate gate(context_);  // the frame goes to the device once all of it is enqueued
@@ -134,13 +182,24 @@ FrameWork SwimScene::enqueue_frame(double dt, const InputWriter& write_inputs, b
     const auto driver_start = std::chrono::steady_clock::now();
     const cl::Event driven = sp.driver->enqueue_staged(static_cast<float>(dt), gate.wait_list());
     work.driver_seconds += seconds_since(driver_start);
+    if (profile) work.kernels.push_back(driven);
+    if (sp.leveled) {
+      SpeciesLevels& lv = *sp.leveled;
+      lv.deformer->chooser().enqueue(sp.driver->placement_buffer(), sp.driver->fish_count(), views_,
+                                     nullptr, profile ? &events : nullptr);
+      if (profile) work.kernels.insert(work.kernels.end(), events.begin(), events.end());
+      for (std::size_t k = 0; k < lv.outputs.size(); ++k) {
+        if (lv.outputs[k]->waits_for_device()) gate.open();
+        lv.outputs[k]->enqueue(lv.deformer->deformer(k), lv.jobs[k], profile ? &events : nullptr);
+        work.handoff_seconds += lv.outputs[k]->handoff_seconds();
+        if (profile) work.kernels.insert(work.kernels.end(), events.begin(), events.end());
+      }
+      continue;
+    }
     if (sp.outputs->waits_for_device()) gate.open();
     sp.outputs->enqueue(*sp.deformer, sp.job, profile ? &events : nullptr);
     work.handoff_seconds += sp.outputs->handoff_seconds();
-    if (profile) {
-      work.kernels.push_back(driven);
-      work.kernels.insert(work.kernels.end(), events.begin(), events.end());
-    }
+    if (profile) work.kernels.insert(work.kernels.end(), events.begin(), events.end());
   }
   gate.open();
   work.enqueue_seconds =
@@ -148,10 +207,38 @@ FrameWork SwimScene::enqueue_frame(double dt, const InputWriter& write_inputs, b
   return work;
 }
 
+bool SwimScene::has_levels() const {
+  for (const Species& sp : species_) {
+    if (sp.leveled) return true;
+  }
+  return false;
+}
+
+SwimScene::LevelCounts SwimScene::level_counts(std::size_t species) const {
+  LevelCounts out;
+  const Species& sp = species_.at(species);
+  if (!sp.leveled) return out;
+  const LevelChooser::Choice choice = sp.leveled->deformer->chooser().read();
+  for (std::size_t k = 0; k < choice.lists.size(); ++k) {
+    out.per_level.push_back(choice.lists[k].size());
+    for (std::uint32_t fish : choice.lists[k]) out.demoted += choice.level_of[fish] < int(k);
+  }
+  out.undrawn = choice.undrawn;
+  return out;
+}
+
 std::size_t SwimScene::vertices_per_frame() const {
   std::size_t vertices = 0;
-  for (const Species& sp : species_) {
-    if (sp.driver) vertices += sp.swim.model().vertex_count() * sp.driver->fish_count();
+  for (std::size_t s = 0; s < species_.size(); ++s) {
+    const Species& sp = species_[s];
+    if (!sp.driver) continue;
+    if (!sp.leveled) {
+      vertices += sp.swim.model().vertex_count() * sp.driver->fish_count();
+      continue;
+    }
+    const LevelCounts counts = level_counts(s);
+    for (std::size_t k = 0; k < counts.per_level.size(); ++k)
+      vertices += counts.per_level[k] * sp.leveled->levels.level(k).vertex_count;
   }
   return vertices;
 }

@@ -12,12 +12,13 @@
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "finflex/finflex.hpp"
 #include "finflex/internal/cl_tuning.hpp"
-#include "tank.hpp"
+#include "hall.hpp"
 
 namespace finflex::tank {
 
@@ -75,6 +76,30 @@ class DeviceOutputs : public SpeciesOutputs {
 using OutputsFactory = std::function<std::unique_ptr<SpeciesOutputs>(
     std::size_t species, ClDeformer& deformer, std::size_t instances, NormalFormat format)>;
 
+// Levels of detail (finflex/level_deformer.hpp) for every species of a scene: each
+// frame the fish its views see, at their levels, deformed into each level's outputs;
+// no full-detail outputs.
+struct SceneLevels {
+  LevelOptions levels;        // make_detail_levels'
+  LevelChoiceOptions choice;  // level_rows empty: scene_level_rows
+};
+
+// Each level's rows for `fish` fish: every level's outputs as large as the coarsest
+// level's for 4 times the fish (level k: 4 fish x the coarsest level's vertices over
+// level k's), at least 1,024 rows and at most `fish`. Fish past a level's rows are
+// drawn at a coarser one (finflex/level_choice.hpp).
+std::vector<std::size_t> scene_level_rows(const DetailLevels& levels, std::size_t fish);
+
+// A species at its levels: the levels, their deformer and chooser, and each level's
+// outputs and job (its list's fish of the species' driver buffers).
+struct SpeciesLevels {
+  explicit SpeciesLevels(DetailLevels made) : levels(std::move(made)) {}
+  DetailLevels levels;
+  std::unique_ptr<LevelDeformer> deformer;
+  std::vector<std::unique_ptr<SpeciesOutputs>> outputs;
+  std::vector<ClJob> jobs;
+};
+
 struct Species {
   std::string name;                      // the mesh file's stem
   SwimModel swim;                        // its model: swim.model()
@@ -82,6 +107,8 @@ struct Species {
   std::unique_ptr<ClSwimDriver> driver;
   std::unique_ptr<SpeciesOutputs> outputs;
   ClJob job;
+  // With SceneLevels: the levels (and no deformer, outputs or job above but the driver).
+  std::unique_ptr<SpeciesLevels> leveled;
 
   DeviceBatch& batch() { return outputs->batch(); }
 };
@@ -113,12 +140,21 @@ struct FrameWork {
 class SwimScene {
  public:
   // Loads every species (errors name the species option and the file), splits `fish`
-  // fish among them as evenly as possible, builds the tank, the drivers and the
-  // outputs (`outputs`, or DeviceOutputs when it is empty).
+  // fish among them as evenly as possible, builds the hall (one tank, or several), the
+  // drivers and the outputs (`outputs`, or DeviceOutputs when it is empty: with
+  // `levels`, each level's of every species, for its rows). With levels, set_views
+  // before the first frame.
   SwimScene(Context& context, const std::vector<SpeciesFiles>& species, std::size_t fish,
-            const TankSettings& settings, std::uint64_t seed, NormalMode normals,
+            const HallSettings& settings, std::uint64_t seed, NormalMode normals,
             NormalFormat format = NormalFormat::kFloat32, const ClTuning& options = {},
-            const OutputsFactory& outputs = {});
+            const OutputsFactory& outputs = {},
+            const std::optional<SceneLevels>& levels = std::nullopt);
+
+  // The views that choose the levels (1 to kMaxLevelViews; LevelChooser::enqueue checks
+  // them each frame).
+  void set_views(const std::vector<LevelView>& views) { views_ = views; }
+  const std::vector<LevelView>& views() const { return views_; }
+  bool has_levels() const;
 
   // One frame: the tank steps by dt, then each species' driver and deformation are
   // enqueued behind a FrameGate, opened once all are (or before outputs that wait for
@@ -133,17 +169,27 @@ class SwimScene {
   // the tank does not step. Writing them is the frame's simulation time.
   FrameWork enqueue_frame(double dt, const InputWriter& write_inputs, bool profile = false);
 
-  Tank& tank() { return *tank_; }
-  const Tank& tank() const { return *tank_; }
+  Hall& hall() { return *hall_; }
+  const Hall& hall() const { return *hall_; }
   std::vector<Species>& species() { return species_; }
   const std::vector<Species>& species() const { return species_; }
-  // Vertices deformed per frame (all fish).
+  // Vertices deformed per frame: all fish's, or with levels those of the last frame's
+  // lists (read from the device: waits for the queue).
   std::size_t vertices_per_frame() const;
+  // With levels, the last frame's fish per level of species s (read from the device),
+  // and those in view at no level for want of rows.
+  struct LevelCounts {
+    std::vector<std::size_t> per_level;
+    std::size_t demoted = 0;  // drawn at a coarser level than their error asked for
+    std::size_t undrawn = 0;
+  };
+  LevelCounts level_counts(std::size_t species) const;
 
  private:
   Context& context_;
   std::vector<Species> species_;
-  std::unique_ptr<Tank> tank_;
+  std::unique_ptr<Hall> hall_;
+  std::vector<LevelView> views_;
 };
 
 }  // namespace finflex::tank

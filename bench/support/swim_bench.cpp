@@ -12,9 +12,9 @@ std::vector<std::vector<std::vector<SwimInput>>> record_tank_steps(tank::SwimSce
                                                                    std::size_t steps, double dt) {
   std::vector<std::vector<std::vector<SwimInput>>> recorded(steps);
   for (auto& step : recorded) {
-    scene.tank().step(dt);
+    scene.hall().step(dt);
     step.resize(scene.species().size());
-    for (std::size_t s = 0; s < step.size(); ++s) scene.tank().inputs(s, step[s]);
+    for (std::size_t s = 0; s < step.size(); ++s) scene.hall().inputs(s, step[s]);
   }
   return recorded;
 }

@@ -64,7 +64,8 @@ FF_INLINE void leave_to_world(Vec3* p, Vec3* n, Vec3* t, PlacementRecord r, Seca
   *t = world_direction(secant_tangent(*t, s), r);
 }
 
-/* In the rig kernels (variables p, n, t, instance, stages and placements in scope):
+/* In the rig kernels (variables p, n, t, source (the instance's inputs), stages and
+ * placements in scope):
  *   FF_LEAVE_LAST(f, s)  the root's last stage leaves its frame: to the world when
  *                        placing, else to mesh coordinates;
  *   FF_PLACE_FROM_MESH   after a path that does not end at the root (a root without
@@ -73,7 +74,7 @@ FF_INLINE void leave_to_world(Vec3* p, Vec3* n, Vec3* t, PlacementRecord r, Seca
 #if FF_PLACEMENT
 #define FF_LEAVE_LAST(f, s)                                     \
   {                                                             \
-    FF_READ_PLACEMENT(record, placements + instance * 16)       \
+    FF_READ_PLACEMENT(record, placements + source * 16)       \
     leave_to_world(&p, &n, &t, record, s);                      \
   }
 #else
@@ -83,7 +84,7 @@ FF_INLINE void leave_to_world(Vec3* p, Vec3* n, Vec3* t, PlacementRecord r, Seca
 #define FF_PLACE_FROM_MESH                                   \
   {                                                          \
     const StageFrame root = ff_stage_table + FF_ROOT_FRAME;  \
-    FF_READ_PLACEMENT(record, placements + instance * 16)    \
+    FF_READ_PLACEMENT(record, placements + source * 16)    \
     enter_frame(&p, &n, &t, root);                           \
     place_local(&p, &n, &t, record);                         \
   }

@@ -7,10 +7,14 @@
  *                sphere's nearest depth in the views that see it, is within the pixel
  *                budget, held where the finer level it had is (hysteresis). Counts
  *                the group's instances per level.
- *   lod_offsets  one group: where each group's instances of each level start in that
- *                level's list, each level's count and its indirect draw arguments.
+ *   lod_offsets  one group: where each group's instances of each level start among
+ *                that level's, each level's count and its indirect draw arguments.
  *   lod_scatter  per instance: its place in its level's list (ascending instance
  *                order: the same frame always gives the same lists).
+ * Each level's list has room for rows[k] instances (level_rows: rows, then each list's
+ * first entry); level k's sequence is its own instances, then those that found no room
+ * in level k - 1's (in that level's sequence order): an instance past the rows of its
+ * level is drawn at the next coarser level with room, or not at all (counted).
  * Generated before this file: FF_LOD_GROUP (work-items per group, a power of two) and
  * FF_LOD_LEVELS (1..8).
  *
@@ -95,6 +99,7 @@ __kernel __attribute__((reqd_work_group_size(FF_LOD_GROUP, 1, 1))) void lod_choo
 __kernel __attribute__((reqd_work_group_size(FF_LOD_GROUP, 1, 1))) void lod_offsets(
     __global const uint* restrict group_counts, const uint groups,
     __global uint* restrict group_starts, __global const uint* restrict index_counts,
+    __global const uint* restrict level_rows, __global uint* restrict own_counts,
     __global uint* restrict level_counts, __global uint* restrict draw_arguments) {
   __local uint runs[FF_LOD_GROUP * FF_LOD_LEVELS];
   const uint item = get_local_id(0);
@@ -108,6 +113,7 @@ __kernel __attribute__((reqd_work_group_size(FF_LOD_GROUP, 1, 1))) void lod_offs
   }
   barrier(CLK_LOCAL_MEM_FENCE);
   if (item == 0) {
+    uint incoming = 0; /* instances that found no room in the finer levels */
     for (int k = 0; k < FF_LOD_LEVELS; ++k) {
       uint start = 0;
       for (uint j = 0; j < FF_LOD_GROUP; ++j) {
@@ -115,13 +121,18 @@ __kernel __attribute__((reqd_work_group_size(FF_LOD_GROUP, 1, 1))) void lod_offs
         runs[j * FF_LOD_LEVELS + k] = start;
         start += run;
       }
-      level_counts[k] = start;
+      own_counts[k] = start;
+      const uint total = start + incoming;
+      const uint placed = min(total, level_rows[k]);
+      incoming = total - placed;
+      level_counts[k] = placed;
       draw_arguments[5 * k] = index_counts[k];
-      draw_arguments[5 * k + 1] = start;
+      draw_arguments[5 * k + 1] = placed;
       draw_arguments[5 * k + 2] = 0;
       draw_arguments[5 * k + 3] = 0;
       draw_arguments[5 * k + 4] = 0;
     }
+    level_counts[FF_LOD_LEVELS] = incoming; /* drawn at no level */
   }
   barrier(CLK_LOCAL_MEM_FENCE);
   for (int k = 0; k < FF_LOD_LEVELS; ++k) {
@@ -154,8 +165,8 @@ FF_LOD_INLINE uint field(uint4 v, int level) {
 
 __kernel __attribute__((reqd_work_group_size(FF_LOD_GROUP, 1, 1))) void lod_scatter(
     __global const int* restrict level_of, const uint instances,
-    __global const uint* restrict group_starts, const uint capacity,
-    __global uint* restrict instance_lists) {
+    __global const uint* restrict group_starts, __global const uint* restrict level_rows,
+    __global const uint* restrict own_counts, __global uint* restrict instance_lists) {
   __local uint4 scan[FF_LOD_GROUP];
   const uint item = get_local_id(0);
   const size_t i = get_global_id(0);
@@ -170,6 +181,14 @@ __kernel __attribute__((reqd_work_group_size(FF_LOD_GROUP, 1, 1))) void lod_scat
   }
   if (level < 0) return;
   const uint before = field(scan[item] - mine, level);
-  const uint at = group_starts[get_group_id(0) * FF_LOD_LEVELS + level] + before;
-  instance_lists[level * capacity + at] = (uint)i;
+  /* Its place in its level's sequence; past the rows, in the next level's. */
+  uint at = group_starts[get_group_id(0) * FF_LOD_LEVELS + level] + before;
+  for (int k = level; k < FF_LOD_LEVELS; ++k) {
+    const uint rows = level_rows[k];
+    if (at < rows) {
+      instance_lists[level_rows[FF_LOD_LEVELS + k] + at] = (uint)i;
+      return;
+    }
+    if (k + 1 < FF_LOD_LEVELS) at = own_counts[k + 1] + (at - rows);
+  }
 }

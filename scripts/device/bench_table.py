@@ -29,6 +29,18 @@ def bench_row(name, r):
             f"{r['write_fraction']:13.3f} {r['host_enqueue_seconds_median'] * 1e6:8.0f}  {kernels}")
 
 
+def farm_row(name, r):
+    """A `finflex bench --farm` result: with levels and at full detail, side by side."""
+    levels, full = r["with_levels"], r["full_detail"]
+    fish = "/".join(str(level["fish"]) for level in r["levels"])
+    return (f"{name:60} {levels['frame_seconds_median'] * 1e3:9.3f} ms with levels "
+            f"({levels['vertices_per_frame'] / 1e6:.1f} M vertices, fish per level {fish}, "
+            f"choice {levels['level_choice_seconds_median'] * 1e3:.3f} ms = "
+            f"{levels['level_choice_share']:.3f}); {full['frame_seconds_median'] * 1e3:.3f} ms "
+            f"at full detail ({full['vertices_per_frame'] / 1e6:.1f} M vertices): "
+            f"{r['speedup']:.2f}x")
+
+
 def main(path):
     runs = [json.loads(line) for line in open(path) if line.strip()]
     print(f"{'run':60} {'ms/frame':>9} {'of write-only':>13} {'host us':>8}  kernels (ms)")
@@ -45,6 +57,9 @@ def main(path):
         if run["result"] is None:
             print(f"{label(run):60} failed")
             continue
+        if "with_levels" in run["result"]:
+            print(farm_row(label(run), run["result"]))
+            continue
         print(bench_row(label(run), run["result"]))
 
     sides = sorted({run.get("side", "") for run in runs if "result" in run})
@@ -53,7 +68,7 @@ def main(path):
     # Per case and thread count: each side's median over the rounds.
     cases = {}
     for run in runs:
-        if run.get("result") is None:
+        if run.get("result") is None or "with_levels" in run["result"]:
             continue
         key = (run["case"], run.get("threads"))
         cases.setdefault(key, {}).setdefault(run["side"], []).append(run["result"])

@@ -5,7 +5,7 @@
 # Every test program that runs kernels on the default device (test_cli runs the tool
 # from its build path and is not bundled).
 # shellcheck disable=SC2034 # used by the scripts that source this file
-device_tests=(test_cl_deformer test_rig_deformer test_detail_levels test_level_choice test_normal_format test_geometry test_spine
+device_tests=(test_cl_deformer test_rig_deformer test_detail_levels test_level_choice test_level_deformer test_normal_format test_geometry test_spine
               test_swim test_placement)
 # The hand-off's programs (the handoff suite of run.sh): the external-memory tests, the
 # pictures' paths side by side, the Vulkan consumer.

@@ -45,6 +45,10 @@
 #   swim_bench     .jsonl  the swim of 10,000 fish: float32, the tank stepping in the
 #                          frame loop, half and Jacobian normals, 2 and 4 instances per
 #                          work-item; the swim rig alone and the bend at the same count
+#   farm           .jsonl  `finflex bench --farm`: 100,000 fish in a hall of 16 tanks
+#                          (GPUs; 2,000 on CPUs) with levels of detail at 1 and 2 pixels,
+#                          half normals and 4 coarser levels, each beside the same hall
+#                          at full detail
 #   layouts        .jsonl  the hand-off's output layouts (docs/handoff.md), bend and rig,
 #                          slot and mesh order, previous positions, half interleaved
 #   sweep          .jsonl  instances 1 to 4,000 x the bundled meshes and a 112,642-vertex
@@ -514,6 +518,14 @@ for suite in "${suites[@]}"; do
         suite_instances=${instances:-4000}
       fi
       bench_suite "${cases[@]}"
+      ;;
+    farm)
+      suite_frames=${frames:-20}
+      if [ $cpu = 1 ]; then suite_instances=${instances:-2000}; else suite_instances=${instances:-100000}; fi
+      bench_suite "farm, 1 pixel|--rig $swim --farm" \
+        "farm, 2 pixels|--rig $swim --farm --pixel-budget 2" \
+        "farm, half normals|--rig $swim --farm --normal-format half" \
+        "farm, 4 levels of a quarter of the triangles|--rig $swim --farm --levels 4 --triangle-ratio 0.25"
       ;;
     swim_bench)
       suite_frames=${frames:-50}

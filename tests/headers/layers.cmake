@@ -42,7 +42,8 @@ set(FINFLEX_LAYER_jobs job.hpp)
 set(FINFLEX_LAYER_reference reference.hpp accuracy.hpp instance_mesh.hpp)
 set(FINFLEX_LAYER_swim swim.hpp)
 set(FINFLEX_LAYER_opencl
-  context.hpp frame_gate.hpp device_batch.hpp cl_deformer.hpp cl_swim.hpp level_choice.hpp)
+  context.hpp frame_gate.hpp device_batch.hpp cl_deformer.hpp cl_swim.hpp level_choice.hpp
+  level_deformer.hpp)
 set(FINFLEX_LAYER_all finflex.hpp)
 set(FINFLEX_LAYER_internal internal/cl_tuning.hpp internal/cl_outputs.hpp)
 

@@ -77,12 +77,33 @@ struct ClDeviceInputs {
   const cl::Buffer* derived = nullptr;
 };
 
+// The instances a frame deforms, named by a list on the device (a level's list of a
+// LevelChooser, finflex/level_choice.hpp, or the caller's): output row i holds the
+// instance entries[first + i], read from the frame's device inputs (its values, derived
+// values and placement at that index). The list's length is read on the device,
+// counts[count_index], and never exceeds the job's instances (the outputs' rows), so
+// the host never waits for it: the kernels are launched for the outputs' rows, at most
+// a device's worth of work-items, and stride over the list; rows past the length are
+// left as they were. Entries at or past `sources` are skipped (their rows left too).
+struct ClInstanceList {
+  const cl::Buffer* entries = nullptr;  // cl_uint instance indices; null: no list
+  std::size_t first = 0;                // the list's first entry in `entries`
+  const cl::Buffer* counts = nullptr;   // cl_uint; the list's length at counts[count_index]
+  std::size_t count_index = 0;
+  std::size_t sources = 0;  // the instances the inputs hold (> 0)
+};
+
 // A frame of a ClDeformer: the job of finflex/job.hpp, written into a DeviceBatch, and
 // what only the device has.
 struct ClJob : BasicDeformJob<DeviceBatch> {
   RigPath path = RigPath::kAuto;
   // Inputs on the device instead of the host's (each null: the host's).
   ClDeviceInputs device;
+  // Only the listed instances (entries null: instances 0 .. instances - 1). A listed
+  // job reads its values from device.parameters (sources rows) and its placements, if
+  // any, from device.placements: kInvalidArgument naming "job.list..." otherwise, or
+  // for buffers too small for first + instances entries or count_index.
+  ClInstanceList list;
   // Work the job's first command waits for; none when null.
   const std::vector<cl::Event>* wait = nullptr;
 };

@@ -42,6 +42,7 @@
 #include "finflex/instance_mesh.hpp"
 #include "finflex/job.hpp"
 #include "finflex/level_choice.hpp"
+#include "finflex/level_deformer.hpp"
 #include "finflex/mesh.hpp"
 #include "finflex/mesh_io.hpp"
 #include "finflex/model.hpp"

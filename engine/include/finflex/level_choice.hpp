@@ -7,7 +7,7 @@
 //   each frame: chooser.enqueue(driver.placement_buffer(), fish_count,
 //                               {LevelView::look_at(eye, target, up, 40.0, 1920, 1080,
 //                               0.05, 50.0)}, &wait);
-//               // chooser.lists(): level k's instances at [k * capacity, + count k)
+//               // chooser.lists(): level k's instances at [list_first(k), + count k)
 //               // chooser.draw_arguments(): glDrawElementsIndirect's commands per level
 //
 // The choice, per instance (choose_level_on_host is the same on the host):
@@ -24,9 +24,14 @@
 //   instances (and the first frame, and after forget()) start afresh.
 // - Lists hold each level's instances in ascending order: the same placements give the
 //   same lists, bit for bit.
+// - Room: level k's list holds at most rows(k) instances (options.level_rows; by
+//   default the capacity, every level able to hold every instance). An instance past
+//   its level's rows is drawn at the next coarser level with room (after that level's
+//   own, in order), or at none: counts()'s last entry counts those. levels() keeps the
+//   level its error asked for. Give the rows a camera needs, and the outputs of each
+//   level (LevelDeformer) follow them, not the capacity.
 // Cost: three small kernels over the instances (one work-item each, and one group for
-// the offsets); device memory 4 bytes a level and instance for the lists, 4 for the
-// levels.
+// the offsets); device memory 4 bytes a list row, 4 an instance for the levels.
 #pragma once
 
 #include <cstddef>
@@ -67,6 +72,9 @@ struct FINFLEX_API LevelView {
 struct FINFLEX_API LevelChoiceOptions {
   double pixel_budget = 1.0;  // > 0: the error a level may show, in pixels
   double hysteresis = 0.25;   // [0, 1)
+  // Per level the most instances its list holds (each 1 to the capacity); empty: the
+  // capacity for every level. Checked by LevelChooser: "level_rows" and the level.
+  std::vector<std::size_t> level_rows;
   // kInvalidArgument naming "pixel_budget" or "hysteresis" and the value.
   void validate() const;
 };
@@ -104,6 +112,9 @@ class FINFLEX_API LevelChooser {
 
   std::size_t level_count() const;
   std::size_t capacity() const;
+  // Level k's list: rows(k) entries of lists() from list_first(k).
+  std::size_t rows(std::size_t level) const;
+  std::size_t list_first(std::size_t level) const;
 
   // After `wait`, the choice for the first `instances` records of `placements`
   // (kPlacementFloats floats each, e.g. ClSwimDriver::placement_buffer()) seen by
@@ -119,17 +130,19 @@ class FINFLEX_API LevelChooser {
   void forget();
 
   const cl::Buffer& levels() const;          // cl_int per instance: its level, -1 culled
-  const cl::Buffer& lists() const;           // cl_uint: level k's at [k * capacity, + count)
-  const cl::Buffer& counts() const;          // cl_uint per level
+  const cl::Buffer& lists() const;           // cl_uint: level k's at [list_first(k), + count k)
+  const cl::Buffer& counts() const;          // cl_uint per level, then the instances drawn at none
   const cl::Buffer& draw_arguments() const;  // 5 cl_uint per level (DrawElementsIndirectCommand)
 
-  // The last choice on the host (waits for the queue): for tests and tools.
+  // The last choice on the host (waits for the queue): for tests and tools; without
+  // `with_levels`, level_of is left empty (the lists and counts only).
   struct Choice {
     std::vector<int> level_of;                      // per instance of the last enqueue
-    std::vector<std::vector<std::uint32_t>> lists;  // per level, ascending
+    std::vector<std::vector<std::uint32_t>> lists;  // per level, as its list holds them
     std::vector<std::uint32_t> draw_arguments;      // 5 per level
+    std::uint32_t undrawn = 0;                      // visible, but in no level's rows
   };
-  Choice read();
+  Choice read(bool with_levels = true);
 
  private:
   struct Impl;

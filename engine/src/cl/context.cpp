@@ -191,9 +191,9 @@ void Context::track_gate(const std::shared_ptr<detail::GateState>& gate) {
 
 const std::vector<std::string>& common_kernel_files() {
   static const std::vector<std::string> files = {
-      "common/lanes.cl",     "common/vec3.cl",        "common/trig.cl",     "common/scan.cl",
-      "common/secant.cl",    "common/planes.cl",      "cpu/lane_planes.cl", "common/outputs.cl",
-      "cpu/lane_outputs.cl", "common/stage_frame.cl", "common/placement.cl"};
+      "common/lanes.cl",   "common/vec3.cl",      "common/trig.cl",          "common/scan.cl",
+      "common/secant.cl",  "common/planes.cl",    "common/instance_list.cl", "cpu/lane_planes.cl",
+      "common/outputs.cl", "cpu/lane_outputs.cl", "common/stage_frame.cl",   "common/placement.cl"};
   return files;
 }
 

@@ -313,7 +313,52 @@ void ClDeformer::Impl::check_shape(const ClJob& job) const {
     throw Error(ErrorCode::kInvalidArgument, "job.placements",
                 "job.placements and job.device.placements are both set: give one");
   }
+  if (job.list.entries != nullptr) check_list(job);
   check_outputs(job);
+}
+
+namespace {
+
+[[noreturn]] void fail_list(const std::string& field, const std::string& message) {
+  throw Error(ErrorCode::kInvalidArgument, field, field + ": " + message);
+}
+
+void check_holds(const cl::Buffer& buffer, std::size_t entries, const std::string& field) {
+  const std::size_t size = buffer.getInfo<CL_MEM_SIZE>();
+  if (size < entries * sizeof(cl_uint)) {
+    fail_list(field, "holds " + std::to_string(size) + " bytes, " + std::to_string(entries) +
+                         " cl_uint need " + std::to_string(entries * sizeof(cl_uint)));
+  }
+}
+
+}  // namespace
+
+// A listed job (ClInstanceList): its inputs on the device, its buffers large enough.
+void ClDeformer::Impl::check_list(const ClJob& job) const {
+  const ClInstanceList& list = job.list;
+  if (job.device.parameters == nullptr) {
+    fail_list("job.list", "a listed job reads its values from job.device.parameters (null)");
+  }
+  if (job.placements != nullptr) {
+    fail_list("job.list",
+              "a listed job reads its placements from job.device.placements, "
+              "not job.placements");
+  }
+  if (list.counts == nullptr) fail_list("job.list.counts", "null: the list's length is needed");
+  if (list.sources == 0 || list.sources > kMaxDeviceInstances) {
+    fail_list("job.list.sources", std::to_string(list.sources) +
+                                      " is not a number of instances "
+                                      "(expected 1 to " +
+                                      std::to_string(kMaxDeviceInstances) + ")");
+  }
+  if (list.first > 0xffffffffu - job.instances) {
+    fail_list("job.list.first", std::to_string(list.first) + " is past 2^32 entries");
+  }
+  check_holds(*list.entries, list.first + job.instances, "job.list.entries");
+  if (list.count_index > 0xffffffffu) {
+    fail_list("job.list.count_index", std::to_string(list.count_index) + " is past 2^32 entries");
+  }
+  check_holds(*list.counts, list.count_index + 1, "job.list.counts");
 }
 
 void ClDeformer::Impl::check(const ClJob& job) const {
@@ -328,7 +373,7 @@ ClDeformer::Impl::BoundKernel& ClDeformer::Impl::kernel(std::size_t index, const
   const bool placed = job.placements != nullptr || job.device.placements != nullptr;
   const detail::KernelVariant variant{
       index,  job.normals,  batch_options_, batch_per_item(job.normals),
-      placed, batch_lanes_, batch_streams_};
+      placed, batch_lanes_, batch_streams_, job.list.entries != nullptr};
   auto found = kernels_.find(variant);
   if (found == kernels_.end()) {
     const std::size_t fused = fused_launches_.size();
@@ -382,10 +427,10 @@ void ClDeformer::Impl::check_derived_buffer(const cl::Buffer& buffer, std::size_
   }
 }
 
-// rig_prepare over the job's instances: the derived values from the frame's values.
+// rig_prepare over the job's inputs: the derived values from the frame's values.
 void ClDeformer::Impl::prepare_derived(const ClJob& job, const FrameInputs& inputs,
                                        std::vector<cl::Event>* kernel_events) {
-  const std::size_t instances = job.instances;
+  const std::size_t instances = input_instances(job);
   if (instances == 0) return;
   if (!prepare_()) {
     // From a one-lane build of the program the frame's kernels come from (the same
@@ -417,7 +462,7 @@ void ClDeformer::Impl::prepare_derived(const ClJob& job, const FrameInputs& inpu
 
 // kernels/single_bend.cl's and kernels/rig.cl's arguments, in their order.
 cl_uint ClDeformer::Impl::set_arguments(cl::Kernel& kernel, std::size_t index, const ClJob& job,
-                                        const FrameInputs& inputs) const {
+                                        const FrameInputs& inputs, cl_uint* list_argument) const {
   const DeviceBatch& batch = *job.outputs;
   cl_uint arg = 0;
   auto set = [&](const auto& value) { check_cl(kernel.setArg(arg++, value), "clSetKernelArg"); };
@@ -452,7 +497,21 @@ cl_uint ClDeformer::Impl::set_arguments(cl::Kernel& kernel, std::size_t index, c
   if (single_bend) {
     for (const cl_float4& value : back_transform_) set(value);
   }
+  *list_argument = arg;
   return out_layout;
+}
+
+// A listed job's arguments (kernels/common/instance_list.cl), after the others: set
+// every frame, since the list may change without the batch changing.
+void ClDeformer::Impl::set_list_arguments(cl::Kernel& kernel, cl_uint first_argument,
+                                          const ClInstanceList& list) const {
+  cl_uint arg = first_argument;
+  auto set = [&](const auto& value) { check_cl(kernel.setArg(arg++, value), "clSetKernelArg"); };
+  set(*list.entries);
+  set(static_cast<cl_uint>(list.first));
+  set(*list.counts);
+  set(static_cast<cl_uint>(list.count_index));
+  set(static_cast<cl_uint>(list.sources));
 }
 
 void ClDeformer::Impl::launch(BoundKernel& bound, const ClJob& job, std::size_t first_group,
@@ -469,8 +528,17 @@ void ClDeformer::Impl::launch(BoundKernel& bound, const ClJob& job, std::size_t 
   // last instance).
   const std::size_t items_per_group = kWorkGroupSize / batch_lanes_;
   const cl::NDRange offset(first_group * items_per_group, 0);
+  std::size_t rows = (job.instances + per - 1) / per;
+  if (job.list.entries != nullptr) {
+    // A list's length is known on the device only: rows enough to fill the device,
+    // striding over the list (kernels/common/instance_list.cl).
+    // GPUs: 32,768 groups of 64, eight times what an H200 holds at once (132 SMs of
+    // 32): an empty list costs a launch of 14 us there (docs/levels-of-detail.md).
+    const std::size_t most_groups = context.description().is_gpu() ? 32768 : 4096;
+    rows = std::min(rows, std::max<std::size_t>(1, most_groups / (end_group - first_group)));
+  }
   const cl::NDRange global((end_group - first_group) * items_per_group,
-                           internal::launch_rows((job.instances + per - 1) / per, batch_lanes_));
+                           internal::launch_rows(rows, batch_lanes_));
   check_cl(context.queue().enqueueNDRangeKernel(
                bound.kernel, offset, global,
                cl::NDRange(items_per_group, internal::group_rows(batch_lanes_)), nullptr, event),
@@ -544,17 +612,18 @@ cl::Event ClDeformer::Impl::enqueue(const ClJob& job, std::vector<cl::Event>* ke
   RigPath path = job.path == RigPath::kAuto ? automatic_path : job.path;
   if (pass_count == 0) path = RigPath::kFused;  // no stage at all: the fused copy
   if (path == RigPath::kPasses && !single_bend) ensure_scratch(instances);
+  const std::size_t sources = input_instances(job);
   if (job.device.derived != nullptr) {
     // Checked once per buffer and size (the check queries the buffer's size).
-    if ((*job.device.derived)() != checked_derived_() || instances > checked_derived_instances_) {
-      check_derived_buffer(*job.device.derived, instances);
+    if ((*job.device.derived)() != checked_derived_() || sources > checked_derived_instances_) {
+      check_derived_buffer(*job.device.derived, sources);
       checked_derived_ = *job.device.derived;  // held, so its handle stays this buffer's
-      checked_derived_instances_ = instances;
+      checked_derived_instances_ = sources;
     }
     inputs.derived = job.device.derived;
   } else {
     if (derived_per_instance_ > 0) {
-      ensure_derived(instances);
+      ensure_derived(sources);
       prepare_derived(job, inputs, kernel_events);
     }
     inputs.derived = &derived_;
@@ -566,7 +635,8 @@ cl::Event ClDeformer::Impl::enqueue(const ClJob& job, std::vector<cl::Event>* ke
     if (bound.batch_serial != job.outputs->serial || bound.generation != generation_ ||
         bound.parameters != (*inputs.parameters)() || bound.placements != (*inputs.placements)() ||
         bound.derived != (*inputs.derived)()) {
-      bound.out_layout_argument = set_arguments(bound.kernel, index, job, inputs);
+      bound.out_layout_argument =
+          set_arguments(bound.kernel, index, job, inputs, &bound.list_argument);
       bound.batch_serial = job.outputs->serial;
       bound.generation = generation_;
       bound.parameters = (*inputs.parameters)();
@@ -579,6 +649,8 @@ cl::Event ClDeformer::Impl::enqueue(const ClJob& job, std::vector<cl::Event>* ke
                    output_layout_argument(job.outputs->outputs, job.outputs->frames_written > 0)),
                "clSetKernelArg out_layout");
     }
+    if (job.list.entries != nullptr)
+      set_list_arguments(bound.kernel, bound.list_argument, job.list);
     launch(bound, job, first_group, end_group, kernel_events, last ? done : nullptr);
   };
   cl::Event done;

@@ -78,6 +78,7 @@ class ClDeformer::Impl {
     cl_mem placements = nullptr;
     cl_mem derived = nullptr;
     cl_uint out_layout_argument = 0;  // its index (reset every frame with previous positions)
+    cl_uint list_argument = 0;        // the first of a listed job's (set every frame)
   };
 
   // A frame's inputs on the device: the deformer's uploads or the job's own buffers.
@@ -143,7 +144,12 @@ class ClDeformer::Impl {
 
   // The job's fields, its model and its outputs (not its values).
   void check_shape(const ClJob& job) const;
+  void check_list(const ClJob& job) const;
   void check_outputs(const ClJob& job) const;
+  // The instances the frame's inputs hold: the list's sources, else the job's instances.
+  static std::size_t input_instances(const ClJob& job) {
+    return job.list.entries != nullptr ? job.list.sources : job.instances;
+  }
   void check_buffer_sizes(const DeviceBatch& batch);
   BoundKernel& kernel(std::size_t index, const ClJob& job);
   void ensure_scratch(std::size_t instances);
@@ -157,9 +163,12 @@ class ClDeformer::Impl {
                        std::vector<cl::Event>* kernel_events);
   void launch(BoundKernel& bound, const ClJob& job, std::size_t first_group, std::size_t end_group,
               std::vector<cl::Event>* kernel_events, cl::Event* done);
-  // Returns the index of the out_layout argument.
+  // Returns the index of the out_layout argument; *list_argument: the index after the
+  // last argument set (where a listed job's begin).
   cl_uint set_arguments(cl::Kernel& kernel, std::size_t index, const ClJob& job,
-                        const FrameInputs& inputs) const;
+                        const FrameInputs& inputs, cl_uint* list_argument) const;
+  void set_list_arguments(cl::Kernel& kernel, cl_uint first_argument,
+                          const ClInstanceList& list) const;
 };
 
 }  // namespace finflex

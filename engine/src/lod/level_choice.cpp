@@ -208,8 +208,9 @@ struct LevelChooser::Impl {
   LevelChoiceOptions options;
   BodyBounds bounds;
   std::size_t last_instances = 0;
-  cl::Buffer errors, index_counts, level_of, group_counts, group_starts, lists, counts,
-      draw_arguments;
+  std::vector<std::size_t> rows, firsts;  // per level: its list's rows and first entry
+  cl::Buffer errors, index_counts, level_rows, own_counts, level_of, group_counts, group_starts,
+      lists, counts, draw_arguments;
   cl::Kernel choose, offsets, scatter;
 
   Impl(Context& c, const DetailLevels& detail, std::size_t instances, const LevelChoiceOptions& o)
@@ -228,6 +229,19 @@ struct LevelChooser::Impl {
     }
     errors = detail::make_buffer(cl_context, CL_MEM_READ_ONLY, levels * sizeof(float),
                                  error_values.data());
+    rows = options.level_rows.empty() ? std::vector<std::size_t>(levels, capacity)
+                                      : options.level_rows;
+    std::vector<cl_uint> row_values;
+    std::size_t first = 0;
+    for (std::size_t k = 0; k < levels; ++k) {
+      firsts.push_back(first);
+      first += rows[k];
+      row_values.push_back(cl_uint(rows[k]));
+    }
+    for (std::size_t k = 0; k < levels; ++k) row_values.push_back(cl_uint(firsts[k]));
+    level_rows = detail::make_buffer(cl_context, CL_MEM_READ_ONLY, 2 * levels * sizeof(cl_uint),
+                                     row_values.data());
+    own_counts = detail::make_buffer(cl_context, CL_MEM_READ_WRITE, levels * sizeof(cl_uint));
     index_counts = detail::make_buffer(cl_context, CL_MEM_READ_ONLY, levels * sizeof(cl_uint),
                                        index_values.data());
     const std::vector<cl_int> none(capacity, -1);
@@ -238,11 +252,11 @@ struct LevelChooser::Impl {
         detail::make_buffer(cl_context, CL_MEM_READ_WRITE, groups * levels * sizeof(cl_uint));
     group_starts =
         detail::make_buffer(cl_context, CL_MEM_READ_WRITE, groups * levels * sizeof(cl_uint));
-    lists = detail::make_buffer(cl_context, CL_MEM_READ_WRITE, levels * capacity * sizeof(cl_uint));
+    lists = detail::make_buffer(cl_context, CL_MEM_READ_WRITE, first * sizeof(cl_uint));
     // No instance of any level until the first choice.
     const std::vector<cl_uint> zeros(5 * levels, 0);
-    counts =
-        detail::make_buffer(cl_context, CL_MEM_READ_WRITE, levels * sizeof(cl_uint), zeros.data());
+    counts = detail::make_buffer(cl_context, CL_MEM_READ_WRITE, (levels + 1) * sizeof(cl_uint),
+                                 zeros.data());
     draw_arguments = detail::make_buffer(cl_context, CL_MEM_READ_WRITE,
                                          5 * levels * sizeof(cl_uint), zeros.data());
     const ProgramSource source{{"lod/choose_levels.cl"},
@@ -261,6 +275,20 @@ LevelChooser::LevelChooser(Context& context, const DetailLevels& levels, std::si
   if (capacity == 0 || capacity > std::size_t(std::numeric_limits<cl_int>::max())) {
     invalid("capacity", std::to_string(capacity) + " is not 1 to 2^31 - 1 instances");
   }
+  const std::vector<std::size_t>& rows = options.level_rows;
+  if (!rows.empty() && rows.size() != levels.size()) {
+    invalid("level_rows", std::to_string(rows.size()) + " entries for " +
+                              std::to_string(levels.size()) + " levels");
+  }
+  std::size_t all_rows = 0;
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    if (rows[k] == 0 || rows[k] > capacity) {
+      invalid("level_rows[" + std::to_string(k) + "]",
+              std::to_string(rows[k]) + " is not 1 to the capacity " + std::to_string(capacity));
+    }
+    all_rows += rows[k];
+  }
+  if (all_rows > 0xffffffffu) invalid("level_rows", "more than 2^32 rows in all");
   impl_ = std::make_unique<Impl>(context, levels, capacity, options);
 }
 
@@ -268,6 +296,8 @@ LevelChooser::~LevelChooser() = default;
 
 std::size_t LevelChooser::level_count() const { return impl_->levels; }
 std::size_t LevelChooser::capacity() const { return impl_->capacity; }
+std::size_t LevelChooser::rows(std::size_t level) const { return impl_->rows.at(level); }
+std::size_t LevelChooser::list_first(std::size_t level) const { return impl_->firsts.at(level); }
 const cl::Buffer& LevelChooser::levels() const { return impl_->level_of; }
 const cl::Buffer& LevelChooser::lists() const { return impl_->lists; }
 const cl::Buffer& LevelChooser::counts() const { return impl_->counts; }
@@ -313,9 +343,9 @@ cl::Event LevelChooser::enqueue(const cl::Buffer& placements, std::size_t instan
                 float(d.options.pixel_budget * (1.0 - d.options.hysteresis)), d.level_of,
                 d.group_counts);
   set_arguments(d.offsets, d.group_counts, cl_uint(groups), d.group_starts, d.index_counts,
-                d.counts, d.draw_arguments);
-  set_arguments(d.scatter, d.level_of, cl_uint(instances), d.group_starts, cl_uint(d.capacity),
-                d.lists);
+                d.level_rows, d.own_counts, d.counts, d.draw_arguments);
+  set_arguments(d.scatter, d.level_of, cl_uint(instances), d.group_starts, d.level_rows,
+                d.own_counts, d.lists);
   cl::CommandQueue& queue = d.context.queue();
   const cl::NDRange local(d.group);
   const cl::NDRange global(groups * d.group);
@@ -330,27 +360,29 @@ cl::Event LevelChooser::enqueue(const cl::Buffer& placements, std::size_t instan
   return done;
 }
 
-LevelChooser::Choice LevelChooser::read() {
+LevelChooser::Choice LevelChooser::read(bool with_levels) {
   Impl& d = *impl_;
   cl::CommandQueue& queue = d.context.queue();
   Choice out;
-  out.level_of.resize(d.last_instances);
-  std::vector<cl_uint> counts(d.levels);
+  out.level_of.resize(with_levels ? d.last_instances : 0);
+  std::vector<cl_uint> counts(d.levels + 1);
   out.draw_arguments.resize(5 * d.levels);
-  if (d.last_instances > 0) {
+  if (!out.level_of.empty()) {
     check_cl(queue.enqueueReadBuffer(d.level_of, CL_TRUE, 0, d.last_instances * sizeof(cl_int),
                                      out.level_of.data()),
              "clEnqueueReadBuffer");
   }
-  check_cl(queue.enqueueReadBuffer(d.counts, CL_TRUE, 0, d.levels * sizeof(cl_uint), counts.data()),
-           "clEnqueueReadBuffer");
+  check_cl(
+      queue.enqueueReadBuffer(d.counts, CL_TRUE, 0, counts.size() * sizeof(cl_uint), counts.data()),
+      "clEnqueueReadBuffer");
+  out.undrawn = counts[d.levels];
   check_cl(queue.enqueueReadBuffer(d.draw_arguments, CL_TRUE, 0, 5 * d.levels * sizeof(cl_uint),
                                    out.draw_arguments.data()),
            "clEnqueueReadBuffer");
   for (std::size_t k = 0; k < d.levels; ++k) {
-    std::vector<std::uint32_t> list(std::min<std::size_t>(counts[k], d.last_instances));
+    std::vector<std::uint32_t> list(std::min<std::size_t>(counts[k], d.rows[k]));
     if (!list.empty()) {
-      check_cl(queue.enqueueReadBuffer(d.lists, CL_TRUE, k * d.capacity * sizeof(cl_uint),
+      check_cl(queue.enqueueReadBuffer(d.lists, CL_TRUE, d.firsts[k] * sizeof(cl_uint),
                                        list.size() * sizeof(cl_uint), list.data()),
                "clEnqueueReadBuffer");
     }
