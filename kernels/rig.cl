@@ -47,6 +47,20 @@
  * offset), from builtins uniform over a work-group. */
 #define FF_GROUP ((uint)(get_group_id(0) + get_global_offset(0) / get_local_size(0)))
 
+/* The work-item's instances (common/instance_list.cl): between these, `instance` (its
+ * output row), `source` (its inputs) and its `values` and `derived` values. */
+#define FF_BEGIN_RIG_INSTANCES                                                   \
+  FF_EACH_INSTANCE_ROW {                                                         \
+    for (uint k = 0; k < FF_INSTANCES_PER_ITEM; ++k) {                           \
+      const size_t instance = first_instance + k;                                \
+      if (instance >= listed) break;                                             \
+      FF_SOURCE_OR_SKIP(source)                                                  \
+      __global const float* values = params + source * param_count;              \
+      __global const float* derived = derived_values + source * derived_count;
+#define FF_END_RIG_INSTANCES \
+  }                          \
+  }
+
 /* Fused path: kernel rig_fused_r covers the work-groups of launch r
  * (engine/src/cl/launch_plan.cpp, make_fused_plan) over (its slots, ceil(instances /
  * FF_INSTANCES_PER_ITEM)); every vertex walks its whole path in registers and is
@@ -68,19 +82,12 @@
     const Vec3 rest_p = load_plane3(rest_positions, 0, stride, v);                      \
     const Vec3 rest_n = load_plane3(rest_normals, 0, stride, v);                        \
     const Vec3 rest_t = FF_LOAD_TANGENT(rest_tangents, 0, stride, v);                   \
-    FF_EACH_INSTANCE_ROW {                                                              \
-      for (uint k = 0; k < FF_INSTANCES_PER_ITEM; ++k) {                                \
-        const size_t instance = first_instance + k;                                     \
-        if (instance >= listed) break;                                               \
-        FF_SOURCE_OR_SKIP(source)                                                       \
-        __global const float* values = params + source * param_count;                   \
-        __global const float* derived = derived_values + source * derived_count;        \
-        Vec3 p = rest_p, n = rest_n, t = rest_t;                                        \
-        FF_RIG_FUSED_##r                                                                \
-        FF_PLACE_FROM_MESH                                                              \
-        FF_STORE_OUTPUTS(instance, v)                                                   \
-      }                                                                                 \
-    }                                                                                   \
+    FF_BEGIN_RIG_INSTANCES                                                              \
+    Vec3 p = rest_p, n = rest_n, t = rest_t;                                            \
+    FF_RIG_FUSED_##r                                                                    \
+    FF_PLACE_FROM_MESH                                                                  \
+    FF_STORE_OUTPUTS(instance, v)                                                       \
+    FF_END_RIG_INSTANCES                                                                \
   }
 
 FF_RIG_FUSED_KERNELS
@@ -135,17 +142,10 @@ FF_RIG_FUSED_KERNELS
     FF_OUTPUT_LOCALS                                                                    \
     const size_t v = FF_FIRST_SLOT;                                                     \
     const uint group = FF_GROUP;                                                        \
-    FF_EACH_INSTANCE_ROW {                                                              \
-      for (uint k = 0; k < FF_INSTANCES_PER_ITEM; ++k) {                                \
-        const size_t instance = first_instance + k;                                     \
-        if (instance >= listed) break;                                               \
-        FF_SOURCE_OR_SKIP(source)                                                       \
-        __global const float* values = params + source * param_count;                   \
-        __global const float* derived = derived_values + source * derived_count;        \
-        Vec3 p, n, t;                                                                   \
-        FF_RIG_PASS_##q                                                                 \
-      }                                                                                 \
-    }                                                                                   \
+    FF_BEGIN_RIG_INSTANCES                                                              \
+    Vec3 p, n, t;                                                                       \
+    FF_RIG_PASS_##q                                                                     \
+    FF_END_RIG_INSTANCES                                                                \
   }
 
 FF_RIG_PASS_KERNELS

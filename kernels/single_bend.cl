@@ -51,23 +51,23 @@ __kernel void single_bend(__global const float* restrict rest_positions,
   const Vec3 rest_n = load_plane3(rest_normals, 0, stride, v);
   const Vec3 rest_t = FF_LOAD_TANGENT(rest_tangents, 0, stride, v);
   FF_EACH_INSTANCE_ROW {
-  for (uint k = 0; k < FF_INSTANCES_PER_ITEM; ++k) {
-    const size_t instance = first_instance + k;
-    if (instance >= listed) break;
-    FF_SOURCE_OR_SKIP(source)
-    const SecantSample s = bend_sample(rest_p.x, rest_p.z, m[source]);
+    for (uint k = 0; k < FF_INSTANCES_PER_ITEM; ++k) {
+      const size_t instance = first_instance + k;
+      if (instance >= listed) break;
+      FF_SOURCE_OR_SKIP(source)
+      const SecantSample s = bend_sample(rest_p.x, rest_p.z, m[source]);
 #if FF_PLACEMENT /* from the body frame straight to the world */
-    FF_READ_PLACEMENT(record, placements + source * 16)
-    const Vec3 p = world_point(secant_position(rest_p, s), record);
-    const Vec3 n = world_direction(secant_normal(rest_n, s), record);
-    const Vec3 t = world_direction(secant_tangent(rest_t, s), record);
+      FF_READ_PLACEMENT(record, placements + source * 16)
+      const Vec3 p = world_point(secant_position(rest_p, s), record);
+      const Vec3 n = world_direction(secant_normal(rest_n, s), record);
+      const Vec3 t = world_direction(secant_tangent(rest_t, s), record);
 #else
-    const Vec3 p = to_mesh(secant_position(rest_p, s), scaled_axis_x, scaled_axis_y,
-                           scaled_axis_z, origin);
-    const Vec3 n = to_mesh(secant_normal(rest_n, s), axis_x, axis_y, axis_z, no_offset);
-    const Vec3 t = to_mesh(secant_tangent(rest_t, s), axis_x, axis_y, axis_z, no_offset);
+      const Vec3 p = to_mesh(secant_position(rest_p, s), scaled_axis_x, scaled_axis_y,
+                             scaled_axis_z, origin);
+      const Vec3 n = to_mesh(secant_normal(rest_n, s), axis_x, axis_y, axis_z, no_offset);
+      const Vec3 t = to_mesh(secant_tangent(rest_t, s), axis_x, axis_y, axis_z, no_offset);
 #endif
-    FF_STORE_OUTPUTS(instance, v)
-  }
+      FF_STORE_OUTPUTS(instance, v)
+    }
   }
 }

@@ -59,6 +59,9 @@
 #   render_speed   .txt    `finflex swim` with rendering on the GPU (EGL, no display):
 #                          drawn only, every frame a PNG, a dataset; each on the
 #                          external-memory path and the copy path side by side
+#   render_levels  .txt    `finflex swim` drawn at 1920 x 1080 on the GPU with levels of
+#                          detail (--levels 4) beside full detail: 1,000 fish drawn only
+#                          and with a PNG a frame, 10,000 drawn only
 #   level_choice   .txt    levels of detail: `finflex check --levels 4` of the bundled
 #                          fish's swim rigs, and the level choice of 1,000 to 100,000
 #                          fish (bench_deform's BM_LevelChoice)
@@ -404,6 +407,37 @@ level_choice() {
   done
 }
 
+render_levels() {
+  find_nvidia_egl
+  find_nvidia_vulkan
+  local side finflex scratch
+  local -a species=(--species data/blub/fish.obj:data/rigs/blub_swim.rig.json
+    --species data/barramundi/BarramundiFish.gltf:data/rigs/barramundi_swim.rig.json)
+  scratch=$(mktemp -d)
+  levels_swim() {
+    local what=$1 fish=$2
+    shift 2
+    echo "== $what"
+    # shellcheck disable=SC2046
+    run env $(side_env "$side" -) timeout 120 "$finflex" swim --fish "$fish" "${species[@]}" \
+      --size 1920x1080 "${device_option[@]}" "$@" | grep -vE "^ *wrote|put back" ||
+      failed+=("$what")
+  }
+  for side in "${sides[@]}"; do
+    finflex=$(program "$side" finflex)
+    [ ${#sides[@]} = 1 ] || echo "== side $(side_label "$side")"
+    levels_swim "1,000 fish drawn only, full detail: 60 frames" 1000 --seconds 2 --fps 30 --render
+    levels_swim "1,000 fish drawn only, --levels 4: 60 frames" 1000 --seconds 2 --fps 30 --render \
+      --levels 4
+    levels_swim "1,000 fish, every frame a PNG, --levels 4: 30 frames" 1000 --seconds 1 --fps 30 \
+      --out "$scratch/levels-png" --video none --levels 4
+    levels_swim "10,000 fish drawn only, full detail: 15 frames" 10000 --seconds 0.5 --fps 30 --render
+    levels_swim "10,000 fish drawn only, --levels 4: 15 frames" 10000 --seconds 0.5 --fps 30 \
+      --render --levels 4
+  done
+  rm -rf "$scratch"
+}
+
 handoff() {
   find_nvidia_egl
   find_nvidia_vulkan
@@ -596,7 +630,7 @@ for suite in "${suites[@]}"; do
         done
       done
       ;;
-    gpu_checks | cpu_checks | bench_deform | render_speed | handoff | level_choice | remarks)
+    gpu_checks | cpu_checks | bench_deform | render_speed | render_levels | handoff | level_choice | remarks)
       text_suite "$suite" ;;
     *) echo "run.sh: '$suite' is not a suite (see --help)" >&2; exit 2 ;;
   esac

@@ -13,6 +13,7 @@
 //   deformers   deformer_type                 the deformer registry (bend, hinge, ...)
 //   rigs        rig                           rig files and rigs resolved against a mesh
 //   models      model                         a mesh with its rig: what a job deforms
+//   lod         detail_levels                 levels of detail of a rigged mesh
 //   parameters  parameters                    per-instance parameter values and their checks
 //   placement   placement                     world placement of an instance
 //   outputs     output_layout, batch          where outputs are written; batches on the host
@@ -20,8 +21,9 @@
 //   reference   reference, accuracy, instance_mesh
 //                                             the CPU reference and its diagnostics
 //   swim        swim                          swimming: kinematics and the CPU driver
-//   opencl      context, frame_gate, device_batch, cl_deformer, cl_swim
-//                                             the OpenCL backend (needs CL/opencl.hpp)
+//   opencl      context, frame_gate, device_batch, cl_deformer, cl_swim, level_choice,
+//               level_deformer                the OpenCL backend (needs CL/opencl.hpp), the
+//                                             level choice and a species at its levels
 //   all         finflex                       this header: every header listed before it
 //   internal    internal/*                    not installed, not included here: what only
 //                                             the benchmarks and tests use
