@@ -1,5 +1,6 @@
 // The tank's behaviour model (tank.hpp): each step, every fish steers its heading
-// (upstream, away from the wall and from neighbours, with a slow wander), its pitch
+// (upstream, away from the wall and from neighbours, along their headings and towards
+// their centre, with a slow wander), its pitch
 // (towards its preferred depth, away from the floor and the surface) and its speed
 // (cruise with a slow variation, rare bursts); then moves with the water (the current's
 // rotation turned exactly) and swims, braking where its step would leave the water.
@@ -42,7 +43,9 @@ void check(const TankSettings& s) {
       {"tank.wall_current", s.wall_current},
       {"tank.length_cv", s.length_cv},
       {"tank.speed_variation", s.speed_variation},
-      {"tank.burst_rate", s.burst_rate}};
+      {"tank.burst_rate", s.burst_rate},
+      {"tank.alignment", s.alignment},
+      {"tank.cohesion", s.cohesion}};
   for (const auto& [name, value] : non_negative) {
     if (!std::isfinite(value) || value < 0.0) {
       fail(name, "= " + std::to_string(value) + " must be finite and >= 0");
@@ -124,6 +127,7 @@ void Tank::steer(Fish& fish, double dt) {
       std::max(s.wall_distance * fish.length, 2.0 * fish.speed / s.max_yaw_rate);
   want -= outward * 3.0 * std::clamp((wall_margin - (radius - r)) / wall_margin, 0.0, 1.0);
   double vertical_push = 0.0;
+  glm::dvec3 headings(0.0), towards(0.0);  // the neighbours' headings; their offsets
   grid_.around(p, [&](std::size_t j) {
     const glm::dvec3 away = p - fish_[j].position;
     const double distance = glm::length(away);
@@ -131,7 +135,12 @@ void Tank::steer(Fish& fish, double dt) {
     const double weight = 2.0 * (neighbour_distance_ - distance) / neighbour_distance_;
     want += glm::dvec3(away.x, 0.0, away.z) / distance * weight;
     vertical_push += away.y / distance * weight;
+    headings += heading(fish_[j].yaw);
+    towards -= glm::dvec3(away.x, 0.0, away.z);
   });
+  // Schooling: towards the neighbours' mean heading and their centre.
+  if (glm::length(headings) > 1e-9) want += s.alignment * glm::normalize(headings);
+  if (glm::length(towards) > 1e-9) want += s.cohesion * glm::normalize(towards);
   const double wanted_yaw = std::atan2(-want.z, want.x);
   const double turn = wrapped_angle(wanted_yaw - fish.yaw);
   const double turn_rate = std::clamp(2.0 * turn, -s.max_yaw_rate, s.max_yaw_rate);

@@ -1,9 +1,9 @@
 // A virtual tank of a recirculating aquaculture system (RAS): a round tank with its
 // rotating water current and fish that cruise against it, keep off the wall, the floor
-// and the surface, keep their distance from their neighbours and change speed now and
-// then. It is an example built on FinFlex's public API (finflex/swim.hpp): it only
-// computes where each fish is, where it heads and how fast it swims; the swim drivers
-// turn that into body waves, fin beats and world placements.
+// and the surface, keep their distance from their neighbours while schooling with them
+// and change speed now and then. It is an example built on FinFlex's public API
+// (finflex/swim.hpp): it only computes where each fish is, where it heads and how fast
+// it swims; the swim drivers turn that into body waves, fin beats and world placements.
 //
 // World: metres, y up, the tank's axis on the y axis, the floor at y = 0, the surface
 // at y = depth. The current turns counter-clockwise seen from above. The defaults and
@@ -53,6 +53,12 @@ struct TankSettings {
   // Neighbours closer than this many body lengths push each other apart (or less, at a
   // density where fish cannot keep it: 0.554 (volume per fish)^(1/3)).
   double neighbour_distance = 0.9;
+  // Schooling over the same neighbours (Reynolds 1987, "Flocks, herds and schools",
+  // SIGGRAPH: separation, alignment, cohesion): a fish also turns towards their mean
+  // heading (weight `alignment`) and towards their centre (weight `cohesion`), against
+  // the current's pull of weight 1; 0 turns either off.
+  double alignment = 0.5;
+  double cohesion = 0.1;
 };
 
 // One fish's motion: what the swim drivers need (SwimInput) and its length and species.

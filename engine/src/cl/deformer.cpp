@@ -533,7 +533,7 @@ void ClDeformer::Impl::launch(BoundKernel& bound, const ClJob& job, std::size_t 
     // A list's length is known on the device only: rows enough to fill the device,
     // striding over the list (kernels/common/instance_list.cl).
     // GPUs: 32,768 groups of 64, eight times what an H200 holds at once (132 SMs of
-    // 32): an empty list costs a launch of 14 us there (docs/levels-of-detail.md).
+    // 32): an empty list then costs a launch of about 24 us there (docs/levels-of-detail.md).
     const std::size_t most_groups = context.description().is_gpu() ? 32768 : 4096;
     rows = std::min(rows, std::max<std::size_t>(1, most_groups / (end_group - first_group)));
   }
