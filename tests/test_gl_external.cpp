@@ -213,6 +213,45 @@ TEST(ExternalOutputs, AJobForAnotherBatchIsRefused) {
                                 "job.outputs"));
 }
 
+// The side region: each frame's copies land where they are asked, after the data and
+// aligned; a copy past it or without a source is refused, naming it.
+TEST(ExternalOutputs, SideCopiesLandBesideTheOutputs) {
+  REQUIRE_EXTERNAL_MEMORY();
+  Context& context = test::shared_context();
+  ClDeformer deformer(context, barramundi());
+  ExternalOutputs external(deformer, kInstances, deformer.layout(kInstances), *choice().device,
+                           {0, 1, 2, 3}, 256, 64);
+  EXPECT_EQ(external.side_bytes(), 64u);
+  EXPECT_GE(external.side_offset(), external.data_bytes(0));
+  EXPECT_EQ(external.side_offset() % 256, 0u);
+  std::vector<cl_uint> words(16);
+  for (std::size_t i = 0; i < words.size(); ++i) words[i] = cl_uint(100 + i);
+  cl::Buffer source(context.context(), CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR,
+                    words.size() * sizeof(cl_uint), words.data());
+  RigParameters values(barramundi(), kInstances);
+  ClJob job;
+  job.instances = kInstances;
+  job.parameters = values.view();
+  job.outputs = &external.batch();
+  const std::vector<SideCopy> bad{{&source, 0, 8, 0}, {&source, 0, 8, 60}};
+  EXPECT_TRUE(test::ThrowsError([&] { external.enqueue(job, nullptr, bad); },
+                                ErrorCode::kInvalidArgument, "copies[1]"));
+  EXPECT_TRUE(test::ThrowsError(
+      [&] {
+        external.enqueue(job, nullptr, {{nullptr, 0, 4, 0}});
+      },
+      ErrorCode::kInvalidArgument, "copies[0]"));
+  // Words 2..7 to bytes 4..28, words 0..1 to bytes 40..48.
+  external.enqueue(job, nullptr, {{&source, 8, 24, 4}, {&source, 0, 8, 40}});
+  external.wait_for_frame();
+  if (external.import() != ExternalImport::kHostMapped) GTEST_SKIP() << "the GPU's memory";
+  const auto* side = reinterpret_cast<const cl_uint*>(
+      static_cast<const unsigned char*>(external.buffer(0).mapped()) + external.side_offset());
+  for (std::size_t i = 0; i < 6; ++i) EXPECT_EQ(side[1 + i], 102 + i);
+  EXPECT_EQ(side[10], 100u);
+  EXPECT_EQ(side[11], 101u);
+}
+
 // The renderer's import: bad fds and sizes named, nothing imported.
 render::ErrorCode import_error(render::Renderer& renderer, int fd, std::size_t memory_bytes,
                                std::size_t bytes, std::string& field) {

@@ -442,6 +442,7 @@ TEST(TankPictures, TheIdPassCoversTheFishWithTheirTankIds) {
 // The same frame at its levels and at full detail: every fish still drawn; with a
 // budget no coarse level meets, at level 0 the very same pixels; at a pixel, coarser
 // levels and the same fish where the same pixels are but along the fish's edges.
+// Drawn from the GPU's lists (external memory), the same as from the host's.
 TEST(TankPictures, FishAtTheirLevelsCoverWhatTheFullMeshCovers) {
   SmallTank full;
   full.pictures.draw();
@@ -474,6 +475,15 @@ TEST(TankPictures, FishAtTheirLevelsCoverWhatTheFullMeshCovers) {
     } else {
       EXPECT_GT(counts.per_level.back(), 0u);
       EXPECT_GT(double(agree) / double(covered), 0.9);
+      // The GPU's lists (external memory: the command and entries copied beside each
+      // level's outputs, one indirect draw per level) draw what the host's draw.
+      if (leveled.hand_off.path == HandOffPath::kExternal &&
+          leveled.renderer.device().device_lists) {
+        SmallTank host(HandOffPath::kCopy, three_levels(pixels));
+        host.pictures.draw();
+        EXPECT_EQ(host.pictures.draw_ids().ids, got.ids);
+        EXPECT_EQ(host.pictures.read_image().rgb, leveled.pictures.read_image().rgb);
+      }
     }
   }
 }

@@ -3,6 +3,7 @@
 // as FinFlex planes) seen from above: both are drawn, lit (not black) and the bent
 // one's silhouette moves towards the side it bends to. The stream layouts and sources
 // give the same picture; bad draws are refused naming the field.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -65,12 +66,12 @@ glm::mat4 placement(const BodyFrame& frame) {
 }
 
 // Straight down onto the fish, world -z at the top of the image.
-Camera top_camera() {
+Camera top_camera(float height = 1.6f, float vertical_fov_degrees = 50.0f) {
   Camera camera;
-  camera.position = {0.0f, 1.6f, 0.0f};
+  camera.position = {0.0f, height, 0.0f};
   camera.target = {0.0f, 0.5f, 0.0f};
   camera.up = {0.0f, 0.0f, -1.0f};
-  camera.vertical_fov_degrees = 50.0f;
+  camera.vertical_fov_degrees = vertical_fov_degrees;
   return camera;
 }
 
@@ -304,9 +305,11 @@ TEST(Render, DrawsSplitIntoRunsGiveTheSamePicture) {
   const Image whole = draw_on(renderer(), blub_mesh());
 
   RenderSettings settings{kWidth, kHeight, 4};
-  settings.max_buffer_texels = 7 * plane;  // runs of two instances (6 planes) and slack
+  // Runs of two instances (6 planes) and slack: the uploads are read four floats a
+  // texel (wide), so 7 planes take 7/4 plane of texels.
+  settings.max_buffer_texels = (7 * plane + 3) / 4;
   Renderer split(settings);
-  EXPECT_EQ(split.device().max_buffer_texels, 7 * plane);
+  EXPECT_EQ(split.device().max_buffer_texels, (7 * plane + 3) / 4);
   if (!split.device().texture_buffer_range) GTEST_SKIP() << "no glTexBufferRange";
   const MeshId mesh = split.add_mesh(pair.mesh.indices, pair.mesh.vertex_count());
   EXPECT_EQ(draw_on(split, mesh).rgb, whole.rgb);
@@ -418,4 +421,221 @@ TEST(Render, FramesInFlightAreTheFramesInTheirOrder) {
 }
 
 }  // namespace
+}  // namespace finflex::render
+
+// Draws whose instances the GPU names (FishDraw::list: glDrawElementsIndirect over a
+// command and entries in a renderer buffer) give the picture and the ids of the same
+// rows drawn from the host; bad lists are refused naming the field. And a hall of
+// tanks in rows (Scene::rows): each tank is drawn where its row and column put it.
+namespace finflex::render {
+namespace lists {
+
+constexpr int kWidth = 160;
+constexpr int kHeight = 120;
+
+Renderer& renderer() {
+  static Renderer shared({kWidth, kHeight, 1});
+  return shared;
+}
+
+// Four rows of the low-resolution Blub at rest, in planes, in renderer buffers; row r
+// placed at its own spot on a line (its transform).
+struct Rows {
+  MeshId mesh = 0;
+  std::size_t index_count = 0;
+  BufferId positions = kNoBuffer;
+  BufferId normals = kNoBuffer;
+  StreamLayout layout;
+  std::vector<glm::mat4> transforms;
+};
+
+const Rows& rows() {
+  static const Rows out = [] {
+    Rows r;
+    const Mesh mesh = load_mesh(test::data_path("blub/fish_low_resolution.obj"));
+    const std::size_t v = mesh.vertex_count();
+    r.mesh = renderer().add_mesh(mesh.indices, v);
+    r.index_count = mesh.indices.size();
+    r.layout = StreamLayout::planes(v);
+    std::vector<float> positions, normals;
+    glm::dvec3 low(1e30), high(-1e30);
+    for (const glm::dvec3& p : mesh.positions) {
+      low = glm::min(low, p);
+      high = glm::max(high, p);
+    }
+    const double size = glm::length(high - low);
+    for (int row = 0; row < 4; ++row) {
+      for (int c = 0; c < 3; ++c) {
+        for (std::size_t i = 0; i < v; ++i) {
+          positions.push_back(float((mesh.positions[i][c] - 0.5 * (low[c] + high[c])) / size));
+          normals.push_back(c == 1 ? 1.0f : 0.0f);
+        }
+      }
+      r.transforms.push_back(
+          glm::translate(glm::mat4(1.0f), glm::vec3(-0.9f + 0.6f * float(row), 0.5f, 0.0f)) *
+          glm::mat4(glm::mat3(0.5f)));
+    }
+    r.positions = renderer().create_buffer(positions.size() * sizeof(float));
+    renderer().write_buffer(r.positions, 0, positions.data(), positions.size() * sizeof(float));
+    r.normals = renderer().create_buffer(normals.size() * sizeof(float));
+    renderer().write_buffer(r.normals, 0, normals.data(), normals.size() * sizeof(float));
+    return r;
+  }();
+  return out;
+}
+
+Camera list_camera() { return top_camera(2.2f, 60.0f); }
+
+FishDraw host_draw(std::size_t count, const std::vector<std::uint32_t>& ids) {
+  FishDraw draw;
+  draw.mesh = rows().mesh;
+  draw.instance_count = count;
+  draw.positions = VertexStream::from_buffer(rows().positions, rows().layout);
+  draw.normals = VertexStream::from_buffer(rows().normals, rows().layout);
+  draw.transforms = rows().transforms.data();
+  draw.ids = ids.data();
+  return draw;
+}
+
+// A list buffer: the command at 0, the entries at 32.
+BufferId list_buffer(std::uint32_t drawn, const std::vector<std::uint32_t>& entries) {
+  std::vector<std::uint32_t> words(8 + entries.size(), 0u);
+  words[0] = static_cast<std::uint32_t>(rows().index_count);
+  words[1] = drawn;
+  std::copy(entries.begin(), entries.end(), words.begin() + 8);
+  const BufferId buffer = renderer().create_buffer(words.size() * 4);
+  renderer().write_buffer(buffer, 0, words.data(), words.size() * 4);
+  return buffer;
+}
+
+FishDraw listed_draw(BufferId list, const std::vector<std::uint32_t>& table) {
+  FishDraw draw = host_draw(4, table);
+  draw.list.buffer = list;
+  draw.list.command_offset = 0;
+  draw.list.entries_offset = 32;
+  draw.id_count = table.size();
+  return draw;
+}
+
+TEST(DeviceLists, DrawTheRowsAndIdsTheGpuNames) {
+  if (!renderer().device().device_lists) GTEST_SKIP() << "no glDrawElementsIndirect";
+  const Scene scene;
+  // Three of the four rows drawn; their entries index a table of ids.
+  const std::vector<std::uint32_t> table{10, 11, 12, 13, 14, 15, 16, 17, 18};
+  const std::vector<std::uint32_t> entries{4, 0, 8, 2};
+  const BufferId list = list_buffer(3, entries);
+  const std::vector<std::uint32_t> host_ids{14, 10, 18};
+
+  renderer().render(scene, list_camera(), {host_draw(3, host_ids)});
+  const Image from_host = renderer().read_image();
+  renderer().render(scene, list_camera(), {listed_draw(list, table)});
+  const Image from_gpu = renderer().read_image();
+  EXPECT_EQ(from_gpu.rgb, from_host.rgb);
+  renderer().render(scene, list_camera(), {host_draw(4, {1, 2, 3, 4})});
+  EXPECT_NE(renderer().read_image().rgb, from_gpu.rgb) << "the fourth row was drawn";
+
+  renderer().render_ids(scene, list_camera(), {host_draw(3, host_ids)});
+  const IdImage ids_from_host = renderer().read_ids();
+  renderer().render_ids(scene, list_camera(), {listed_draw(list, table)});
+  const IdImage ids_from_gpu = renderer().read_ids();
+  EXPECT_EQ(ids_from_gpu.ids, ids_from_host.ids);
+  std::vector<bool> seen(19, false);
+  for (std::uint32_t id : ids_from_gpu.ids) seen.at(id) = true;
+  EXPECT_TRUE(seen[14] && seen[10] && seen[18]);
+  EXPECT_FALSE(seen[12]);
+
+  // No instances on the GPU's word: the empty tank.
+  renderer().render(scene, list_camera(), {});
+  const Image empty = renderer().read_image();
+  renderer().render(scene, list_camera(), {listed_draw(list_buffer(0, entries), table)});
+  EXPECT_EQ(renderer().read_image().rgb, empty.rgb);
+}
+
+std::string field_of(const std::vector<FishDraw>& fish, bool ids = false) {
+  try {
+    if (ids) {
+      renderer().render_ids(Scene{}, list_camera(), fish);
+    } else {
+      renderer().render(Scene{}, list_camera(), fish);
+    }
+  } catch (const RenderError& error) {
+    EXPECT_EQ(error.code(), ErrorCode::kInvalidArgument) << error.what();
+    EXPECT_EQ(std::string(error.what()).find('\n'), std::string::npos);
+    return error.field();
+  }
+  return "no error";
+}
+
+TEST(DeviceLists, BadListsAreRefusedNamingTheField) {
+  if (!renderer().device().device_lists) GTEST_SKIP() << "no glDrawElementsIndirect";
+  const std::vector<std::uint32_t> table{1, 2, 3, 4};
+  const BufferId list = list_buffer(2, {0, 1, 2, 3});
+  FishDraw draw = listed_draw(list, table);
+  draw.list.buffer = 999;
+  EXPECT_EQ(field_of({draw}), "fish[0].list.buffer");
+  draw = listed_draw(list, table);
+  draw.list.command_offset = 2;
+  EXPECT_EQ(field_of({draw}), "fish[0].list.command_offset");
+  draw.list.command_offset = 40;  // 20 bytes from 40 pass the buffer's 48
+  EXPECT_EQ(field_of({draw}), "fish[0].list.command_offset");
+  draw = listed_draw(list, table);
+  draw.list.entries_offset = 36;  // 4 rows from 36 pass the end
+  EXPECT_EQ(field_of({draw}), "fish[0].list.entries_offset");
+  draw = listed_draw(list, table);
+  draw.id_count = 0;
+  EXPECT_EQ(field_of({draw}, true), "fish[0].id_count");
+  try {
+    renderer().render_reference(Scene{}, list_camera(), {listed_draw(list, table)});
+    ADD_FAILURE() << "the reference draw took a device list";
+  } catch (const RenderError& error) {
+    EXPECT_EQ(error.field(), "fish[0].list");
+  }
+}
+
+TEST(TankRows, EachTankStandsWhereItsRowAndColumnPutIt) {
+  // Five tanks in rows of three, 2 m apart: 0 1 2 along +x, then 3 4 behind (-z).
+  Scene hall;
+  hall.tank.radius = 0.8f;
+  hall.rows = {5, 3, 2.0f};
+  Camera camera;
+  camera.position = {2.0f, 12.0f, -1.0f};
+  camera.target = {2.0f, 0.0f, -1.0f};
+  camera.up = {0.0f, 0.0f, -1.0f};
+  camera.vertical_fov_degrees = 40.0f;
+  renderer().render(hall, camera, {});
+  const Image image = renderer().read_image();
+  const auto at = [&](float x, float z) {
+    const glm::vec3 p = project_to_pixel(camera, kWidth, kHeight, {x, 0.0f, z});
+    const std::uint8_t* rgb = image.pixel(int(p.x), int(p.y));
+    return int(rgb[0]) + int(rgb[1]) + int(rgb[2]);
+  };
+  const int background = at(4.0f, -2.0f);  // where a sixth tank would stand
+  for (int t = 0; t < 5; ++t) {
+    const float x = 2.0f * float(t % 3), z = -2.0f * float(t / 3);
+    EXPECT_GT(at(x, z), background + 20) << "tank " << t << "'s floor";
+  }
+  EXPECT_LT(at(1.0f, -1.0f), at(0.0f, 0.0f));  // between four tanks: the room
+
+  Scene crowded = hall;
+  crowded.rows.spacing = 1.5f;  // less than the diameter
+  EXPECT_THROW(
+      {
+        try {
+          renderer().render(crowded, camera, {});
+        } catch (const RenderError& e) {
+          EXPECT_EQ(e.field(), "scene.rows.spacing");
+          throw;
+        }
+      },
+      RenderError);
+  crowded.rows = {0, 1, 2.0f};
+  try {
+    renderer().render(crowded, camera, {});
+    ADD_FAILURE() << "no tanks were accepted";
+  } catch (const RenderError& e) {
+    EXPECT_EQ(e.field(), "scene.rows.count");
+  }
+}
+
+}  // namespace lists
 }  // namespace finflex::render

@@ -5,7 +5,7 @@
 // video, and with --annotate as a machine-vision dataset.
 //
 //   finflex swim [--fish N] [--seconds S] [--fps F] [--species MESH:RIG ...]
-//                [--tank DIAMETER,DEPTH] [--seed N] [--normals rotate|jacobian]
+//                [--tank DIAMETER,DEPTH] [--tanks N] [--seed N] [--normals rotate|jacobian]
 //                [--device NAME] [--out DIR [--mesh-frames LIST]]
 //                [--size WxH] [--camera above|oblique|side] [--samples N]
 //                [--image-frames all|none|LIST] [--video auto|none|mp4,gif,apng]
@@ -208,12 +208,12 @@ int run_swim(const SwimOptions& options) {
     }
     Context& context = *opencl;
     tank::SwimScene scene(
-        context, plan.species, plan.fish, plan.tank, plan.seed, plan.normals,
+        context, plan.species, plan.fish, plan.hall, plan.seed, plan.normals,
         NormalFormat::kFloat32, {},
         renderer ? pictures::gl_outputs(*renderer, hand_off) : tank::OutputsFactory(), plan.levels);
     if (plan.levels && !renderer) {  // the pictures' camera chooses, drawn or not
-      const render::Camera camera = pictures::tank_camera(
-          plan.tank, plan.pictures.view, plan.pictures.width, plan.pictures.height);
+      const render::Camera camera = pictures::hall_view_camera(
+          plan.hall, plan.pictures.view, plan.pictures.width, plan.pictures.height);
       scene.set_views({LevelView::look_at(
           camera.position, camera.target, camera.up, camera.vertical_fov_degrees,
           plan.pictures.width, plan.pictures.height, camera.near_plane, camera.far_plane)});
@@ -231,7 +231,8 @@ int run_swim(const SwimOptions& options) {
         {"fish", plan.fish},
         {"seed", plan.seed},
         {"fps", plan.fps},
-        {"tank", {{"diameter_m", plan.tank.diameter}, {"depth_m", plan.tank.depth}}}};
+        {"tank", {{"diameter_m", plan.hall.tank.diameter}, {"depth_m", plan.hall.tank.depth}}},
+        {"tanks", plan.hall.tanks}};
     std::unique_ptr<SwimPictureFiles> files;
     if (pictures && staging) {
       files =
@@ -313,11 +314,15 @@ int run_swim(const SwimOptions& options) {
       }
       progress(f + 1, plan.frames);
     }
+    // The timed frames end when the GPU has drawn the last one: nothing waits for it in
+    // the loop where semaphores order the frames.
+    if (pictures) pictures->renderer().finish();
+    const double timed_span = seconds_since(timed_start);
     if (files) files->finish();  // the frames still in flight, and the pool's work
     const double wall = seconds_since(start);
     for (const auto& [first, last] : kernel_spans)
       t.kernels.push_back(bench::span_seconds(first, last));
-    const double timed_fps = t.total.empty() ? 0.0 : double(t.total.size()) / sum(t.total);
+    const double timed_fps = t.total.empty() ? 0.0 : double(t.total.size()) / timed_span;
     const double vertices = double(scene.vertices_per_frame());
     const double kernel_median = t.kernels.empty() ? 0.0 : bench::median(t.kernels);
     std::string census;
@@ -326,10 +331,13 @@ int run_swim(const SwimOptions& options) {
                 std::to_string(species.driver ? species.driver->fish_count() : 0) + " " +
                 species.name;
     }
+    const std::string tanks =
+        plan.hall.tanks == 1 ? "tank" : std::to_string(plan.hall.tanks) + " tanks";
     std::printf(
-        "swam %zu fish (%s) for %.3g s at %.3g fps (%zu frames) in a %.3g m x %.3g m tank on %s\n",
+        "swam %zu fish (%s) for %.3g s at %.3g fps (%zu frames) in %s %.3g m x %.3g m %s on %s\n",
         plan.fish, census.c_str(), double(plan.frames) / plan.fps, plan.fps, plan.frames,
-        plan.tank.diameter, plan.tank.depth, context.description().device_name.c_str());
+        plan.hall.tanks == 1 ? "a" : "a hall of", plan.hall.tank.diameter, plan.hall.tank.depth,
+        tanks.c_str(), context.description().device_name.c_str());
     std::printf(
         "  %.3g M vertices per frame; %.1f frames/s overall (first frame %.2f s with kernel "
         "builds)\n",
@@ -405,9 +413,10 @@ int run_swim(const SwimOptions& options) {
       summary["frames"] = plan.frames;
       summary["fps"] = plan.fps;
       summary["seed"] = plan.seed;
-      summary["tank"] = {{"diameter_m", plan.tank.diameter},
-                         {"depth_m", plan.tank.depth},
-                         {"wall_current_m_per_s", plan.tank.wall_current}};
+      summary["tank"] = {{"diameter_m", plan.hall.tank.diameter},
+                         {"depth_m", plan.hall.tank.depth},
+                         {"wall_current_m_per_s", plan.hall.tank.wall_current}};
+      summary["tanks"] = plan.hall.tanks;
       summary["vertices_per_frame"] = scene.vertices_per_frame();
       summary["seconds_per_frame_median"] = {
           {"simulation", t.simulation.empty() ? 0.0 : bench::median(t.simulation)},
@@ -443,6 +452,10 @@ Command add_swim_command(CLI::App& app) {
                    "MESH:RIG, a mesh and its swim rig (repeatable; default: the bundled fish)")
       ->allow_extra_args(false);
   swim->add_option("--tank", options->tank, "DIAMETER,DEPTH in metres (default 3.66,1.22)");
+  swim->add_option("--tanks", options->tanks,
+                   "A farm hall of N tanks in rows of 4, each holding 1,000 fish or more at the "
+                   "default tank's density unless --tank sizes them; seen down the hall")
+      ->capture_default_str();
   swim->add_option("--seed", options->seed, "Random seed of the tank")->capture_default_str();
   swim->add_option("--normals", options->normals, "rotate or jacobian")->capture_default_str();
   swim->add_option("--device", options->device,

@@ -140,10 +140,13 @@ SwimPlan plan_of(const SwimOptions& options) {
       }
     }
   }
+  const std::size_t tanks = parse_count(options.tanks, "--tanks", 1, 1024);
+  // A hall's tanks hold the default density unless --tank sizes them.
+  if (tanks > 1) plan.hall = tank::HallSettings::farm(tanks, plan.fish);
   if (!options.tank.empty()) {
     const auto [diameter, depth] = parse_positive_pair(options.tank, "--tank");
-    plan.tank.diameter = diameter;
-    plan.tank.depth = depth;
+    plan.hall.tank.diameter = diameter;
+    plan.hall.tank.depth = depth;
   }
   plan.seed = parse_count(options.seed, "--seed", 0, UINT64_MAX);
   plan.normals = parse_normal_mode(options.normals, "--normals");
@@ -158,6 +161,15 @@ SwimPlan plan_of(const SwimOptions& options) {
     if (!plan.mesh_frames.empty()) {
       throw Error(ErrorCode::kInvalidArgument, "--mesh-frames",
                   "--mesh-frames writes every fish at full detail: not with --levels");
+    }
+    if (options.annotate) {
+      throw Error(ErrorCode::kInvalidArgument, "--annotate",
+                  "--annotate takes its keypoints from every fish at full detail: not with "
+                  "--levels");
+    }
+    if (options.reference_draw) {
+      throw Error(ErrorCode::kInvalidArgument, "--reference-draw",
+                  "--reference-draw draws every fish at full detail: not with --levels");
     }
     plan.levels = levels;
   }

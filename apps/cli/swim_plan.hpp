@@ -23,6 +23,7 @@ struct SwimOptions {
   std::string fps = "30";
   std::vector<std::string> species;
   std::string tank;
+  std::string tanks = "1";
   std::string seed = "1";
   std::string normals = "jacobian";
   std::string device;
@@ -48,7 +49,7 @@ struct SwimPlan {
   std::size_t frames = 0;
   double fps = 0.0;
   std::vector<tank::SpeciesFiles> species;
-  tank::TankSettings tank;
+  tank::HallSettings hall;  // one tank unless --tanks
   std::uint64_t seed = 0;
   NormalMode normals = NormalMode::kJacobian;
   std::set<std::size_t> mesh_frames;

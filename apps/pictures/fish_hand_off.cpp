@@ -1,11 +1,16 @@
 #include "fish_hand_off.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 
 namespace finflex::pictures {
 
 namespace {
+
+// A device list's layout in the side region: the command (5 uint32), padded, then
+// the entries.
+constexpr std::size_t kListEntries = 32;
 
 // FinFlex's planes of positions and normals for the renderer: no tangents (not drawn).
 OutputLayout drawn_planes(const ClDeformer& deformer, std::size_t instances, NormalFormat format) {
@@ -118,13 +123,17 @@ GlSpeciesOutputs::GlSpeciesOutputs(render::Renderer& renderer, const HandOff& ha
       normal_layout_(stream_layout(layout_.normals)),
       instances_(instances) {
   if (path_ == HandOffPath::kExternal) {
-    external_ = std::make_unique<ExternalOutputs>(deformer, instances, layout_, *hand_off.device);
+    external_ = std::make_unique<ExternalOutputs>(deformer, instances, layout_, *hand_off.device,
+                                                  std::array<std::size_t, 4>{0, 1, 2, 3}, 256,
+                                                  kListEntries + 4 * instances);
     std::vector<render::BufferId> imported;
     for (std::size_t b = 0; b < external_->buffer_count(); ++b) {
       const vulkan::ExternalBuffer& buffer = external_->buffer(b);
-      imported.push_back(renderer.import_buffer(buffer.export_fd(), buffer.memory_bytes(),
-                                                external_->data_bytes(b)));
+      const std::size_t bytes =
+          b == 0 ? external_->side_offset() + external_->side_bytes() : external_->data_bytes(b);
+      imported.push_back(renderer.import_buffer(buffer.export_fd(), buffer.memory_bytes(), bytes));
     }
+    side_buffer_ = imported[0];
     positions_ = imported[external_->buffer_of(0)];
     normals_ = imported[external_->buffer_of(1)];
     device_ordered_ = external_->device_ordered() && renderer.external_support().semaphores;
@@ -145,6 +154,31 @@ GlSpeciesOutputs::GlSpeciesOutputs(render::Renderer& renderer, const HandOff& ha
   gl_ = std::make_unique<GlOutputs>(
       deformer, instances, layout_,
       GlBuffers{renderer.gl_buffer(positions_), renderer.gl_buffer(normals_), 0, 0});
+}
+
+void GlSpeciesOutputs::set_list_sources(const cl::Buffer& command, std::size_t command_offset,
+                                        const cl::Buffer& entries, std::size_t entries_offset,
+                                        std::size_t rows) {
+  if (!external_) {
+    throw Error(ErrorCode::kInvalidArgument, "list",
+                std::string("list: the ") + to_string(path_) + " hand-off has no device list");
+  }
+  if (rows > instances_) {
+    throw Error(ErrorCode::kInvalidArgument, "rows",
+                "rows: " + std::to_string(rows) + " is more than the outputs' " +
+                    std::to_string(instances_) + " instances");
+  }
+  list_copies_ = {{&command, command_offset, 5 * sizeof(std::uint32_t), 0},
+                  {&entries, entries_offset, rows * sizeof(std::uint32_t), kListEntries}};
+}
+
+render::DeviceList GlSpeciesOutputs::device_list() const {
+  render::DeviceList list;
+  if (!external_) return list;
+  list.buffer = side_buffer_;
+  list.command_offset = external_->side_offset();
+  list.entries_offset = external_->side_offset() + kListEntries;
+  return list;
 }
 
 DeviceBatch& GlSpeciesOutputs::batch() { return external_ ? external_->batch() : gl_->batch(); }
@@ -169,12 +203,12 @@ cl::Event GlSpeciesOutputs::enqueue(ClDeformer& /*deformer: the outputs'*/, cons
       external_->consumer_signalled();
       gl_used_frame_ = false;
     }
-    drawable_ = external_->enqueue(job, kernel_events);
+    drawable_ = external_->enqueue(job, kernel_events, list_copies_);
     kernels_signalled_ = true;
     return drawable_;
   }
   renderer_.finish();  // GL is done with the memory the kernels now write
-  drawable_ = external_->enqueue(job, kernel_events);
+  drawable_ = external_->enqueue(job, kernel_events, list_copies_);
   return drawable_;
 }
 

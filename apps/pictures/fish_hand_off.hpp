@@ -84,6 +84,15 @@ class GlSpeciesOutputs : public tank::SpeciesOutputs {
   void end_reading() override;
 
   HandOffPath path() const { return path_; }
+  // External memory: beside the outputs, room for a draw list of instance_count() rows
+  // (its command and entries, filled each frame by OpenCL copies ordered as the
+  // outputs are: device_list() is what the renderer reads). Elsewhere none.
+  bool has_device_list() const { return external_ != nullptr; }
+  // Each frame's copies: the 20-byte command at `command` + command_offset, and
+  // `rows` (at most instance_count()) entries at `entries` + entries_offset.
+  void set_list_sources(const cl::Buffer& command, std::size_t command_offset,
+                        const cl::Buffer& entries, std::size_t entries_offset, std::size_t rows);
+  render::DeviceList device_list() const;
   // External memory: whether semaphores order the frame on the GPU, and why not.
   bool device_ordered() const { return device_ordered_; }
   const std::string& why_not_device_ordered() const { return why_not_ordered_; }
@@ -107,8 +116,10 @@ class GlSpeciesOutputs : public tank::SpeciesOutputs {
   render::StreamLayout position_layout_;
   render::StreamLayout normal_layout_;
   std::size_t instances_ = 0;
-  std::unique_ptr<ExternalOutputs> external_;  // kExternal
-  std::unique_ptr<GlOutputs> gl_;              // kShared, kCopy
+  std::unique_ptr<ExternalOutputs> external_;         // kExternal
+  render::BufferId side_buffer_ = render::kNoBuffer;  // kExternal: buffer 0, with the list
+  std::vector<SideCopy> list_copies_;
+  std::unique_ptr<GlOutputs> gl_;  // kShared, kCopy
   // kExternal with semaphores: GL's imports of the kernels' and its own, and whether
   // the kernels' is signalled and not yet waited for, and GL has drawn since.
   render::SemaphoreId kernels_done_ = 0;

@@ -31,9 +31,9 @@ render::RenderSettings render_settings(const PictureSettings& settings) {
 TankPictures::TankPictures(render::Renderer& renderer, tank::SwimScene& scene,
                            const PictureSettings& settings)
     : renderer_(renderer),
-      look_(tank_scene(scene.hall().settings())),
-      camera_(
-          tank_camera(scene.hall().settings(), settings.view, settings.width, settings.height)) {
+      look_(tank_scene(scene.hall().hall_settings())),
+      camera_(hall_view_camera(scene.hall().hall_settings(), settings.view, settings.width,
+                               settings.height)) {
   std::vector<std::vector<std::uint32_t>> ids = instance_ids(scene.hall(), scene.species().size());
   const auto gl_outputs_of = [&](tank::SpeciesOutputs* made, std::size_t s) {
     auto* outputs = dynamic_cast<GlSpeciesOutputs*>(made);
@@ -68,9 +68,25 @@ TankPictures::TankPictures(render::Renderer& renderer, tank::SwimScene& scene,
                                         std::move(ids[s])));
   }
   for (const SpeciesDrawing& drawing : drawings_) draws_.push_back(fish_draw(drawing));
-  for (const LeveledSpecies& species : leveled_) {  // no fish until a frame's lists
-    for (std::size_t k = 0; k < species.chooser->level_count(); ++k)
-      draws_[species.first_drawing + k].instance_count = 0;
+  for (LeveledSpecies& species : leveled_) {
+    const LevelChooser& chooser = *species.chooser;
+    for (std::size_t k = 0; k < chooser.level_count(); ++k) {
+      SpeciesDrawing& drawing = drawings_[species.first_drawing + k];
+      render::FishDraw& draw = draws_[species.first_drawing + k];
+      species.device_lists = drawing.outputs->has_device_list() && renderer_.device().device_lists;
+      if (!species.device_lists) {  // no fish until a frame's lists
+        draw.instance_count = 0;
+        continue;
+      }
+      // The GPU draws each level's fish from the chooser's command and list, copied
+      // beside the level's outputs every frame; ids through the species' table.
+      drawing.outputs->set_list_sources(chooser.draw_arguments(), 5 * sizeof(cl_uint) * k,
+                                        chooser.lists(), sizeof(cl_uint) * chooser.list_first(k),
+                                        chooser.rows(k));
+      draw.list = drawing.outputs->device_list();
+      draw.ids = species.ids.data();
+      draw.id_count = species.ids.size();
+    }
   }
   if (!leveled_.empty()) {
     scene.set_views({LevelView::look_at(camera_.position, camera_.target, camera_.up,
@@ -79,9 +95,11 @@ TankPictures::TankPictures(render::Renderer& renderer, tank::SwimScene& scene,
   }
 }
 
-// Each level's fish of the last frame and their ids, from its chooser's lists.
+// Without device lists: each level's fish of the last frame and their ids, from its
+// chooser's lists on the host.
 void TankPictures::take_lists() {
   for (LeveledSpecies& species : leveled_) {
+    if (species.device_lists) continue;
     const LevelChooser::Choice choice = species.chooser->read(false);
     for (std::size_t k = 0; k < choice.lists.size(); ++k) {
       SpeciesDrawing& drawing = drawings_[species.first_drawing + k];

@@ -45,8 +45,9 @@ class TankPictures {
   // The colour pass of every species' last frame, once GL may read it (a GPU-side
   // wait where semaphores order the frame); no wait for the GPU to draw it. Its image:
   // read_image (waits), or the renderer's request_image and take_image. With levels,
-  // each level's fish and their ids are read from the frame's lists first (a wait for
-  // the frame's kernels on the host).
+  // the GPU draws each level's fish from the frame's lists where the hand-off is
+  // external memory and GL has indirect draws (nothing read back); otherwise their
+  // lists are read first (a wait for the frame's kernels on the host).
   void draw();
   const render::Image& read_image();
   // The reference draw of the same fish (Renderer::render_reference): the yardstick of
@@ -81,6 +82,7 @@ class TankPictures {
     LevelChooser* chooser = nullptr;
     std::vector<std::uint32_t> ids;
     std::size_t first_drawing = 0;
+    bool device_lists = false;  // drawn from the GPU's lists (external memory), else the host's
   };
   std::vector<LeveledSpecies> leveled_;
   void take_lists();

@@ -86,12 +86,15 @@ CameraView parse_camera_view(const std::string& text, const std::string& option)
               option + " '" + text + "' is not a camera view (above, oblique or side)");
 }
 
-render::Scene tank_scene(const tank::TankSettings& settings) {
+render::Scene tank_scene(const tank::HallSettings& settings) {
   render::Scene scene;
-  const auto depth = static_cast<float>(settings.depth);
-  scene.tank.radius = static_cast<float>(0.5 * settings.diameter);
+  const auto depth = static_cast<float>(settings.tank.depth);
+  scene.tank.radius = static_cast<float>(0.5 * settings.tank.diameter);
   scene.tank.water_depth = depth;
   scene.tank.wall_height = depth * (1.0f + kFreeboard);
+  scene.rows.count = static_cast<int>(settings.tanks);
+  scene.rows.columns = static_cast<int>(settings.columns);
+  scene.rows.spacing = static_cast<float>(settings.tank.diameter + settings.walkway);
   return scene;
 }
 
@@ -130,6 +133,20 @@ render::Camera tank_camera(const tank::TankSettings& settings, CameraView view, 
                         {0.0f, depth / 3.0f, 0.0f}, width, height);
       break;
   }
+  return camera;
+}
+
+render::Camera hall_view_camera(const tank::HallSettings& settings, CameraView view, int width,
+                                int height) {
+  if (settings.tanks <= 1) return tank_camera(settings.tank, view, width, height);
+  const tank::HallCamera hall = tank::hall_camera(settings);
+  render::Camera camera;
+  camera.position = glm::vec3(hall.eye);
+  camera.target = glm::vec3(hall.target);
+  camera.up = glm::vec3(hall.up);
+  camera.vertical_fov_degrees = static_cast<float>(hall.vertical_fov_degrees);
+  camera.near_plane = static_cast<float>(hall.near_plane);
+  camera.far_plane = static_cast<float>(hall.far_plane);
   return camera;
 }
 

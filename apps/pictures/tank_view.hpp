@@ -7,6 +7,7 @@
 
 #include <glm/glm.hpp>
 
+#include "hall.hpp"
 #include "render/camera.hpp"
 #include "render/scene.hpp"
 #include "tank.hpp"
@@ -26,14 +27,19 @@ const char* to_string(CameraView view);
 CameraView parse_camera_view(const std::string& text, const std::string& option);
 
 // The tank as the renderer draws it: the settings' diameter and water depth, a wall
-// 10 % higher than the water (the freeboard), the default water and light.
-render::Scene tank_scene(const tank::TankSettings& settings);
+// 10 % higher than the water (the freeboard), the default water and light; a hall's
+// tanks in its rows.
+render::Scene tank_scene(const tank::HallSettings& settings);
 
 // The camera of `view` for an image of width x height pixels: a 40-degree vertical
 // field of view (wider when the image is narrower than it is tall), placed so the tank
 // fills the frame with a small margin.
 render::Camera tank_camera(const tank::TankSettings& settings, CameraView view, int width,
                            int height);
+// A hall's camera: tank_camera's for one tank, tank::hall_camera for several (`view`
+// then unused).
+render::Camera hall_view_camera(const tank::HallSettings& settings, CameraView view, int width,
+                                int height);
 
 // A species' colour (linear RGB): Blub orange, the Barramundi silver, others from a
 // small palette by `index`.

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include "finflex/error.hpp"
 
@@ -23,6 +25,20 @@ HallSettings HallSettings::farm(std::size_t tanks, std::size_t fish) {
   out.tank.diameter *= scale;
   out.tank.depth *= scale;
   return out;
+}
+
+HallCamera hall_camera(const HallSettings& settings) {
+  const std::size_t tanks = std::max<std::size_t>(settings.tanks, 1);
+  const std::size_t columns = std::max<std::size_t>(settings.columns, 1);
+  const double spacing = settings.tank.diameter + settings.walkway;
+  const double rows = double((tanks + columns - 1) / columns);
+  const double middle_x = 0.5 * (double(std::min(tanks, columns)) - 1.0) * spacing;
+  const double front = 0.5 * settings.tank.diameter + 1.0;
+  HallCamera camera;
+  camera.eye = {middle_x, 4.0, front};
+  camera.target = {middle_x, 0.0, -std::min(2.0, rows - 1.0) * spacing};
+  camera.far_plane = (rows + 1.0) * spacing + front;
+  return camera;
 }
 
 Hall::Hall(const HallSettings& settings, const std::vector<std::size_t>& fish_per_species,
@@ -75,7 +91,21 @@ glm::dvec3 Hall::centre(std::size_t t) const {
 }
 
 void Hall::step(double dt) {
-  for (Tank& tank : tanks_) tank.step(dt);
+  // The tanks share nothing: with several, they step on threads of their own, each
+  // thread a fixed share of the tanks (the same result on any count of threads).
+  const std::size_t threads =
+      std::min<std::size_t>(tanks_.size(), std::max(1u, std::thread::hardware_concurrency()));
+  if (threads <= 1) {
+    for (Tank& tank : tanks_) tank.step(dt);
+  } else {
+    std::vector<std::thread> workers;
+    for (std::size_t w = 0; w < threads; ++w) {
+      workers.emplace_back([this, w, threads, dt] {
+        for (std::size_t t = w; t < tanks_.size(); t += threads) tanks_[t].step(dt);
+      });
+    }
+    for (std::thread& worker : workers) worker.join();
+  }
   fish_current_ = false;
 }
 

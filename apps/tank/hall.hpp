@@ -33,6 +33,19 @@ struct HallSettings {
   static HallSettings farm(std::size_t tanks, std::size_t fish);
 };
 
+// The hall seen by one camera: on the gangway 1 m in front of the first row, 4 m above
+// the floor, looking down the hall along its rows at the third row's middle (the last
+// row's when there are fewer), a 50-degree vertical field of view.
+struct HallCamera {
+  glm::dvec3 eye{0.0};
+  glm::dvec3 target{0.0};
+  glm::dvec3 up{0.0, 1.0, 0.0};
+  double vertical_fov_degrees = 50.0;
+  double near_plane = 0.1;  // m
+  double far_plane = 1.0;   // m: past the last row
+};
+HallCamera hall_camera(const HallSettings& settings);
+
 class Hall {
  public:
   // `fish_per_species[s]` fish of species s spread over the tanks as evenly as
@@ -43,6 +56,8 @@ class Hall {
   Hall(const HallSettings& settings, const std::vector<std::size_t>& fish_per_species,
        std::uint64_t seed);
 
+  // Every tank one step (Tank::step); several tanks step on as many threads as the
+  // machine has, the same result as one after another.
   void step(double dt);
 
   const HallSettings& hall_settings() const { return settings_; }

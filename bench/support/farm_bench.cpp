@@ -52,15 +52,9 @@ nlohmann::ordered_json scene_record(const SceneTimes& times, std::size_t vertice
 }  // namespace
 
 LevelView farm_camera(const tank::Hall& hall, int width, int height) {
-  const double rows =
-      double((hall.tank_count() + hall.hall_settings().columns - 1) / hall.hall_settings().columns);
-  const double columns = double(std::min(hall.tank_count(), hall.hall_settings().columns));
-  const double middle_x = 0.5 * (columns - 1.0) * hall.spacing();
-  const double front = 0.5 * hall.settings().diameter + 1.0;
-  const glm::dvec3 eye(middle_x, 4.0, front);
-  const glm::dvec3 target(middle_x, 0.0, -std::min(2.0, rows - 1.0) * hall.spacing());
-  const double far_plane = (rows + 1.0) * hall.spacing() + front;
-  return LevelView::look_at(eye, target, {0, 1, 0}, 50.0, width, height, 0.1, far_plane);
+  const tank::HallCamera c = tank::hall_camera(hall.hall_settings());
+  return LevelView::look_at(c.eye, c.target, c.up, c.vertical_fov_degrees, width, height,
+                            c.near_plane, c.far_plane);
 }
 
 nlohmann::ordered_json measure_farm(Context& context, const std::string& mesh,

@@ -29,9 +29,7 @@ struct FarmSettings {
   LevelChoiceOptions choice;
 };
 
-// The hall's camera: on the gangway in front of the first row, 4 m above the floor,
-// looking down the hall along its rows at the third row's middle, a 50 degree vertical
-// field of view, the image width x height.
+// The hall's camera (tank::hall_camera) for an image of width x height.
 LevelView farm_camera(const tank::Hall& hall, int width, int height);
 
 // Runs the farm and returns its record (docs/benchmarks.md "The farm"). kInvalidArgument

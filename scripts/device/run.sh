@@ -61,7 +61,9 @@
 #                          external-memory path and the copy path side by side
 #   render_levels  .txt    `finflex swim` drawn at 1920 x 1080 on the GPU with levels of
 #                          detail (--levels 4) beside full detail: 1,000 fish drawn only
-#                          and with a PNG a frame, 10,000 drawn only
+#                          and with a PNG a frame, 10,000 drawn only; the farm (100,000
+#                          fish in 16 tanks, --levels 6) beside full detail, and the
+#                          farm's last frame (render_levels_farm.png)
 #   level_choice   .txt    levels of detail: `finflex check --levels 4` of the bundled
 #                          fish's swim rigs, and the level choice of 1,000 to 100,000
 #                          fish (bench_deform's BM_LevelChoice)
@@ -434,6 +436,13 @@ render_levels() {
     levels_swim "10,000 fish drawn only, full detail: 15 frames" 10000 --seconds 0.5 --fps 30 --render
     levels_swim "10,000 fish drawn only, --levels 4: 15 frames" 10000 --seconds 0.5 --fps 30 \
       --render --levels 4
+    levels_swim "the farm, 100,000 fish in 16 tanks drawn, --levels 6: 30 frames (the last a PNG)" \
+      100000 --tanks 16 --seconds 1 --fps 30 --levels 6 --out "$scratch/farm" --video none \
+      --image-frames last
+    cp "$scratch/farm/frames/frame_000029.png" "$out/render_levels_farm.png" ||
+      failed+=("the farm's frame")
+    levels_swim "the farm, 100,000 fish in 16 tanks drawn only, full detail: 4 frames" 100000 \
+      --tanks 16 --seconds 1 --fps 4 --render
   done
   rm -rf "$scratch"
 }

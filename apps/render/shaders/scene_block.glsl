@@ -9,4 +9,23 @@ layout(std140) uniform Scene {
   vec4 u_ground_ambient;   // rgb: ambient from below
   vec4 u_fog_colour;       // rgb: what far water fades to; w: height of the water surface
   vec4 u_extinction;       // rgb: water's extinction per metre; w: the tank's radius
+  vec4 u_tank_rows;        // x: tanks, y: tanks per row, z: spacing of their axes (m)
 };
+
+// Tank t's axis on the floor, (x, z) (render/scene.hpp TankRows).
+vec2 tank_axis(int t) {
+  int columns = int(u_tank_rows.y);
+  return u_tank_rows.z * vec2(float(t % columns), -float(t / columns));
+}
+
+// The axis of the tank nearest p: the one whose water p is in.
+vec2 nearest_tank_axis(vec3 p) {
+  int count = int(u_tank_rows.x);
+  int columns = int(u_tank_rows.y);
+  if (count <= 1) return vec2(0.0);
+  int rows = (count + columns - 1) / columns;
+  int row = clamp(int(round(-p.z / u_tank_rows.z)), 0, rows - 1);
+  int in_row = min(columns, count - row * columns);
+  int column = clamp(int(round(p.x / u_tank_rows.z)), 0, in_row - 1);
+  return tank_axis(row * columns + column);
+}

@@ -1,11 +1,13 @@
 // Lighting and water in linear RGB; render/scene.hpp describes the model.
 
 // The length of the segment from the camera to p that lies in the water: the
-// cylinder of the tank's radius from the floor (y = 0) to the surface. The rest is
-// air, which neither absorbs nor scatters (a camera above or beside the tank).
+// cylinder of the tank's radius from the floor (y = 0) to the surface, of the tank p
+// is in. The rest is air, which neither absorbs nor scatters (a camera above or
+// beside the tank).
 float underwater_length(vec3 p) {
-  vec3 eye = u_camera_position.xyz;
-  vec3 d = p - eye;
+  vec2 axis = nearest_tank_axis(p);
+  vec3 eye = u_camera_position.xyz - vec3(axis.x, 0.0, axis.y);
+  vec3 d = p - vec3(axis.x, 0.0, axis.y) - eye;
   float radius = u_extinction.w;
   float surface = u_fog_colour.w;
   // Parameters t in [0, 1] along eye + t d: first the slab 0 <= y <= surface...

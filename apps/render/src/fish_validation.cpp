@@ -1,6 +1,7 @@
 #include "fish_validation.hpp"
 
 #include <string>
+#include <utility>
 
 #include "checks.hpp"
 
@@ -47,10 +48,37 @@ void validate_stream(const std::string& field, const VertexStream& stream, std::
   }
 }
 
+void validate_list(const std::string& field, const DeviceList& list, std::size_t rows,
+                   const std::vector<BufferResource>& buffers, bool device_lists) {
+  if (!device_lists) {
+    invalid(field, "the context has no glDrawElementsIndirect (GL 4.0, ARB_draw_indirect)");
+  }
+  if (list.buffer >= buffers.size()) {
+    invalid(field + ".buffer", std::to_string(list.buffer) + " is not a buffer of this renderer");
+  }
+  const std::size_t bytes = buffers[list.buffer].bytes;
+  const std::pair<const char*, std::size_t> parts[] = {{"command_offset", list.command_offset},
+                                                       {"entries_offset", list.entries_offset}};
+  for (const auto& [name, offset] : parts) {
+    if (offset % 4 != 0)
+      invalid(field + "." + name, std::to_string(offset) + " is not a multiple of 4");
+  }
+  if (list.command_offset > bytes || bytes - list.command_offset < 20) {
+    invalid(field + ".command_offset", std::to_string(list.command_offset) +
+                                           ": the 20-byte command passes the buffer's " +
+                                           std::to_string(bytes) + " bytes");
+  }
+  if (list.entries_offset > bytes || (bytes - list.entries_offset) / 4 < rows) {
+    invalid(field + ".entries_offset", std::to_string(list.entries_offset) + ": " +
+                                           std::to_string(rows) + " entries pass the buffer's " +
+                                           std::to_string(bytes) + " bytes");
+  }
+}
+
 }  // namespace
 
 void validate_fish(const std::vector<FishDraw>& fish, const std::vector<MeshResources>& meshes,
-                   const std::vector<BufferResource>& buffers) {
+                   const std::vector<BufferResource>& buffers, bool device_lists) {
   for (std::size_t d = 0; d < fish.size(); ++d) {
     const FishDraw& draw = fish[d];
     const std::string field = "fish[" + std::to_string(d) + "]";
@@ -65,6 +93,9 @@ void validate_fish(const std::vector<FishDraw>& fish, const std::vector<MeshReso
     }
     validate_stream(field + ".positions", draw.positions, draw.instance_count, vertices, buffers);
     validate_stream(field + ".normals", draw.normals, draw.instance_count, vertices, buffers);
+    if (draw.list.buffer != kNoBuffer) {
+      validate_list(field + ".list", draw.list, draw.instance_count, buffers, device_lists);
+    }
   }
 }
 
@@ -74,7 +105,12 @@ void validate_ids(const std::vector<FishDraw>& fish) {
     if (draw.instance_count == 0) continue;
     const std::string field = "fish[" + std::to_string(d) + "].ids";
     if (draw.ids == nullptr) invalid(field, "is null: the id pass needs an id per instance");
-    for (std::size_t i = 0; i < draw.instance_count; ++i) {
+    const bool listed = draw.list.buffer != kNoBuffer;
+    if (listed && draw.id_count == 0) {
+      invalid("fish[" + std::to_string(d) + "].id_count", "0: a device list's entries index ids");
+    }
+    const std::size_t count = listed ? draw.id_count : draw.instance_count;
+    for (std::size_t i = 0; i < count; ++i) {
       if (draw.ids[i] == 0) {
         invalid(field + "[" + std::to_string(i) + "]", "0 (the background's id; ids are > 0)");
       }

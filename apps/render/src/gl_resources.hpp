@@ -30,6 +30,7 @@ struct GlLimits {
   std::size_t max_buffer_texels = 0;        // GL_MAX_TEXTURE_BUFFER_SIZE
   std::size_t buffer_offset_alignment = 1;  // GL_TEXTURE_BUFFER_OFFSET_ALIGNMENT
   bool texture_buffer_range = false;        // glTexBufferRange (GL 4.3, ARB_texture_buffer_range)
+  bool draw_indirect = false;               // glDrawElementsIndirect (GL 4.0, ARB_draw_indirect)
   int max_samples = 1;
 };
 

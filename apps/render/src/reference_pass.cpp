@@ -13,15 +13,16 @@ ReferencePass::ReferencePass()
   program_.bind_block("Scene", 0);
 }
 
-void ReferencePass::draw(const std::vector<FishDraw>& fish,
-                         const std::vector<MeshResources>& meshes,
-                         const std::vector<BufferResource>& buffers) {
-  program_.use();
-  glBindVertexArray(vertex_array_.get());
+void ReferencePass::validate(const std::vector<FishDraw>& fish) {
   for (std::size_t d = 0; d < fish.size(); ++d) {
     const FishDraw& f = fish[d];
     if (f.instance_count == 0) continue;
     const StreamLayout& layout = f.positions.layout;
+    if (f.list.buffer != kNoBuffer) {
+      throw RenderError(ErrorCode::kInvalidArgument, "fish[" + std::to_string(d) + "].list",
+                        "fish[" + std::to_string(d) +
+                            "].list: the reference draw counts its instances on the host");
+    }
     const std::string field = "fish[" + std::to_string(d) + "].positions";
     if (f.positions.buffer == kNoBuffer || layout.type != ComponentType::kFloat32 ||
         layout.vertex_stride == 0 || layout.instance_stride % layout.vertex_stride != 0 ||
@@ -32,6 +33,18 @@ void ReferencePass::draw(const std::vector<FishDraw>& fish,
                             ": the reference draw reads float32 positions in a renderer "
                             "buffer whose instance stride is a multiple of its vertex stride");
     }
+  }
+}
+
+void ReferencePass::draw(const std::vector<FishDraw>& fish,
+                         const std::vector<MeshResources>& meshes,
+                         const std::vector<BufferResource>& buffers) {
+  program_.use();
+  glBindVertexArray(vertex_array_.get());
+  for (std::size_t d = 0; d < fish.size(); ++d) {
+    const FishDraw& f = fish[d];
+    if (f.instance_count == 0) continue;
+    const StreamLayout& layout = f.positions.layout;
     const MeshResources& mesh = meshes[f.mesh];
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.indices.get());
     glBindBuffer(GL_ARRAY_BUFFER, buffers[f.positions.buffer].buffer.get());

@@ -20,10 +20,13 @@ namespace finflex::render::detail {
 class ReferencePass {
  public:
   ReferencePass();
-  // `fish` passed validate_fish(); each one's positions must be a renderer buffer of
-  // float32 whose instance stride is a multiple of its vertex stride (FinFlex's planes
-  // and interleaved xyz are): kInvalidArgument naming "fish[d].positions" otherwise.
-  // Needs the scene framebuffer bound and the Scene block at binding 0.
+  // After validate_fish(), before any GL call: each draw's positions must be a
+  // renderer buffer of float32 whose instance stride is a multiple of its vertex
+  // stride (FinFlex's planes and interleaved xyz are), with no device list:
+  // kInvalidArgument naming "fish[d].positions" or "fish[d].list" otherwise.
+  static void validate(const std::vector<FishDraw>& fish);
+  // `fish` passed validate(). Needs the scene framebuffer bound and the Scene block
+  // at binding 0.
   void draw(const std::vector<FishDraw>& fish, const std::vector<MeshResources>& meshes,
             const std::vector<BufferResource>& buffers);
 

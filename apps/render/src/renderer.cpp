@@ -38,6 +38,7 @@ GlLimits query_limits(std::size_t max_buffer_texels) {
   limits.max_samples = std::max(value, 1);
   limits.texture_buffer_range =
       epoxy_gl_version() >= 43 || epoxy_has_gl_extension("GL_ARB_texture_buffer_range");
+  limits.draw_indirect = epoxy_gl_version() >= 40 || epoxy_has_gl_extension("GL_ARB_draw_indirect");
   if (limits.texture_buffer_range) {
     glGetIntegerv(GL_TEXTURE_BUFFER_OFFSET_ALIGNMENT, &value);
     limits.buffer_offset_alignment = static_cast<std::size_t>(std::max(value, 1));
@@ -129,7 +130,7 @@ struct Renderer::Impl {
     egl.make_current();
     scene.validate();
     camera.validate();
-    validate_fish(draws, meshes, buffers);
+    validate_fish(draws, meshes, buffers, limits.draw_indirect);
   }
 
   // glWaitSemaphoreEXT, or glSignalSemaphoreEXT and a flush (another API's wait needs
@@ -168,6 +169,7 @@ struct Renderer::Impl {
     info.samples = samples;
     info.max_buffer_texels = limits.max_buffer_texels;
     info.texture_buffer_range = limits.texture_buffer_range;
+    info.device_lists = limits.draw_indirect;
     return info;
   }
 
@@ -294,7 +296,7 @@ void Renderer::render(const Scene& scene, const Camera& camera, const std::vecto
   glClearDepth(1.0);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   opaque_triangles();
-  r.tank.draw(scene.tank);
+  r.tank.draw(scene.tank, scene.rows);
   r.fish.draw(fish, r.meshes, r.buffers);
 
   r.targets.resolve();
@@ -319,7 +321,7 @@ void Renderer::render_ids(const Scene& scene, const Camera& camera,
   r.id_targets->bind_and_clear();
   opaque_triangles();
   glDrawBuffer(GL_NONE);  // the tank hides what is behind it, and writes no id
-  r.tank.draw(scene.tank);
+  r.tank.draw(scene.tank, scene.rows);
   glDrawBuffer(GL_COLOR_ATTACHMENT0);
   r.fish_ids->draw(fish, r.meshes, r.buffers);
   r.id_timer.end();
@@ -417,6 +419,7 @@ void Renderer::take_image(Image& out) {
 void Renderer::render_reference(const Scene& scene, const Camera& camera,
                                 const std::vector<FishDraw>& fish) {
   impl_->validate(scene, camera, fish);
+  ReferencePass::validate(fish);
   Impl& r = *impl_;
   if (!r.reference) r.reference = std::make_unique<ReferencePass>();
   r.upload_scene_block(scene, camera);

@@ -16,6 +16,13 @@ void Scene::validate() const {
   require_non_negative("scene.tank.wall_albedo", tank.wall_albedo);
   require_non_negative("scene.tank.floor_albedo", tank.floor_albedo);
   require_in_range("scene.tank.segments", tank.segments, 8, 4096);
+  require_in_range("scene.rows.count", rows.count, 1, 4096);
+  require_in_range("scene.rows.columns", rows.columns, 1, 4096);
+  require_finite("scene.rows.spacing", rows.spacing);
+  if (rows.count > 1 && rows.spacing < 2.0f * tank.radius) {
+    invalid("scene.rows.spacing", to_text(rows.spacing) + " is less than the tank's diameter " +
+                                      to_text(2.0f * tank.radius));
+  }
   require_non_negative("scene.water.extinction", water.extinction);
   require_non_negative("scene.water.fog_colour", water.fog_colour);
   require_finite("scene.lighting.direction_to_light", lighting.direction_to_light);

@@ -13,6 +13,8 @@ SceneBlock make_scene_block(const Scene& scene, const Camera& camera, float aspe
   block.ground_ambient = glm::vec4(light.ground_ambient, 0.0f);
   block.fog_colour = glm::vec4(scene.water.fog_colour, scene.tank.water_depth);
   block.extinction = glm::vec4(scene.water.extinction, scene.tank.radius);
+  block.tank_rows =
+      glm::vec4(float(scene.rows.count), float(scene.rows.columns), scene.rows.spacing, 0.0f);
   return block;
 }
 

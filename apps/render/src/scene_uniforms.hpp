@@ -17,8 +17,9 @@ struct SceneBlock {
   glm::vec4 ground_ambient;
   glm::vec4 fog_colour;  // w: height of the water surface
   glm::vec4 extinction;  // w: the tank's radius
+  glm::vec4 tank_rows;   // x: count, y: columns, z: spacing
 };
-static_assert(sizeof(SceneBlock) == 64 + 7 * 16, "std140: a mat4 and seven vec4");
+static_assert(sizeof(SceneBlock) == 64 + 8 * 16, "std140: a mat4 and eight vec4");
 
 SceneBlock make_scene_block(const Scene& scene, const Camera& camera, float aspect);
 

@@ -53,11 +53,11 @@ void TankPass::rebuild(const Tank& tank) {
   built_for_ = tank;
 }
 
-void TankPass::draw(const Tank& tank) {
+void TankPass::draw(const Tank& tank, const TankRows& rows) {
   if (!built_for_ || !same_tank(*built_for_, tank)) rebuild(tank);
   program_.use();
   glBindVertexArray(vertex_array_.get());
-  glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
+  glDrawElementsInstanced(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr, rows.count);
   glBindVertexArray(0);
 }
 

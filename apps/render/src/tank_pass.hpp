@@ -1,5 +1,5 @@
-// Draws the tank (tank_mesh.hpp) with ordinary vertex attributes; the mesh is rebuilt
-// only when the tank's shape or colours change.
+// Draws the tanks (tank_mesh.hpp; one instance per tank of the rows) with ordinary
+// vertex attributes; the mesh is rebuilt only when the tank's shape or colours change.
 #pragma once
 
 #include <optional>
@@ -14,7 +14,7 @@ class TankPass {
  public:
   TankPass();
   // Needs the scene framebuffer bound and the Scene block at binding 0.
-  void draw(const Tank& tank);
+  void draw(const Tank& tank, const TankRows& rows);
 
  private:
   ShaderProgram program_;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <string>
 
 #include "cl_external_functions.hpp"
 #include "finflex/error.hpp"
@@ -124,8 +125,9 @@ cl_semaphore_khr import_semaphore(const detail::ClExternalFunctions& f, const Co
 
 ExternalOutputs::ExternalOutputs(ClDeformer& deformer, std::size_t instances,
                                  const OutputLayout& layout, const vulkan::Device& device,
-                                 std::array<std::size_t, 4> buffer_of, std::size_t tail_bytes)
-    : deformer_(deformer), layout_(layout) {
+                                 std::array<std::size_t, 4> buffer_of, std::size_t tail_bytes,
+                                 std::size_t side_bytes)
+    : deformer_(deformer), layout_(layout), side_bytes_(side_bytes) {
   Context& context = deformer.context();
   const std::string why = why_not_external(context, device, &import_);
   if (!why.empty()) throw Error(ErrorCode::kDevice, "vulkan", "external memory: " + why);
@@ -147,8 +149,12 @@ ExternalOutputs::ExternalOutputs(ClDeformer& deformer, std::size_t instances,
     data_bytes_[buffer_index_[k]] =
         std::max(data_bytes_[buffer_index_[k]], attribute_bytes(*written[k], instances, vertices));
   }
-  for (std::size_t bytes : data_bytes_) {
-    buffers_.push_back(std::make_unique<vulkan::ExternalBuffer>(device, bytes + tail_bytes));
+  constexpr std::size_t kSideAlignment = 256;  // any importer's offset alignment
+  side_offset_ = (data_bytes_[0] + kSideAlignment - 1) / kSideAlignment * kSideAlignment;
+  for (std::size_t b = 0; b < data_bytes_.size(); ++b) {
+    const std::size_t used =
+        b == 0 && side_bytes_ > 0 ? side_offset_ + side_bytes_ : data_bytes_[b];
+    buffers_.push_back(std::make_unique<vulkan::ExternalBuffer>(device, used + tail_bytes));
   }
 
   if (import_ == ExternalImport::kHostMapped) {
@@ -185,8 +191,10 @@ ExternalOutputs::ExternalOutputs(ClDeformer& deformer, std::size_t instances,
                                    CL_DEVICE_HANDLE_LIST_END_KHR,
                                    0};
     cl_int status = CL_SUCCESS;
-    cl_mem memory = f.create_buffer_with_properties(
-        context.context()(), properties, CL_MEM_READ_WRITE, data_bytes_[b], nullptr, &status);
+    const std::size_t used =
+        b == 0 && side_bytes_ > 0 ? side_offset_ + side_bytes_ : data_bytes_[b];
+    cl_mem memory = f.create_buffer_with_properties(context.context()(), properties,
+                                                    CL_MEM_READ_WRITE, used, nullptr, &status);
     if (status != CL_SUCCESS) close(fd);  // on success the implementation owns it
     check_cl(status, "clCreateBufferWithProperties (external memory, opaque fd)");
     imported_.emplace_back(memory);  // takes the reference
@@ -249,7 +257,39 @@ ExternalOutputs::~ExternalOutputs() {
   }
 }
 
-cl::Event ExternalOutputs::enqueue(const ClJob& job, std::vector<cl::Event>* kernel_events) {
+void ExternalOutputs::enqueue_copies(const std::vector<SideCopy>& copies) {
+  cl::CommandQueue& queue = deformer_.context().queue();
+  for (const SideCopy& copy : copies) {
+    if (copy.bytes == 0) continue;
+    const std::size_t at = side_offset_ + copy.offset;
+    if (import_ == ExternalImport::kHostMapped) {  // the region is host memory
+      auto* region = static_cast<unsigned char*>(buffers_[0]->mapped()) + at;
+      check_cl(
+          queue.enqueueReadBuffer(*copy.source, CL_FALSE, copy.source_offset, copy.bytes, region),
+          "clEnqueueReadBuffer (side copy)");
+    } else {
+      check_cl(
+          queue.enqueueCopyBuffer(*copy.source, imported_[0], copy.source_offset, at, copy.bytes),
+          "clEnqueueCopyBuffer (side copy)");
+    }
+  }
+}
+
+cl::Event ExternalOutputs::enqueue(const ClJob& job, std::vector<cl::Event>* kernel_events,
+                                   const std::vector<SideCopy>& copies) {
+  for (std::size_t i = 0; i < copies.size(); ++i) {
+    const SideCopy& copy = copies[i];
+    const std::string field = "copies[" + std::to_string(i) + "]";
+    if (copy.source == nullptr || (*copy.source)() == nullptr) {
+      throw Error(ErrorCode::kInvalidArgument, field, field + ": no source buffer");
+    }
+    if (copy.offset > side_bytes_ || copy.bytes > side_bytes_ - copy.offset) {
+      throw Error(ErrorCode::kInvalidArgument, field,
+                  field + ": " + std::to_string(copy.bytes) + " bytes at " +
+                      std::to_string(copy.offset) + " pass the side region's " +
+                      std::to_string(side_bytes_));
+    }
+  }
   if (job.outputs != &batch_) {
     throw Error(ErrorCode::kInvalidArgument, "job.outputs",
                 "job.outputs: an ExternalOutputs frame writes its own batch() (set job.outputs "
@@ -260,6 +300,7 @@ cl::Event ExternalOutputs::enqueue(const ClJob& job, std::vector<cl::Event>* ker
                 "enqueue: the batch is being read (begin_reading without end_reading)");
   }
   if (import_ == ExternalImport::kHostMapped) {
+    enqueue_copies(copies);  // the in-order queue: done before the kernels' event
     last_ = deformer_.enqueue(job, kernel_events);
     return last_;
   }
@@ -270,6 +311,7 @@ cl::Event ExternalOutputs::enqueue(const ClJob& job, std::vector<cl::Event>* ker
              "clEnqueueWaitSemaphoresKHR");
     consumer_pending_ = false;
   }
+  enqueue_copies(copies);
   last_ = deformer_.enqueue(job, kernel_events);
   if (device_ordered()) {
     // No wait list: the in-order queue puts the signal after the kernels, and NVIDIA's

@@ -69,10 +69,25 @@ struct VertexStream {
   static VertexStream from_buffer(BufferId buffer, const StreamLayout& layout);
 };
 
+// Which instances a draw draws, decided on the GPU: a buffer of the renderer (e.g.
+// memory that FinFlex's LevelChooser fills each frame through ExternalOutputs' side
+// copies) holds, at command_offset, GL's DrawElementsIndirectCommand
+//   {count, instanceCount, firstIndex, baseVertex, baseInstance}   (5 uint32)
+// and, at entries_offset, one uint32 per drawn instance: its entry in FishDraw::ids.
+// Drawn instance i reads row i of the streams; instanceCount must not exceed the
+// draw's instance_count (the rows), count + firstIndex the mesh's indices, and
+// baseVertex and baseInstance are 0: the renderer cannot check what the GPU reads.
+struct DeviceList {
+  BufferId buffer = kNoBuffer;     // kNoBuffer: the host's instance_count instances
+  std::size_t command_offset = 0;  // bytes, a multiple of 4
+  std::size_t entries_offset = 0;  // bytes, a multiple of 4
+};
+
 struct FishDraw {
   MeshId mesh = 0;                      // Renderer::add_mesh: the triangles, shared
   glm::vec3 albedo{0.8f, 0.45f, 0.2f};  // the species' colour, linear RGB in 0..1
-  std::size_t instance_count = 0;       // 0 draws nothing
+  std::size_t instance_count = 0;       // 0 draws nothing; with a list, the rows it may draw
+  DeviceList list;                      // the GPU's instances (Renderer::draws_device_lists)
   VertexStream positions;               // mesh coordinates, one set per instance
   VertexStream normals;                 // unit vectors (normalised again when shading)
   // Per instance, world from mesh coordinates: a rotation, a uniform scale and a
@@ -82,8 +97,10 @@ struct FishDraw {
   const glm::mat4* transforms = nullptr;
   // Per instance, the value the id pass writes where the instance is the nearest
   // surface (Renderer::render_ids; 0 is the background, so ids are > 0). Needed by
-  // render_ids only; instance_count values, read during that call.
+  // render_ids only; instance_count values, read during that call. With a list, the
+  // table its entries index: id_count values.
   const std::uint32_t* ids = nullptr;
+  std::size_t id_count = 0;  // with a list: the entries of ids
 };
 
 }  // namespace finflex::render

@@ -63,6 +63,8 @@ struct DeviceInfo {
   std::size_t max_buffer_texels = 0;  // GL_MAX_TEXTURE_BUFFER_SIZE
   bool texture_buffer_range = false;  // GL 4.3 / ARB_texture_buffer_range: draws of
                                       // any size are split into ranges that fit
+  bool device_lists = false;          // GL 4.0 / ARB_draw_indirect: FishDraw::list is drawn
+                                      // (glDrawElementsIndirect)
 };
 
 // What the context offers for memory and semaphores of another API (Vulkan's, shared
@@ -125,15 +127,18 @@ class Renderer {
 
   // Draws a frame. Every draw is validated before anything is drawn: kInvalidArgument
   // naming the field, e.g. "fish[1].normals.layout.vertex_stride" or
-  // "fish[0].positions" (too few bytes for its instances), and the value.
+  // "fish[0].positions" (too few bytes for its instances), and the value; a device
+  // list ("fish[d].list...") where device().device_lists is false, or one whose
+  // command or entries do not fit its buffer.
   void render(const Scene& scene, const Camera& camera, const std::vector<FishDraw>& fish);
 
   // The id pass of the same view: per pixel the FishDraw::ids value of the nearest
   // fish instance (0: none), at one sample per pixel, the tank drawn into the depth
   // only (render/id_image.hpp). Validated as render() does, and every draw with
   // instances needs ids, all > 0 (kInvalidArgument naming "fish[d].ids" or
-  // "fish[d].ids[i]"). Reuses the streams' uploads of nothing: host streams are
-  // copied again, so hand it renderer buffers where both passes run.
+  // "fish[d].ids[i]"; with a device list, id_count of them, its entries' table). Reuses the
+  // streams' uploads of nothing: host streams are copied again, so hand it renderer buffers where
+  // both passes run.
   void render_ids(const Scene& scene, const Camera& camera, const std::vector<FishDraw>& fish);
   // The last id pass (waits for the GPU; id passes in flight stay so). kInvalidArgument
   // when none was rendered.
@@ -169,7 +174,8 @@ class Renderer {
   // colour, one multi-draw per species, into the colour pass's framebuffer (the last
   // frame's image is kept). Validated as render(), and each positions stream must be
   // a renderer buffer of float32 whose instance stride is a multiple of its vertex
-  // stride (kInvalidArgument naming "fish[d].positions"). Its GPU time:
+  // stride (kInvalidArgument naming "fish[d].positions"), and no device list
+  // ("fish[d].list": the reference counts instances on the host). Its GPU time:
   // gpu_reference_seconds(), as gpu_draw_seconds().
   void render_reference(const Scene& scene, const Camera& camera,
                         const std::vector<FishDraw>& fish);

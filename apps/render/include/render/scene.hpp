@@ -19,11 +19,22 @@ struct Tank {
   int segments = 96;                            // facets around the wall, >= 8
 };
 
+// Tanks of the one kind in rows (a farm hall): tank t's axis at
+//   x = (t mod columns) spacing,  z = -floor(t / columns) spacing,
+// tank 0's on the y axis. Each fragment is in the water of the tank nearest it.
+struct TankRows {
+  int count = 1;         // 1 .. 4096
+  int columns = 1;       // tanks per row, >= 1
+  float spacing = 0.0f;  // m between neighbouring axes: at least the diameter when count > 1
+};
+
 // Water between the camera and what it sees: light of each channel is absorbed and
 // scattered at its own rate per metre, so far things fade towards `fog_colour`
 // (exponential fog); light from above loses the same way with depth (the tint).
 // Only the part of a view ray inside the tank's water (the cylinder below the surface)
-// counts: a camera above or beside the tank looks through clear air first.
+// counts: a camera above or beside the tank looks through clear air first. In a hall,
+// that is the water of the tank the seen point is in (a ray through a nearer tank's
+// water on its way does not fade there).
 struct Water {
   glm::vec3 extinction{0.60f, 0.28f, 0.30f};    // per metre: red goes first, then blue
   glm::vec3 fog_colour{0.02f, 0.075f, 0.072f};  // the colour far water fades to
@@ -42,6 +53,7 @@ struct Lighting {
 
 struct Scene {
   Tank tank;
+  TankRows rows;
   Water water;
   Lighting lighting;
   glm::vec3 background{0.015f, 0.017f, 0.02f};  // outside the tank: a dim room
@@ -49,7 +61,8 @@ struct Scene {
   // Throws RenderError (kInvalidArgument) naming the field ("scene.tank.radius", ...)
   // when a value is not finite, a length is not > 0, water_depth exceeds wall_height,
   // a colour or extinction is negative, specular is outside 0..1, shininess < 1,
-  // segments < 8, or direction_to_light is zero.
+  // segments < 8, direction_to_light is zero, or rows ("scene.rows.count", ...) out
+  // of its ranges.
   void validate() const;
 };
 

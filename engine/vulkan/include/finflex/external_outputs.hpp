@@ -65,6 +65,15 @@ struct ExternalChoice {
 };
 ExternalChoice choose_external_device(const Context& context);
 
+// A copy that each frame makes into the outputs' side region (ExternalOutputs'
+// side_bytes): `bytes` of `source` from `source_offset` to `offset` in the region.
+struct SideCopy {
+  const cl::Buffer* source = nullptr;
+  std::size_t source_offset = 0;
+  std::size_t bytes = 0;
+  std::size_t offset = 0;
+};
+
 class ExternalOutputs {
  public:
   // Buffers in `device`'s memory for `instances` instances in `layout`, one per
@@ -72,11 +81,15 @@ class ExternalOutputs {
   // previous positions: {0, 0, 0, 0} interleaves them all in one), each as large as
   // its attributes need (OutputLayout::required_bytes; every plane whole) plus
   // `tail_bytes` that importers may want beyond the data (Mesa's GL needs 64).
+  // `side_bytes`: a side region of buffer 0 after its data, from side_offset()
+  // (256-byte aligned), that each frame fills from other OpenCL buffers (enqueue's
+  // copies) for the consumer to read beside the outputs, ordered as they are: e.g. a
+  // level's indirect draw command and instance list (LevelChooser).
   // The layout is checked as ClDeformer::bind does. Errors: kDevice naming
   // why_not_external's reason; kOpenCL when an import fails.
   ExternalOutputs(ClDeformer& deformer, std::size_t instances, const OutputLayout& layout,
                   const vulkan::Device& device, std::array<std::size_t, 4> buffer_of = {0, 1, 2, 3},
-                  std::size_t tail_bytes = 256);
+                  std::size_t tail_bytes = 256, std::size_t side_bytes = 0);
   ~ExternalOutputs();
   ExternalOutputs(const ExternalOutputs&) = delete;
   ExternalOutputs& operator=(const ExternalOutputs&) = delete;
@@ -90,8 +103,11 @@ class ExternalOutputs {
   std::size_t buffer_count() const { return buffers_.size(); }
   const vulkan::ExternalBuffer& buffer(std::size_t k) const { return *buffers_.at(k); }
   std::size_t buffer_of(std::size_t attribute) const { return buffer_index_.at(attribute); }
-  // The bytes of buffer k that hold data (without the tail).
+  // The bytes of buffer k that hold data (without the side region and the tail).
   std::size_t data_bytes(std::size_t k) const { return data_bytes_.at(k); }
+  // Buffer 0's side region: from side_offset(), side_bytes() long (0: none).
+  std::size_t side_offset() const { return side_offset_; }
+  std::size_t side_bytes() const { return side_bytes_; }
 
   // Whether the frame orders itself on the device through the two semaphores (else
   // both are null and the consumer waits on the host).
@@ -101,10 +117,13 @@ class ExternalOutputs {
   // Why the frame is not device-ordered (empty when it is).
   const std::string& semaphores_why_not() const { return semaphores_why_not_; }
 
-  // Enqueues `job` (its outputs must be batch()) as the import says; returns the
-  // event after which the frame is in the memory (device-ordered: the semaphore's
-  // signal). `kernel_events` as ClDeformer::enqueue.
-  cl::Event enqueue(const ClJob& job, std::vector<cl::Event>* kernel_events = nullptr);
+  // Enqueues `copies` into the side region, then `job` (its outputs must be batch()),
+  // as the import says; returns the event after which the frame is in the memory
+  // (device-ordered: the semaphore's signal). `kernel_events` as ClDeformer::enqueue.
+  // kInvalidArgument naming "copies[i]" (no source, or past the side region), nothing
+  // enqueued.
+  cl::Event enqueue(const ClJob& job, std::vector<cl::Event>* kernel_events = nullptr,
+                    const std::vector<SideCopy>& copies = {});
   // The consumer has signalled consumer_done() after its last read of the frame (and
   // flushed): the next enqueue waits for it on the device.
   void consumer_signalled() { consumer_pending_ = true; }
@@ -123,11 +142,14 @@ class ExternalOutputs {
   std::vector<std::unique_ptr<vulkan::ExternalBuffer>> buffers_;
   std::array<std::size_t, 4> buffer_index_{};
   std::vector<std::size_t> data_bytes_;
+  std::size_t side_offset_ = 0;
+  std::size_t side_bytes_ = 0;
   std::vector<cl::Buffer> imported_;  // kImported: the buffers as OpenCL memory
   std::unique_ptr<vulkan::ExternalSemaphore> kernels_done_;
   std::unique_ptr<vulkan::ExternalSemaphore> consumer_done_;
   void acquire_or_release(bool acquire);  // kImported: blocking
-  struct ClImports;                       // kImported: OpenCL's entry points and semaphores
+  void enqueue_copies(const std::vector<SideCopy>& copies);
+  struct ClImports;  // kImported: OpenCL's entry points and semaphores
   std::unique_ptr<ClImports> cl_;
   std::string semaphores_why_not_;
   bool consumer_pending_ = false;
