@@ -258,24 +258,29 @@ TEST(CliPictures, TheDatasetLoadsWithPycocotools) {
     }
     GTEST_SKIP() << "no Python with pycocotools: scripts/install-deps.sh makes .venv";
   }
-  // Two species, seen obliquely: fish hide each other.
+  // Two species, seen obliquely: fish hide each other. With the YOLO datasets and the
+  // depth maps, which check_truth.py reads against coco.json.
   const std::string out = test::temp_path("coco");
   const RunResult r = run_cli(
       "swim --fish 40 --seconds 0.1 --fps 20 --seed 3 --size 320x180 --annotate --video none "
-      "--species " +
+      "--formats coco,yolo --depth --species " +
       low_resolution_species() + " --species " + fish("barramundi/BarramundiFish.gltf") + ":" +
       test::data_path("rigs/barramundi_swim.rig.json") + " --out '" + out + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const RunResult check = [&] {
+  const auto check = [&](const std::string& script) {
     const std::string log = test::temp_path("check.txt");
     const int status = std::system(
-        ("'" + python + "' '" + FINFLEX_CHECK_COCO + "' '" + out + "' >'" + log + "' 2>&1")
-            .c_str());
+        ("'" + python + "' '" + script + "' '" + out + "' >'" + log + "' 2>&1").c_str());
     return RunResult{WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(log), ""};
-  }();
-  EXPECT_EQ(check.exit_code, 0) << check.out;
-  EXPECT_NE(check.out.find("2 images"), std::string::npos) << check.out;
-  EXPECT_NE(check.out.find("all agree"), std::string::npos) << check.out;
+  };
+  const RunResult coco = check(FINFLEX_CHECK_COCO);
+  EXPECT_EQ(coco.exit_code, 0) << coco.out;
+  EXPECT_NE(coco.out.find("2 images"), std::string::npos) << coco.out;
+  EXPECT_NE(coco.out.find("all agree"), std::string::npos) << coco.out;
+  const RunResult truth = check(FINFLEX_CHECK_TRUTH);
+  EXPECT_EQ(truth.exit_code, 0) << truth.out;
+  EXPECT_NE(truth.out.find("agree with coco.json"), std::string::npos) << truth.out;
+  std::printf("%s", truth.out.c_str());
 }
 
 // Runs `arguments` expecting exit 2 with one line holding `expected`, and nothing at
@@ -307,6 +312,9 @@ TEST(CliPictures, BadPictureInputsExitTwoAndWriteNothing) {
       {" --video avi", "'avi' is not a video format"},
       {" --image-frames 99", "--image-frames '99'"},
       {" --annotate --image-frames none", "--annotate annotates the frames written as images"},
+      {" --annotate --formats coco,xml", "--formats: 'xml' is not a dataset format"},
+      {" --depth", "--depth is part of the dataset: it needs --annotate"},
+      {" --formats yolo", "--formats is part of the dataset"},
       {" --no-render --video apng", "--video draws frames"},
       {" --hand-off sideways",
        "--hand-off: 'sideways' is not auto, external-memory, shared or copy"},

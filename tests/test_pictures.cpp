@@ -23,6 +23,7 @@
 #include "swim_scene.hpp"
 #include "tank_pictures.hpp"
 #include "tank_view.hpp"
+#include "yolo_labels.hpp"
 
 namespace finflex::pictures {
 namespace {
@@ -58,6 +59,60 @@ TEST(Masks, RunLengthsAreCocosColumnMajorCounts) {
   render::IdImage empty = small_ids();
   std::fill(empty.ids.begin(), empty.ids.end(), 0u);
   EXPECT_TRUE(instance_masks(empty).empty());
+}
+
+double shoelace(const std::vector<glm::dvec2>& polygon) {
+  double twice = 0.0;
+  for (std::size_t k = 0; k < polygon.size(); ++k) {
+    const glm::dvec2 a = polygon[k], b = polygon[(k + 1) % polygon.size()];
+    twice += a.x * b.y - a.y * b.x;
+  }
+  return 0.5 * twice;  // > 0: clockwise on the image (y down)
+}
+
+render::IdImage ids_from_rows(const std::vector<std::string>& rows) {
+  render::IdImage image;
+  image.height = int(rows.size());
+  image.width = int(rows[0].size());
+  for (const std::string& row : rows) {
+    for (char c : row) image.ids.push_back(c == '.' ? 0u : std::uint32_t(c - '0'));
+  }
+  image.depth.assign(image.ids.size(), 1.0f);
+  return image;
+}
+
+TEST(YoloLabels, OutlinesFollowThePixelEdgesAndJoinTheirParts) {
+  // Fish 1: an L and, apart from it, a single pixel touching it only at a corner
+  // (4-connectivity: two parts); fish 2: a ring around a hole.
+  const render::IdImage ids = ids_from_rows({"11.222.",  //
+                                             "1.12.2.",  //
+                                             "...222."});
+  const std::vector<InstanceMask> masks = instance_masks(ids);
+  ASSERT_EQ(masks.size(), 2u);
+  const std::vector<glm::dvec2> one = mask_outline(ids, masks[0]);
+  // The L (3 pixels) and the pixel at (2, 1): corners only, every edge axis-aligned,
+  // the two parts joined there and back (the bridge adds no area).
+  EXPECT_DOUBLE_EQ(shoelace(one), 4.0);
+  for (const glm::dvec2& p : one) EXPECT_EQ(p, glm::round(p));  // pixel corners
+  EXPECT_EQ(one.front(), glm::dvec2(0.0, 0.0));
+  // The ring's outline is its outer boundary, the square around it: its hole counts
+  // (9 = 8 + 1).
+  const std::vector<glm::dvec2> ring = mask_outline(ids, masks[1]);
+  EXPECT_DOUBLE_EQ(shoelace(ring), 9.0);
+  EXPECT_EQ(ring, (std::vector<glm::dvec2>{{3, 0}, {6, 0}, {6, 3}, {3, 3}}));
+
+  // Lines: class, box (centre, size) normalised; pose adds the keypoints, 0 0 0 outside.
+  const std::string detect = yolo_line(YoloTask::kDetect, 1, masks[0], one, {}, 7, 3);
+  EXPECT_EQ(detect, "1 0.214286 0.333333 0.428571 0.666667");
+  const std::string pose =
+      yolo_line(YoloTask::kPose, 0, masks[0], one, {{{0.5, 1.5, 2.0}, {0.0, 0.0, 0.0}}}, 7, 3);
+  EXPECT_EQ(pose, "0 0.214286 0.333333 0.428571 0.666667 0.071429 0.500000 2 0.000000 0.000000 0");
+  const std::string segment = yolo_line(YoloTask::kSegment, 0, masks[1], ring, {}, 7, 3);
+  EXPECT_EQ(segment.substr(0, 20), "0 0.428571 0.000000 ");
+  const std::string yaml =
+      yolo_dataset_yaml(YoloTask::kPose, {"blub", "barramundi"}, {"snout", "tail_fork"}, {0, 1});
+  EXPECT_NE(yaml.find("names:\n  0: blub\n  1: barramundi\n"), std::string::npos) << yaml;
+  EXPECT_NE(yaml.find("kpt_shape: [2, 3]\nflip_idx: [0, 1]\n"), std::string::npos) << yaml;
 }
 
 TEST(Masks, ARunAcrossColumnsBoxesTheColumnsItSpans) {

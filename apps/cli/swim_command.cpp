@@ -9,7 +9,7 @@
 //                [--device NAME] [--out DIR [--mesh-frames LIST]]
 //                [--size WxH] [--camera above|oblique|side] [--samples N]
 //                [--image-frames all|none|LIST] [--video auto|none|mp4,gif,apng]
-//                [--annotate] [--render | --no-render]
+//                [--annotate [--formats coco,yolo] [--depth]] [--render | --no-render]
 //                [--hand-off auto|external-memory|shared|copy] [--reference-draw]
 #include <unistd.h>
 
@@ -476,6 +476,12 @@ Command add_swim_command(CLI::App& app) {
                    "auto (MP4 with ffmpeg, else APNG; default), none, or a list of mp4, gif, apng");
   swim->add_flag("--annotate", options->annotate,
                  "Also instance masks and COCO annotations of the image frames");
+  swim->add_option("--formats", options->formats,
+                   "With --annotate: the dataset's formats, coco and yolo (Ultralytics detect, "
+                   "segment and pose)")
+      ->capture_default_str();
+  swim->add_flag("--depth", options->depth,
+                 "With --annotate: each frame's depth in metres (depth/frame_NNNNNN.npy)");
   swim->add_flag_function(
       "--render,!--no-render",
       [options](std::int64_t count) { options->render = count > 0 ? 1 : 0; },

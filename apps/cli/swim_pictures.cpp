@@ -47,7 +47,7 @@ SwimPictureFiles::SwimPictureFiles(const std::string& folder, pictures::TankPict
   }
   if (plan.annotate) {
     dataset_ = std::make_unique<pictures::CocoDataset>(folder, scene, pictures.camera(), size.width,
-                                                       size.height, info);
+                                                       size.height, info, plan.dataset);
   }
   std::ofstream camera(fs::path(folder) / "camera.json");
   camera << pictures::camera_json(pictures.camera(), size.width, size.height).dump(1) << "\n";

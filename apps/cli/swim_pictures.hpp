@@ -32,6 +32,7 @@ struct PictureFiles {
   std::set<std::size_t> image_frames;  // else these frames
   std::vector<std::string> videos;     // extensions: "mp4", "gif", "png" (APNG)
   bool annotate = false;               // masks and COCO for every frame written as an image
+  pictures::DatasetOptions dataset;    // with annotate: YOLO, depth
   int fps = 30;                        // the videos'
 
   bool image_of(std::size_t frame) const { return every_image || image_frames.count(frame) > 0; }

@@ -104,6 +104,27 @@ void plan_pictures(const SwimOptions& options, SwimPlan& plan) {
                     "(--video none writes none)");
   }
   files.annotate = options.annotate;
+  for (const auto& [given, option] :
+       {std::pair{options.formats != "coco", "--formats"}, std::pair{options.depth, "--depth"}}) {
+    if (given && !files.annotate) {
+      throw Error(ErrorCode::kInvalidArgument, option,
+                  std::string(option) + " is part of the dataset: it needs --annotate");
+    }
+  }
+  // coco.json is always written: it holds the truth the other formats are made from.
+  std::size_t start = 0;
+  while (start <= options.formats.size()) {
+    const std::size_t comma = std::min(options.formats.find(',', start), options.formats.size());
+    const std::string format = options.formats.substr(start, comma - start);
+    if (format == "yolo") {
+      files.dataset.yolo = true;
+    } else if (format != "coco") {
+      throw Error(ErrorCode::kInvalidArgument, "--formats",
+                  "--formats: '" + format + "' is not a dataset format (coco, yolo)");
+    }
+    start = comma + 1;
+  }
+  files.dataset.depth = options.depth;
   if (files.annotate && !files.every_image && files.image_frames.empty()) {
     throw Error(ErrorCode::kInvalidArgument, "--annotate",
                 "--annotate annotates the frames written as images: --image-frames is none");

@@ -35,6 +35,8 @@ struct SwimOptions {
   std::string image_frames;
   std::string video;
   bool annotate = false;
+  std::string formats = "coco";  // with --annotate: coco, yolo
+  bool depth = false;
   int render = -1;  // --render: 1, --no-render: 0, neither: -1 (on with --out)
   std::string hand_off = "auto";
   bool reference_draw = false;

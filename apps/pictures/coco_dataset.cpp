@@ -1,6 +1,8 @@
 #include "coco_dataset.hpp"
 
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -8,6 +10,7 @@
 #include "fish_keypoints.hpp"
 #include "instance_masks.hpp"
 #include "render/png16.hpp"
+#include "yolo_labels.hpp"
 
 namespace finflex::pictures {
 
@@ -17,22 +20,51 @@ namespace {
 // (metres) and belongs to something else.
 constexpr double kOcclusionTolerance = 0.005;
 
-std::string mask_name(std::size_t frame) {
-  char name[48];
-  std::snprintf(name, sizeof name, "masks/frame_%06zu.png", frame);
+std::string frame_file(const char* folder, std::size_t frame, const char* extension) {
+  char name[64];
+  std::snprintf(name, sizeof name, "%s/frame_%06zu.%s", folder, frame, extension);
   return name;
 }
 
-nlohmann::ordered_json categories(const tank::SwimScene& scene) {
+nlohmann::ordered_json categories(const tank::SwimScene& scene,
+                                  const std::vector<LengthWeight>& weights) {
   nlohmann::ordered_json out = nlohmann::ordered_json::array();
   for (std::size_t s = 0; s < scene.species().size(); ++s) {
     out.push_back({{"id", s + 1},
                    {"name", scene.species()[s].name},
                    {"supercategory", "fish"},
                    {"keypoints", {"snout", "tail_fork"}},
-                   {"skeleton", {{1, 2}}}});
+                   {"skeleton", {{1, 2}}},
+                   {"length_weight",
+                    {{"a", weights[s].a}, {"b", weights[s].b}, {"units", "W g = a (L cm)^b"}}}});
   }
   return out;
+}
+
+// numpy's .npy (format 1.0): magic, a header dict padded to 64 bytes, the data.
+void write_depth_npy(const std::string& path, const render::IdImage& ids) {
+  std::string header = "{'descr': '<f4', 'fortran_order': False, 'shape': (" +
+                       std::to_string(ids.height) + ", " + std::to_string(ids.width) + "), }";
+  while ((10 + header.size() + 1) % 64 != 0) header += ' ';
+  header += '\n';
+  std::ofstream out(path, std::ios::binary);
+  out.write("\x93NUMPY\x01\x00", 8);
+  const auto length = static_cast<std::uint16_t>(header.size());
+  const char little[2] = {char(length & 0xff), char(length >> 8)};
+  out.write(little, 2);
+  out << header;
+  std::vector<float> depth(ids.depth.size());
+  for (std::size_t k = 0; k < depth.size(); ++k) {
+    depth[k] = std::isfinite(ids.depth[k]) ? ids.depth[k] : 0.0f;  // nothing drawn: 0
+  }
+  out.write(reinterpret_cast<const char*>(depth.data()), std::streamsize(depth.size() * 4));
+  if (!out) throw Error(ErrorCode::kIo, "--out", "'" + path + "': write failed");
+}
+
+void write_text(const std::string& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  if (!out) throw Error(ErrorCode::kIo, "--out", "'" + path + "': write failed");
 }
 
 void require_written(const std::ofstream& stream, const std::string& path) {
@@ -41,15 +73,18 @@ void require_written(const std::ofstream& stream, const std::string& path) {
 
 }  // namespace
 
+double LengthWeight::grams(double length_m) const { return a * std::pow(100.0 * length_m, b); }
+
 CocoDataset::CocoDataset(const std::string& folder, tank::SwimScene& scene,
                          const render::Camera& camera, int width, int height,
-                         const nlohmann::ordered_json& info)
+                         const nlohmann::ordered_json& info, const DatasetOptions& options)
     : folder_(folder),
       scene_(scene),
       camera_(camera),
       width_(width),
       height_(height),
-      camera_from_world_(render::camera_from_world(camera)) {
+      camera_from_world_(render::camera_from_world(camera)),
+      options_(options) {
   const std::vector<tank::Fish>& fish = scene.hall().fish();
   if (fish.size() > kMaxAnnotatedFish) {
     throw Error(ErrorCode::kInvalidArgument, "fish",
@@ -72,14 +107,25 @@ CocoDataset::CocoDataset(const std::string& folder, tank::SwimScene& scene,
     fish_.push_back({f.species, f.length});
   }
   for (const tank::Species& species : scene.species()) names_.push_back(species.name);
+  // One relation for every species for now: FishBase's yardstick of a fusiform fish
+  // (10 g at 10 cm) with isometric growth (docs/dataset.md "Weights").
+  weights_.assign(names_.size(), LengthWeight{});
 
-  std::filesystem::create_directories(std::filesystem::path(folder) / "masks");
+  const std::filesystem::path root(folder);
+  std::filesystem::create_directories(root / "masks");
+  if (options_.depth) std::filesystem::create_directories(root / "depth");
+  if (options_.yolo) {
+    for (YoloTask task : kYoloTasks) {
+      std::filesystem::create_directories(root / "yolo" / to_string(task) / "images");
+      std::filesystem::create_directories(root / "yolo" / to_string(task) / "labels");
+    }
+  }
   const std::string path = (std::filesystem::path(folder) / "coco.json").string();
   coco_.open(path, std::ios::binary);
   nlohmann::ordered_json head;
   head["info"] = info;
   head["licenses"] = nlohmann::ordered_json::array();
-  head["categories"] = categories(scene);
+  head["categories"] = categories(scene, weights_);
   const std::string text = head.dump();
   coco_ << text.substr(0, text.size() - 1) << ",\"annotations\":[";  // the object stays open
   require_written(coco_, path);
@@ -121,9 +167,15 @@ CocoDataset::FrameAnnotations CocoDataset::annotate(const FrameTruth& truth) con
   mask.width = ids.width;
   mask.height = ids.height;
   mask.samples.assign(ids.ids.begin(), ids.ids.end());
-  render::write_png16((std::filesystem::path(folder_) / mask_name(truth.frame)).string(), mask);
+  render::write_png16(
+      (std::filesystem::path(folder_) / frame_file("masks", truth.frame, "png")).string(), mask);
 
+  if (options_.depth) {
+    write_depth_npy(
+        (std::filesystem::path(folder_) / frame_file("depth", truth.frame, "npy")).string(), ids);
+  }
   FrameAnnotations out;
+  std::array<std::string, kYoloTasks.size()> labels;
   const std::vector<InstanceMask> masks = instance_masks(ids);
   const render::PinholeIntrinsics k = render::pinhole_intrinsics(camera_, width_, height_);
   for (const InstanceMask& m : masks) {
@@ -132,6 +184,7 @@ CocoDataset::FrameAnnotations CocoDataset::annotate(const FrameTruth& truth) con
     const std::size_t instance = instance_of_fish_[f];
     nlohmann::ordered_json keypoints = nlohmann::ordered_json::array();
     nlohmann::ordered_json camera_points = nlohmann::ordered_json::array();
+    std::vector<std::array<double, 3>> yolo_keypoints;
     int labelled = 0;
     for (const glm::vec3& world :
          {truth.snouts[one.species][instance], truth.forks[one.species][instance]}) {
@@ -143,13 +196,23 @@ CocoDataset::FrameAnnotations CocoDataset::annotate(const FrameTruth& truth) con
                           u < double(width_) && v < double(height_);
       if (!inside) {
         keypoints.insert(keypoints.end(), {0.0, 0.0, 0});
+        yolo_keypoints.push_back({0.0, 0.0, 0.0});
         continue;
       }
       const std::size_t pixel = ids.index(static_cast<int>(u), static_cast<int>(v));
       const bool hidden =
           ids.ids[pixel] != m.id && double(ids.depth[pixel]) < p.z - kOcclusionTolerance;
       keypoints.insert(keypoints.end(), {u, v, hidden ? 1 : 2});
+      yolo_keypoints.push_back({u, v, hidden ? 1.0 : 2.0});
       ++labelled;
+    }
+    if (options_.yolo) {
+      const std::vector<glm::dvec2> outline = mask_outline(ids, m);
+      for (std::size_t t = 0; t < kYoloTasks.size(); ++t) {
+        labels[t] +=
+            yolo_line(kYoloTasks[t], one.species, m, outline, yolo_keypoints, width_, height_) +
+            "\n";
+      }
     }
     nlohmann::ordered_json annotation;
     annotation["id"] = 0;  // append numbers them
@@ -166,18 +229,27 @@ CocoDataset::FrameAnnotations CocoDataset::annotate(const FrameTruth& truth) con
     annotation["species"] = names_[one.species];
     annotation["length_m"] = one.length;
     annotation["fork_length_m"] = one.length * species_[one.species].landmarks.fork_fraction;
+    annotation["weight_kg"] = 1e-3 * weights_[one.species].grams(one.length);
     annotation["keypoints_camera_m"] = camera_points;
     out.annotations.push_back(std::move(annotation));
   }
+  if (options_.yolo) {  // every image gets its label file, empty when no fish is seen
+    for (std::size_t t = 0; t < kYoloTasks.size(); ++t) {
+      const std::filesystem::path folder =
+          std::filesystem::path(folder_) / "yolo" / to_string(kYoloTasks[t]);
+      write_text((folder / frame_file("labels", truth.frame, "txt")).string(), labels[t]);
+    }
+  }
   out.image = {{"id", image_id},
                {"file_name", truth.image_file},
-               {"mask_file", mask_name(truth.frame)},
+               {"mask_file", frame_file("masks", truth.frame, "png")},
                {"width", ids.width},
                {"height", ids.height},
                {"frame", truth.frame},
                {"time_s", truth.time_s},
                {"fish_in_tank", fish_.size()},
                {"fish_visible", masks.size()}};
+  if (options_.depth) out.image["depth_file"] = frame_file("depth", truth.frame, "npy");
   return out;
 }
 
@@ -194,6 +266,23 @@ void CocoDataset::finish() {
   coco_ << "\n],\"images\":" << images_.dump() << "}\n";
   coco_.close();
   require_written(coco_, folder_ + "/coco.json");
+  if (!options_.yolo) return;
+  const std::filesystem::path root(folder_);
+  for (YoloTask task : kYoloTasks) {
+    const std::filesystem::path folder = root / "yolo" / to_string(task);
+    for (const nlohmann::ordered_json& image : images_) {
+      const std::filesystem::path picture = root / image["file_name"].get<std::string>();
+      const std::filesystem::path link = folder / "images" / picture.filename();
+      std::error_code ec;
+      std::filesystem::create_hard_link(picture, link, ec);
+      if (ec) std::filesystem::copy_file(picture, link, ec);  // another file system
+      if (ec) {
+        throw Error(ErrorCode::kIo, "--out", "'" + link.string() + "': " + ec.message());
+      }
+    }
+    write_text((folder / "dataset.yaml").string(),
+               yolo_dataset_yaml(task, names_, {"snout", "tail_fork"}, {0, 1}));
+  }
 }
 
 }  // namespace finflex::pictures

@@ -16,7 +16,15 @@
 // "fish_id" (the tank's index: the same fish in every frame, for tracking),
 // "species", "length_m" (total length, snout to tail tip), "fork_length_m",
 // "keypoints_camera_m" (the two points in camera coordinates, OpenCV axes, metres).
+// "weight_kg" (the length-weight relation W = a L^b, L the total length in cm, W in g:
+// the category's "length_weight").
 // coco.json is streamed: memory does not grow with the frames.
+//
+// With DatasetOptions: `yolo` also writes Ultralytics YOLO's three datasets of the same
+// frames (yolo/detect, yolo/segment, yolo/pose: images/ as hard links to the frames,
+// labels/, dataset.yaml; yolo_labels.hpp), `depth` each frame's depth in metres
+// (depth/frame_NNNNNN.npy: float32, height x width, row-major from the top, the camera
+// axis' distance of the nearest surface at each pixel's centre, 0 where nothing is).
 #pragma once
 
 #include <cstddef>
@@ -36,12 +44,25 @@ namespace finflex::pictures {
 // Ids are 16-bit in the masks: at most this many fish.
 constexpr std::size_t kMaxAnnotatedFish = 65535;
 
+struct DatasetOptions {
+  bool yolo = false;   // Ultralytics YOLO detect, segment and pose datasets too
+  bool depth = false;  // depth/frame_NNNNNN.npy per frame
+};
+
+// W = a L^b: W in grams, L the total length in centimetres (FishBase's units).
+struct LengthWeight {
+  double a = 0.01;
+  double b = 3.0;
+  double grams(double length_m) const;
+};
+
 class CocoDataset {
  public:
   // Opens `folder`/coco.json and makes `folder`/masks. kInvalidArgument naming "fish"
   // when the tank has more than kMaxAnnotatedFish fish; kIo when a file cannot be made.
   CocoDataset(const std::string& folder, tank::SwimScene& scene, const render::Camera& camera,
-              int width, int height, const nlohmann::ordered_json& info);
+              int width, int height, const nlohmann::ordered_json& info,
+              const DatasetOptions& options = {});
 
   // A frame in three steps, so that the work in the middle can run on another thread
   // while the next frames are drawn: frame `frame` (time_s into the swim), whose
@@ -65,7 +86,9 @@ class CocoDataset {
   FrameAnnotations annotate(const FrameTruth& truth) const;
   // and coco.json's part of it, frames in order (the thread that made the dataset).
   void append(FrameAnnotations frame);
-  // Writes the images' list and closes coco.json. kIo when the file could not be written.
+  // Writes the images' list and closes coco.json; with YOLO, links each frame's image
+  // into the YOLO datasets (once its PNG is written) and writes their YAMLs. kIo when
+  // a file could not be written.
   void finish();
 
   std::size_t annotation_count() const { return next_annotation_ - 1; }
@@ -89,8 +112,10 @@ class CocoDataset {
     std::size_t species = 0;
     double length = 0.0;
   };
-  std::vector<FishTruth> fish_;     // per tank fish: what does not change in a swim
-  std::vector<std::string> names_;  // per species
+  std::vector<FishTruth> fish_;        // per tank fish: what does not change in a swim
+  std::vector<std::string> names_;     // per species
+  std::vector<LengthWeight> weights_;  // per species
+  DatasetOptions options_;
   std::ofstream coco_;
   nlohmann::ordered_json images_ = nlohmann::ordered_json::array();
   std::size_t next_annotation_ = 1;

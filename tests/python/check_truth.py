@@ -1,0 +1,182 @@
+"""Checks what `finflex swim --annotate --formats coco,yolo --depth` writes beyond
+coco.json against coco.json (itself checked by check_coco.py):
+
+- the three YOLO datasets, read as Ultralytics documents its label layout: each
+  dataset.yaml names the classes (and kpt_shape for pose); every image of coco.json
+  is in images/ with a label file in labels/; per fish one line, in coco.json's order:
+  the class, the box (COCO's bbox normalised, centre and size), the outline's polygon
+  (segment: its area is the mask's, or more where a fish's silhouette has a hole) and
+  the keypoints (pose: COCO's, normalised, the same visibility);
+- the depth maps: float32 height x width; on the tank's floor within 1 mm of the
+  camera ray's intersection with the floor's plane (from camera.json alone); at each
+  seen keypoint whose pixel shows its own fish, printed: the keypoint's camera depth
+  against the surface at its pixel's centre, which the surface's slope across the
+  pixel sets apart (a pixel is about 16 mm of fish at 320 x 180);
+- weights: weight_kg = a (100 L)^b / 1000 with the category's length_weight.
+
+Prints one line and exits 0, or names the first problem and exits 1.
+
+    python check_truth.py DIR
+"""
+import json
+import os
+import sys
+
+import numpy as np
+
+
+def fail(message):
+    print("check_truth: " + message)
+    sys.exit(1)
+
+
+def read_yaml(path):
+    """The flat YAML the datasets use: `key: value` lines and the indented names map."""
+    out, names, in_names = {}, {}, False
+    with open(path) as f:
+        for raw in f:
+            line = raw.split("#", 1)[0].rstrip()
+            if not line:
+                continue
+            if in_names and line.startswith("  "):
+                index, name = line.strip().split(":", 1)
+                names[int(index)] = name.strip()
+                continue
+            in_names = False
+            key, value = line.split(":", 1)
+            if key == "names" and not value.strip():
+                in_names = True
+                continue
+            out[key.strip()] = value.strip()
+    out["names"] = names
+    return out
+
+
+def shoelace(points):
+    x, y = points[:, 0], points[:, 1]
+    return 0.5 * abs(float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1))))
+
+
+def floor_errors(folder, image, depth, ids):
+    """On pixels that show the tank's floor (no fish, the ray's floor point well inside the
+    wall), the depth against the ray's intersection with the plane y = 0, from camera.json
+    alone (OpenCV's axes; pixel (i, j)'s centre at i + 0.5, j + 0.5)."""
+    with open(os.path.join(folder, "camera.json")) as f:
+        camera = json.load(f)
+    with open(os.path.join(folder, "summary.json")) as f:
+        radius = 0.5 * json.load(f)["tank"]["diameter_m"]
+    world_from_camera = np.array(camera["world_from_camera"])
+    rotation, eye = world_from_camera[:3, :3], world_from_camera[:3, 3]
+    out = []
+    for j in range(0, image["height"], 3):
+        for i in range(0, image["width"], 3):
+            if ids[j, i] != 0:
+                continue
+            ray = rotation @ np.array([(i + 0.5 - camera["cx"]) / camera["fx"],
+                                       (j + 0.5 - camera["cy"]) / camera["fy"], 1.0])
+            if ray[1] >= 0:
+                continue
+            z = -eye[1] / ray[1]  # the camera depth where the ray meets y = 0
+            point = eye + z * ray
+            if np.hypot(point[0], point[2]) < 0.9 * radius:
+                out.append(abs(float(depth[j, i]) - z))
+    return out
+
+
+def main(folder):
+    with open(os.path.join(folder, "coco.json")) as f:
+        coco = json.load(f)
+    categories = {c["id"]: c for c in coco["categories"]}
+    by_image = {}
+    for a in coco["annotations"]:
+        by_image.setdefault(a["image_id"], []).append(a)
+    for a in coco["annotations"]:
+        relation = categories[a["category_id"]]["length_weight"]
+        expected = relation["a"] * (100.0 * a["length_m"]) ** relation["b"] / 1000.0
+        if abs(a["weight_kg"] - expected) > 1e-9 * max(1.0, expected):
+            fail("annotation %d: weight %s kg, the relation gives %s" % (a["id"], a["weight_kg"],
+                                                                       expected))
+    lines = 0
+    holes = 0
+    for task in ("detect", "segment", "pose"):
+        root = os.path.join(folder, "yolo", task)
+        yaml = read_yaml(os.path.join(root, "dataset.yaml"))
+        if yaml.get("train") != "images" or yaml.get("val") != "images":
+            fail("%s/dataset.yaml: train %s, val %s" % (task, yaml.get("train"), yaml.get("val")))
+        names = [categories[k]["name"] for k in sorted(categories)]
+        if [yaml["names"][k] for k in sorted(yaml["names"])] != names:
+            fail("%s/dataset.yaml: names %s, coco.json's %s" % (task, yaml["names"], names))
+        if task == "pose" and yaml.get("kpt_shape") != "[2, 3]":
+            fail("pose/dataset.yaml: kpt_shape %s" % yaml.get("kpt_shape"))
+        for image in coco["images"]:
+            stem = os.path.splitext(os.path.basename(image["file_name"]))[0]
+            picture = os.path.join(root, "images", os.path.basename(image["file_name"]))
+            if not os.path.isfile(picture):
+                fail("%s: no image %s" % (task, picture))
+            with open(os.path.join(root, "labels", stem + ".txt")) as f:
+                rows = [list(map(float, line.split())) for line in f if line.strip()]
+            entries = by_image.get(image["id"], [])
+            if len(rows) != len(entries):
+                fail("%s %s: %d lines for %d fish" % (task, stem, len(rows), len(entries)))
+            w, h = image["width"], image["height"]
+            for row, a in zip(rows, entries):
+                lines += 1
+                if int(row[0]) != a["category_id"] - 1:
+                    fail("%s %s: class %s for category %d" % (task, stem, row[0], a["category_id"]))
+                x, y, bw, bh = a["bbox"]
+                box = [(x + bw / 2) / w, (y + bh / 2) / h, bw / w, bh / h]
+                if task == "segment":
+                    points = np.array(row[1:]).reshape(-1, 2) * [w, h]
+                    if len(points) < 3:
+                        fail("segment %s: fish %d has %d points" % (stem, a["fish_id"], len(points)))
+                    area = shoelace(points)
+                    if area < a["area"] - 1e-3:
+                        fail("segment %s: fish %d's outline holds %.1f pixels, its mask %d"
+                             % (stem, a["fish_id"], area, a["area"]))
+                    holes += area > a["area"] + 1e-3
+                    continue
+                if max(abs(p - q) for p, q in zip(row[1:5], box)) > 2e-6:
+                    fail("%s %s: fish %d's box %s, COCO's %s" % (task, stem, a["fish_id"], row[1:5],
+                                                               box))
+                if task == "pose":
+                    k = a["keypoints"]
+                    for i in range(2):
+                        u, v, vis = k[3 * i:3 * i + 3]
+                        got = row[5 + 3 * i:8 + 3 * i]
+                        want = [u / w, v / h, vis] if vis > 0 else [0.0, 0.0, 0]
+                        if max(abs(p - q) for p, q in zip(got, want)) > 2e-6:
+                            fail("pose %s: fish %d keypoint %d %s, COCO's %s"
+                                 % (stem, a["fish_id"], i, got, want))
+    if holes > 0.05 * lines / 3:
+        fail("%d of %d outlines hold more than their masks" % (holes, lines // 3))
+
+    errors = {0: [], 1: []}
+    floor = []
+    for image in coco["images"]:
+        depth = np.load(os.path.join(folder, image["depth_file"]))
+        if depth.dtype != np.float32 or depth.shape != (image["height"], image["width"]):
+            fail("%s: %s %s" % (image["depth_file"], depth.dtype, depth.shape))
+        from PIL import Image
+        ids = np.array(Image.open(os.path.join(folder, image["mask_file"])), dtype=np.int64)
+        for a in by_image.get(image["id"], []):
+            for i in range(2):
+                u, v, vis = a["keypoints"][3 * i:3 * i + 3]
+                if vis != 2 or ids[int(v), int(u)] != a["fish_id"] + 1:
+                    continue
+                errors[i].append(abs(float(depth[int(v), int(u)]) - a["keypoints_camera_m"][i][2]))
+        floor.extend(floor_errors(folder, image, depth, ids))
+    if not floor or max(floor) > 1e-3:
+        fail("depth on the tank's floor: largest error %.3f mm over %d pixels"
+             % (1e3 * max(floor or [0]), len(floor)))
+    medians = [float(np.median(errors[i])) if errors[i] else 0.0 for i in range(2)]
+    print("check_truth: %d YOLO lines agree with coco.json (%d outlines with holes); depth on the "
+          "floor within %.3f mm (%d pixels), at keypoints: snout median %.1f mm (%d), tail fork "
+          "median %.1f mm (%d); weights follow their relation"
+          % (lines, holes, 1e3 * max(floor), len(floor), 1e3 * medians[0], len(errors[0]),
+             1e3 * medians[1], len(errors[1])))
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 2:
+        fail("usage: check_truth.py DIR")
+    main(sys.argv[1])
