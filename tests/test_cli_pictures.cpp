@@ -258,12 +258,12 @@ TEST(CliPictures, TheDatasetLoadsWithPycocotools) {
     }
     GTEST_SKIP() << "no Python with pycocotools: scripts/install-deps.sh makes .venv";
   }
-  // Two species, seen obliquely: fish hide each other. With the YOLO datasets and the
-  // depth maps, which check_truth.py reads against coco.json.
+  // Two species, seen obliquely: fish hide each other. With the YOLO datasets, the
+  // depth maps and a stereo pair, which check_truth.py reads against coco.json.
   const std::string out = test::temp_path("coco");
   const RunResult r = run_cli(
       "swim --fish 40 --seconds 0.1 --fps 20 --seed 3 --size 320x180 --annotate --video none "
-      "--formats coco,yolo --depth --species " +
+      "--formats coco,yolo --depth --stereo 0.12 --species " +
       low_resolution_species() + " --species " + fish("barramundi/BarramundiFish.gltf") + ":" +
       test::data_path("rigs/barramundi_swim.rig.json") + " --out '" + out + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -275,11 +275,12 @@ TEST(CliPictures, TheDatasetLoadsWithPycocotools) {
   };
   const RunResult coco = check(FINFLEX_CHECK_COCO);
   EXPECT_EQ(coco.exit_code, 0) << coco.out;
-  EXPECT_NE(coco.out.find("2 images"), std::string::npos) << coco.out;
+  EXPECT_NE(coco.out.find("4 images"), std::string::npos) << coco.out;  // 2 stereo pairs
   EXPECT_NE(coco.out.find("all agree"), std::string::npos) << coco.out;
   const RunResult truth = check(FINFLEX_CHECK_TRUTH);
   EXPECT_EQ(truth.exit_code, 0) << truth.out;
   EXPECT_NE(truth.out.find("agree with coco.json"), std::string::npos) << truth.out;
+  EXPECT_NE(truth.out.find("stereo: 2 pairs"), std::string::npos) << truth.out;
   std::printf("%s", truth.out.c_str());
 }
 
@@ -314,6 +315,8 @@ TEST(CliPictures, BadPictureInputsExitTwoAndWriteNothing) {
       {" --annotate --image-frames none", "--annotate annotates the frames written as images"},
       {" --annotate --formats coco,xml", "--formats: 'xml' is not a dataset format"},
       {" --depth", "--depth is part of the dataset: it needs --annotate"},
+      {" --stereo 0", "--stereo '0'"},
+      {" --stereo 11", "--stereo 11: a baseline above 10 m"},
       {" --formats yolo", "--formats is part of the dataset"},
       {" --no-render --video apng", "--video draws frames"},
       {" --hand-off sideways",

@@ -582,7 +582,7 @@ TEST(TankPictures, AnnotationsNeedTheFramesIdPassAndWriteNothingWithout) {
   SmallTank tank;
   const std::string folder = test::temp_path("annotate_without_ids");
   std::filesystem::remove_all(folder);
-  CocoDataset dataset(folder, tank.scene, tank.pictures.camera(), kAbove.width, kAbove.height,
+  CocoDataset dataset(folder, tank.scene, {tank.pictures.camera()}, kAbove.width, kAbove.height,
                       nlohmann::ordered_json::object());
   CocoDataset::FrameTruth truth = dataset.capture(0, 0.0, "frames/frame_000000.png");
   try {

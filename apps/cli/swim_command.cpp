@@ -7,7 +7,7 @@
 //   finflex swim [--fish N] [--seconds S] [--fps F] [--species MESH:RIG ...]
 //                [--tank DIAMETER,DEPTH] [--tanks N] [--seed N] [--normals rotate|jacobian]
 //                [--device NAME] [--out DIR [--mesh-frames LIST]]
-//                [--size WxH] [--camera above|oblique|side] [--samples N]
+//                [--size WxH] [--camera above|oblique|side] [--stereo B] [--samples N]
 //                [--image-frames all|none|LIST] [--video auto|none|mp4,gif,apng]
 //                [--annotate [--formats coco,yolo] [--depth]] [--render | --no-render]
 //                [--hand-off auto|external-memory|shared|copy] [--reference-draw]
@@ -468,6 +468,9 @@ Command add_swim_command(CLI::App& app) {
   swim->add_option("--size", options->size, "Rendered frames' size, WIDTHxHEIGHT")
       ->capture_default_str();
   swim->add_option("--camera", options->camera, "above, oblique or side")->capture_default_str();
+  swim->add_option("--stereo", options->stereo,
+                   "BASELINE in metres: a rectified stereo pair, the right camera that far to "
+                   "the right (frame_NNNNNN_right.png beside each image frame)");
   swim->add_option("--samples", options->samples, "Multisampling of the rendered frames, 1..16")
       ->capture_default_str();
   swim->add_option("--image-frames", options->image_frames,

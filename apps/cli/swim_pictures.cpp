@@ -20,10 +20,8 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-std::string image_name(std::size_t frame) {
-  char name[48];
-  std::snprintf(name, sizeof name, "frames/frame_%06zu.png", frame);
-  return name;
+std::string image_name(std::size_t frame, std::size_t view) {
+  return pictures::frame_file("frames", frame, "png", view);
 }
 
 }  // namespace
@@ -46,11 +44,18 @@ SwimPictureFiles::SwimPictureFiles(const std::string& folder, pictures::TankPict
         render::open_video((fs::path(folder) / ("swim." + extension)).string(), options));
   }
   if (plan.annotate) {
-    dataset_ = std::make_unique<pictures::CocoDataset>(folder, scene, pictures.camera(), size.width,
+    std::vector<render::Camera> cameras;
+    for (std::size_t v = 0; v < pictures.views(); ++v) cameras.push_back(pictures.camera(v));
+    dataset_ = std::make_unique<pictures::CocoDataset>(folder, scene, cameras, size.width,
                                                        size.height, info, plan.dataset);
   }
   std::ofstream camera(fs::path(folder) / "camera.json");
-  camera << pictures::camera_json(pictures.camera(), size.width, size.height).dump(1) << "\n";
+  const nlohmann::ordered_json camera_file =
+      plan.stereo_baseline > 0.0
+          ? pictures::stereo_camera_json(pictures.camera(), plan.stereo_baseline, size.width,
+                                         size.height)
+          : pictures::camera_json(pictures.camera(), size.width, size.height);
+  camera << camera_file.dump(1) << "\n";
   if (!camera) throw Error(ErrorCode::kIo, "--out", "'" + folder + "/camera.json': write failed");
 }
 
@@ -64,23 +69,29 @@ PictureFileTimes SwimPictureFiles::add_frame(std::size_t frame, double time_s) {
   const bool image = plan_.image_of(frame);
   if (!image && videos_.empty()) return times;
   render::Renderer& renderer = pictures_.renderer();
-  renderer.request_image();
-  in_flight_.push_back(frame);
-  if (image && dataset_) {
-    const Clock::time_point start = Clock::now();
-    truths_.push_back(dataset_->capture(frame, time_s, image_name(frame)));
-    pictures_.request_ids();
-    if (renderer.ids_pending() == renderer.settings().frames_in_flight) take_ids();
-    collect(false);
-    times.annotation = seconds_since(start);
+  const std::size_t in_flight = renderer.settings().frames_in_flight;
+  // The left (or only) view was drawn by the caller; a stereo pair's right one is drawn
+  // here, for the frames written as images (the videos are the left view's).
+  const std::size_t views = image ? pictures_.views() : 1;
+  for (std::size_t view = 0; view < views; ++view) {
+    if (view > 0) pictures_.draw_view(view);
+    if (renderer.images_pending() == in_flight) take_frame(&times);  // the oldest first
+    renderer.request_image();
+    in_flight_.push_back({frame, view});
+    if (image && dataset_) {
+      const Clock::time_point start = Clock::now();
+      if (renderer.ids_pending() == in_flight) take_ids();
+      truths_.push_back(dataset_->capture(frame, time_s, image_name(frame, view), view));
+      pictures_.request_ids(view);
+      collect(false);
+      times.annotation += seconds_since(start);
+    }
   }
-  // The oldest frame once the renderer's frames in flight are all taken.
-  if (renderer.images_pending() == renderer.settings().frames_in_flight) take_frame(&times);
   return times;
 }
 
 void SwimPictureFiles::take_frame(PictureFileTimes* times) {
-  const std::size_t frame = in_flight_.front();
+  const auto [frame, view] = in_flight_.front();
   in_flight_.pop_front();
   // An image the pool has handed back, else a new one: no allocation per frame.
   render::Image picture;
@@ -92,9 +103,11 @@ void SwimPictureFiles::take_frame(PictureFileTimes* times) {
   pictures_.renderer().take_image(picture);
   if (times) times->read_back = seconds_since(start);
   start = Clock::now();
-  for (const std::unique_ptr<render::VideoWriter>& video : videos_) video->add_frame(picture);
+  if (view == 0) {
+    for (const std::unique_ptr<render::VideoWriter>& video : videos_) video->add_frame(picture);
+  }
   if (plan_.image_of(frame)) {
-    const std::string path = (fs::path(folder_) / image_name(frame)).string();
+    const std::string path = (fs::path(folder_) / image_name(frame, view)).string();
     pngs_.push_back(pool_->submit([path, image = std::move(picture)]() mutable {
       render::write_png(path, image);
       return std::move(image);

@@ -1,8 +1,9 @@
 // What `finflex swim --out DIR` writes of the rendered frames: PNG frames
 // (frames/frame_NNNNNN.png), videos of every frame (swim.mp4 / swim.gif through
 // ffmpeg, swim.png an APNG), camera.json, and with --annotate the dataset
-// (masks/, coco.json: pictures/coco_dataset.hpp). Everything goes into the run's
-// staging folder (staging_folder.hpp).
+// (masks/, coco.json: pictures/coco_dataset.hpp); with a stereo pair, each image frame's
+// right view beside it (frame_NNNNNN_right.png, its mask and labels alike). Everything
+// goes into the run's staging folder (staging_folder.hpp).
 //
 // Nothing here waits for the frame just drawn: its colour image is read back
 // asynchronously (Renderer::request_image; the renderer's frames in flight) and taken
@@ -33,6 +34,7 @@ struct PictureFiles {
   std::vector<std::string> videos;     // extensions: "mp4", "gif", "png" (APNG)
   bool annotate = false;               // masks and COCO for every frame written as an image
   pictures::DatasetOptions dataset;    // with annotate: YOLO, depth
+  double stereo_baseline = 0.0;        // > 0: a stereo pair's right view too (metres)
   int fps = 30;                        // the videos'
 
   bool image_of(std::size_t frame) const { return every_image || image_frames.count(frame) > 0; }
@@ -81,7 +83,11 @@ class SwimPictureFiles {
   // pool's size is waiting), rethrowing its errors, appending annotations.
   void collect(bool all);
   std::unique_ptr<class WorkerPool> pool_;
-  std::deque<std::size_t> in_flight_;            // frames requested from the renderer
+  struct View {
+    std::size_t frame = 0;
+    std::size_t view = 0;
+  };
+  std::deque<View> in_flight_;                   // images requested from the renderer
   std::deque<std::future<render::Image>> pngs_;  // each hands its image back
   std::vector<render::Image> free_images_;
   std::deque<pictures::CocoDataset::FrameTruth> truths_;  // their id passes in flight

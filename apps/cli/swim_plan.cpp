@@ -69,6 +69,18 @@ void plan_pictures(const SwimOptions& options, SwimPlan& plan) {
   plan.pictures.width = width;
   plan.pictures.height = height;
   plan.pictures.view = pictures::parse_camera_view(options.camera, "--camera");
+  if (!options.stereo.empty()) {
+    const double baseline = parse_positive(options.stereo, "--stereo");
+    if (baseline > 10.0) {
+      throw Error(ErrorCode::kInvalidArgument, "--stereo",
+                  "--stereo " + options.stereo + ": a baseline above 10 m");
+    }
+    if (!plan.render) {
+      throw Error(ErrorCode::kInvalidArgument, "--stereo",
+                  "--stereo draws a second view: it needs --out (and not --no-render)");
+    }
+    plan.pictures.stereo_baseline = baseline;
+  }
   plan.pictures.samples = static_cast<int>(parse_count(options.samples, "--samples", 1, 16));
   plan.hand_off = pictures::parse_hand_off(options.hand_off, "--hand-off");
   plan.reference_draw = options.reference_draw;
@@ -125,6 +137,7 @@ void plan_pictures(const SwimOptions& options, SwimPlan& plan) {
     start = comma + 1;
   }
   files.dataset.depth = options.depth;
+  files.stereo_baseline = plan.pictures.stereo_baseline;
   if (files.annotate && !files.every_image && files.image_frames.empty()) {
     throw Error(ErrorCode::kInvalidArgument, "--annotate",
                 "--annotate annotates the frames written as images: --image-frames is none");

@@ -31,6 +31,7 @@ struct SwimOptions {
   std::string mesh_frames;
   std::string size = "640x360";
   std::string camera = "oblique";
+  std::string stereo;  // empty: one camera
   std::string samples = "4";
   std::string image_frames;
   std::string video;

@@ -50,4 +50,40 @@ nlohmann::ordered_json camera_json(const render::Camera& camera, int width, int 
   return out;
 }
 
+render::Camera stereo_right_camera(const render::Camera& left, double baseline) {
+  const glm::dmat4 camera_from_world = render::camera_from_world(left);
+  // Row 0 of the rotation: the camera's x axis in world coordinates.
+  const glm::dvec3 x_axis(camera_from_world[0][0], camera_from_world[1][0],
+                          camera_from_world[2][0]);
+  render::Camera right = left;
+  right.position = glm::vec3(glm::dvec3(left.position) + baseline * x_axis);
+  right.target = glm::vec3(glm::dvec3(left.target) + baseline * x_axis);
+  return right;
+}
+
+nlohmann::ordered_json stereo_camera_json(const render::Camera& left, double baseline, int width,
+                                          int height) {
+  nlohmann::ordered_json out = camera_json(left, width, height);
+  nlohmann::ordered_json right = camera_json(stereo_right_camera(left, baseline), width, height);
+  right.erase("conventions");
+  const render::PinholeIntrinsics k = render::pinhole_intrinsics(left, width, height);
+  nlohmann::ordered_json stereo;
+  stereo["baseline_m"] = baseline;
+  stereo["right"] = right;
+  stereo["R"] = {{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}};
+  stereo["T"] = {-baseline, 0.0, 0.0};
+  stereo["rectified"] = true;
+  stereo["P1"] = {{k.fx, 0.0, k.cx, 0.0}, {0.0, k.fy, k.cy, 0.0}, {0.0, 0.0, 1.0, 0.0}};
+  stereo["P2"] = {
+      {k.fx, 0.0, k.cx, -k.fx * baseline}, {0.0, k.fy, k.cy, 0.0}, {0.0, 0.0, 1.0, 0.0}};
+  stereo["Q"] = {{1.0, 0.0, 0.0, -k.cx},
+                 {0.0, 1.0, 0.0, -k.cy},
+                 {0.0, 0.0, 0.0, k.fx},
+                 {0.0, 0.0, 1.0 / baseline, 0.0}};
+  stereo["disparity"] =
+      "d = u_left - u_right = fx baseline_m / Z (Z the left camera's depth); the same row v";
+  out["stereo"] = stereo;
+  return out;
+}
+
 }  // namespace finflex::pictures

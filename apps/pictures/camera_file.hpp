@@ -16,4 +16,16 @@ namespace finflex::pictures {
 //  render::camera_from_world.
 nlohmann::ordered_json camera_json(const render::Camera& camera, int width, int height);
 
+// The right camera of a rectified stereo pair: `left` moved `baseline` metres along its
+// own x axis (OpenCV's: right in the image), the same orientation and intrinsics.
+render::Camera stereo_right_camera(const render::Camera& left, double baseline);
+
+// camera_json(left) with "stereo": {"baseline_m", "right" (the right camera's
+// camera_json, without conventions), "R" (identity), "T" ([-baseline, 0, 0]: OpenCV's
+// stereoCalibrate convention, X_right = R X_left + T), "rectified": true, "P1", "P2",
+// "Q" (as cv::stereoRectify gives them for this pair: P2's last column -fx baseline),
+// "disparity"}.
+nlohmann::ordered_json stereo_camera_json(const render::Camera& left, double baseline, int width,
+                                          int height);
+
 }  // namespace finflex::pictures

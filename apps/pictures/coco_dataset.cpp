@@ -20,12 +20,6 @@ namespace {
 // (metres) and belongs to something else.
 constexpr double kOcclusionTolerance = 0.005;
 
-std::string frame_file(const char* folder, std::size_t frame, const char* extension) {
-  char name[64];
-  std::snprintf(name, sizeof name, "%s/frame_%06zu.%s", folder, frame, extension);
-  return name;
-}
-
 nlohmann::ordered_json categories(const tank::SwimScene& scene,
                                   const std::vector<LengthWeight>& weights) {
   nlohmann::ordered_json out = nlohmann::ordered_json::array();
@@ -73,18 +67,27 @@ void require_written(const std::ofstream& stream, const std::string& path) {
 
 }  // namespace
 
+std::string frame_file(const char* folder, std::size_t frame, const char* extension,
+                       std::size_t view) {
+  char name[96];
+  std::snprintf(name, sizeof name, "%s/frame_%06zu%s.%s", folder, frame, view ? "_right" : "",
+                extension);
+  return name;
+}
+
 double LengthWeight::grams(double length_m) const { return a * std::pow(100.0 * length_m, b); }
 
 CocoDataset::CocoDataset(const std::string& folder, tank::SwimScene& scene,
-                         const render::Camera& camera, int width, int height,
+                         const std::vector<render::Camera>& cameras, int width, int height,
                          const nlohmann::ordered_json& info, const DatasetOptions& options)
     : folder_(folder),
       scene_(scene),
-      camera_(camera),
+      cameras_(cameras),
       width_(width),
       height_(height),
-      camera_from_world_(render::camera_from_world(camera)),
       options_(options) {
+  for (const render::Camera& camera : cameras_)
+    camera_from_world_.push_back(render::camera_from_world(camera));
   const std::vector<tank::Fish>& fish = scene.hall().fish();
   if (fish.size() > kMaxAnnotatedFish) {
     throw Error(ErrorCode::kInvalidArgument, "fish",
@@ -132,9 +135,10 @@ CocoDataset::CocoDataset(const std::string& folder, tank::SwimScene& scene,
 }
 
 CocoDataset::FrameTruth CocoDataset::capture(std::size_t frame, double time_s,
-                                             const std::string& image_file) {
+                                             const std::string& image_file, std::size_t view) {
   FrameTruth truth;
   truth.frame = frame;
+  truth.view = view;
   truth.time_s = time_s;
   truth.image_file = image_file;
   // Keypoints of every fish, from the engine's deformed vertices.
@@ -161,23 +165,30 @@ CocoDataset::FrameAnnotations CocoDataset::annotate(const FrameTruth& truth) con
                     " ids) for a " + std::to_string(width_) + "x" + std::to_string(height_) +
                     " dataset");
   }
-  const std::size_t image_id = truth.frame + 1;
+  const std::size_t views = cameras_.size();
+  const std::size_t image_id = views * truth.frame + truth.view + 1;
+  const render::Camera& camera = cameras_.at(truth.view);
+  const glm::dmat4& camera_from_world = camera_from_world_.at(truth.view);
   // The mask file: ids as they are (<= 65535).
   render::Image16 mask;
   mask.width = ids.width;
   mask.height = ids.height;
   mask.samples.assign(ids.ids.begin(), ids.ids.end());
   render::write_png16(
-      (std::filesystem::path(folder_) / frame_file("masks", truth.frame, "png")).string(), mask);
+      (std::filesystem::path(folder_) / frame_file("masks", truth.frame, "png", truth.view))
+          .string(),
+      mask);
 
   if (options_.depth) {
     write_depth_npy(
-        (std::filesystem::path(folder_) / frame_file("depth", truth.frame, "npy")).string(), ids);
+        (std::filesystem::path(folder_) / frame_file("depth", truth.frame, "npy", truth.view))
+            .string(),
+        ids);
   }
   FrameAnnotations out;
   std::array<std::string, kYoloTasks.size()> labels;
   const std::vector<InstanceMask> masks = instance_masks(ids);
-  const render::PinholeIntrinsics k = render::pinhole_intrinsics(camera_, width_, height_);
+  const render::PinholeIntrinsics k = render::pinhole_intrinsics(camera, width_, height_);
   for (const InstanceMask& m : masks) {
     const std::size_t f = m.id - 1;
     const FishTruth& one = fish_[f];
@@ -188,11 +199,11 @@ CocoDataset::FrameAnnotations CocoDataset::annotate(const FrameTruth& truth) con
     int labelled = 0;
     for (const glm::vec3& world :
          {truth.snouts[one.species][instance], truth.forks[one.species][instance]}) {
-      const glm::dvec3 p = glm::dvec3(camera_from_world_ * glm::dvec4(glm::dvec3(world), 1.0));
+      const glm::dvec3 p = glm::dvec3(camera_from_world * glm::dvec4(glm::dvec3(world), 1.0));
       camera_points.push_back({p.x, p.y, p.z});
       const double u = k.fx * p.x / p.z + k.cx;
       const double v = k.fy * p.y / p.z + k.cy;
-      const bool inside = p.z > double(camera_.near_plane) && u >= 0.0 && v >= 0.0 &&
+      const bool inside = p.z > double(camera.near_plane) && u >= 0.0 && v >= 0.0 &&
                           u < double(width_) && v < double(height_);
       if (!inside) {
         keypoints.insert(keypoints.end(), {0.0, 0.0, 0});
@@ -237,19 +248,24 @@ CocoDataset::FrameAnnotations CocoDataset::annotate(const FrameTruth& truth) con
     for (std::size_t t = 0; t < kYoloTasks.size(); ++t) {
       const std::filesystem::path folder =
           std::filesystem::path(folder_) / "yolo" / to_string(kYoloTasks[t]);
-      write_text((folder / frame_file("labels", truth.frame, "txt")).string(), labels[t]);
+      write_text((folder / frame_file("labels", truth.frame, "txt", truth.view)).string(),
+                 labels[t]);
     }
   }
   out.image = {{"id", image_id},
                {"file_name", truth.image_file},
-               {"mask_file", frame_file("masks", truth.frame, "png")},
+               {"mask_file", frame_file("masks", truth.frame, "png", truth.view)},
                {"width", ids.width},
                {"height", ids.height},
                {"frame", truth.frame},
                {"time_s", truth.time_s},
                {"fish_in_tank", fish_.size()},
                {"fish_visible", masks.size()}};
-  if (options_.depth) out.image["depth_file"] = frame_file("depth", truth.frame, "npy");
+  if (options_.depth) out.image["depth_file"] = frame_file("depth", truth.frame, "npy", truth.view);
+  if (views == 2) {
+    out.image["camera"] = truth.view == 0 ? "left" : "right";
+    out.image["stereo_pair_id"] = truth.view == 0 ? image_id + 1 : image_id - 1;
+  }
   return out;
 }
 

@@ -5,7 +5,8 @@
 //   masks/frame_NNNNNN.png   16-bit grey: 1 + the fish's index in the tank where that
 //                            fish is the nearest surface at the pixel's centre, 0 else
 //   coco.json                COCO "instances" with keypoints: one category per species
-//                            (keypoints "snout", "tail_fork"), one image per frame,
+//                            (keypoints "snout", "tail_fork"), one image per frame
+//                            (per camera of a stereo pair),
 //                            one annotation per fish with at least one pixel
 //
 // Each annotation: "bbox" [x, y, w, h] (the mask's tight box, pixel edges), "area" (its
@@ -44,6 +45,11 @@ namespace finflex::pictures {
 // Ids are 16-bit in the masks: at most this many fish.
 constexpr std::size_t kMaxAnnotatedFish = 65535;
 
+// A frame's file in `folder`: "folder/frame_NNNNNN.extension", the right view of a
+// stereo pair "folder/frame_NNNNNN_right.extension".
+std::string frame_file(const char* folder, std::size_t frame, const char* extension,
+                       std::size_t view = 0);
+
 struct DatasetOptions {
   bool yolo = false;   // Ultralytics YOLO detect, segment and pose datasets too
   bool depth = false;  // depth/frame_NNNNNN.npy per frame
@@ -60,9 +66,12 @@ class CocoDataset {
  public:
   // Opens `folder`/coco.json and makes `folder`/masks. kInvalidArgument naming "fish"
   // when the tank has more than kMaxAnnotatedFish fish; kIo when a file cannot be made.
-  CocoDataset(const std::string& folder, tank::SwimScene& scene, const render::Camera& camera,
-              int width, int height, const nlohmann::ordered_json& info,
-              const DatasetOptions& options = {});
+  // `cameras`: one, or a stereo pair's two (left, right; TankPictures::camera(view)):
+  // each frame then has an image per camera (ids 2 frame + 1 and 2 frame + 2, each
+  // naming the other as "stereo_pair_id").
+  CocoDataset(const std::string& folder, tank::SwimScene& scene,
+              const std::vector<render::Camera>& cameras, int width, int height,
+              const nlohmann::ordered_json& info, const DatasetOptions& options = {});
 
   // A frame in three steps, so that the work in the middle can run on another thread
   // while the next frames are drawn: frame `frame` (time_s into the swim), whose
@@ -71,12 +80,14 @@ class CocoDataset {
   // scene's thread), to which the caller adds the frame's id pass (`ids`, once read back),
   struct FrameTruth {
     std::size_t frame = 0;
+    std::size_t view = 0;  // the camera
     double time_s = 0.0;
     std::string image_file;
     render::IdImage ids;
     std::vector<std::vector<glm::vec3>> snouts, forks;  // per species, per instance
   };
-  FrameTruth capture(std::size_t frame, double time_s, const std::string& image_file);
+  FrameTruth capture(std::size_t frame, double time_s, const std::string& image_file,
+                     std::size_t view = 0);
   // the mask file and the frame's annotations (any thread; several frames at once;
   // kInvalidArgument naming "ids" unless they are the dataset's width x height),
   struct FrameAnnotations {
@@ -102,10 +113,10 @@ class CocoDataset {
 
   std::string folder_;
   tank::SwimScene& scene_;
-  render::Camera camera_;
+  std::vector<render::Camera> cameras_;
   int width_;
   int height_;
-  glm::dmat4 camera_from_world_;
+  std::vector<glm::dmat4> camera_from_world_;  // per camera
   std::vector<SpeciesTruth> species_;
   std::vector<std::size_t> instance_of_fish_;  // per tank fish, its index in its species
   struct FishTruth {

@@ -2,6 +2,8 @@
 
 #include <string>
 
+#include "camera_file.hpp"
+
 namespace finflex::pictures {
 
 namespace {
@@ -32,8 +34,11 @@ TankPictures::TankPictures(render::Renderer& renderer, tank::SwimScene& scene,
                            const PictureSettings& settings)
     : renderer_(renderer),
       look_(tank_scene(scene.hall().hall_settings())),
-      camera_(hall_view_camera(scene.hall().hall_settings(), settings.view, settings.width,
-                               settings.height)) {
+      cameras_{hall_view_camera(scene.hall().hall_settings(), settings.view, settings.width,
+                                settings.height)} {
+  if (settings.stereo_baseline > 0.0) {
+    cameras_.push_back(stereo_right_camera(cameras_.front(), settings.stereo_baseline));
+  }
   std::vector<std::vector<std::uint32_t>> ids = instance_ids(scene.hall(), scene.species().size());
   const auto gl_outputs_of = [&](tank::SpeciesOutputs* made, std::size_t s) {
     auto* outputs = dynamic_cast<GlSpeciesOutputs*>(made);
@@ -89,9 +94,13 @@ TankPictures::TankPictures(render::Renderer& renderer, tank::SwimScene& scene,
     }
   }
   if (!leveled_.empty()) {
-    scene.set_views({LevelView::look_at(camera_.position, camera_.target, camera_.up,
-                                        camera_.vertical_fov_degrees, settings.width,
-                                        settings.height, camera_.near_plane, camera_.far_plane)});
+    std::vector<LevelView> views;
+    for (const render::Camera& c : cameras_) {
+      views.push_back(LevelView::look_at(c.position, c.target, c.up, c.vertical_fov_degrees,
+                                         settings.width, settings.height, c.near_plane,
+                                         c.far_plane));
+    }
+    scene.set_views(views);
   }
 }
 
@@ -115,24 +124,26 @@ void TankPictures::take_lists() {
 void TankPictures::draw() {
   take_lists();
   for (SpeciesDrawing& drawing : drawings_) drawing.outputs->wait_until_drawable();
-  renderer_.render(look_, camera_, draws_);
+  renderer_.render(look_, cameras_.front(), draws_);
 }
 
-void TankPictures::draw_reference() { renderer_.render_reference(look_, camera_, draws_); }
+void TankPictures::draw_view(std::size_t view) { renderer_.render(look_, camera(view), draws_); }
+
+void TankPictures::draw_reference() { renderer_.render_reference(look_, cameras_.front(), draws_); }
 
 const render::Image& TankPictures::read_image() {
   renderer_.read_image(image_);
   return image_;
 }
 
-const render::IdImage& TankPictures::draw_ids() {
-  renderer_.render_ids(look_, camera_, draws_);
+const render::IdImage& TankPictures::draw_ids(std::size_t view) {
+  renderer_.render_ids(look_, camera(view), draws_);
   renderer_.read_ids(ids_);
   return ids_;
 }
 
-void TankPictures::request_ids() {
-  renderer_.render_ids(look_, camera_, draws_);
+void TankPictures::request_ids(std::size_t view) {
+  renderer_.render_ids(look_, camera(view), draws_);
   renderer_.request_ids();
 }
 

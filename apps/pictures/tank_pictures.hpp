@@ -28,6 +28,9 @@ struct PictureSettings {
   int height = 360;
   int samples = 4;  // multisampling of the colour pass
   CameraView view = CameraView::kOblique;
+  // > 0: a rectified stereo pair, the right camera this many metres to the left one's
+  // right (stereo_right_camera); 0: one camera.
+  double stereo_baseline = 0.0;
 };
 
 // The renderer's settings for pictures of `settings`.
@@ -39,7 +42,7 @@ class TankPictures {
   // `renderer`: kInvalidArgument naming "scene" otherwise) whose id pass writes 1 + the
   // fish's index in the hall (hall().fish()); with levels of detail, a drawing per
   // level. `renderer` (made with render_settings(settings)) and `scene` must outlive
-  // the pictures. A scene with levels gets the camera as its view (set_views).
+  // the pictures. A scene with levels gets the cameras as its views (set_views).
   TankPictures(render::Renderer& renderer, tank::SwimScene& scene, const PictureSettings& settings);
 
   // The colour pass of every species' last frame, once GL may read it (a GPU-side
@@ -49,15 +52,17 @@ class TankPictures {
   // external memory and GL has indirect draws (nothing read back); otherwise their
   // lists are read first (a wait for the frame's kernels on the host).
   void draw();
+  // Another view of the same frame, after draw(): 1 is a stereo pair's right camera.
+  void draw_view(std::size_t view);
   const render::Image& read_image();
   // The reference draw of the same fish (Renderer::render_reference): the yardstick of
   // draw()'s GPU time. The image stays draw()'s.
   void draw_reference();
-  // The id pass of the same, read back (waits for the GPU).
-  const render::IdImage& draw_ids();
+  // The id pass of the same (seen by camera `view`), read back (waits for the GPU).
+  const render::IdImage& draw_ids(std::size_t view = 0);
   // The id pass of the same, its read-back started without a wait: the renderer's
   // take_ids takes it (at most its settings' frames_in_flight at once).
-  void request_ids();
+  void request_ids(std::size_t view = 0);
 
   // How the deformations reach the renderer (fish_hand_off.hpp).
   HandOffPath hand_off_path() const { return path_; }
@@ -66,14 +71,16 @@ class TankPictures {
   bool device_ordered() const { return device_ordered_; }
   const std::string& why_not_device_ordered() const { return why_not_ordered_; }
 
-  const render::Camera& camera() const { return camera_; }
+  // The cameras: 1, or a stereo pair's 2 (left, right).
+  std::size_t views() const { return cameras_.size(); }
+  const render::Camera& camera(std::size_t view = 0) const { return cameras_.at(view); }
   const render::Scene& look() const { return look_; }
   render::Renderer& renderer() { return renderer_; }
 
  private:
   render::Renderer& renderer_;
   render::Scene look_;
-  render::Camera camera_;
+  std::vector<render::Camera> cameras_;
   std::vector<SpeciesDrawing> drawings_;  // per species with fish (and level), in order
   std::vector<render::FishDraw> draws_;
   // With levels: per species with levels, its chooser, every fish's id and the first

@@ -12,7 +12,9 @@ coco.json against coco.json (itself checked by check_coco.py):
   seen keypoint whose pixel shows its own fish, printed: the keypoint's camera depth
   against the surface at its pixel's centre, which the surface's slope across the
   pixel sets apart (a pixel is about 16 mm of fish at 320 x 180);
-- weights: weight_kg = a (100 L)^b / 1000 with the category's length_weight.
+- weights: weight_kg = a (100 L)^b / 1000 with the category's length_weight;
+- a stereo pair (camera.json "stereo"): keypoints on the same row in both views,
+  disparity fx B / Z, and the right masks where the disparity puts them.
 
 Prints one line and exits 0, or names the first problem and exits 1.
 
@@ -57,12 +59,18 @@ def shoelace(points):
     return 0.5 * abs(float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1))))
 
 
+def camera_of(folder, image):
+    """The image's camera from camera.json: the stereo pair's right one for a right view."""
+    with open(os.path.join(folder, "camera.json")) as f:
+        camera = json.load(f)
+    return camera["stereo"]["right"] if image.get("camera") == "right" else camera
+
+
 def floor_errors(folder, image, depth, ids):
     """On pixels that show the tank's floor (no fish, the ray's floor point well inside the
     wall), the depth against the ray's intersection with the plane y = 0, from camera.json
     alone (OpenCV's axes; pixel (i, j)'s centre at i + 0.5, j + 0.5)."""
-    with open(os.path.join(folder, "camera.json")) as f:
-        camera = json.load(f)
+    camera = camera_of(folder, image)
     with open(os.path.join(folder, "summary.json")) as f:
         radius = 0.5 * json.load(f)["tank"]["diameter_m"]
     world_from_camera = np.array(camera["world_from_camera"])
@@ -81,6 +89,53 @@ def floor_errors(folder, image, depth, ids):
             if np.hypot(point[0], point[2]) < 0.9 * radius:
                 out.append(abs(float(depth[j, i]) - z))
     return out
+
+
+def check_stereo(folder, coco, by_image):
+    """A stereo pair's views: each keypoint seen in both on the same row, its disparity
+    u_left - u_right = fx B / Z (Z its left camera depth) within 0.5 px; and the right
+    picture is the right camera's: per fish seen in both, its mask's centre moves by the
+    fish's disparity (median over the fish within 1 px)."""
+    with open(os.path.join(folder, "camera.json")) as f:
+        camera = json.load(f)
+    if "stereo" not in camera:
+        return ""
+    from PIL import Image
+    fx, baseline = camera["fx"], camera["stereo"]["baseline_m"]
+    images = {image["id"]: image for image in coco["images"]}
+    worst, shifts, pairs = 0.0, [], 0
+    for image in coco["images"]:
+        if image.get("camera") != "left":
+            continue
+        right = images[image["stereo_pair_id"]]
+        pairs += 1
+        left_fish = {a["fish_id"]: a for a in by_image.get(image["id"], [])}
+        right_fish = {a["fish_id"]: a for a in by_image.get(right["id"], [])}
+        ids = [np.array(Image.open(os.path.join(folder, i["mask_file"])), dtype=np.int64)
+               for i in (image, right)]
+        for fish, a in left_fish.items():
+            if fish not in right_fish:
+                continue
+            b = right_fish[fish]
+            for k in range(2):
+                u, v, vis = a["keypoints"][3 * k:3 * k + 3]
+                u2, v2, vis2 = b["keypoints"][3 * k:3 * k + 3]
+                if vis == 0 or vis2 == 0:
+                    continue
+                z = a["keypoints_camera_m"][k][2]
+                if abs(v - v2) > 1e-6:
+                    fail("stereo: fish %d keypoint %d on rows %.4f and %.4f" % (fish, k, v, v2))
+                worst = max(worst, abs((u - u2) - fx * baseline / z))
+            z = 0.5 * (a["keypoints_camera_m"][0][2] + a["keypoints_camera_m"][1][2])
+            columns = [np.nonzero(m == fish + 1)[1].mean() for m in ids]
+            shifts.append((columns[0] - columns[1]) - fx * baseline / z)
+    if worst > 0.5:
+        fail("stereo: a keypoint's disparity is %.3f px off fx B / Z" % worst)
+    if not shifts or abs(float(np.median(shifts))) > 1.0:
+        fail("stereo: the right masks move %.2f px off the disparity (median of %d fish)"
+             % (float(np.median(shifts or [99])), len(shifts)))
+    return ("; stereo: %d pairs, disparities within %.1e px of fx B / Z, the masks moved by"
+            " them to %.2f px (median)" % (pairs, worst, float(np.median(shifts))))
 
 
 def main(folder):
@@ -130,10 +185,11 @@ def main(folder):
                     if len(points) < 3:
                         fail("segment %s: fish %d has %d points" % (stem, a["fish_id"], len(points)))
                     area = shoelace(points)
-                    if area < a["area"] - 1e-3:
+                    # Six decimals of the image's size: a few hundredths of a pixel of area.
+                    if area < a["area"] - 0.1:
                         fail("segment %s: fish %d's outline holds %.1f pixels, its mask %d"
                              % (stem, a["fish_id"], area, a["area"]))
-                    holes += area > a["area"] + 1e-3
+                    holes += area > a["area"] + 0.1
                     continue
                 if max(abs(p - q) for p, q in zip(row[1:5], box)) > 2e-6:
                     fail("%s %s: fish %d's box %s, COCO's %s" % (task, stem, a["fish_id"], row[1:5],
@@ -168,12 +224,13 @@ def main(folder):
     if not floor or max(floor) > 1e-3:
         fail("depth on the tank's floor: largest error %.3f mm over %d pixels"
              % (1e3 * max(floor or [0]), len(floor)))
+    stereo = check_stereo(folder, coco, by_image)
     medians = [float(np.median(errors[i])) if errors[i] else 0.0 for i in range(2)]
     print("check_truth: %d YOLO lines agree with coco.json (%d outlines with holes); depth on the "
           "floor within %.3f mm (%d pixels), at keypoints: snout median %.1f mm (%d), tail fork "
-          "median %.1f mm (%d); weights follow their relation"
+          "median %.1f mm (%d); weights follow their relation%s"
           % (lines, holes, 1e3 * max(floor), len(floor), 1e3 * medians[0], len(errors[0]),
-             1e3 * medians[1], len(errors[1])))
+             1e3 * medians[1], len(errors[1]), stereo))
 
 
 if __name__ == "__main__":
