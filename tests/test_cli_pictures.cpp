@@ -259,11 +259,13 @@ TEST(CliPictures, TheDatasetLoadsWithPycocotools) {
     GTEST_SKIP() << "no Python with pycocotools: scripts/install-deps.sh makes .venv";
   }
   // Two species, seen obliquely: fish hide each other. With the YOLO datasets, the
-  // depth maps and a stereo pair, which check_truth.py reads against coco.json.
+  // depth maps, a stereo pair and a lens with noise, which check_truth.py reads against
+  // coco.json (the lens undone there by its own code of OpenCV's model).
   const std::string out = test::temp_path("coco");
   const RunResult r = run_cli(
       "swim --fish 40 --seconds 0.1 --fps 20 --seed 3 --size 320x180 --annotate --video none "
-      "--formats coco,yolo --depth --stereo 0.12 --species " +
+      "--formats coco,yolo --depth --stereo 0.12 --distortion -0.2,0.05,0.001,-0.0005,0 "
+      "--noise 2,4 --species " +
       low_resolution_species() + " --species " + fish("barramundi/BarramundiFish.gltf") + ":" +
       test::data_path("rigs/barramundi_swim.rig.json") + " --out '" + out + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -316,6 +318,10 @@ TEST(CliPictures, BadPictureInputsExitTwoAndWriteNothing) {
       {" --annotate --formats coco,xml", "--formats: 'xml' is not a dataset format"},
       {" --depth", "--depth is part of the dataset: it needs --annotate"},
       {" --stereo 0", "--stereo '0'"},
+      {" --distortion 0.1,0.2", "--distortion '0.1,0.2': 5 numbers expected, 2 given"},
+      {" --distortion 0.1,x,0,0,0", "--distortion '0.1,x,0,0,0': 'x' is not a finite number"},
+      {" --distortion -5,0,0,0,0", "--distortion: the distortion does not invert"},
+      {" --noise -1,0", "--noise -1,0: each sigma is 0 to 255"},
       {" --stereo 11", "--stereo 11: a baseline above 10 m"},
       {" --formats yolo", "--formats is part of the dataset"},
       {" --no-render --video apng", "--video draws frames"},

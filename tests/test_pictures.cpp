@@ -19,7 +19,9 @@
 #include "coco_dataset.hpp"
 #include "instance_masks.hpp"
 #include "landmarks.hpp"
+#include "lens.hpp"
 #include "support/test_support.hpp"
+#include "support/throws_error.hpp"
 #include "swim_scene.hpp"
 #include "tank_pictures.hpp"
 #include "tank_view.hpp"
@@ -113,6 +115,71 @@ TEST(YoloLabels, OutlinesFollowThePixelEdgesAndJoinTheirParts) {
       yolo_dataset_yaml(YoloTask::kPose, {"blub", "barramundi"}, {"snout", "tail_fork"}, {0, 1});
   EXPECT_NE(yaml.find("names:\n  0: blub\n  1: barramundi\n"), std::string::npos) << yaml;
   EXPECT_NE(yaml.find("kpt_shape: [2, 3]\nflip_idx: [0, 1]\n"), std::string::npos) << yaml;
+}
+
+TEST(Lens, DistortionIsOpenCvsModelAndTheWarpItsInverse) {
+  const LensDistortion lens{-0.21, 0.06, 0.0012, -0.0007, 0.01};
+  // Known points, the model written out here again (cv::projectPoints' order).
+  for (const glm::dvec2 p : {glm::dvec2(0.3, -0.2), glm::dvec2(-0.5, 0.25), glm::dvec2(0.0, 0.0)}) {
+    const double r2 = p.x * p.x + p.y * p.y;
+    const double radial = 1 + lens.k1 * r2 + lens.k2 * r2 * r2 + lens.k3 * r2 * r2 * r2;
+    const glm::dvec2 want{p.x * radial + 2 * lens.p1 * p.x * p.y + lens.p2 * (r2 + 2 * p.x * p.x),
+                          p.y * radial + lens.p1 * (r2 + 2 * p.y * p.y) + 2 * lens.p2 * p.x * p.y};
+    EXPECT_NEAR(glm::length(lens.distort(p) - want), 0.0, 1e-15);
+    EXPECT_NEAR(glm::length(lens.undistort(lens.distort(p)) - p), 0.0, 1e-11);
+  }
+  // The warp: ids that number the ideal image's columns come out where each distorted
+  // pixel's source column is.
+  const render::PinholeIntrinsics k{100.0, 100.0, 40.0, 30.0};
+  const LensWarp warp(lens, k, 80, 60, "--distortion");
+  render::IdImage ids;
+  ids.width = 80;
+  ids.height = 60;
+  for (int y = 0; y < 60; ++y)
+    for (int x = 0; x < 80; ++x) ids.ids.push_back(std::uint32_t(x + 1));
+  ids.depth.assign(ids.ids.size(), 2.0f);
+  render::IdImage warped = ids;
+  warp.apply(warped);
+  for (const glm::ivec2 at : {glm::ivec2(3, 4), glm::ivec2(40, 30), glm::ivec2(70, 50)}) {
+    const glm::dvec2 source =
+        lens.undistort({(at.x + 0.5 - k.cx) / k.fx, (at.y + 0.5 - k.cy) / k.fy});
+    const int column = int(std::floor(k.fx * source.x + k.cx));
+    EXPECT_EQ(warped.ids[warped.index(at.x, at.y)], std::uint32_t(column + 1))
+        << at.x << "," << at.y;
+    EXPECT_FLOAT_EQ(warped.depth[warped.index(at.x, at.y)], 2.0f);  // one surface: its depth
+    // A point's pixel through the lens: the forward model on its ideal pixel.
+    const glm::dvec2 back = warp.distort_pixel({k.fx * source.x + k.cx, k.fy * source.y + k.cy});
+    EXPECT_NEAR(glm::length(back - glm::dvec2(at.x + 0.5, at.y + 0.5)), 0.0, 1e-7);
+  }
+  EXPECT_TRUE(test::ThrowsError(
+      [&] {
+        LensWarp({-5.0, 0, 0, 0, 0}, k, 80, 60, "--distortion");
+      },
+      ErrorCode::kInvalidArgument, "--distortion"));
+}
+
+TEST(Lens, NoiseHasItsSigmaAndItsSeed) {
+  render::Image grey;
+  grey.width = 200;
+  grey.height = 100;
+  grey.rgb.assign(200 * 100 * 3, 128);
+  const SensorNoise noise{2.0, 4.0};
+  render::Image a = grey, b = grey, c = grey;
+  noise.apply(a, 7);
+  noise.apply(b, 7);
+  noise.apply(c, 8);
+  EXPECT_EQ(a.rgb, b.rgb);
+  EXPECT_NE(a.rgb, c.rgb);
+  double sum = 0.0, squares = 0.0;
+  for (std::uint8_t v : a.rgb) {
+    sum += v - 128.0;
+    squares += (v - 128.0) * (v - 128.0);
+  }
+  const double n = double(a.rgb.size());
+  const double sigma = std::sqrt(squares / n - (sum / n) * (sum / n));
+  const double want = std::sqrt(2.0 * 2.0 + 4.0 * 4.0 * 128.0 / 255.0);  // 3.46
+  EXPECT_NEAR(sigma, std::sqrt(want * want + 1.0 / 12.0), 0.05 * want);  // with rounding's
+  EXPECT_NEAR(sum / n, 0.0, 0.05);
 }
 
 TEST(Masks, ARunAcrossColumnsBoxesTheColumnsItSpans) {

@@ -459,9 +459,9 @@ const Rows& rows() {
     r.layout = StreamLayout::planes(v);
     std::vector<float> positions, normals;
     glm::dvec3 low(1e30), high(-1e30);
-    for (const glm::dvec3& p : mesh.positions) {
-      low = glm::min(low, p);
-      high = glm::max(high, p);
+    for (const glm::vec3& p : mesh.positions) {
+      low = glm::min(low, glm::dvec3(p));
+      high = glm::max(high, glm::dvec3(p));
     }
     const double size = glm::length(high - low);
     for (int row = 0; row < 4; ++row) {

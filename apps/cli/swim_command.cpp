@@ -8,6 +8,7 @@
 //                [--tank DIAMETER,DEPTH] [--tanks N] [--seed N] [--normals rotate|jacobian]
 //                [--device NAME] [--out DIR [--mesh-frames LIST]]
 //                [--size WxH] [--camera above|oblique|side] [--stereo B] [--samples N]
+//                [--distortion K1,K2,P1,P2,K3] [--noise READ,SHOT]
 //                [--image-frames all|none|LIST] [--video auto|none|mp4,gif,apng]
 //                [--annotate [--formats coco,yolo] [--depth]] [--render | --no-render]
 //                [--hand-off auto|external-memory|shared|copy] [--reference-draw]
@@ -471,6 +472,12 @@ Command add_swim_command(CLI::App& app) {
   swim->add_option("--stereo", options->stereo,
                    "BASELINE in metres: a rectified stereo pair, the right camera that far to "
                    "the right (frame_NNNNNN_right.png beside each image frame)");
+  swim->add_option("--distortion", options->distortion,
+                   "K1,K2,P1,P2,K3: the image frames' lens distortion in OpenCV's model (masks, "
+                   "depth and keypoints through the same lens)");
+  swim->add_option("--noise", options->noise,
+                   "READ,SHOT: the image frames' sensor noise, sigmas in sRGB levels (shot at "
+                   "full scale), seeded by --seed");
   swim->add_option("--samples", options->samples, "Multisampling of the rendered frames, 1..16")
       ->capture_default_str();
   swim->add_option("--image-frames", options->image_frames,

@@ -49,12 +49,17 @@ SwimPictureFiles::SwimPictureFiles(const std::string& folder, pictures::TankPict
     dataset_ = std::make_unique<pictures::CocoDataset>(folder, scene, cameras, size.width,
                                                        size.height, info, plan.dataset);
   }
+  if (!plan.distortion.none()) {
+    warp_ = std::make_unique<pictures::LensWarp>(
+        plan.distortion, render::pinhole_intrinsics(pictures.camera(), size.width, size.height),
+        size.width, size.height, "--distortion");
+  }
   std::ofstream camera(fs::path(folder) / "camera.json");
   const nlohmann::ordered_json camera_file =
       plan.stereo_baseline > 0.0
           ? pictures::stereo_camera_json(pictures.camera(), plan.stereo_baseline, size.width,
-                                         size.height)
-          : pictures::camera_json(pictures.camera(), size.width, size.height);
+                                         size.height, plan.distortion)
+          : pictures::camera_json(pictures.camera(), size.width, size.height, plan.distortion);
   camera << camera_file.dump(1) << "\n";
   if (!camera) throw Error(ErrorCode::kIo, "--out", "'" + folder + "/camera.json': write failed");
 }
@@ -108,7 +113,14 @@ void SwimPictureFiles::take_frame(PictureFileTimes* times) {
   }
   if (plan_.image_of(frame)) {
     const std::string path = (fs::path(folder_) / image_name(frame, view)).string();
-    pngs_.push_back(pool_->submit([path, image = std::move(picture)]() mutable {
+    // The lens and the sensor on the pool's threads; noise seeded by the frame and view.
+    const std::uint64_t seed = (plan_.seed * 1000003u + frame) * 2u + view;
+    pngs_.push_back(pool_->submit([this, path, seed, image = std::move(picture)]() mutable {
+      if (warp_) {
+        render::Image ideal = std::move(image);
+        warp_->apply(ideal, image);
+      }
+      if (!plan_.noise.none()) plan_.noise.apply(image, seed);
       render::write_png(path, image);
       return std::move(image);
     }));

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <deque>
 #include <future>
 #include <memory>
@@ -23,6 +24,7 @@
 #include <nlohmann/json.hpp>
 
 #include "coco_dataset.hpp"
+#include "lens.hpp"
 #include "render/video.hpp"
 #include "tank_pictures.hpp"
 
@@ -35,7 +37,12 @@ struct PictureFiles {
   bool annotate = false;               // masks and COCO for every frame written as an image
   pictures::DatasetOptions dataset;    // with annotate: YOLO, depth
   double stereo_baseline = 0.0;        // > 0: a stereo pair's right view too (metres)
-  int fps = 30;                        // the videos'
+  // The image frames' lens and sensor (pictures/lens.hpp; the videos stay ideal); noise
+  // seeded by `seed`, the frame and the view.
+  pictures::LensDistortion distortion;
+  pictures::SensorNoise noise;
+  std::uint64_t seed = 0;
+  int fps = 30;  // the videos'
 
   bool image_of(std::size_t frame) const { return every_image || image_frames.count(frame) > 0; }
 };
@@ -71,6 +78,7 @@ class SwimPictureFiles {
   PictureFiles plan_;
   std::vector<std::unique_ptr<render::VideoWriter>> videos_;
   std::unique_ptr<pictures::CocoDataset> dataset_;
+  std::unique_ptr<pictures::LensWarp> warp_;  // with a distortion
   std::size_t images_ = 0;
 
   // Takes the oldest frame in flight: its video frame, its PNG to the pool (the

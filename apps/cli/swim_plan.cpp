@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <vector>
 
 #include "cli_errors.hpp"
 #include "cli_numbers.hpp"
@@ -59,6 +61,30 @@ std::vector<std::string> parse_videos(const std::string& text) {
     }
   }
   return videos;
+}
+
+// `count` comma-separated finite numbers: kInvalidArgument naming `option` otherwise.
+std::vector<double> parse_numbers(const std::string& text, const char* option, std::size_t count) {
+  std::vector<double> out;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    const std::string part = text.substr(start, comma - start);
+    char* end = nullptr;
+    const double value = std::strtod(part.c_str(), &end);
+    if (part.empty() || end != part.c_str() + part.size() || !std::isfinite(value)) {
+      throw Error(ErrorCode::kInvalidArgument, option,
+                  std::string(option) + " '" + text + "': '" + part + "' is not a finite number");
+    }
+    out.push_back(value);
+    start = comma + 1;
+  }
+  if (out.size() != count) {
+    throw Error(ErrorCode::kInvalidArgument, option,
+                std::string(option) + " '" + text + "': " + std::to_string(count) +
+                    " numbers expected, " + std::to_string(out.size()) + " given");
+  }
+  return out;
 }
 
 // The pictures' options, checked against each other and --out.
@@ -138,6 +164,29 @@ void plan_pictures(const SwimOptions& options, SwimPlan& plan) {
   }
   files.dataset.depth = options.depth;
   files.stereo_baseline = plan.pictures.stereo_baseline;
+  files.seed = plan.seed;
+  for (const auto& [given, option] : {std::pair{!options.distortion.empty(), "--distortion"},
+                                      std::pair{!options.noise.empty(), "--noise"}}) {
+    if (given && !out) {
+      throw Error(ErrorCode::kInvalidArgument, option,
+                  std::string(option) + " is the image frames' optics: it needs --out");
+    }
+  }
+  if (!options.distortion.empty()) {
+    const std::vector<double> k = parse_numbers(options.distortion, "--distortion", 5);
+    files.distortion = {k[0], k[1], k[2], k[3], k[4]};
+    files.dataset.distortion = files.distortion;
+  }
+  if (!options.noise.empty()) {
+    const std::vector<double> n = parse_numbers(options.noise, "--noise", 2);
+    for (double v : n) {
+      if (v < 0.0 || v > 255.0) {
+        throw Error(ErrorCode::kInvalidArgument, "--noise",
+                    "--noise " + options.noise + ": each sigma is 0 to 255 sRGB levels");
+      }
+    }
+    files.noise = {n[0], n[1]};
+  }
   if (files.annotate && !files.every_image && files.image_frames.empty()) {
     throw Error(ErrorCode::kInvalidArgument, "--annotate",
                 "--annotate annotates the frames written as images: --image-frames is none");

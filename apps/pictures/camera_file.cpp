@@ -16,7 +16,8 @@ nlohmann::ordered_json vector(const glm::vec3& v) {
 
 }  // namespace
 
-nlohmann::ordered_json camera_json(const render::Camera& camera, int width, int height) {
+nlohmann::ordered_json camera_json(const render::Camera& camera, int width, int height,
+                                   const LensDistortion& distortion) {
   const render::PinholeIntrinsics k = render::pinhole_intrinsics(camera, width, height);
   const glm::dmat4 camera_from_world = render::camera_from_world(camera);
   nlohmann::ordered_json out;
@@ -28,7 +29,7 @@ nlohmann::ordered_json camera_json(const render::Camera& camera, int width, int 
   out["cx"] = k.cx;
   out["cy"] = k.cy;
   out["K"] = {{k.fx, 0.0, k.cx}, {0.0, k.fy, k.cy}, {0.0, 0.0, 1.0}};
-  out["distortion"] = {0.0, 0.0, 0.0, 0.0, 0.0};
+  out["distortion"] = {distortion.k1, distortion.k2, distortion.p1, distortion.p2, distortion.k3};
   out["camera_from_world"] = rows(camera_from_world);
   out["world_from_camera"] = rows(glm::inverse(camera_from_world));
   out["position"] = vector(camera.position);
@@ -46,7 +47,11 @@ nlohmann::ordered_json camera_json(const render::Camera& camera, int width, int 
        "(u, v) from the image's top-left corner; pixel (i, j) covers [i, i+1) x [j, j+1), "
        "its centre at (i + 0.5, j + 0.5); for tools whose pixel centres are integers, "
        "use cx - 0.5 and cy - 0.5"},
-      {"optics", "an ideal pinhole: no lens distortion and no refraction at the water's surface"}};
+      {"optics", distortion.none()
+                     ? "an ideal pinhole: no lens distortion and no refraction at the water's "
+                       "surface"
+                     : "a pinhole with lens distortion in OpenCV's model (cv::projectPoints: "
+                       "k1 k2 p1 p2 k3), no refraction at the water's surface"}};
   return out;
 }
 
@@ -62,9 +67,10 @@ render::Camera stereo_right_camera(const render::Camera& left, double baseline) 
 }
 
 nlohmann::ordered_json stereo_camera_json(const render::Camera& left, double baseline, int width,
-                                          int height) {
-  nlohmann::ordered_json out = camera_json(left, width, height);
-  nlohmann::ordered_json right = camera_json(stereo_right_camera(left, baseline), width, height);
+                                          int height, const LensDistortion& distortion) {
+  nlohmann::ordered_json out = camera_json(left, width, height, distortion);
+  nlohmann::ordered_json right =
+      camera_json(stereo_right_camera(left, baseline), width, height, distortion);
   right.erase("conventions");
   const render::PinholeIntrinsics k = render::pinhole_intrinsics(left, width, height);
   nlohmann::ordered_json stereo;

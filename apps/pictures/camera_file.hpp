@@ -5,16 +5,18 @@
 
 #include <nlohmann/json.hpp>
 
+#include "lens.hpp"
 #include "render/camera.hpp"
 
 namespace finflex::pictures {
 
 // {"model": "pinhole", "width", "height", "fx", "fy", "cx", "cy", "K" (3x3 rows),
-//  "distortion" (zeros: k1 k2 p1 p2 k3), "camera_from_world" and "world_from_camera"
-//  (4x4 rows, OpenCV axes), "position", "target", "up", "vertical_fov_degrees",
+//  "distortion" (k1 k2 p1 p2 k3, OpenCV's order: lens.hpp), "camera_from_world" and
+//  "world_from_camera" (4x4 rows, OpenCV axes), "position", "target", "up", "vertical_fov_degrees",
 //  "near", "far", "conventions": {...}}. Values from render::pinhole_intrinsics and
 //  render::camera_from_world.
-nlohmann::ordered_json camera_json(const render::Camera& camera, int width, int height);
+nlohmann::ordered_json camera_json(const render::Camera& camera, int width, int height,
+                                   const LensDistortion& distortion = {});
 
 // The right camera of a rectified stereo pair: `left` moved `baseline` metres along its
 // own x axis (OpenCV's: right in the image), the same orientation and intrinsics.
@@ -26,6 +28,6 @@ render::Camera stereo_right_camera(const render::Camera& left, double baseline);
 // "Q" (as cv::stereoRectify gives them for this pair: P2's last column -fx baseline),
 // "disparity"}.
 nlohmann::ordered_json stereo_camera_json(const render::Camera& left, double baseline, int width,
-                                          int height);
+                                          int height, const LensDistortion& distortion = {});
 
 }  // namespace finflex::pictures

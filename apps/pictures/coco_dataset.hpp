@@ -30,12 +30,14 @@
 
 #include <cstddef>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "landmarks.hpp"
+#include "lens.hpp"
 #include "render/camera.hpp"
 #include "render/id_image.hpp"
 #include "swim_scene.hpp"
@@ -53,6 +55,8 @@ std::string frame_file(const char* folder, std::size_t frame, const char* extens
 struct DatasetOptions {
   bool yolo = false;   // Ultralytics YOLO detect, segment and pose datasets too
   bool depth = false;  // depth/frame_NNNNNN.npy per frame
+  // The pictures' lens (lens.hpp): masks, depth and keypoints are its too.
+  LensDistortion distortion;
 };
 
 // W = a L^b: W in grams, L the total length in centimetres (FishBase's units).
@@ -127,6 +131,7 @@ class CocoDataset {
   std::vector<std::string> names_;     // per species
   std::vector<LengthWeight> weights_;  // per species
   DatasetOptions options_;
+  std::unique_ptr<LensWarp> warp_;  // with a distortion
   std::ofstream coco_;
   nlohmann::ordered_json images_ = nlohmann::ordered_json::array();
   std::size_t next_annotation_ = 1;

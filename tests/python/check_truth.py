@@ -8,7 +8,8 @@ coco.json against coco.json (itself checked by check_coco.py):
   (segment: its area is the mask's, or more where a fish's silhouette has a hole) and
   the keypoints (pose: COCO's, normalised, the same visibility);
 - the depth maps: float32 height x width; on the tank's floor within 1 mm of the
-  camera ray's intersection with the floor's plane (from camera.json alone); at each
+  camera ray's intersection with the floor's plane (from camera.json alone, its lens
+  distortion undone here by OpenCV's model); at each
   seen keypoint whose pixel shows its own fish, printed: the keypoint's camera depth
   against the surface at its pixel's centre, which the surface's slope across the
   pixel sets apart (a pixel is about 16 mm of fish at 320 x 180);
@@ -59,6 +60,18 @@ def shoelace(points):
     return 0.5 * abs(float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1))))
 
 
+def undistort(xd, yd, k1, k2, p1, p2, k3):
+    """The normalised point that OpenCV's distortion model (cv::projectPoints: radial
+    k1 k2 k3, tangential p1 p2) takes to (xd, yd), by fixed-point iteration."""
+    x, y = xd, yd
+    for _ in range(200):
+        r2 = x * x + y * y
+        radial = 1 + r2 * (k1 + r2 * (k2 + r2 * k3))
+        x, y = ((xd - (2 * p1 * x * y + p2 * (r2 + 2 * x * x))) / radial,
+                (yd - (p1 * (r2 + 2 * y * y) + 2 * p2 * x * y)) / radial)
+    return x, y
+
+
 def camera_of(folder, image):
     """The image's camera from camera.json: the stereo pair's right one for a right view."""
     with open(os.path.join(folder, "camera.json")) as f:
@@ -67,10 +80,11 @@ def camera_of(folder, image):
 
 
 def floor_errors(folder, image, depth, ids):
-    """On pixels that show the tank's floor (no fish, the ray's floor point well inside the
-    wall), the depth against the ray's intersection with the plane y = 0, from camera.json
+    """On pixels that show the tank's floor (no fish at or next to them, the ray's floor
+    point well inside the wall), the depth against the ray's intersection with the plane y = 0, from camera.json
     alone (OpenCV's axes; pixel (i, j)'s centre at i + 0.5, j + 0.5)."""
     camera = camera_of(folder, image)
+    k1, k2, p1, p2, k3 = camera["distortion"]
     with open(os.path.join(folder, "summary.json")) as f:
         radius = 0.5 * json.load(f)["tank"]["diameter_m"]
     world_from_camera = np.array(camera["world_from_camera"])
@@ -78,10 +92,12 @@ def floor_errors(folder, image, depth, ids):
     out = []
     for j in range(0, image["height"], 3):
         for i in range(0, image["width"], 3):
-            if ids[j, i] != 0:
+            # Floor all around: at a fish's edge a lens takes the nearest pixel's depth.
+            if ids[max(j - 1, 0):j + 2, max(i - 1, 0):i + 2].any():
                 continue
-            ray = rotation @ np.array([(i + 0.5 - camera["cx"]) / camera["fx"],
-                                       (j + 0.5 - camera["cy"]) / camera["fy"], 1.0])
+            x, y = undistort((i + 0.5 - camera["cx"]) / camera["fx"],
+                             (j + 0.5 - camera["cy"]) / camera["fy"], k1, k2, p1, p2, k3)
+            ray = rotation @ np.array([x, y, 1.0])
             if ray[1] >= 0:
                 continue
             z = -eye[1] / ray[1]  # the camera depth where the ray meets y = 0
@@ -92,7 +108,8 @@ def floor_errors(folder, image, depth, ids):
 
 
 def check_stereo(folder, coco, by_image):
-    """A stereo pair's views: each keypoint seen in both on the same row, its disparity
+    """A stereo pair's views: each keypoint seen in both (its lens undone) on the same row,
+    its disparity
     u_left - u_right = fx B / Z (Z its left camera depth) within 0.5 px; and the right
     picture is the right camera's: per fish seen in both, its mask's centre moves by the
     fish's disparity (median over the fish within 1 px)."""
@@ -102,6 +119,12 @@ def check_stereo(folder, coco, by_image):
         return ""
     from PIL import Image
     fx, baseline = camera["fx"], camera["stereo"]["baseline_m"]
+    k = camera["distortion"]
+
+    def ideal(u, v):  # a keypoint's pixel without the lens: where the pair is rectified
+        x, y = undistort((u - camera["cx"]) / fx, (v - camera["cy"]) / camera["fy"], *k)
+        return fx * x + camera["cx"], camera["fy"] * y + camera["cy"]
+
     images = {image["id"]: image for image in coco["images"]}
     worst, shifts, pairs = 0.0, [], 0
     for image in coco["images"]:
@@ -117,14 +140,15 @@ def check_stereo(folder, coco, by_image):
             if fish not in right_fish:
                 continue
             b = right_fish[fish]
-            for k in range(2):
-                u, v, vis = a["keypoints"][3 * k:3 * k + 3]
-                u2, v2, vis2 = b["keypoints"][3 * k:3 * k + 3]
+            for n in range(2):
+                u, v, vis = a["keypoints"][3 * n:3 * n + 3]
+                u2, v2, vis2 = b["keypoints"][3 * n:3 * n + 3]
                 if vis == 0 or vis2 == 0:
                     continue
-                z = a["keypoints_camera_m"][k][2]
+                z = a["keypoints_camera_m"][n][2]
+                (u, v), (u2, v2) = ideal(u, v), ideal(u2, v2)
                 if abs(v - v2) > 1e-6:
-                    fail("stereo: fish %d keypoint %d on rows %.4f and %.4f" % (fish, k, v, v2))
+                    fail("stereo: fish %d keypoint %d on rows %.4f and %.4f" % (fish, n, v, v2))
                 worst = max(worst, abs((u - u2) - fx * baseline / z))
             z = 0.5 * (a["keypoints_camera_m"][0][2] + a["keypoints_camera_m"][1][2])
             columns = [np.nonzero(m == fish + 1)[1].mean() for m in ids]
