@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <random>
 
 #include "finflex/error.hpp"
 
@@ -112,12 +111,41 @@ void LensWarp::apply(render::IdImage& ids) const {
   ids.depth = std::move(depth);
 }
 
+namespace {
+
+// splitmix64 (Steele, Lea and Flood 2014): a fast, well-mixed 64-bit stream per seed.
+struct SplitMix {
+  std::uint64_t state;
+  std::uint64_t next() {
+    std::uint64_t z = (state += 0x9e3779b97f4a7c15ull);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+  }
+  double uniform() { return double(next() >> 11) * 0x1.0p-53; }  // [0, 1)
+};
+
+}  // namespace
+
 void SensorNoise::apply(render::Image& image, std::uint64_t seed) const {
-  std::mt19937_64 random(seed);
-  std::normal_distribution<double> normal(0.0, 1.0);
-  for (std::uint8_t& value : image.rgb) {
-    const double sigma = std::sqrt(read * read + shot * shot * value / 255.0);
-    value = std::uint8_t(std::clamp(std::lround(value + sigma * normal(random)), 0L, 255L));
+  float sigma[256];  // per value: its standard deviation
+  for (int v = 0; v < 256; ++v) sigma[v] = float(std::sqrt(read * read + shot * shot * v / 255.0));
+  SplitMix random{seed};
+  const auto add = [&](std::uint8_t& value, double normal) {
+    value = std::uint8_t(std::clamp(std::lround(value + sigma[value] * normal), 0L, 255L));
+  };
+  // Box-Muller: two standard normal deviates from two uniforms.
+  const double two_pi = 6.283185307179586;
+  std::size_t k = 0;
+  for (; k + 1 < image.rgb.size(); k += 2) {
+    const double radius = std::sqrt(-2.0 * std::log(1.0 - random.uniform()));
+    const double angle = two_pi * random.uniform();
+    add(image.rgb[k], radius * std::cos(angle));
+    add(image.rgb[k + 1], radius * std::sin(angle));
+  }
+  if (k < image.rgb.size()) {
+    add(image.rgb[k],
+        std::sqrt(-2.0 * std::log(1.0 - random.uniform())) * std::cos(two_pi * random.uniform()));
   }
 }
 

@@ -16,7 +16,8 @@
 //
 // Noise, per pixel and channel on the sRGB-encoded value I (0..255), seeded by the
 // frame: I + N(0, read^2 + shot^2 I / 255), rounded and clamped: read noise and a
-// shot-noise term that grows with the signal (sigma = shot at full scale).
+// shot-noise term that grows with the signal (sigma = shot at full scale); the normal
+// deviates by Box-Muller from splitmix64 (the same on every platform).
 #pragma once
 
 #include <cstdint>

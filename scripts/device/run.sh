@@ -64,6 +64,9 @@
 #                          and with a PNG a frame, 10,000 drawn only; the farm (100,000
 #                          fish in 16 tanks, --levels 6) beside full detail, and the
 #                          farm's last frame (render_levels_farm.png)
+#   dataset        .txt    `finflex swim --annotate` of 1,000 fish at 1280 x 720 on the GPU:
+#                          mono COCO; with YOLO and depth; a stereo pair; and with a
+#                          lens and noise (frame times side by side)
 #   level_choice   .txt    levels of detail: `finflex check --levels 4` of the bundled
 #                          fish's swim rigs, and the level choice of 1,000 to 100,000
 #                          fish (bench_deform's BM_LevelChoice)
@@ -391,6 +394,46 @@ PY
   rm -rf "$scratch"
 }
 
+dataset() {
+  find_nvidia_egl
+  find_nvidia_vulkan
+  local side finflex scratch
+  local -a species=(--species data/blub/fish.obj:data/rigs/blub_swim.rig.json
+    --species data/barramundi/BarramundiFish.gltf:data/rigs/barramundi_swim.rig.json)
+  scratch=$(mktemp -d)
+  dataset_swim() {
+    local what=$1 name=$2
+    shift 2
+    echo "== $what"
+    # shellcheck disable=SC2046
+    run env $(side_env "$side" -) timeout 120 "$finflex" swim --fish 1000 "${species[@]}" \
+      --size 1280x720 --seconds 0.5 --fps 30 --annotate --video none --out "$scratch/$name" \
+      "${device_option[@]}" "$@" | grep -vE "^ *wrote|put back" || failed+=("$what")
+  }
+  for side in "${sides[@]}"; do
+    finflex=$(program "$side" finflex)
+    [ ${#sides[@]} = 1 ] || echo "== side $(side_label "$side")"
+    dataset_swim "mono, COCO: 15 frames" mono
+    dataset_swim "mono, COCO, YOLO, depth: 15 frames" mono-all --formats coco,yolo --depth
+    dataset_swim "stereo 0.12 m, COCO, YOLO, depth: 15 frames" stereo --formats coco,yolo \
+      --depth --stereo 0.12
+    dataset_swim "stereo 0.12 m, COCO, YOLO, depth, lens and noise: 15 frames" stereo-lens \
+      --formats coco,yolo --depth --stereo 0.12 --distortion -0.2,0.05,0.001,-0.0005,0 \
+      --noise 2,4
+    for summary in "$scratch"/*/summary.json; do
+      [ -e "$summary" ] || continue
+      python3 - "$summary" <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1]))["rendering"]
+print("==", sys.argv[1].split("/")[-2], json.dumps({k: s[k] for k in s if k in (
+    "frames_per_second", "seconds_per_frame_mean", "share_of_frame", "gpu")}, indent=1))
+PY
+    done
+    rm -rf "${scratch:?}"/*
+  done
+  rm -rf "$scratch"
+}
+
 level_choice() {
   local side mesh
   for side in "${sides[@]}"; do
@@ -639,7 +682,7 @@ for suite in "${suites[@]}"; do
         done
       done
       ;;
-    gpu_checks | cpu_checks | bench_deform | render_speed | render_levels | handoff | level_choice | remarks)
+    gpu_checks | cpu_checks | bench_deform | render_speed | render_levels | dataset | handoff | level_choice | remarks)
       text_suite "$suite" ;;
     *) echo "run.sh: '$suite' is not a suite (see --help)" >&2; exit 2 ;;
   esac
