@@ -223,19 +223,18 @@ TEST(CliPictures, MasksBoxesAndKeypointsAgreeWithTheProjectedVertices) {
         EXPECT_NEAR(box_high.x + 0.5, p.high.x, 1.5);
         EXPECT_NEAR(box_high.y + 0.5, p.high.y, 1.5);
       }
-      // The keypoints are the snout's and the tail fork's vertices, projected.
-      const glm::dvec3 snout = project(tank.positions[i * vertices + marks.snout]);
-      const glm::dvec3 fork = project(tank.positions[i * vertices + marks.tail_fork]);
+      // The keypoints are their vertices projected: the snout, the tail fork, and the
+      // rig's parts (the caudal fin's tips, the pectoral fins' tips).
       const nlohmann::json& k = (*a)["keypoints"];
-      if (k[2] != 0) {
-        EXPECT_NEAR(k[0].get<double>(), snout.x, 1e-3);
-        EXPECT_NEAR(k[1].get<double>(), snout.y, 1e-3);
+      ASSERT_EQ(k.size(), 3 * pictures::kKeypointCount);
+      for (std::size_t n = 0; n < pictures::kKeypointCount; ++n) {
+        ASSERT_TRUE(marks.keypoints[n].has_value()) << pictures::kKeypointNames[n];
+        const glm::dvec3 point = project(tank.positions[i * vertices + *marks.keypoints[n]]);
+        EXPECT_NEAR((*a)["keypoints_camera_m"][n][2].get<double>(), point.z, 1e-5);
+        if (k[3 * n + 2] == 0) continue;
+        EXPECT_NEAR(k[3 * n].get<double>(), point.x, 1e-3) << pictures::kKeypointNames[n];
+        EXPECT_NEAR(k[3 * n + 1].get<double>(), point.y, 1e-3) << pictures::kKeypointNames[n];
       }
-      if (k[5] != 0) {
-        EXPECT_NEAR(k[3].get<double>(), fork.x, 1e-3);
-        EXPECT_NEAR(k[4].get<double>(), fork.y, 1e-3);
-      }
-      EXPECT_NEAR((*a)["keypoints_camera_m"][0][2].get<double>(), snout.z, 1e-5);
     }
   }
 }

@@ -27,8 +27,9 @@ nlohmann::ordered_json categories(const tank::SwimScene& scene,
     out.push_back({{"id", s + 1},
                    {"name", scene.species()[s].name},
                    {"supercategory", "fish"},
-                   {"keypoints", {"snout", "tail_fork"}},
-                   {"skeleton", {{1, 2}}},
+                   {"keypoints", kKeypointNames},
+                   // snout-fork, fork-caudal tips, snout-pectoral tips (1-based, COCO's)
+                   {"skeleton", {{1, 2}, {2, 3}, {2, 4}, {1, 5}, {1, 6}}},
                    {"length_weight",
                     {{"a", weights[s].a}, {"b", weights[s].b}, {"units", "W g = a (L cm)^b"}}}});
   }
@@ -104,8 +105,11 @@ CocoDataset::CocoDataset(const std::string& folder, tank::SwimScene& scene,
     SpeciesTruth truth;
     truth.landmarks = find_landmarks(species.swim.model());
     if (species.deformer) {
-      truth.snout_slot = species.deformer->slot_of_vertex()[truth.landmarks.snout];
-      truth.fork_slot = species.deformer->slot_of_vertex()[truth.landmarks.tail_fork];
+      for (std::size_t k = 0; k < kKeypointCount; ++k) {
+        if (truth.landmarks.keypoints[k]) {
+          truth.slots[k] = species.deformer->slot_of_vertex()[*truth.landmarks.keypoints[k]];
+        }
+      }
     }
     species_.push_back(truth);
   }
@@ -147,15 +151,17 @@ CocoDataset::FrameTruth CocoDataset::capture(std::size_t frame, double time_s,
   truth.time_s = time_s;
   truth.image_file = image_file;
   // Keypoints of every fish, from the engine's deformed vertices.
-  truth.snouts.resize(scene_.species().size());
-  truth.forks.resize(scene_.species().size());
+  truth.keypoints.assign(scene_.species().size(),
+                         std::vector<std::vector<glm::vec3>>(kKeypointCount));
   for (std::size_t s = 0; s < scene_.species().size(); ++s) {
     tank::Species& species = scene_.species()[s];
     if (!species.deformer) continue;
     cl::CommandQueue& queue = species.deformer->context().queue();
     const tank::BatchReading reading(species);
-    truth.snouts[s] = read_slot_positions(queue, species.batch(), species_[s].snout_slot);
-    truth.forks[s] = read_slot_positions(queue, species.batch(), species_[s].fork_slot);
+    for (std::size_t k = 0; k < kKeypointCount; ++k) {
+      if (!species_[s].slots[k]) continue;
+      truth.keypoints[s][k] = read_slot_positions(queue, species.batch(), *species_[s].slots[k]);
+    }
   }
   return truth;
 }
@@ -207,8 +213,14 @@ CocoDataset::FrameAnnotations CocoDataset::annotate(const FrameTruth& truth) con
     nlohmann::ordered_json camera_points = nlohmann::ordered_json::array();
     std::vector<std::array<double, 3>> yolo_keypoints;
     int labelled = 0;
-    for (const glm::vec3& world :
-         {truth.snouts[one.species][instance], truth.forks[one.species][instance]}) {
+    for (const std::vector<glm::vec3>& points : truth.keypoints[one.species]) {
+      if (points.empty()) {  // a part this species lacks
+        keypoints.insert(keypoints.end(), {0.0, 0.0, 0});
+        yolo_keypoints.push_back({0.0, 0.0, 0.0});
+        camera_points.push_back(nullptr);
+        continue;
+      }
+      const glm::vec3& world = points[instance];
       const glm::dvec3 p = glm::dvec3(camera_from_world * glm::dvec4(glm::dvec3(world), 1.0));
       camera_points.push_back({p.x, p.y, p.z});
       glm::dvec2 uv{k.fx * p.x / p.z + k.cx, k.fy * p.y / p.z + k.cy};
@@ -307,8 +319,11 @@ void CocoDataset::finish() {
         throw Error(ErrorCode::kIo, "--out", "'" + link.string() + "': " + ec.message());
       }
     }
-    write_text((folder / "dataset.yaml").string(),
-               yolo_dataset_yaml(task, names_, {"snout", "tail_fork"}, {0, 1}));
+    write_text(
+        (folder / "dataset.yaml").string(),
+        yolo_dataset_yaml(task, names_,
+                          std::vector<std::string>(kKeypointNames.begin(), kKeypointNames.end()),
+                          std::vector<std::size_t>(kKeypointFlip.begin(), kKeypointFlip.end())));
   }
 }
 

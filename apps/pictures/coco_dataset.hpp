@@ -11,12 +11,13 @@
 //
 // Each annotation: "bbox" [x, y, w, h] (the mask's tight box, pixel edges), "area" (its
 // pixels: the visible area), "segmentation" (the mask as COCO's compressed run-length
-// counts), "iscrowd" 0, "keypoints" [u, v, visibility] x 2 (the projected vertices,
+// counts), "iscrowd" 0, "keypoints" [u, v, visibility] x 6 (the projected vertices,
 // visibility 2 where nothing nearer covers the pixel, 1 where something does, 0 with
 // u = v = 0 outside the image), "num_keypoints", and the truth beyond COCO's fields:
 // "fish_id" (the tank's index: the same fish in every frame, for tracking),
 // "species", "length_m" (total length, snout to tail tip), "fork_length_m",
-// "keypoints_camera_m" (the two points in camera coordinates, OpenCV axes, metres).
+// "keypoints_camera_m" (the points in camera coordinates, OpenCV axes, metres; null for
+// a part the species lacks).
 // "weight_kg" (the length-weight relation W = a L^b, L the total length in cm, W in g:
 // the category's "length_weight").
 // coco.json is streamed: memory does not grow with the frames.
@@ -28,9 +29,11 @@
 // axis' distance of the nearest surface at each pixel's centre, 0 where nothing is).
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -88,7 +91,9 @@ class CocoDataset {
     double time_s = 0.0;
     std::string image_file;
     render::IdImage ids;
-    std::vector<std::vector<glm::vec3>> snouts, forks;  // per species, per instance
+    // Per species, per keypoint (kKeypointNames; empty where the species has none), per
+    // instance: the deformed vertex.
+    std::vector<std::vector<std::vector<glm::vec3>>> keypoints;
   };
   FrameTruth capture(std::size_t frame, double time_s, const std::string& image_file,
                      std::size_t view = 0);
@@ -111,8 +116,7 @@ class CocoDataset {
  private:
   struct SpeciesTruth {
     FishLandmarks landmarks;
-    std::uint32_t snout_slot = 0;
-    std::uint32_t fork_slot = 0;
+    std::array<std::optional<std::uint32_t>, kKeypointCount> slots;  // the keypoints' slots
   };
 
   std::string folder_;

@@ -51,6 +51,29 @@ FishLandmarks find_landmarks(const RiggedMesh& model) {
     }
   }
   marks.fork_fraction = x_max - local[marks.tail_fork].x;  // local lengths are in s_x
+  marks.keypoints[0] = marks.snout;
+  marks.keypoints[1] = marks.tail_fork;
+  for (const RigComponent& component : model.rig().components) {
+    if (component.vertices.empty()) continue;
+    const auto by = [&](auto score) {
+      std::uint32_t best = component.vertices.front();
+      for (std::uint32_t v : component.vertices) {
+        if (score(v) > score(best)) best = v;
+      }
+      return best;
+    };
+    const auto from_attachment = [&](std::uint32_t v) {
+      return glm::length(glm::dvec3(mesh.positions[v]) - component.frame.origin);
+    };
+    if (component.name == "caudal_fin") {
+      marks.keypoints[2] = by([&](std::uint32_t v) { return local[v].y; });
+      marks.keypoints[3] = by([&](std::uint32_t v) { return -local[v].y; });
+    } else if (component.name == "left_pectoral_fin") {
+      marks.keypoints[4] = by(from_attachment);
+    } else if (component.name == "right_pectoral_fin") {
+      marks.keypoints[5] = by(from_attachment);
+    }
+  }
   return marks;
 }
 

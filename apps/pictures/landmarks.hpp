@@ -1,17 +1,34 @@
-// The two points a fish is measured between: the tip of the snout and the fork of the
-// tail (fork length, the length fisheries measure). Both are vertices of the rest
-// mesh, so their deformed positions come straight from the engine's output.
+// The points a fish is measured between: the tip of the snout and the fork of the tail
+// (fork length, the length fisheries measure), and where the rig names the parts, the
+// caudal fin's upper and lower tips and each pectoral fin's tip. All are vertices of the
+// rest mesh, so their deformed positions come straight from the engine's output.
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <optional>
 
 #include "finflex/model.hpp"
 
 namespace finflex::pictures {
 
+// The dataset's keypoints, in this order for every species (COCO's and YOLO's): a
+// species whose rig lacks a part has no such keypoint (visibility 0). A horizontal flip
+// swaps the pectoral fins (kKeypointFlip).
+constexpr std::size_t kKeypointCount = 6;
+constexpr std::array<const char*, kKeypointCount> kKeypointNames{"snout",
+                                                                 "tail_fork",
+                                                                 "caudal_upper_tip",
+                                                                 "caudal_lower_tip",
+                                                                 "left_pectoral_tip",
+                                                                 "right_pectoral_tip"};
+constexpr std::array<std::size_t, kKeypointCount> kKeypointFlip{0, 1, 2, 3, 5, 4};
+
 struct FishLandmarks {
   std::uint32_t snout = 0;      // mesh vertex index
   std::uint32_t tail_fork = 0;  // mesh vertex index
+  // Per keypoint (kKeypointNames) its mesh vertex, none where the rig has no such part.
+  std::array<std::optional<std::uint32_t>, kKeypointCount> keypoints;
   // (x_snout - x_fork) / s_x: the fork length as a fraction of the total length (the
   // body frame's s_x, the length a placement scales to), straight rest pose.
   double fork_fraction = 1.0;
@@ -23,7 +40,11 @@ struct FishLandmarks {
 //     within 5 % of the body length of the tail's mid-height (the middle of the
 //     rearmost tenth's y range), the rearmost one: where the trailing edge of the
 //     caudal fin crosses its middle, the fork's notch on a forked tail and the tip on
-//     a round one.
+//     a round one;
+//   caudal tips: of the vertices of the component named "caudal_fin", the most dorsal
+//     (largest y) and the most ventral (smallest y);
+//   pectoral tips: of the vertices of "left_pectoral_fin" ("right_pectoral_fin"), the
+//     farthest from the component's frame origin (its attachment to the body).
 FishLandmarks find_landmarks(const RiggedMesh& model);
 
 }  // namespace finflex::pictures

@@ -140,7 +140,7 @@ def check_stereo(folder, coco, by_image):
             if fish not in right_fish:
                 continue
             b = right_fish[fish]
-            for n in range(2):
+            for n in range(len(a["keypoints"]) // 3):
                 u, v, vis = a["keypoints"][3 * n:3 * n + 3]
                 u2, v2, vis2 = b["keypoints"][3 * n:3 * n + 3]
                 if vis == 0 or vis2 == 0:
@@ -150,7 +150,7 @@ def check_stereo(folder, coco, by_image):
                 if abs(v - v2) > 1e-6:
                     fail("stereo: fish %d keypoint %d on rows %.4f and %.4f" % (fish, n, v, v2))
                 worst = max(worst, abs((u - u2) - fx * baseline / z))
-            z = 0.5 * (a["keypoints_camera_m"][0][2] + a["keypoints_camera_m"][1][2])
+            z = 0.5 * (a["keypoints_camera_m"][0][2] + a["keypoints_camera_m"][1][2])  # its middle
             columns = [np.nonzero(m == fish + 1)[1].mean() for m in ids]
             shifts.append((columns[0] - columns[1]) - fx * baseline / z)
     if worst > 0.5:
@@ -185,7 +185,7 @@ def main(folder):
         names = [categories[k]["name"] for k in sorted(categories)]
         if [yaml["names"][k] for k in sorted(yaml["names"])] != names:
             fail("%s/dataset.yaml: names %s, coco.json's %s" % (task, yaml["names"], names))
-        if task == "pose" and yaml.get("kpt_shape") != "[2, 3]":
+        if task == "pose" and yaml.get("kpt_shape") != "[6, 3]":
             fail("pose/dataset.yaml: kpt_shape %s" % yaml.get("kpt_shape"))
         for image in coco["images"]:
             stem = os.path.splitext(os.path.basename(image["file_name"]))[0]
@@ -220,7 +220,7 @@ def main(folder):
                                                                box))
                 if task == "pose":
                     k = a["keypoints"]
-                    for i in range(2):
+                    for i in range(len(k) // 3):
                         u, v, vis = k[3 * i:3 * i + 3]
                         got = row[5 + 3 * i:8 + 3 * i]
                         want = [u / w, v / h, vis] if vis > 0 else [0.0, 0.0, 0]
@@ -230,7 +230,7 @@ def main(folder):
     if holes > 0.05 * lines / 3:
         fail("%d of %d outlines hold more than their masks" % (holes, lines // 3))
 
-    errors = {0: [], 1: []}
+    errors = {0: [], 1: []}  # the snout's and the tail fork's
     floor = []
     for image in coco["images"]:
         depth = np.load(os.path.join(folder, image["depth_file"]))
