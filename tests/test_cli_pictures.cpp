@@ -264,7 +264,7 @@ TEST(CliPictures, TheDatasetLoadsWithPycocotools) {
   const RunResult r = run_cli(
       "swim --fish 40 --seconds 0.1 --fps 20 --seed 3 --size 320x180 --annotate --video none "
       "--formats coco,yolo --depth --stereo 0.12 --distortion -0.2,0.05,0.001,-0.0005,0 "
-      "--noise 2,4 --species " +
+      "--noise 2,4 --length-weight barramundi:0.012,2.98 --species " +
       low_resolution_species() + " --species " + fish("barramundi/BarramundiFish.gltf") + ":" +
       test::data_path("rigs/barramundi_swim.rig.json") + " --out '" + out + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -321,6 +321,10 @@ TEST(CliPictures, BadPictureInputsExitTwoAndWriteNothing) {
       {" --distortion 0.1,x,0,0,0", "--distortion '0.1,x,0,0,0': 'x' is not a finite number"},
       {" --distortion -5,0,0,0,0", "--distortion: the distortion does not invert"},
       {" --noise -1,0", "--noise -1,0: each sigma is 0 to 255"},
+      {" --annotate --length-weight nosuch:0.01,3", "--length-weight: no species 'nosuch'"},
+      {" --annotate --length-weight blub:0.01,5", "2 <= b <= 4"},
+      {" --annotate --length-weight 0.01,3", "SPECIES:A,B expected"},
+      {" --length-weight blub:0.01,3", "--length-weight is part of the dataset"},
       {" --stereo 11", "--stereo 11: a baseline above 10 m"},
       {" --formats yolo", "--formats is part of the dataset"},
       {" --no-render --video apng", "--video draws frames"},

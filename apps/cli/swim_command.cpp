@@ -490,6 +490,10 @@ Command add_swim_command(CLI::App& app) {
                    "With --annotate: the dataset's formats, coco and yolo (Ultralytics detect, "
                    "segment and pose)")
       ->capture_default_str();
+  swim->add_option("--length-weight", options->length_weights,
+                   "SPECIES:A,B, with --annotate: that species' weights by W g = A (L cm)^B "
+                   "(repeatable; default A 0.01, B 3)")
+      ->allow_extra_args(false);
   swim->add_flag("--depth", options->depth,
                  "With --annotate: each frame's depth in metres (depth/frame_NNNNNN.npy)");
   swim->add_flag_function(

@@ -163,6 +163,23 @@ void plan_pictures(const SwimOptions& options, SwimPlan& plan) {
     start = comma + 1;
   }
   files.dataset.depth = options.depth;
+  if (!options.length_weights.empty() && !files.annotate) {
+    throw Error(ErrorCode::kInvalidArgument, "--length-weight",
+                "--length-weight is part of the dataset: it needs --annotate");
+  }
+  for (const std::string& text : options.length_weights) {
+    const std::size_t colon = text.rfind(':');
+    if (colon == std::string::npos || colon == 0) {
+      throw Error(ErrorCode::kInvalidArgument, "--length-weight",
+                  "--length-weight '" + text + "': SPECIES:A,B expected");
+    }
+    const std::vector<double> ab = parse_numbers(text.substr(colon + 1), "--length-weight", 2);
+    if (ab[0] <= 0.0 || ab[1] < 2.0 || ab[1] > 4.0) {
+      throw Error(ErrorCode::kInvalidArgument, "--length-weight",
+                  "--length-weight '" + text + "': a > 0 and 2 <= b <= 4 (W g = a (L cm)^b)");
+    }
+    files.dataset.weights.push_back({text.substr(0, colon), {ab[0], ab[1]}});
+  }
   files.stereo_baseline = plan.pictures.stereo_baseline;
   files.seed = plan.seed;
   for (const auto& [given, option] : {std::pair{!options.distortion.empty(), "--distortion"},

@@ -31,9 +31,10 @@ struct SwimOptions {
   std::string mesh_frames;
   std::string size = "640x360";
   std::string camera = "oblique";
-  std::string stereo;      // empty: one camera
-  std::string distortion;  // k1,k2,p1,p2,k3; empty: none
-  std::string noise;       // READ,SHOT; empty: none
+  std::string stereo;                       // empty: one camera
+  std::string distortion;                   // k1,k2,p1,p2,k3; empty: none
+  std::string noise;                        // READ,SHOT; empty: none
+  std::vector<std::string> length_weights;  // SPECIES:A,B
   std::string samples = "4";
   std::string image_frames;
   std::string video;

@@ -1,5 +1,6 @@
 #include "coco_dataset.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -119,9 +120,17 @@ CocoDataset::CocoDataset(const std::string& folder, tank::SwimScene& scene,
     fish_.push_back({f.species, f.length});
   }
   for (const tank::Species& species : scene.species()) names_.push_back(species.name);
-  // One relation for every species for now: FishBase's yardstick of a fusiform fish
-  // (10 g at 10 cm) with isometric growth (docs/dataset.md "Weights").
+  // By default FishBase's yardstick of a fusiform fish (10 g at 10 cm) with isometric
+  // growth (docs/dataset.md "Weights"); the options' relations by species name.
   weights_.assign(names_.size(), LengthWeight{});
+  for (const auto& [name, relation] : options_.weights) {
+    const auto found = std::find(names_.begin(), names_.end(), name);
+    if (found == names_.end()) {
+      throw Error(ErrorCode::kInvalidArgument, "--length-weight",
+                  "--length-weight: no species '" + name + "' in the tank");
+    }
+    weights_[std::size_t(found - names_.begin())] = relation;
+  }
 
   const std::filesystem::path root(folder);
   std::filesystem::create_directories(root / "masks");

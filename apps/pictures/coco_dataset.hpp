@@ -35,6 +35,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -55,18 +56,20 @@ constexpr std::size_t kMaxAnnotatedFish = 65535;
 std::string frame_file(const char* folder, std::size_t frame, const char* extension,
                        std::size_t view = 0);
 
-struct DatasetOptions {
-  bool yolo = false;   // Ultralytics YOLO detect, segment and pose datasets too
-  bool depth = false;  // depth/frame_NNNNNN.npy per frame
-  // The pictures' lens (lens.hpp): masks, depth and keypoints are its too.
-  LensDistortion distortion;
-};
-
 // W = a L^b: W in grams, L the total length in centimetres (FishBase's units).
 struct LengthWeight {
   double a = 0.01;
   double b = 3.0;
   double grams(double length_m) const;
+};
+
+struct DatasetOptions {
+  bool yolo = false;   // Ultralytics YOLO detect, segment and pose datasets too
+  bool depth = false;  // depth/frame_NNNNNN.npy per frame
+  // The pictures' lens (lens.hpp): masks, depth and keypoints are its too.
+  LensDistortion distortion;
+  // Length-weight relations by species name; the others take LengthWeight{}.
+  std::vector<std::pair<std::string, LengthWeight>> weights;
 };
 
 class CocoDataset {
