@@ -258,12 +258,13 @@ TEST(CliPictures, TheDatasetLoadsWithPycocotools) {
     GTEST_SKIP() << "no Python with pycocotools: scripts/install-deps.sh makes .venv";
   }
   // Two species, seen obliquely: fish hide each other. With the YOLO datasets, the
-  // depth maps, a stereo pair and a lens with noise, which check_truth.py reads against
-  // coco.json (the lens undone there by its own code of OpenCV's model).
+  // WebDataset shards, the depth maps, a stereo pair and a lens with noise, which
+  // check_truth.py reads against coco.json (the lens undone there by its own code of
+  // OpenCV's model).
   const std::string out = test::temp_path("coco");
   const RunResult r = run_cli(
       "swim --fish 40 --seconds 0.1 --fps 20 --seed 3 --size 320x180 --annotate --video none "
-      "--formats coco,yolo --depth --stereo 0.12 --distortion -0.2,0.05,0.001,-0.0005,0 "
+      "--formats coco,yolo,webdataset --depth --stereo 0.12 --distortion -0.2,0.05,0.001,-0.0005,0 "
       "--noise 2,4 --length-weight barramundi:0.012,2.98 --species " +
       low_resolution_species() + " --species " + fish("barramundi/BarramundiFish.gltf") + ":" +
       test::data_path("rigs/barramundi_swim.rig.json") + " --out '" + out + "'");
@@ -282,6 +283,7 @@ TEST(CliPictures, TheDatasetLoadsWithPycocotools) {
   EXPECT_EQ(truth.exit_code, 0) << truth.out;
   EXPECT_NE(truth.out.find("agree with coco.json"), std::string::npos) << truth.out;
   EXPECT_NE(truth.out.find("stereo: 2 pairs"), std::string::npos) << truth.out;
+  EXPECT_NE(truth.out.find("webdataset: 1 shard(s), 4 samples"), std::string::npos) << truth.out;
   std::printf("%s", truth.out.c_str());
 }
 

@@ -10,7 +10,7 @@
 //                [--size WxH] [--camera above|oblique|side] [--stereo B] [--samples N]
 //                [--distortion K1,K2,P1,P2,K3] [--noise READ,SHOT]
 //                [--image-frames all|none|LIST] [--video auto|none|mp4,gif,apng]
-//                [--annotate [--formats coco,yolo] [--depth]] [--render | --no-render]
+//                [--annotate [--formats coco,yolo,webdataset] [--depth]] [--render | --no-render]
 //                [--hand-off auto|external-memory|shared|copy] [--reference-draw]
 #include <unistd.h>
 
@@ -487,8 +487,8 @@ Command add_swim_command(CLI::App& app) {
   swim->add_flag("--annotate", options->annotate,
                  "Also instance masks and COCO annotations of the image frames");
   swim->add_option("--formats", options->formats,
-                   "With --annotate: the dataset's formats, coco and yolo (Ultralytics detect, "
-                   "segment and pose)")
+                   "With --annotate: the dataset's formats, coco, yolo (Ultralytics detect, "
+                   "segment and pose) and webdataset (tar shards)")
       ->capture_default_str();
   swim->add_option("--length-weight", options->length_weights,
                    "SPECIES:A,B, with --annotate: that species' weights by W g = A (L cm)^B "

@@ -156,9 +156,11 @@ void plan_pictures(const SwimOptions& options, SwimPlan& plan) {
     const std::string format = options.formats.substr(start, comma - start);
     if (format == "yolo") {
       files.dataset.yolo = true;
+    } else if (format == "webdataset") {
+      files.dataset.webdataset = true;
     } else if (format != "coco") {
       throw Error(ErrorCode::kInvalidArgument, "--formats",
-                  "--formats: '" + format + "' is not a dataset format (coco, yolo)");
+                  "--formats: '" + format + "' is not a dataset format (coco, yolo, webdataset)");
     }
     start = comma + 1;
   }

@@ -11,6 +11,7 @@
 #include "fish_keypoints.hpp"
 #include "instance_masks.hpp"
 #include "render/png16.hpp"
+#include "tar_shards.hpp"
 #include "yolo_labels.hpp"
 
 namespace finflex::pictures {
@@ -135,6 +136,7 @@ CocoDataset::CocoDataset(const std::string& folder, tank::SwimScene& scene,
   const std::filesystem::path root(folder);
   std::filesystem::create_directories(root / "masks");
   if (options_.depth) std::filesystem::create_directories(root / "depth");
+  if (options_.webdataset) std::filesystem::create_directories(root / "webdataset" / "samples");
   if (options_.yolo) {
     for (YoloTask task : kYoloTasks) {
       std::filesystem::create_directories(root / "yolo" / to_string(task) / "images");
@@ -301,10 +303,26 @@ CocoDataset::FrameAnnotations CocoDataset::annotate(const FrameTruth& truth) con
   return out;
 }
 
+namespace {
+
+std::string sample_key(const nlohmann::ordered_json& image) {
+  return std::filesystem::path(image["file_name"].get<std::string>()).stem().string();
+}
+
+}  // namespace
+
 void CocoDataset::append(FrameAnnotations frame) {
   for (nlohmann::ordered_json& annotation : frame.annotations) {
     annotation["id"] = next_annotation_++;
     coco_ << (annotation_count() == 1 ? "\n" : ",\n") << annotation.dump();
+  }
+  if (options_.webdataset) {  // the sample's JSON until the shards are packed
+    const nlohmann::ordered_json sample = {{"image", frame.image},
+                                           {"annotations", frame.annotations}};
+    write_text((std::filesystem::path(folder_) / "webdataset" / "samples" /
+                (sample_key(frame.image) + ".json"))
+                   .string(),
+               sample.dump());
   }
   images_.push_back(std::move(frame.image));
   require_written(coco_, folder_ + "/coco.json");
@@ -314,8 +332,9 @@ void CocoDataset::finish() {
   coco_ << "\n],\"images\":" << images_.dump() << "}\n";
   coco_.close();
   require_written(coco_, folder_ + "/coco.json");
-  if (!options_.yolo) return;
   const std::filesystem::path root(folder_);
+  if (options_.webdataset) write_shards();
+  if (!options_.yolo) return;
   for (YoloTask task : kYoloTasks) {
     const std::filesystem::path folder = root / "yolo" / to_string(task);
     for (const nlohmann::ordered_json& image : images_) {
@@ -334,6 +353,25 @@ void CocoDataset::finish() {
                           std::vector<std::string>(kKeypointNames.begin(), kKeypointNames.end()),
                           std::vector<std::size_t>(kKeypointFlip.begin(), kKeypointFlip.end())));
   }
+}
+
+// Each image a sample, in frame order, its files in the shard one after another.
+void CocoDataset::write_shards() const {
+  const std::filesystem::path root(folder_);
+  const std::filesystem::path samples = root / "webdataset" / "samples";
+  TarShards shards((root / "webdataset").string(), 1000);
+  for (const nlohmann::ordered_json& image : images_) {
+    const std::string key = sample_key(image);
+    shards.begin_sample();
+    shards.add_file(key + ".png", (root / image["file_name"].get<std::string>()).string());
+    shards.add_file(key + ".mask.png", (root / image["mask_file"].get<std::string>()).string());
+    if (image.contains("depth_file")) {
+      shards.add_file(key + ".depth.npy", (root / image["depth_file"].get<std::string>()).string());
+    }
+    shards.add_file(key + ".json", (samples / (key + ".json")).string());
+  }
+  shards.finish();
+  std::filesystem::remove_all(samples);
 }
 
 }  // namespace finflex::pictures

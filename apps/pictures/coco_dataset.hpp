@@ -66,6 +66,10 @@ struct LengthWeight {
 struct DatasetOptions {
   bool yolo = false;   // Ultralytics YOLO detect, segment and pose datasets too
   bool depth = false;  // depth/frame_NNNNNN.npy per frame
+  // WebDataset tar shards of the same samples (webdataset/shard-NNNNNN.tar, 1,000 a
+  // shard): per image KEY.png, KEY.mask.png, KEY.depth.npy (with depth), KEY.json
+  // (its coco.json image and annotations).
+  bool webdataset = false;
   // The pictures' lens (lens.hpp): masks, depth and keypoints are its too.
   LensDistortion distortion;
   // Length-weight relations by species name; the others take LengthWeight{}.
@@ -139,6 +143,7 @@ class CocoDataset {
   std::vector<LengthWeight> weights_;  // per species
   DatasetOptions options_;
   std::unique_ptr<LensWarp> warp_;  // with a distortion
+  void write_shards() const;        // webdataset/: the images written, their samples
   std::ofstream coco_;
   nlohmann::ordered_json images_ = nlohmann::ordered_json::array();
   std::size_t next_annotation_ = 1;

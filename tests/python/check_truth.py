@@ -14,6 +14,7 @@ coco.json against coco.json (itself checked by check_coco.py):
   against the surface at its pixel's centre, which the surface's slope across the
   pixel sets apart (a pixel is about 16 mm of fish at 320 x 180);
 - weights: weight_kg = a (100 L)^b / 1000 with the category's length_weight;
+- the WebDataset shards: each image a sample, its files byte for byte;
 - a stereo pair (camera.json "stereo"): keypoints on the same row in both views,
   disparity fx B / Z, and the right masks where the disparity puts them.
 
@@ -105,6 +106,43 @@ def floor_errors(folder, image, depth, ids):
             if np.hypot(point[0], point[2]) < 0.9 * radius:
                 out.append(abs(float(depth[j, i]) - z))
     return out
+
+
+def check_webdataset(folder, coco, by_image):
+    """The tar shards, read with Python's tarfile as WebDataset reads them (members grouped
+    by the name's part before its first dot): one sample per image of coco.json, its
+    picture, mask and depth byte for byte the dataset's files, its JSON the image's entry
+    and annotations."""
+    import glob
+    import tarfile
+    paths = sorted(glob.glob(os.path.join(folder, "webdataset", "shard-*.tar")))
+    if not paths:
+        return ""
+    samples = {}
+    for path in paths:
+        with tarfile.open(path) as tar:
+            for member in tar.getmembers():
+                key, extension = member.name.split(".", 1)
+                samples.setdefault(key, {})[extension] = tar.extractfile(member).read()
+    if len(samples) != len(coco["images"]):
+        fail("webdataset: %d samples for %d images" % (len(samples), len(coco["images"])))
+    for image in coco["images"]:
+        key = os.path.splitext(os.path.basename(image["file_name"]))[0]
+        sample = samples.get(key)
+        if sample is None:
+            fail("webdataset: no sample %s" % key)
+        parts = {"png": image["file_name"], "mask.png": image["mask_file"]}
+        if "depth_file" in image:
+            parts["depth.npy"] = image["depth_file"]
+        for extension, name in parts.items():
+            with open(os.path.join(folder, name), "rb") as f:
+                if sample.get(extension) != f.read():
+                    fail("webdataset: %s.%s differs from %s" % (key, extension, name))
+        entry = json.loads(sample["json"])
+        wanted = [a["id"] for a in by_image.get(image["id"], [])]
+        if entry["image"]["id"] != image["id"] or [a["id"] for a in entry["annotations"]] != wanted:
+            fail("webdataset: %s.json is not image %d's entry and annotations" % (key, image["id"]))
+    return "; webdataset: %d shard(s), %d samples equal to the files" % (len(paths), len(samples))
 
 
 def check_stereo(folder, coco, by_image):
@@ -249,12 +287,13 @@ def main(folder):
         fail("depth on the tank's floor: largest error %.3f mm over %d pixels"
              % (1e3 * max(floor or [0]), len(floor)))
     stereo = check_stereo(folder, coco, by_image)
+    shards = check_webdataset(folder, coco, by_image)
     medians = [float(np.median(errors[i])) if errors[i] else 0.0 for i in range(2)]
     print("check_truth: %d YOLO lines agree with coco.json (%d outlines with holes); depth on the "
           "floor within %.3f mm (%d pixels), at keypoints: snout median %.1f mm (%d), tail fork "
-          "median %.1f mm (%d); weights follow their relation%s"
+          "median %.1f mm (%d); weights follow their relation%s%s"
           % (lines, holes, 1e3 * max(floor), len(floor), 1e3 * medians[0], len(errors[0]),
-             1e3 * medians[1], len(errors[1]), stereo))
+             1e3 * medians[1], len(errors[1]), stereo, shards))
 
 
 if __name__ == "__main__":
