@@ -138,8 +138,8 @@ TEST(Lens, DistortionIsOpenCvsModelAndTheWarpItsInverse) {
   for (int y = 0; y < 60; ++y)
     for (int x = 0; x < 80; ++x) ids.ids.push_back(std::uint32_t(x + 1));
   ids.depth.assign(ids.ids.size(), 2.0f);
-  render::IdImage warped = ids;
-  warp.apply(warped);
+  render::IdImage warped;
+  warp.apply(ids, warped);
   for (const glm::ivec2 at : {glm::ivec2(3, 4), glm::ivec2(40, 30), glm::ivec2(70, 50)}) {
     const glm::dvec2 source =
         lens.undistort({(at.x + 0.5 - k.cx) / k.fx, (at.y + 0.5 - k.cy) / k.fy});

@@ -1,5 +1,6 @@
 #include "cli_numbers.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
@@ -45,6 +46,34 @@ double parse_number(const std::string& text, const std::string& option) {
     throw Error(ErrorCode::kInvalidArgument, option, option + " '" + text + "' is not a number");
   }
   return value;
+}
+
+std::vector<double> parse_number_list(const std::string& text, const std::string& option,
+                                      std::size_t count) {
+  std::vector<double> out;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    const std::string part = text.substr(start, comma - start);
+    double value = 0.0;
+    try {
+      value = parse_number(part, option);
+    } catch (const Error&) {
+      value = std::nan("");  // named below, with the whole list
+    }
+    if (!std::isfinite(value)) {
+      throw Error(ErrorCode::kInvalidArgument, option,
+                  option + " '" + text + "': '" + part + "' is not a finite number");
+    }
+    out.push_back(value);
+    start = comma + 1;
+  }
+  if (out.size() != count) {
+    throw Error(ErrorCode::kInvalidArgument, option,
+                option + " '" + text + "': " + std::to_string(count) + " numbers expected, " +
+                    std::to_string(out.size()) + " given");
+  }
+  return out;
 }
 
 double parse_positive(const std::string& text, const std::string& option, bool zero_allowed) {

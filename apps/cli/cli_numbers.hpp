@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace finflex::cli {
 
@@ -28,6 +29,11 @@ double parse_positive(const std::string& text, const std::string& option,
 
 // "A,B": two finite numbers > 0.
 std::pair<double, double> parse_positive_pair(const std::string& text, const std::string& option);
+
+// "A,B,...": exactly `count` finite numbers, comma-separated. kInvalidArgument naming
+// `option`: "--noise '1,x': 'x' is not a finite number", or the count given.
+std::vector<double> parse_number_list(const std::string& text, const std::string& option,
+                                      std::size_t count);
 
 // "WIDTHxHEIGHT": an image size, each a whole number in [1, 16384] ("640x360").
 std::pair<int, int> parse_size(const std::string& text, const std::string& option);

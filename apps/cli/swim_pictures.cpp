@@ -43,16 +43,18 @@ SwimPictureFiles::SwimPictureFiles(const std::string& folder, pictures::TankPict
     videos_.push_back(
         render::open_video((fs::path(folder) / ("swim." + extension)).string(), options));
   }
+  if (!plan.distortion.none()) {  // one lens for both cameras of a pair: the same intrinsics
+    lens_ = std::make_shared<const pictures::LensWarp>(
+        plan.distortion, render::pinhole_intrinsics(pictures.camera(), size.width, size.height),
+        size.width, size.height, "--distortion");
+  }
   if (plan.annotate) {
+    pictures::DatasetOptions dataset = plan.dataset;
+    dataset.lens = lens_;
     std::vector<render::Camera> cameras;
     for (std::size_t v = 0; v < pictures.views(); ++v) cameras.push_back(pictures.camera(v));
     dataset_ = std::make_unique<pictures::CocoDataset>(folder, scene, cameras, size.width,
-                                                       size.height, info, plan.dataset);
-  }
-  if (!plan.distortion.none()) {
-    warp_ = std::make_unique<pictures::LensWarp>(
-        plan.distortion, render::pinhole_intrinsics(pictures.camera(), size.width, size.height),
-        size.width, size.height, "--distortion");
+                                                       size.height, info, dataset);
   }
   std::ofstream camera(fs::path(folder) / "camera.json");
   const nlohmann::ordered_json camera_file =
@@ -116,9 +118,9 @@ void SwimPictureFiles::take_frame(PictureFileTimes* times) {
     // The lens and the sensor on the pool's threads; noise seeded by the frame and view.
     const std::uint64_t seed = (plan_.seed * 1000003u + frame) * 2u + view;
     pngs_.push_back(pool_->submit([this, path, seed, image = std::move(picture)]() mutable {
-      if (warp_) {
+      if (lens_) {
         render::Image ideal = std::move(image);
-        warp_->apply(ideal, image);
+        lens_->apply(ideal, image);
       }
       if (!plan_.noise.none()) plan_.noise.apply(image, seed);
       render::write_png(path, image);

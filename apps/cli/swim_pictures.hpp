@@ -78,7 +78,7 @@ class SwimPictureFiles {
   PictureFiles plan_;
   std::vector<std::unique_ptr<render::VideoWriter>> videos_;
   std::unique_ptr<pictures::CocoDataset> dataset_;
-  std::unique_ptr<pictures::LensWarp> warp_;  // with a distortion
+  std::shared_ptr<const pictures::LensWarp> lens_;  // with a distortion; the dataset's too
   std::size_t images_ = 0;
 
   // Takes the oldest frame in flight: its video frame, its PNG to the pool (the

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <vector>
 
@@ -61,30 +60,6 @@ std::vector<std::string> parse_videos(const std::string& text) {
     }
   }
   return videos;
-}
-
-// `count` comma-separated finite numbers: kInvalidArgument naming `option` otherwise.
-std::vector<double> parse_numbers(const std::string& text, const char* option, std::size_t count) {
-  std::vector<double> out;
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    const std::size_t comma = std::min(text.find(',', start), text.size());
-    const std::string part = text.substr(start, comma - start);
-    char* end = nullptr;
-    const double value = std::strtod(part.c_str(), &end);
-    if (part.empty() || end != part.c_str() + part.size() || !std::isfinite(value)) {
-      throw Error(ErrorCode::kInvalidArgument, option,
-                  std::string(option) + " '" + text + "': '" + part + "' is not a finite number");
-    }
-    out.push_back(value);
-    start = comma + 1;
-  }
-  if (out.size() != count) {
-    throw Error(ErrorCode::kInvalidArgument, option,
-                std::string(option) + " '" + text + "': " + std::to_string(count) +
-                    " numbers expected, " + std::to_string(out.size()) + " given");
-  }
-  return out;
 }
 
 // The pictures' options, checked against each other and --out.
@@ -175,7 +150,7 @@ void plan_pictures(const SwimOptions& options, SwimPlan& plan) {
       throw Error(ErrorCode::kInvalidArgument, "--length-weight",
                   "--length-weight '" + text + "': SPECIES:A,B expected");
     }
-    const std::vector<double> ab = parse_numbers(text.substr(colon + 1), "--length-weight", 2);
+    const std::vector<double> ab = parse_number_list(text.substr(colon + 1), "--length-weight", 2);
     if (ab[0] <= 0.0 || ab[1] < 2.0 || ab[1] > 4.0) {
       throw Error(ErrorCode::kInvalidArgument, "--length-weight",
                   "--length-weight '" + text + "': a > 0 and 2 <= b <= 4 (W g = a (L cm)^b)");
@@ -192,12 +167,11 @@ void plan_pictures(const SwimOptions& options, SwimPlan& plan) {
     }
   }
   if (!options.distortion.empty()) {
-    const std::vector<double> k = parse_numbers(options.distortion, "--distortion", 5);
+    const std::vector<double> k = parse_number_list(options.distortion, "--distortion", 5);
     files.distortion = {k[0], k[1], k[2], k[3], k[4]};
-    files.dataset.distortion = files.distortion;
   }
   if (!options.noise.empty()) {
-    const std::vector<double> n = parse_numbers(options.noise, "--noise", 2);
+    const std::vector<double> n = parse_number_list(options.noise, "--noise", 2);
     for (double v : n) {
       if (v < 0.0 || v > 255.0) {
         throw Error(ErrorCode::kInvalidArgument, "--noise",

@@ -91,11 +91,6 @@ CocoDataset::CocoDataset(const std::string& folder, tank::SwimScene& scene,
       options_(options) {
   for (const render::Camera& camera : cameras_)
     camera_from_world_.push_back(render::camera_from_world(camera));
-  if (!options_.distortion.none()) {  // both cameras of a pair have the same intrinsics
-    warp_ = std::make_unique<LensWarp>(options_.distortion,
-                                       render::pinhole_intrinsics(cameras_.front(), width, height),
-                                       width, height, "--distortion");
-  }
   const std::vector<tank::Fish>& fish = scene.hall().fish();
   if (fish.size() > kMaxAnnotatedFish) {
     throw Error(ErrorCode::kInvalidArgument, "fish",
@@ -179,11 +174,9 @@ CocoDataset::FrameTruth CocoDataset::capture(std::size_t frame, double time_s,
 
 CocoDataset::FrameAnnotations CocoDataset::annotate(const FrameTruth& truth) const {
   render::IdImage distorted;
-  if (warp_) {  // the truth through the pictures' lens
-    distorted = truth.ids;
-    warp_->apply(distorted);
-  }
-  const render::IdImage& ids = warp_ ? distorted : truth.ids;
+  const LensWarp* lens = options_.lens.get();
+  if (lens) lens->apply(truth.ids, distorted);  // the truth through the pictures' lens
+  const render::IdImage& ids = lens ? distorted : truth.ids;
   const auto pixels = static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_);
   if (ids.width != width_ || ids.height != height_ || ids.ids.size() != pixels) {
     throw Error(ErrorCode::kInvalidArgument, "ids",
@@ -235,7 +228,7 @@ CocoDataset::FrameAnnotations CocoDataset::annotate(const FrameTruth& truth) con
       const glm::dvec3 p = glm::dvec3(camera_from_world * glm::dvec4(glm::dvec3(world), 1.0));
       camera_points.push_back({p.x, p.y, p.z});
       glm::dvec2 uv{k.fx * p.x / p.z + k.cx, k.fy * p.y / p.z + k.cy};
-      if (warp_) uv = warp_->distort_pixel(uv);
+      if (lens) uv = lens->distort_pixel(uv);
       const double u = uv.x, v = uv.y;
       const bool inside = p.z > double(camera.near_plane) && u >= 0.0 && v >= 0.0 &&
                           u < double(width_) && v < double(height_);

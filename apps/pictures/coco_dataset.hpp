@@ -70,8 +70,9 @@ struct DatasetOptions {
   // shard): per image KEY.png, KEY.mask.png, KEY.depth.npy (with depth), KEY.json
   // (its coco.json image and annotations).
   bool webdataset = false;
-  // The pictures' lens (lens.hpp): masks, depth and keypoints are its too.
-  LensDistortion distortion;
+  // The pictures' lens (lens.hpp; null: none), for the frame's size and camera:
+  // masks, depth and keypoints go through it too.
+  std::shared_ptr<const LensWarp> lens;
   // Length-weight relations by species name; the others take LengthWeight{}.
   std::vector<std::pair<std::string, LengthWeight>> weights;
 };
@@ -142,8 +143,7 @@ class CocoDataset {
   std::vector<std::string> names_;     // per species
   std::vector<LengthWeight> weights_;  // per species
   DatasetOptions options_;
-  std::unique_ptr<LensWarp> warp_;  // with a distortion
-  void write_shards() const;        // webdataset/: the images written, their samples
+  void write_shards() const;  // webdataset/: the images written, their samples
   std::ofstream coco_;
   nlohmann::ordered_json images_ = nlohmann::ordered_json::array();
   std::size_t next_annotation_ = 1;

@@ -77,9 +77,13 @@ void LensWarp::apply(const render::Image& ideal, render::Image& out) const {
   }
 }
 
-void LensWarp::apply(render::IdImage& ids) const {
-  std::vector<std::uint32_t> id(ids.ids.size(), 0);
-  std::vector<float> depth(ids.depth.size(), std::numeric_limits<float>::infinity());
+void LensWarp::apply(const render::IdImage& ids, render::IdImage& out) const {
+  out.width = width_;
+  out.height = height_;
+  out.ids.assign(ids.ids.size(), 0);  // reuses out's storage
+  out.depth.assign(ids.depth.size(), std::numeric_limits<float>::infinity());
+  std::vector<std::uint32_t>& id = out.ids;
+  std::vector<float>& depth = out.depth;
   for (int y = 0; y < height_; ++y) {
     for (int x = 0; x < width_; ++x) {
       const glm::vec2 s = source_[std::size_t(y) * std::size_t(width_) + std::size_t(x)];
@@ -107,8 +111,6 @@ void LensWarp::apply(render::IdImage& ids) const {
       depth[ids.index(x, y)] = 1.0f / ((1 - fy) * top + fy * bottom);
     }
   }
-  ids.ids = std::move(id);
-  ids.depth = std::move(depth);
 }
 
 namespace {

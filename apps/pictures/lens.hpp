@@ -50,7 +50,7 @@ class LensWarp {
   // Pixel coordinates (u, v) of the ideal image to the distorted image's.
   glm::dvec2 distort_pixel(glm::dvec2 ideal) const;
   void apply(const render::Image& ideal, render::Image& out) const;
-  void apply(render::IdImage& ids) const;  // in place: ids and depth, nearest
+  void apply(const render::IdImage& ids, render::IdImage& out) const;  // ids and depth
 
  private:
   LensDistortion distortion_;

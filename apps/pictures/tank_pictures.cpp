@@ -75,10 +75,12 @@ TankPictures::TankPictures(render::Renderer& renderer, tank::SwimScene& scene,
   for (const SpeciesDrawing& drawing : drawings_) draws_.push_back(fish_draw(drawing));
   for (LeveledSpecies& species : leveled_) {
     const LevelChooser& chooser = *species.chooser;
+    // Every level's outputs are on the one hand-off path: all have device lists, or none.
+    species.device_lists = drawings_[species.first_drawing].outputs->has_device_list() &&
+                           renderer_.device().device_lists;
     for (std::size_t k = 0; k < chooser.level_count(); ++k) {
       SpeciesDrawing& drawing = drawings_[species.first_drawing + k];
       render::FishDraw& draw = draws_[species.first_drawing + k];
-      species.device_lists = drawing.outputs->has_device_list() && renderer_.device().device_lists;
       if (!species.device_lists) {  // no fish until a frame's lists
         draw.instance_count = 0;
         continue;

@@ -343,12 +343,14 @@ bench_deform() {
   done
 }
 
+# The bundled fish with their swim rigs, for the suites that run `finflex swim`.
+swim_species=(--species data/blub/fish.obj:data/rigs/blub_swim.rig.json
+  --species data/barramundi/BarramundiFish.gltf:data/rigs/barramundi_swim.rig.json)
+
 render_speed() {
   find_nvidia_egl
   find_nvidia_vulkan
   local side finflex scratch path
-  local -a species=(--species data/blub/fish.obj:data/rigs/blub_swim.rig.json
-    --species data/barramundi/BarramundiFish.gltf:data/rigs/barramundi_swim.rig.json)
   scratch=$(mktemp -d)
   # One swim of FISH fish on a path: its summary lines, and with --out its
   # summary.json's rendering part.
@@ -357,7 +359,7 @@ render_speed() {
     shift 3
     echo "== $what, --hand-off $path"
     # shellcheck disable=SC2046
-    run env $(side_env "$side" -) timeout 90 "$finflex" swim --fish "$fish" "${species[@]}" --size 1280x720 \
+    run env $(side_env "$side" -) timeout 90 "$finflex" swim --fish "$fish" "${swim_species[@]}" --size 1280x720 \
       --hand-off "$path" "${device_option[@]}" "$@" | grep -vE "^ *wrote|put back" ||
       failed+=("$what on $path")
   }
@@ -398,15 +400,13 @@ dataset() {
   find_nvidia_egl
   find_nvidia_vulkan
   local side finflex scratch
-  local -a species=(--species data/blub/fish.obj:data/rigs/blub_swim.rig.json
-    --species data/barramundi/BarramundiFish.gltf:data/rigs/barramundi_swim.rig.json)
   scratch=$(mktemp -d)
   dataset_swim() {
     local what=$1 name=$2
     shift 2
     echo "== $what"
     # shellcheck disable=SC2046
-    run env $(side_env "$side" -) timeout 120 "$finflex" swim --fish 1000 "${species[@]}" \
+    run env $(side_env "$side" -) timeout 120 "$finflex" swim --fish 1000 "${swim_species[@]}" \
       --size 1280x720 --seconds 0.5 --fps 30 --annotate --video none --out "$scratch/$name" \
       "${device_option[@]}" "$@" | grep -vE "^ *wrote|put back" || failed+=("$what")
   }
@@ -456,15 +456,13 @@ render_levels() {
   find_nvidia_egl
   find_nvidia_vulkan
   local side finflex scratch
-  local -a species=(--species data/blub/fish.obj:data/rigs/blub_swim.rig.json
-    --species data/barramundi/BarramundiFish.gltf:data/rigs/barramundi_swim.rig.json)
   scratch=$(mktemp -d)
   levels_swim() {
     local what=$1 fish=$2
     shift 2
     echo "== $what"
     # shellcheck disable=SC2046
-    run env $(side_env "$side" -) timeout 120 "$finflex" swim --fish "$fish" "${species[@]}" \
+    run env $(side_env "$side" -) timeout 120 "$finflex" swim --fish "$fish" "${swim_species[@]}" \
       --size 1920x1080 "${device_option[@]}" "$@" | grep -vE "^ *wrote|put back" ||
       failed+=("$what")
   }
