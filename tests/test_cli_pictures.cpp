@@ -258,14 +258,15 @@ TEST(CliPictures, TheDatasetLoadsWithPycocotools) {
     GTEST_SKIP() << "no Python with pycocotools: scripts/install-deps.sh makes .venv";
   }
   // Two species, seen obliquely: fish hide each other. With the YOLO datasets, the
-  // WebDataset shards, the depth maps, a stereo pair and a lens with noise, which
+  // WebDataset shards, the depth maps, a stereo pair, a lens with noise and each frame
+  // its own water and light, which
   // check_truth.py reads against coco.json (the lens undone there by its own code of
   // OpenCV's model).
   const std::string out = test::temp_path("coco");
   const RunResult r = run_cli(
       "swim --fish 40 --seconds 0.1 --fps 20 --seed 3 --size 320x180 --annotate --video none "
       "--formats coco,yolo,webdataset --depth --stereo 0.12 --distortion -0.2,0.05,0.001,-0.0005,0 "
-      "--noise 2,4 --length-weight barramundi:0.012,2.98 --species " +
+      "--noise 2,4 --vary-optics --length-weight barramundi:0.012,2.98 --species " +
       low_resolution_species() + " --species " + fish("barramundi/BarramundiFish.gltf") + ":" +
       test::data_path("rigs/barramundi_swim.rig.json") + " --out '" + out + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -323,6 +324,10 @@ TEST(CliPictures, BadPictureInputsExitTwoAndWriteNothing) {
       {" --distortion 0.1,x,0,0,0", "--distortion '0.1,x,0,0,0': 'x' is not a finite number"},
       {" --distortion -5,0,0,0,0", "--distortion: the distortion does not invert"},
       {" --noise -1,0", "--noise -1,0: each sigma is 0 to 255"},
+      {" --turbidity -1", "--turbidity -1: 0 to 100 NTU expected"},
+      {" --dissolved 21", "--dissolved 21: 0 to 20 per metre expected"},
+      {" --water muddy", "--water 'muddy' is not a water type (clear, ras, turbid)"},
+      {" --vary-optics --turbidity 2", "--turbidity with --vary-optics"},
       {" --annotate --length-weight nosuch:0.01,3", "--length-weight: no species 'nosuch'"},
       {" --annotate --length-weight blub:0.01,5", "2 <= b <= 4"},
       {" --annotate --length-weight 0.01,3", "SPECIES:A,B expected"},

@@ -255,7 +255,13 @@ TEST(TankView, EveryViewFramesTheWholeTank) {
 
 // A small tank of low-resolution Blubs seen from above, a few frames in.
 constexpr int kFrames = 3;
-const PictureSettings kAbove{200, 150, 4, CameraView::kAbove};
+const PictureSettings kAbove = [] {
+  PictureSettings settings;
+  settings.width = 200;
+  settings.height = 150;
+  settings.view = CameraView::kAbove;
+  return settings;
+}();
 
 tank::SwimScene small_scene(Context& context, const tank::OutputsFactory& outputs = {},
                             const std::optional<tank::SceneLevels>& levels = std::nullopt) {

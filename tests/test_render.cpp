@@ -639,3 +639,103 @@ TEST(TankRows, EachTankStandsWhereItsRowAndColumnPutIt) {
 
 }  // namespace lists
 }  // namespace finflex::render
+
+// The water's image formation (render/water.hpp, docs/rendering.md "Water") against the
+// formula integrated here on its own: a grey floor seen straight down through water of
+// known optical properties, lit straight from above.
+namespace finflex::render {
+namespace water {
+
+double srgb_encode(double linear) {
+  linear = std::clamp(linear, 0.0, 1.0);
+  return linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
+}
+
+struct Floor {
+  glm::dvec3 absorption;
+  glm::dvec3 scattering;
+  double depth;
+};
+
+// The floor's linear colour: its light (key and sky, both losing Kirk's K_d with depth)
+// attenuated over the depth, plus the light the water scatters back up along the way,
+// summed over 20,000 steps.
+glm::dvec3 expected_colour(const Floor& f, double albedo, double key, double sky, double g) {
+  glm::dvec3 out;
+  for (int c = 0; c < 3; ++c) {
+    const double a = f.absorption[c], b = f.scattering[c], attenuation = a + b;
+    const double k = std::sqrt(a * a + (0.425 - 0.19) * a * b);  // mu = 1: straight down
+    const double lit = albedo * (sky + key) * std::exp(-k * f.depth);
+    const double back = (1 - g * g) / (4 * M_PI * std::pow(1 + g, 3.0));  // 180 degrees
+    const int steps = 20000;
+    double veil = 0.0;
+    for (int i = 0; i < steps; ++i) {
+      const double s = (i + 0.5) * f.depth / steps;
+      const double source = b * (M_PI * back * key + 0.5 * sky) * std::exp(-k * s);
+      veil += source * std::exp(-attenuation * s) * f.depth / steps;
+    }
+    out[c] = lit * std::exp(-attenuation * f.depth) + veil;
+  }
+  return out;
+}
+
+TEST(Water, AGreyFloorSeenThroughItIsTheImageFormationsColour) {
+  const double albedo = 0.5, key = 0.6, sky = 0.2;
+  for (const Floor& f : {Floor{glm::dvec3(0.0), glm::dvec3(0.0), 1.0},  // no water: dry shading
+                         Floor{{0.30, 0.10, 0.40}, {1.0, 1.1, 1.2}, 1.0},
+                         Floor{{0.30, 0.10, 0.40}, {1.0, 1.1, 1.2}, 0.5},
+                         Floor{{0.26, 0.06, 0.02}, {8.0, 9.0, 10.0}, 1.0}}) {
+    Scene scene;
+    scene.tank.water_depth = float(f.depth);
+    scene.tank.wall_height = float(f.depth) * 1.1f;
+    scene.tank.floor_albedo = scene.tank.wall_albedo = glm::vec3(float(albedo));
+    scene.water.absorption = glm::vec3(f.absorption);
+    scene.water.scattering = glm::vec3(f.scattering);
+    scene.lighting.direction_to_light = {0.0f, 1.0f, 0.0f};
+    scene.lighting.key_colour = glm::vec3(float(key));
+    scene.lighting.sky_ambient = glm::vec3(float(sky));
+    scene.lighting.specular = 0.0f;
+    Camera camera;  // straight down onto the floor half-way out from the drain
+    camera.position = {0.9f, 2.5f, 0.0f};
+    camera.target = {0.9f, 0.0f, 0.0f};
+    camera.up = {0.0f, 0.0f, -1.0f};
+    camera.vertical_fov_degrees = 4.0f;
+    renderer().render(scene, camera, {});
+    const Image image = renderer().read_image();
+    const glm::dvec3 expected =
+        expected_colour(f, albedo, key, sky, double(scene.water.phase_asymmetry));
+    const std::uint8_t* pixel = image.pixel(kWidth / 2, kHeight / 2);
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(double(pixel[c]), 255.0 * srgb_encode(expected[c]), 1.0)
+          << "channel " << c << ", depth " << f.depth << ", scattering " << f.scattering[c];
+    }
+  }
+}
+
+TEST(Water, ItsPropertiesAddUpFromWhatItHolds) {
+  // Pure water: Pope and Fry's absorption, Morel's scattering (0.0022 at 500 nm).
+  const Water pure = water_optics({0.0f, 0.0f});
+  EXPECT_NEAR(pure.absorption.r, 0.2644, 1e-6);
+  EXPECT_NEAR(pure.absorption.b, 0.0102, 1e-6);
+  EXPECT_NEAR(pure.scattering.g, 0.0022 * std::pow(500.0 / 550.0, 4.32), 1e-7);
+  // 1 m^-1 of scattering per NTU at 550 nm, as lambda^-1; CDOM at exp(-0.014 (l - 440)).
+  const Water murky = water_optics({4.0f, 2.0f});
+  EXPECT_NEAR(murky.scattering.g - pure.scattering.g, 4.0, 1e-5);
+  EXPECT_NEAR(murky.scattering.b - pure.scattering.b, 4.0 * 550.0 / 465.0, 1e-5);
+  EXPECT_NEAR(murky.absorption.b - pure.absorption.b, 2.0 * std::exp(-0.014 * 25.0), 1e-5);
+  EXPECT_NEAR(murky.absorption.r - pure.absorption.r, 2.0 * std::exp(-0.014 * 170.0), 1e-5);
+  for (const WaterComposition& bad : {WaterComposition{-1.0f, 0.0f}, WaterComposition{0.0f, NAN}}) {
+    try {
+      water_optics(bad);
+      ADD_FAILURE() << "a bad composition was accepted";
+    } catch (const RenderError& e) {
+      EXPECT_NE(std::string(e.what()).find(bad.turbidity_ntu < 0 ? "water.turbidity_ntu"
+                                                                 : "water.dissolved_absorption"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+}
+
+}  // namespace water
+}  // namespace finflex::render

@@ -9,6 +9,7 @@
 //                [--device NAME] [--out DIR [--mesh-frames LIST]]
 //                [--size WxH] [--camera above|oblique|side] [--stereo B] [--samples N]
 //                [--distortion K1,K2,P1,P2,K3] [--noise READ,SHOT]
+//                [--water clear|ras|turbid] [--turbidity NTU] [--dissolved A440] [--vary-optics]
 //                [--image-frames all|none|LIST] [--video auto|none|mp4,gif,apng]
 //                [--annotate [--formats coco,yolo,webdataset] [--depth]] [--render | --no-render]
 //                [--hand-off auto|external-memory|shared|copy] [--reference-draw]
@@ -269,6 +270,7 @@ int run_swim(const SwimOptions& options) {
       PictureFileTimes file_times;
       if (pictures) {
         step = Clock::now();
+        pictures->set_frame(f);
         pictures->draw();
         draw = seconds_since(step);
         draw_gpu = pictures->renderer().gpu_draw_seconds();
@@ -478,6 +480,17 @@ Command add_swim_command(CLI::App& app) {
   swim->add_option("--noise", options->noise,
                    "READ,SHOT: the image frames' sensor noise, sigmas in sRGB levels (shot at "
                    "full scale), seeded by --seed");
+  swim->add_option("--water", options->water,
+                   std::string("The tank's water: ") + pictures::water_type_names())
+      ->capture_default_str();
+  swim->add_option("--turbidity", options->turbidity,
+                   "The water's turbidity in NTU, 0..100 (default: the water type's)");
+  swim->add_option("--dissolved", options->dissolved,
+                   "The water's dissolved organic matter: its absorption at 440 nm per metre, "
+                   "0..20 (default: the water type's)");
+  swim->add_flag("--vary-optics", options->vary_optics,
+                 "Each frame its own water and light, drawn from the documented ranges "
+                 "(seeded by --seed)");
   swim->add_option("--samples", options->samples, "Multisampling of the rendered frames, 1..16")
       ->capture_default_str();
   swim->add_option("--image-frames", options->image_frames,

@@ -89,6 +89,7 @@ PictureFileTimes SwimPictureFiles::add_frame(std::size_t frame, double time_s) {
       const Clock::time_point start = Clock::now();
       if (renderer.ids_pending() == in_flight) take_ids();
       truths_.push_back(dataset_->capture(frame, time_s, image_name(frame, view), view));
+      truths_.back().optics = pictures::optics_json(pictures_.optics(), pictures_.look());
       pictures_.request_ids(view);
       collect(false);
       times.annotation += seconds_since(start);

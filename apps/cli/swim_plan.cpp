@@ -62,6 +62,43 @@ std::vector<std::string> parse_videos(const std::string& text) {
   return videos;
 }
 
+// A number of `option` within low .. high (a unit for the message).
+double parse_in_range(const std::string& text, const std::string& option, double low, double high,
+                      const char* unit) {
+  const double value = parse_number(text, option);
+  if (value < low || value > high) {
+    throw Error(ErrorCode::kInvalidArgument, option,
+                option + " " + text + ": " + std::to_string(int(low)) + " to " +
+                    std::to_string(int(high)) + " " + unit + " expected");
+  }
+  return value;
+}
+
+// The water and the light of the pictures.
+void plan_optics(const SwimOptions& options, SwimPlan& plan) {
+  pictures::OpticsSettings& optics = plan.pictures.optics;
+  optics.base.water = pictures::water_type(options.water, "--water");
+  if (!options.turbidity.empty()) {
+    optics.base.water.turbidity_ntu =
+        float(parse_in_range(options.turbidity, "--turbidity", 0.0, 100.0, "NTU"));
+  }
+  if (!options.dissolved.empty()) {
+    optics.base.water.dissolved_absorption_440 =
+        float(parse_in_range(options.dissolved, "--dissolved", 0.0, 20.0, "per metre"));
+  }
+  optics.vary = options.vary_optics;
+  optics.seed = plan.seed;
+  if (optics.vary) {
+    for (const auto& [given, option] : {std::pair{!options.turbidity.empty(), "--turbidity"},
+                                        std::pair{!options.dissolved.empty(), "--dissolved"}}) {
+      if (given) {
+        throw Error(ErrorCode::kInvalidArgument, option,
+                    std::string(option) + " with --vary-optics: the water is drawn each frame");
+      }
+    }
+  }
+}
+
 // The pictures' options, checked against each other and --out.
 void plan_pictures(const SwimOptions& options, SwimPlan& plan) {
   const bool out = !options.out.empty();
@@ -83,6 +120,7 @@ void plan_pictures(const SwimOptions& options, SwimPlan& plan) {
     plan.pictures.stereo_baseline = baseline;
   }
   plan.pictures.samples = static_cast<int>(parse_count(options.samples, "--samples", 1, 16));
+  plan_optics(options, plan);
   plan.hand_off = pictures::parse_hand_off(options.hand_off, "--hand-off");
   plan.reference_draw = options.reference_draw;
   for (const auto& [given, option] :

@@ -35,6 +35,10 @@ struct SwimOptions {
   std::string distortion;                   // k1,k2,p1,p2,k3; empty: none
   std::string noise;                        // READ,SHOT; empty: none
   std::vector<std::string> length_weights;  // SPECIES:A,B
+  std::string water = "ras";                // a water type (frame_optics.hpp)
+  std::string turbidity;                    // NTU; empty: the water type's
+  std::string dissolved;                    // a_g(440) per metre; empty: the water type's
+  bool vary_optics = false;                 // each frame its own water and light
   std::string samples = "4";
   std::string image_frames;
   std::string video;

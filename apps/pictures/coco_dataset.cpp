@@ -293,6 +293,7 @@ CocoDataset::FrameAnnotations CocoDataset::annotate(const FrameTruth& truth) con
     out.image["camera"] = truth.view == 0 ? "left" : "right";
     out.image["stereo_pair_id"] = truth.view == 0 ? image_id + 1 : image_id - 1;
   }
+  if (!truth.optics.is_null()) out.image["optics"] = truth.optics;
   return out;
 }
 

@@ -102,6 +102,8 @@ class CocoDataset {
     // Per species, per keypoint (kKeypointNames; empty where the species has none), per
     // instance: the deformed vertex.
     std::vector<std::vector<std::vector<glm::vec3>>> keypoints;
+    // The image's water and light (frame_optics.hpp optics_json), or null.
+    nlohmann::ordered_json optics;
   };
   FrameTruth capture(std::size_t frame, double time_s, const std::string& image_file,
                      std::size_t view = 0);

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "finflex/error.hpp"
+#include "split_mix.hpp"
 
 namespace finflex::pictures {
 
@@ -112,22 +113,6 @@ void LensWarp::apply(const render::IdImage& ids, render::IdImage& out) const {
     }
   }
 }
-
-namespace {
-
-// splitmix64 (Steele, Lea and Flood 2014): a fast, well-mixed 64-bit stream per seed.
-struct SplitMix {
-  std::uint64_t state;
-  std::uint64_t next() {
-    std::uint64_t z = (state += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-  }
-  double uniform() { return double(next() >> 11) * 0x1.0p-53; }  // [0, 1)
-};
-
-}  // namespace
 
 void SensorNoise::apply(render::Image& image, std::uint64_t seed) const {
   float sigma[256];  // per value: its standard deviation

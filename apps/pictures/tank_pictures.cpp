@@ -33,9 +33,11 @@ render::RenderSettings render_settings(const PictureSettings& settings) {
 TankPictures::TankPictures(render::Renderer& renderer, tank::SwimScene& scene,
                            const PictureSettings& settings)
     : renderer_(renderer),
-      look_(tank_scene(scene.hall().hall_settings())),
+      base_look_(tank_scene(scene.hall().hall_settings())),
+      optics_settings_(settings.optics),
       cameras_{hall_view_camera(scene.hall().hall_settings(), settings.view, settings.width,
                                 settings.height)} {
+  set_frame(0);
   if (settings.stereo_baseline > 0.0) {
     cameras_.push_back(stereo_right_camera(cameras_.front(), settings.stereo_baseline));
   }
@@ -121,6 +123,11 @@ void TankPictures::take_lists() {
       draw.ids = drawing.ids.data();
     }
   }
+}
+
+void TankPictures::set_frame(std::size_t frame) {
+  optics_ = frame_optics(optics_settings_, frame);
+  look_ = with_optics(base_look_, optics_);
 }
 
 void TankPictures::draw() {

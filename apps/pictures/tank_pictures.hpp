@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "fish_hand_off.hpp"
+#include "frame_optics.hpp"
 #include "render/renderer.hpp"
 #include "swim_scene.hpp"
 #include "tank_view.hpp"
@@ -31,6 +32,7 @@ struct PictureSettings {
   // > 0: a rectified stereo pair, the right camera this many metres to the left one's
   // right (stereo_right_camera); 0: one camera.
   double stereo_baseline = 0.0;
+  OpticsSettings optics;  // the water and the light, the same or varied per frame
 };
 
 // The renderer's settings for pictures of `settings`.
@@ -52,6 +54,10 @@ class TankPictures {
   // external memory and GL has indirect draws (nothing read back); otherwise their
   // lists are read first (a wait for the frame's kernels on the host).
   void draw();
+  // The water and light of frame `frame` (frame_optics) for the draws that follow;
+  // frame 0's until the first call.
+  void set_frame(std::size_t frame);
+  const FrameOptics& optics() const { return optics_; }
   // Another view of the same frame, after draw(): 1 is a stereo pair's right camera.
   void draw_view(std::size_t view);
   const render::Image& read_image();
@@ -79,7 +85,10 @@ class TankPictures {
 
  private:
   render::Renderer& renderer_;
-  render::Scene look_;
+  render::Scene base_look_;  // the tank, with the default water and light
+  OpticsSettings optics_settings_;
+  FrameOptics optics_;
+  render::Scene look_;  // base_look_ with optics_
   std::vector<render::Camera> cameras_;
   std::vector<SpeciesDrawing> drawings_;  // per species with fish (and level), in order
   std::vector<render::FishDraw> draws_;

@@ -16,7 +16,10 @@ coco.json against coco.json (itself checked by check_coco.py):
 - weights: weight_kg = a (100 L)^b / 1000 with the category's length_weight;
 - the WebDataset shards: each image a sample, its files byte for byte;
 - a stereo pair (camera.json "stereo"): keypoints on the same row in both views,
-  disparity fx B / Z, and the right masks where the disparity puts them.
+  disparity fx B / Z, and the right masks where the disparity puts them;
+- each image's "optics": the water's properties per channel recomputed here from its
+  composition (pure water, dissolved matter, turbidity), both views of a pair alike,
+  and with --vary-optics every frame its own draw within the documented ranges.
 
 Prints one line and exits 0, or names the first problem and exits 1.
 
@@ -200,6 +203,37 @@ def check_stereo(folder, coco, by_image):
             " them to %.2f px (median)" % (pairs, worst, float(np.median(shifts))))
 
 
+PURE_WATER_ABSORPTION = (0.2644, 0.0565, 0.0102)  # Pope and Fry 1997, per metre
+
+
+def check_optics(coco):
+    by_frame = {}
+    for image in coco["images"]:
+        o = image.get("optics")
+        if o is None:
+            fail("image %d has no optics" % image["id"])
+        ntu, cdom = o["turbidity_ntu"], o["dissolved_absorption_440_per_m"]
+        for c, wavelength in enumerate(o["wavelengths_nm"]):
+            a = PURE_WATER_ABSORPTION[c] + cdom * np.exp(-0.014 * (wavelength - 440.0))
+            b = 0.0022 * (500.0 / wavelength) ** 4.32 + ntu * 550.0 / wavelength
+            got = (o["absorption_per_m"][c], o["scattering_per_m"][c], o["attenuation_per_m"][c])
+            if max(abs(p - q) for p, q in zip(got, (a, b, a + b))) > 1e-5 * (1 + a + b):
+                fail("image %d: water %s, its composition gives a %.5f, b %.5f at %g nm"
+                     % (image["id"], got, a, b, wavelength))
+        if not (0 <= ntu <= 5 and 0 <= cdom <= 3 and 0.5 <= o["light_scale"] <= 1.5):
+            fail("image %d: optics outside the varied ranges: %s" % (image["id"], o))
+        elevation = np.degrees(np.arcsin(o["direction_to_light"][1]))
+        if not 50 - 1e-3 <= elevation <= 90 + 1e-3:
+            fail("image %d: the light %.2f degrees up" % (image["id"], elevation))
+        by_frame.setdefault(image["frame"], []).append(o)
+    for frame, views in by_frame.items():
+        if any(v != views[0] for v in views):
+            fail("frame %d: its views have different optics" % frame)
+    if len({json.dumps(v[0]) for v in by_frame.values()}) != len(by_frame):
+        fail("with --vary-optics, frames share their water and light")
+    return "; optics: %d frames, each its own water and light" % len(by_frame)
+
+
 def main(folder):
     with open(os.path.join(folder, "coco.json")) as f:
         coco = json.load(f)
@@ -288,12 +322,13 @@ def main(folder):
              % (1e3 * max(floor or [0]), len(floor)))
     stereo = check_stereo(folder, coco, by_image)
     shards = check_webdataset(folder, coco, by_image)
+    optics = check_optics(coco)
     medians = [float(np.median(errors[i])) if errors[i] else 0.0 for i in range(2)]
     print("check_truth: %d YOLO lines agree with coco.json (%d outlines with holes); depth on the "
           "floor within %.3f mm (%d pixels), at keypoints: snout median %.1f mm (%d), tail fork "
-          "median %.1f mm (%d); weights follow their relation%s%s"
+          "median %.1f mm (%d); weights follow their relation%s%s%s"
           % (lines, holes, 1e3 * max(floor), len(floor), 1e3 * medians[0], len(errors[0]),
-             1e3 * medians[1], len(errors[1]), stereo, shards))
+             1e3 * medians[1], len(errors[1]), stereo, shards, optics))
 
 
 if __name__ == "__main__":

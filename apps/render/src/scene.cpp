@@ -23,8 +23,10 @@ void Scene::validate() const {
     invalid("scene.rows.spacing", to_text(rows.spacing) + " is less than the tank's diameter " +
                                       to_text(2.0f * tank.radius));
   }
-  require_non_negative("scene.water.extinction", water.extinction);
-  require_non_negative("scene.water.fog_colour", water.fog_colour);
+  require_non_negative("scene.water.absorption", water.absorption);
+  require_non_negative("scene.water.scattering", water.scattering);
+  require_in_range("scene.water.phase_asymmetry", water.phase_asymmetry, 0.0f, 0.99f);
+  require_in_range("scene.water.refractive_index", water.refractive_index, 1.0f, 2.0f);
   require_finite("scene.lighting.direction_to_light", lighting.direction_to_light);
   if (glm::length(lighting.direction_to_light) <= 0.0f) {
     invalid("scene.lighting.direction_to_light", "is zero");

@@ -12,14 +12,17 @@ struct SceneBlock {
   glm::mat4 view_projection;
   glm::vec4 camera_position;
   glm::vec4 light_direction;
-  glm::vec4 key_colour;   // w: specular strength
-  glm::vec4 sky_ambient;  // w: shininess
-  glm::vec4 ground_ambient;
-  glm::vec4 fog_colour;  // w: height of the water surface
-  glm::vec4 extinction;  // w: the tank's radius
-  glm::vec4 tank_rows;   // x: count, y: columns, z: spacing
+  glm::vec4 key_colour;         // w: specular strength
+  glm::vec4 sky_ambient;        // w: shininess
+  glm::vec4 ground_ambient;     // w: height of the water surface
+  glm::vec4 water_attenuation;  // w: the tank's radius
+  glm::vec4 water_scattering;   // w: phase asymmetry
+  glm::vec4 key_in_water;
+  glm::vec4 key_downwelling;
+  glm::vec4 ambient_downwelling;
+  glm::vec4 tank_rows;  // x: count, y: columns, z: spacing
 };
-static_assert(sizeof(SceneBlock) == 64 + 8 * 16, "std140: a mat4 and eight vec4");
+static_assert(sizeof(SceneBlock) == 64 + 11 * 16, "std140: a mat4 and eleven vec4");
 
 SceneBlock make_scene_block(const Scene& scene, const Camera& camera, float aspect);
 

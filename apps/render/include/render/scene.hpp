@@ -6,6 +6,8 @@
 
 #include <glm/glm.hpp>
 
+#include "render/water.hpp"
+
 namespace finflex::render {
 
 // A round RAS tank: a cylindrical wall and a flat floor. The wall is drawn from the
@@ -28,18 +30,6 @@ struct TankRows {
   float spacing = 0.0f;  // m between neighbouring axes: at least the diameter when count > 1
 };
 
-// Water between the camera and what it sees: light of each channel is absorbed and
-// scattered at its own rate per metre, so far things fade towards `fog_colour`
-// (exponential fog); light from above loses the same way with depth (the tint).
-// Only the part of a view ray inside the tank's water (the cylinder below the surface)
-// counts: a camera above or beside the tank looks through clear air first. In a hall,
-// that is the water of the tank the seen point is in (a ray through a nearer tank's
-// water on its way does not fade there).
-struct Water {
-  glm::vec3 extinction{0.60f, 0.28f, 0.30f};    // per metre: red goes first, then blue
-  glm::vec3 fog_colour{0.02f, 0.075f, 0.072f};  // the colour far water fades to
-};
-
 // A key light from above (directional) plus hemispheric ambient light: Lambert
 // diffuse and a little Blinn-Phong specular.
 struct Lighting {
@@ -54,13 +44,17 @@ struct Lighting {
 struct Scene {
   Tank tank;
   TankRows rows;
-  Water water;
+  // Only the part of a view ray inside the water (the tank's cylinder below the
+  // surface) absorbs and scatters: a camera above or beside the tank looks through
+  // clear air first. In a hall, that is the water of the tank the seen point is in.
+  Water water = water_optics(WaterComposition{});
   Lighting lighting;
   glm::vec3 background{0.015f, 0.017f, 0.02f};  // outside the tank: a dim room
 
   // Throws RenderError (kInvalidArgument) naming the field ("scene.tank.radius", ...)
   // when a value is not finite, a length is not > 0, water_depth exceeds wall_height,
-  // a colour or extinction is negative, specular is outside 0..1, shininess < 1,
+  // a colour, absorption or scattering is negative, phase_asymmetry is outside
+  // 0 .. 0.99, refractive_index outside 1 .. 2, specular outside 0 .. 1, shininess < 1,
   // segments < 8, direction_to_light is zero, or rows ("scene.rows.count", ...) out
   // of its ranges.
   void validate() const;
