@@ -217,6 +217,26 @@ TEST(Landmarks, SnoutTipAndTailForkOfTheBundledFish) {
   }
 }
 
+TEST(Landmarks, TheBodyPatternRunsFromSnoutToTailAndBellyToBack) {
+  const Mesh mesh = load_mesh(test::data_path("barramundi/BarramundiFish.gltf"));
+  const RiggedMesh model = RiggedMesh::single_bend(mesh, find_body_frame(mesh), BendMode::kExact);
+  const std::vector<glm::vec2> pattern = body_pattern(model);
+  const std::vector<glm::dvec3> local = rest_in_body_frame(model);
+  ASSERT_EQ(pattern.size(), mesh.vertex_count());
+  EXPECT_FLOAT_EQ(pattern[find_landmarks(model).snout].x, 0.0f);
+  std::size_t top = 0, bottom = 0;
+  for (std::size_t v = 0; v < pattern.size(); ++v) {
+    EXPECT_GE(pattern[v].x, 0.0f);
+    EXPECT_LE(pattern[v].x, 1.0f);
+    EXPECT_GE(pattern[v].y, -1.0f - 1e-6f);
+    EXPECT_LE(pattern[v].y, 1.0f + 1e-6f);
+    if (local[v].y > local[top].y) top = v;
+    if (local[v].y < local[bottom].y) bottom = v;
+  }
+  EXPECT_FLOAT_EQ(pattern[top].y, 1.0f);  // the highest vertex tops its station
+  EXPECT_FLOAT_EQ(pattern[bottom].y, -1.0f);
+}
+
 TEST(TankView, EveryViewFramesTheWholeTank) {
   const tank::TankSettings settings;
   const float radius = float(0.5 * settings.diameter);
@@ -390,9 +410,13 @@ TEST(TankPictures, TheHandOffDrawsWhatTheEngineComputed) {
   render::Renderer& renderer = tank.pictures.renderer();
   const Mesh& rest = species.swim.model().mesh();
   render::FishDraw draw;
-  draw.mesh = renderer.add_mesh(rest.indices, rest.vertex_count());
+  draw.mesh =
+      renderer.add_mesh(rest.indices, rest.vertex_count(), body_pattern(species.swim.model()));
   draw.albedo = species_albedo(species.name, 0);
   draw.instance_count = instances;
+  std::vector<std::uint32_t> ids(instances);  // 1 + the fish's index: one species
+  for (std::size_t i = 0; i < instances; ++i) ids[i] = std::uint32_t(i + 1);
+  draw.ids = ids.data();
   const auto layout = render::StreamLayout::interleaved(vertices);
   draw.positions = render::VertexStream::from_host(positions.data(), positions.size() * 4, layout);
   draw.normals = render::VertexStream::from_host(normals.data(), normals.size() * 4, layout);

@@ -187,6 +187,41 @@ TEST(Render, DrawsAStraightAndABentFishThatBendsToItsSide) {
   EXPECT_GT(added_plus, 4 * added_minus);
 }
 
+TEST(Render, APatternPaintsTheBackDarkerThanTheBellyAndEachFishItsOwnShade) {
+  // The straight fish seen from above, painted as all back (v = 1), all belly (v = -1)
+  // and flat (no pattern); then all back with two ids.
+  const FishPair& pair = fish_pair();
+  const std::size_t slots = pair.batch.shape.plane_stride;
+  const auto mesh_with = [&](float v) {
+    return renderer().add_mesh(pair.mesh.indices, slots,
+                               std::vector<glm::vec2>(slots, glm::vec2(0.5f, v)));
+  };
+  const glm::mat4 place = placement(pair.frame);
+  const Image empty = render_fish({}, nullptr);
+  const auto brightness = [&](MeshId mesh, std::uint32_t id) {
+    FishDraw draw = planes_draw(0);
+    draw.mesh = mesh;
+    draw.ids = &id;
+    draw.transforms = &place;
+    renderer().render(Scene{}, top_camera(), {draw});
+    return silhouette(renderer().read_image(), empty).mean_brightness;
+  };
+  const MeshId back = mesh_with(1.0f);
+  const double flat = brightness(blub_mesh(), 1);
+  const double dark = brightness(back, 1);
+  const double pale = brightness(mesh_with(-1.0f), 1);
+  EXPECT_LT(dark, flat - 10.0);
+  EXPECT_GT(pale, flat);
+  EXPECT_NE(brightness(back, 1), brightness(back, 2));  // each id its own shade
+  EXPECT_EQ(brightness(back, 7), brightness(back, 7));
+  try {
+    renderer().add_mesh(pair.mesh.indices, slots, std::vector<glm::vec2>(3));
+    ADD_FAILURE() << "a pattern of 3 values was accepted";
+  } catch (const RenderError& e) {
+    EXPECT_EQ(e.field(), "pattern");
+  }
+}
+
 TEST(Render, PlanesInterleavedHalfAndDeviceBuffersGiveTheSamePicture) {
   const FishPair& pair = fish_pair();
   const glm::mat4 transform = placement(pair.frame);

@@ -1,5 +1,7 @@
 #include "fish_hand_off.hpp"
 
+#include "landmarks.hpp"
+
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -255,9 +257,16 @@ SpeciesDrawing prepare_drawing(render::Renderer& renderer, const ClDeformer& def
                                GlSpeciesOutputs& outputs, const glm::vec3& albedo,
                                std::vector<std::uint32_t> ids) {
   SpeciesDrawing drawing;
-  // The triangles over slots; padding slots (never indexed) are vertices too.
-  drawing.mesh =
-      renderer.add_mesh(deformer.remapped_indices(), outputs.layout().positions.plane_stride);
+  // The triangles over slots; padding slots (never indexed) are vertices too, and so
+  // is each vertex's place on the body, painted by the colour pass.
+  const std::size_t slots = outputs.layout().positions.plane_stride;
+  const std::vector<glm::vec2> body = body_pattern(deformer.model());
+  const std::vector<std::uint32_t>& slot_of = deformer.slot_of_vertex();
+  std::vector<glm::vec2> pattern(slots, glm::vec2(0.5f, 0.0f));
+  for (std::size_t v = 0; v < body.size() && v < slot_of.size(); ++v) {
+    if (slot_of[v] < slots) pattern[slot_of[v]] = body[v];
+  }
+  drawing.mesh = renderer.add_mesh(deformer.remapped_indices(), slots, pattern);
   drawing.outputs = &outputs;
   drawing.albedo = albedo;
   drawing.ids = std::move(ids);

@@ -7,7 +7,7 @@
 
 namespace finflex::pictures {
 
-FishLandmarks find_landmarks(const RiggedMesh& model) {
+std::vector<glm::dvec3> rest_in_body_frame(const RiggedMesh& model) {
   const Mesh& mesh = model.mesh();
   const BodyFrame& frame = model.rig().components.front().frame;  // the root's
   std::vector<glm::dvec3> local(mesh.vertex_count());
@@ -17,6 +17,42 @@ FishLandmarks find_landmarks(const RiggedMesh& model) {
                           glm::dot(d, frame.axis_z)) /
                frame.length;
   }
+  return local;
+}
+
+std::vector<glm::vec2> body_pattern(const RiggedMesh& model) {
+  const std::vector<glm::dvec3> local = rest_in_body_frame(model);
+  double x_min = std::numeric_limits<double>::infinity();
+  double x_max = -x_min;
+  for (const glm::dvec3& p : local) {
+    x_min = std::min(x_min, p.x);
+    x_max = std::max(x_max, p.x);
+  }
+  constexpr int kStations = 32;
+  const double span = std::max(x_max - x_min, 1e-12);
+  const auto station = [&](double x) {
+    return std::clamp(static_cast<int>((x_max - x) / span * kStations), 0, kStations - 1);
+  };
+  std::vector<double> low(kStations, std::numeric_limits<double>::infinity());
+  std::vector<double> high(kStations, -std::numeric_limits<double>::infinity());
+  for (const glm::dvec3& p : local) {
+    const int s = station(p.x);
+    low[s] = std::min(low[s], p.y);
+    high[s] = std::max(high[s], p.y);
+  }
+  std::vector<glm::vec2> pattern(local.size());
+  for (std::size_t v = 0; v < local.size(); ++v) {
+    const int s = station(local[v].x);
+    const double height = std::max(high[s] - low[s], 1e-12);
+    pattern[v] = glm::vec2(static_cast<float>((x_max - local[v].x) / span),
+                           static_cast<float>(2.0 * (local[v].y - low[s]) / height - 1.0));
+  }
+  return pattern;
+}
+
+FishLandmarks find_landmarks(const RiggedMesh& model) {
+  const Mesh& mesh = model.mesh();
+  const std::vector<glm::dvec3> local = rest_in_body_frame(model);
   FishLandmarks marks;
   double x_min = std::numeric_limits<double>::infinity();
   double x_max = -x_min;

@@ -7,6 +7,9 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <vector>
+
+#include <glm/glm.hpp>
 
 #include "finflex/model.hpp"
 
@@ -46,5 +49,16 @@ struct FishLandmarks {
 //   pectoral tips: of the vertices of "left_pectoral_fin" ("right_pectoral_fin"), the
 //     farthest from the component's frame origin (its attachment to the body).
 FishLandmarks find_landmarks(const RiggedMesh& model);
+
+// The rest mesh's vertices in the rig root's frame, in body lengths (e_x towards the
+// head, e_y dorsal).
+std::vector<glm::dvec3> rest_in_body_frame(const RiggedMesh& model);
+
+// Per mesh vertex, its place on the body, for the renderer's painted albedo
+// (render::Renderer::add_mesh): u = (x_max - x) / (x_max - x_min), 0 at the snout and
+// 1 at the tail; v = 2 (y - y_low) / (y_high - y_low) - 1, y_low and y_high the lowest
+// and highest vertex of its station (one of 32 equal slices along x), -1 the belly and
+// 1 the back (or the tips of the fins that stand out of them).
+std::vector<glm::vec2> body_pattern(const RiggedMesh& model);
 
 }  // namespace finflex::pictures

@@ -6,10 +6,12 @@
 // (render/fish_draw.hpp; the renderer converts its byte strides), four elements a
 // texel where the buffer's range holds whole texels (wide). The instance's
 // transform is an instanced attribute (divisor 1), the identity when there is none;
-// so is its id, which only the id pass reads (0 otherwise). A draw from a device list
-// (FishDraw::list) gives the instance's entry instead, and the id is the table's.
+// so is its id (0 when the draw has none): the id pass writes it, the colour pass
+// shades each instance by it. A draw from a device list (FishDraw::list) gives the
+// instance's entry instead, and the id is the table's.
 layout(location = 0) in mat4 a_transform;  // locations 0..3: the matrix's columns
 layout(location = 4) in uint a_id;
+layout(location = 5) in vec2 a_pattern;  // the vertex's place on the body (Renderer::add_mesh)
 
 uniform samplerBuffer u_positions;  // R32F or R16F; RGBA32F or RGBA16F when wide
 uniform samplerBuffer u_normals;
@@ -24,6 +26,7 @@ uniform bool u_ids_from_table;
 out vec3 v_world_position;
 out vec3 v_normal;
 out vec3 v_albedo;
+out vec2 v_pattern;
 flat out uint v_id;
 
 float element(samplerBuffer data, bool wide, int e) {
@@ -43,6 +46,7 @@ void main() {
   v_world_position = world.xyz;
   v_normal = mat3(a_transform) * normal;  // rotation and uniform scale: normalised when shading
   v_albedo = u_albedo;
+  v_pattern = a_pattern;
   v_id = u_ids_from_table ? texelFetch(u_id_table, int(a_id)).r : a_id;
   gl_Position = u_view_projection * world;
 }

@@ -31,7 +31,7 @@ GLint shader_stride(std::size_t bytes, std::size_t element, std::size_t count) {
 
 std::vector<std::string> fragment_files(FishOutput output) {
   if (output == FishOutput::kIds) return {"id.frag.glsl"};
-  return {"scene_block.glsl", "shading.glsl", "surface.frag.glsl"};
+  return {"scene_block.glsl", "shading.glsl", "fish.frag.glsl"};
 }
 
 }  // namespace
@@ -54,6 +54,7 @@ FishPass::FishPass(const GlLimits& limits, FishOutput output)
   positions_wide_ = program_.uniform("u_positions_wide");
   normals_wide_ = program_.uniform("u_normals_wide");
   albedo_ = program_.uniform("u_albedo");
+  if (output == FishOutput::kLitColour) patterned_ = program_.uniform("u_patterned");
 }
 
 // Uploads are padded to whole 16-byte texels (the padding is never read).
@@ -181,6 +182,7 @@ void FishPass::draw(const std::vector<FishDraw>& fish, const std::vector<MeshRes
     glBindVertexArray(mesh.vertex_array.get());
     set_instance_attributes(draw, 4 * d + 2, buffers);
     glUniform3f(albedo_, draw.albedo.r, draw.albedo.g, draw.albedo.b);
+    if (output_ == FishOutput::kLitColour) glUniform1i(patterned_, mesh.patterned ? 1 : 0);
 
     const std::string field = "fish[" + std::to_string(d) + "]";
     widen_if_needed(positions, count, mesh.vertex_count, (field + ".positions").c_str());
@@ -240,8 +242,11 @@ void FishPass::set_instance_attributes(const FishDraw& draw, std::size_t slot,
   if (draw.transforms != nullptr) {
     transform_buffer_ = upload(slot, draw.transforms, count * sizeof(glm::mat4));
   }
-  glUniform1i(ids_from_table_, listed && output_ == FishOutput::kIds ? 1 : 0);
-  if (output_ == FishOutput::kIds && listed) {
+  // The id pass needs the ids (fish_validation); the colour pass shades by them where
+  // the draw has them.
+  const bool ids = draw.ids != nullptr;
+  glUniform1i(ids_from_table_, listed && ids ? 1 : 0);
+  if (listed && ids) {
     // The entries stay where the GPU wrote them; the table they index is uploaded.
     id_buffer_ = buffers[draw.list.buffer].buffer.get();
     id_offset_ = draw.list.entries_offset;
@@ -249,7 +254,7 @@ void FishPass::set_instance_attributes(const FishDraw& draw, std::size_t slot,
     glActiveTexture(GL_TEXTURE2);
     glBindTexture(GL_TEXTURE_BUFFER, id_table_.get());
     glTexBuffer(GL_TEXTURE_BUFFER, GL_R32UI, table);
-  } else if (output_ == FishOutput::kIds) {
+  } else if (ids) {
     id_buffer_ = upload(slot + 1, draw.ids, count * sizeof(std::uint32_t));
   }
   for (GLuint column = 0; column < 4; ++column) {

@@ -65,6 +65,7 @@ class FishPass {
   GLint positions_wide_ = -1;
   GLint normals_wide_ = -1;
   GLint albedo_ = -1;
+  GLint patterned_ = -1;  // the colour pass only
   GLint ids_from_table_ = -1;
   GLuint transform_buffer_ = 0;  // this draw's uploads of instanced attributes; 0: none
   GLuint id_buffer_ = 0;

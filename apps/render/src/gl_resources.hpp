@@ -11,11 +11,15 @@ namespace finflex::render::detail {
 
 // A species' triangles: an element buffer recorded in a vertex array with no
 // attributes (vertices come from buffer textures).
+constexpr GLuint kPatternLocation = 5;  // fish.vert.glsl's a_pattern
+
 struct MeshResources {
   GlVertexArray vertex_array;
   GlBuffer indices;
   GLsizei index_count = 0;
   std::size_t vertex_count = 0;
+  GlBuffer pattern;  // per vertex (u, v): attribute 5, when patterned
+  bool patterned = false;
 };
 
 // A buffer of Renderer::create_buffer, or of import_buffer (then its memory object:

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <vector>
@@ -189,7 +190,8 @@ Renderer& Renderer::operator=(Renderer&&) noexcept = default;
 const RenderSettings& Renderer::settings() const { return impl_->settings; }
 const DeviceInfo& Renderer::device() const { return impl_->device; }
 
-MeshId Renderer::add_mesh(const std::vector<std::uint32_t>& indices, std::size_t vertex_count) {
+MeshId Renderer::add_mesh(const std::vector<std::uint32_t>& indices, std::size_t vertex_count,
+                          const std::vector<glm::vec2>& pattern) {
   impl_->egl.make_current();
   if (indices.empty() || indices.size() % 3 != 0) {
     invalid("indices", std::to_string(indices.size()) + " indices: not a positive multiple of 3");
@@ -202,6 +204,15 @@ MeshId Renderer::add_mesh(const std::vector<std::uint32_t>& indices, std::size_t
                                                         std::to_string(vertex_count));
     }
   }
+  if (!pattern.empty() && pattern.size() != vertex_count) {
+    invalid("pattern", std::to_string(pattern.size()) + " values for " +
+                           std::to_string(vertex_count) + " vertices");
+  }
+  for (std::size_t k = 0; k < pattern.size(); ++k) {
+    if (!std::isfinite(pattern[k].x) || !std::isfinite(pattern[k].y)) {
+      invalid("pattern[" + std::to_string(k) + "]", "is not finite");
+    }
+  }
   MeshResources mesh;
   mesh.vertex_array = GlVertexArray::create();
   mesh.indices = GlBuffer::create();
@@ -212,6 +223,16 @@ MeshId Renderer::add_mesh(const std::vector<std::uint32_t>& indices, std::size_t
   glBufferData(GL_ELEMENT_ARRAY_BUFFER,
                static_cast<GLsizeiptr>(indices.size() * sizeof(std::uint32_t)), indices.data(),
                GL_STATIC_DRAW);
+  if (!pattern.empty()) {
+    mesh.pattern = GlBuffer::create();
+    mesh.patterned = true;
+    glBindBuffer(GL_ARRAY_BUFFER, mesh.pattern.get());
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(pattern.size() * sizeof(glm::vec2)),
+                 pattern.data(), GL_STATIC_DRAW);
+    glEnableVertexAttribArray(kPatternLocation);
+    glVertexAttribPointer(kPatternLocation, 2, GL_FLOAT, GL_FALSE, sizeof(glm::vec2), nullptr);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+  }
   glBindVertexArray(0);
   require_no_gl_error("add_mesh");
   impl_->meshes.push_back(std::move(mesh));

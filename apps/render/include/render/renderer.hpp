@@ -96,7 +96,14 @@ class Renderer {
 
   // A mesh (species): triangles counter-clockwise seen from outside, indices below
   // vertex_count. Uploaded once. kInvalidArgument naming "indices" or "indices[k]".
-  MeshId add_mesh(const std::vector<std::uint32_t>& indices, std::size_t vertex_count);
+  // `pattern`, empty or one per vertex: the vertex's place on the body, u from the
+  // snout (0) to the tail (1) and v from the belly (-1) to the back (1), from which
+  // the colour pass paints the species' albedo (countershading, a lateral line and
+  // each instance's own shade: docs/rendering.md "Fish appearance"); without it the
+  // albedo is flat. kInvalidArgument naming "pattern" for another size or a value
+  // that is not finite.
+  MeshId add_mesh(const std::vector<std::uint32_t>& indices, std::size_t vertex_count,
+                  const std::vector<glm::vec2>& pattern = {});
 
   // A GL buffer of `bytes` in this renderer's context, for streams that stay on the
   // device (VertexStream::from_buffer). gl_buffer() gives its GL name, e.g. for
