@@ -102,10 +102,19 @@ CocoDataset::CocoDataset(const std::string& folder, tank::SwimScene& scene,
     SpeciesTruth truth;
     truth.landmarks = find_landmarks(species.swim.model());
     if (species.deformer) {
+      const std::vector<std::uint32_t>& slot_of = species.deformer->slot_of_vertex();
+      const auto read = [&](std::uint32_t vertex) {
+        const std::uint32_t slot = slot_of[vertex];
+        const auto found = std::find(truth.slots.begin(), truth.slots.end(), slot);
+        if (found != truth.slots.end()) return std::size_t(found - truth.slots.begin());
+        truth.slots.push_back(slot);
+        return truth.slots.size() - 1;
+      };
       for (std::size_t k = 0; k < kKeypointCount; ++k) {
-        if (truth.landmarks.keypoints[k]) {
-          truth.slots[k] = species.deformer->slot_of_vertex()[*truth.landmarks.keypoints[k]];
-        }
+        if (truth.landmarks.keypoints[k]) truth.keypoints[k] = read(*truth.landmarks.keypoints[k]);
+      }
+      for (std::size_t p = 0; p < kSpinePoints; ++p) {
+        truth.spine[p] = {read(truth.landmarks.spine[p][0]), read(truth.landmarks.spine[p][1])};
       }
     }
     species_.push_back(truth);
@@ -156,17 +165,15 @@ CocoDataset::FrameTruth CocoDataset::capture(std::size_t frame, double time_s,
   truth.view = view;
   truth.time_s = time_s;
   truth.image_file = image_file;
-  // Keypoints of every fish, from the engine's deformed vertices.
-  truth.keypoints.assign(scene_.species().size(),
-                         std::vector<std::vector<glm::vec3>>(kKeypointCount));
+  // Keypoints and spines of every fish, from the engine's deformed vertices.
+  truth.vertices.resize(scene_.species().size());
   for (std::size_t s = 0; s < scene_.species().size(); ++s) {
     tank::Species& species = scene_.species()[s];
     if (!species.deformer) continue;
     cl::CommandQueue& queue = species.deformer->context().queue();
     const tank::BatchReading reading(species);
-    for (std::size_t k = 0; k < kKeypointCount; ++k) {
-      if (!species_[s].slots[k]) continue;
-      truth.keypoints[s][k] = read_slot_positions(queue, species.batch(), *species_[s].slots[k]);
+    for (std::uint32_t slot : species_[s].slots) {
+      truth.vertices[s].push_back(read_slot_positions(queue, species.batch(), slot));
     }
   }
   return truth;
@@ -217,15 +224,20 @@ CocoDataset::FrameAnnotations CocoDataset::annotate(const FrameTruth& truth) con
     nlohmann::ordered_json camera_points = nlohmann::ordered_json::array();
     std::vector<std::array<double, 3>> yolo_keypoints;
     int labelled = 0;
-    for (const std::vector<glm::vec3>& points : truth.keypoints[one.species]) {
-      if (points.empty()) {  // a part this species lacks
+    const SpeciesTruth& species = species_[one.species];
+    const std::vector<std::vector<glm::vec3>>& vertices = truth.vertices[one.species];
+    const auto in_camera = [&](std::size_t read) {
+      const glm::dvec3 world(vertices[read][instance]);
+      return glm::dvec3(camera_from_world * glm::dvec4(world, 1.0));
+    };
+    for (const std::optional<std::size_t>& read : species.keypoints) {
+      if (!read) {  // a part this species lacks
         keypoints.insert(keypoints.end(), {0.0, 0.0, 0});
         yolo_keypoints.push_back({0.0, 0.0, 0.0});
         camera_points.push_back(nullptr);
         continue;
       }
-      const glm::vec3& world = points[instance];
-      const glm::dvec3 p = glm::dvec3(camera_from_world * glm::dvec4(glm::dvec3(world), 1.0));
+      const glm::dvec3 p = in_camera(*read);
       camera_points.push_back({p.x, p.y, p.z});
       glm::dvec2 uv{k.fx * p.x / p.z + k.cx, k.fy * p.y / p.z + k.cy};
       if (lens) uv = lens->distort_pixel(uv);
@@ -269,6 +281,18 @@ CocoDataset::FrameAnnotations CocoDataset::annotate(const FrameTruth& truth) con
     annotation["fork_length_m"] = one.length * species_[one.species].landmarks.fork_fraction;
     annotation["weight_kg"] = 1e-3 * weights_[one.species].grams(one.length);
     annotation["keypoints_camera_m"] = camera_points;
+    nlohmann::ordered_json spine = nlohmann::ordered_json::array();
+    double spine_length = 0.0;
+    glm::dvec3 last(0.0);
+    for (std::size_t point = 0; point < kSpinePoints; ++point) {
+      const std::array<std::size_t, 2>& ends = species.spine[point];
+      const glm::dvec3 p = 0.5 * (in_camera(ends[0]) + in_camera(ends[1]));
+      if (point > 0) spine_length += glm::length(p - last);
+      last = p;
+      spine.push_back({p.x, p.y, p.z});
+    }
+    annotation["spine_camera_m"] = spine;
+    annotation["spine_length_m"] = spine_length;
     out.annotations.push_back(std::move(annotation));
   }
   if (options_.yolo) {  // every image gets its label file, empty when no fish is seen

@@ -17,7 +17,8 @@
 // "fish_id" (the tank's index: the same fish in every frame, for tracking),
 // "species", "length_m" (total length, snout to tail tip), "fork_length_m",
 // "keypoints_camera_m" (the points in camera coordinates, OpenCV axes, metres; null for
-// a part the species lacks).
+// a part the species lacks), "spine_camera_m" (kSpinePoints points of the midline from
+// the snout to the tail fork, camera coordinates) and "spine_length_m" (its length).
 // "weight_kg" (the length-weight relation W = a L^b, L the total length in cm, W in g:
 // the category's "length_weight").
 // coco.json is streamed: memory does not grow with the frames.
@@ -99,9 +100,9 @@ class CocoDataset {
     double time_s = 0.0;
     std::string image_file;
     render::IdImage ids;
-    // Per species, per keypoint (kKeypointNames; empty where the species has none), per
-    // instance: the deformed vertex.
-    std::vector<std::vector<std::vector<glm::vec3>>> keypoints;
+    // Per species, per vertex read (its keypoints' and its spine's), per instance: the
+    // deformed vertex.
+    std::vector<std::vector<std::vector<glm::vec3>>> vertices;
     // The image's water and light (frame_optics.hpp optics_json), or null.
     nlohmann::ordered_json optics;
   };
@@ -126,7 +127,9 @@ class CocoDataset {
  private:
   struct SpeciesTruth {
     FishLandmarks landmarks;
-    std::array<std::optional<std::uint32_t>, kKeypointCount> slots;  // the keypoints' slots
+    std::vector<std::uint32_t> slots;  // the slots read each frame, each once
+    std::array<std::optional<std::size_t>, kKeypointCount> keypoints;  // index into slots
+    std::array<std::array<std::size_t, 2>, kSpinePoints> spine{};      // index into slots
   };
 
   std::string folder_;

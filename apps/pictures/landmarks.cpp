@@ -87,6 +87,28 @@ FishLandmarks find_landmarks(const RiggedMesh& model) {
     }
   }
   marks.fork_fraction = x_max - local[marks.tail_fork].x;  // local lengths are in s_x
+  const std::vector<std::uint32_t>& body = model.rig().components.front().vertices;
+  const double x_snout = x_max, x_fork = local[marks.tail_fork].x;
+  const double spacing = (x_snout - x_fork) / double(kSpinePoints - 1);
+  marks.spine.front() = {marks.snout, marks.snout};
+  marks.spine.back() = {marks.tail_fork, marks.tail_fork};
+  for (std::size_t s = 1; s + 1 < kSpinePoints; ++s) {
+    const double x = x_snout - double(s) * spacing;
+    std::optional<std::uint32_t> high, low;
+    std::uint32_t nearest = marks.snout;
+    const auto consider = [&](std::uint32_t v) {
+      if (std::fabs(local[v].x - x) < std::fabs(local[nearest].x - x)) nearest = v;
+      if (std::fabs(local[v].x - x) > 0.2 * spacing) return;
+      if (!high || local[v].y > local[*high].y) high = v;
+      if (!low || local[v].y < local[*low].y) low = v;
+    };
+    for (std::uint32_t v : body) consider(v);
+    if (!high) {  // past the body's own vertices (over the caudal fin), or no rig parts
+      for (std::uint32_t v = 0; v < local.size(); ++v) consider(v);
+    }
+    marks.spine[s] = high ? std::array<std::uint32_t, 2>{*high, *low}
+                          : std::array<std::uint32_t, 2>{nearest, nearest};
+  }
   marks.keypoints[0] = marks.snout;
   marks.keypoints[1] = marks.tail_fork;
   for (const RigComponent& component : model.rig().components) {

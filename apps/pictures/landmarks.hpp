@@ -26,6 +26,7 @@ constexpr std::array<const char*, kKeypointCount> kKeypointNames{"snout",
                                                                  "left_pectoral_tip",
                                                                  "right_pectoral_tip"};
 constexpr std::array<std::size_t, kKeypointCount> kKeypointFlip{0, 1, 2, 3, 5, 4};
+constexpr std::size_t kSpinePoints = 16;  // from the snout to the tail fork
 
 struct FishLandmarks {
   std::uint32_t snout = 0;      // mesh vertex index
@@ -35,6 +36,10 @@ struct FishLandmarks {
   // (x_snout - x_fork) / s_x: the fork length as a fraction of the total length (the
   // body frame's s_x, the length a placement scales to), straight rest pose.
   double fork_fraction = 1.0;
+  // The spine, kSpinePoints stations from the snout to the tail fork, equally spaced
+  // along the straight rest body: each the midpoint of two vertices (the snout and the
+  // fork: the vertex itself twice).
+  std::array<std::array<std::uint32_t, 2>, kSpinePoints> spine{};
 };
 
 // In the rig root's frame (e_x towards the head, e_y dorsal, lengths in body lengths):
@@ -47,7 +52,11 @@ struct FishLandmarks {
 //   caudal tips: of the vertices of the component named "caudal_fin", the most dorsal
 //     (largest y) and the most ventral (smallest y);
 //   pectoral tips: of the vertices of "left_pectoral_fin" ("right_pectoral_fin"), the
-//     farthest from the component's frame origin (its attachment to the body).
+//     farthest from the component's frame origin (its attachment to the body);
+//   spine: between them, at each station the highest and the lowest vertex of the
+//     body (the root component's own vertices: no fin) within a fifth of a station's
+//     spacing, else of any part (over the caudal fin), else the nearest vertex: on the
+//     fish's plane of symmetry, their midpoint follows the midline as the body bends.
 FishLandmarks find_landmarks(const RiggedMesh& model);
 
 // The rest mesh's vertices in the rig root's frame, in body lengths (e_x towards the

@@ -14,6 +14,9 @@ coco.json against coco.json (itself checked by check_coco.py):
   against the surface at its pixel's centre, which the surface's slope across the
   pixel sets apart (a pixel is about 16 mm of fish at 320 x 180);
 - weights: weight_kg = a (100 L)^b / 1000 with the category's length_weight;
+- spines: 16 points from the snout's keypoint to the tail fork's (exactly those
+  points), their polyline's length the annotation's spine_length_m, within 1.0 to 1.3
+  of the fork length (the midline rises and falls along the body);
 - the WebDataset shards: each image a sample, its files byte for byte;
 - a stereo pair (camera.json "stereo"): keypoints on the same row in both views,
   disparity fx B / Z, and the right masks where the disparity puts them;
@@ -247,6 +250,21 @@ def main(folder):
         if abs(a["weight_kg"] - expected) > 1e-9 * max(1.0, expected):
             fail("annotation %d: weight %s kg, the relation gives %s" % (a["id"], a["weight_kg"],
                                                                        expected))
+    spine_ratios = []
+    for a in coco["annotations"]:
+        spine = np.array(a["spine_camera_m"])
+        snout, fork = a["keypoints_camera_m"][0], a["keypoints_camera_m"][1]
+        if spine.shape != (16, 3) or np.abs(spine[0] - snout).max() > 1e-9 or \
+                np.abs(spine[-1] - fork).max() > 1e-9:
+            fail("annotation %d: the spine does not run from the snout to the tail fork" % a["id"])
+        length = float(np.linalg.norm(np.diff(spine, axis=0), axis=1).sum())
+        if abs(length - a["spine_length_m"]) > 1e-9:
+            fail("annotation %d: spine_length_m %s, its points' %s" % (a["id"], a["spine_length_m"],
+                                                                     length))
+        spine_ratios.append(length / a["fork_length_m"])
+    if not 1.0 <= min(spine_ratios) <= max(spine_ratios) <= 1.3:
+        fail("spine lengths %.3f to %.3f of the fork length" % (min(spine_ratios),
+                                                                max(spine_ratios)))
     lines = 0
     holes = 0
     for task in ("detect", "segment", "pose"):
@@ -326,9 +344,11 @@ def main(folder):
     medians = [float(np.median(errors[i])) if errors[i] else 0.0 for i in range(2)]
     print("check_truth: %d YOLO lines agree with coco.json (%d outlines with holes); depth on the "
           "floor within %.3f mm (%d pixels), at keypoints: snout median %.1f mm (%d), tail fork "
-          "median %.1f mm (%d); weights follow their relation%s%s%s"
+          "median %.1f mm (%d); weights follow their relation; spines %.3f to %.3f of the fork "
+          "length%s%s%s"
           % (lines, holes, 1e3 * max(floor), len(floor), 1e3 * medians[0], len(errors[0]),
-             1e3 * medians[1], len(errors[1]), stereo, shards, optics))
+             1e3 * medians[1], len(errors[1]), min(spine_ratios), max(spine_ratios), stereo, shards,
+             optics))
 
 
 if __name__ == "__main__":
