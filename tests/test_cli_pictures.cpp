@@ -270,22 +270,37 @@ TEST(CliPictures, TheDatasetLoadsWithPycocotools) {
       low_resolution_species() + " --species " + fish("barramundi/BarramundiFish.gltf") + ":" +
       test::data_path("rigs/barramundi_swim.rig.json") + " --out '" + out + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const auto check = [&](const std::string& script) {
+  const auto check = [&](const std::string& script, const std::string& folder) {
     const std::string log = test::temp_path("check.txt");
     const int status = std::system(
-        ("'" + python + "' '" + script + "' '" + out + "' >'" + log + "' 2>&1").c_str());
+        ("'" + python + "' '" + script + "' '" + folder + "' >'" + log + "' 2>&1").c_str());
     return RunResult{WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(log), ""};
   };
-  const RunResult coco = check(FINFLEX_CHECK_COCO);
+  const RunResult coco = check(FINFLEX_CHECK_COCO, out);
   EXPECT_EQ(coco.exit_code, 0) << coco.out;
   EXPECT_NE(coco.out.find("4 images"), std::string::npos) << coco.out;  // 2 stereo pairs
   EXPECT_NE(coco.out.find("all agree"), std::string::npos) << coco.out;
-  const RunResult truth = check(FINFLEX_CHECK_TRUTH);
+  const RunResult truth = check(FINFLEX_CHECK_TRUTH, out);
   EXPECT_EQ(truth.exit_code, 0) << truth.out;
   EXPECT_NE(truth.out.find("agree with coco.json"), std::string::npos) << truth.out;
   EXPECT_NE(truth.out.find("stereo: 2 pairs"), std::string::npos) << truth.out;
   EXPECT_NE(truth.out.find("webdataset: 1 shard(s), 4 samples"), std::string::npos) << truth.out;
   std::printf("%s", truth.out.c_str());
+
+  // Seen from above through the water surface: the floor's depth against rays bent by
+  // Snell's law in check_truth.py, the keypoints on their fish.
+  const std::string refracted = test::temp_path("refracted");
+  const RunResult bent = run_cli(
+      "swim --fish 40 --seconds 0.05 --fps 20 --seed 3 --size 320x180 --annotate --video none "
+      "--formats coco,yolo --depth --refraction --camera above --species " +
+      low_resolution_species() + " --out '" + refracted + "'");
+  ASSERT_EQ(bent.exit_code, 0) << bent.err;
+  const RunResult bent_coco = check(FINFLEX_CHECK_COCO, refracted);
+  EXPECT_EQ(bent_coco.exit_code, 0) << bent_coco.out;
+  const RunResult bent_truth = check(FINFLEX_CHECK_TRUTH, refracted);
+  EXPECT_EQ(bent_truth.exit_code, 0) << bent_truth.out;
+  EXPECT_NE(bent_truth.out.find("refracted at the surface"), std::string::npos) << bent_truth.out;
+  std::printf("%s", bent_truth.out.c_str());
 }
 
 // Runs `arguments` expecting exit 2 with one line holding `expected`, and nothing at
@@ -328,6 +343,7 @@ TEST(CliPictures, BadPictureInputsExitTwoAndWriteNothing) {
       {" --dissolved 21", "--dissolved 21: 0 to 20 per metre expected"},
       {" --water muddy", "--water 'muddy' is not a water type (clear, ras, turbid)"},
       {" --vary-optics --turbidity 2", "--turbidity with --vary-optics"},
+      {" --refraction --camera side", "--refraction bends the view rays at the water surface"},
       {" --annotate --length-weight nosuch:0.01,3", "--length-weight: no species 'nosuch'"},
       {" --annotate --length-weight blub:0.01,5", "2 <= b <= 4"},
       {" --annotate --length-weight 0.01,3", "SPECIES:A,B expected"},

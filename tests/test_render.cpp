@@ -18,6 +18,7 @@
 #include "finflex/cl_deformer.hpp"
 #include "finflex/mesh_io.hpp"
 #include "finflex/reference.hpp"
+#include "render/refraction.hpp"
 #include "render/renderer.hpp"
 #include "support/deform.hpp"
 #include "support/test_support.hpp"
@@ -220,6 +221,68 @@ TEST(Render, APatternPaintsTheBackDarkerThanTheBellyAndEachFishItsOwnShade) {
   } catch (const RenderError& e) {
     EXPECT_EQ(e.field(), "pattern");
   }
+}
+
+TEST(Render, RefractionPerVertexIsWhereSnellsLawPutsTheFish) {
+  // The straight fish half a metre under the surface, seen obliquely from above: drawn
+  // with the view rays refracted on the GPU, and drawn straight at the apparent points
+  // the double-precision oracle gives each vertex; the silhouettes agree.
+  const FishPair& pair = fish_pair();
+  const glm::mat4 place = glm::translate(glm::mat4(1.0f), glm::vec3(0.3f, 0.0f, 0.2f)) *
+                          placement(pair.frame);  // its middle at y = 0.5
+  Camera camera;
+  camera.position = {0.0f, 2.2f, 1.6f};
+  camera.target = {0.3f, 0.5f, 0.2f};
+  Scene scene;
+  scene.view_refraction = true;
+  const std::size_t vertices = pair.mesh.vertex_count();
+  const std::size_t plane = pair.batch.shape.plane_stride;
+  std::vector<float> seen(3 * vertices);
+  for (std::size_t v = 0; v < vertices; ++v) {
+    const glm::dvec3 local(pair.batch.positions[v], pair.batch.positions[plane + v],
+                           pair.batch.positions[2 * plane + v]);
+    const glm::dvec3 world = glm::dvec3(glm::dmat4(place) * glm::dvec4(local, 1.0));
+    const glm::dvec3 apparent = apparent_point(scene, camera, world);
+    for (int c = 0; c < 3; ++c) seen[3 * v + std::size_t(c)] = float(apparent[c]);
+  }
+  // Coverage from the id pass (no shading to tell apart): pixels and their centroid.
+  const std::uint32_t id = 1;
+  const auto draw = [&](const Scene& look, FishDraw fish) {
+    fish.ids = &id;
+    renderer().render_ids(look, camera, {fish});
+    const IdImage ids = renderer().read_ids();
+    Silhouette s;
+    s.inside.assign(ids.ids.size(), false);
+    for (int y = 0; y < ids.height; ++y) {
+      for (int x = 0; x < ids.width; ++x) {
+        if (ids.ids[ids.index(x, y)] != id) continue;
+        s.inside[ids.index(x, y)] = true;
+        ++s.count;
+        s.centroid += glm::dvec2(x, y);
+      }
+    }
+    s.centroid /= double(std::max<std::size_t>(s.count, 1));
+    return s;
+  };
+  FishDraw refracted = planes_draw(0);
+  refracted.transforms = &place;
+  const Silhouette gpu = draw(scene, refracted);
+  FishDraw oracle = planes_draw(0);
+  oracle.positions = VertexStream::from_host(seen.data(), seen.size() * sizeof(float),
+                                             StreamLayout::interleaved(vertices));
+  Scene straight = scene;
+  straight.view_refraction = false;
+  const Silhouette host = draw(straight, oracle);
+  const Silhouette unbent = draw(straight, refracted);
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < gpu.inside.size(); ++i) differ += gpu.inside[i] != host.inside[i];
+  ASSERT_GT(gpu.count, 200u);
+  EXPECT_LT(double(differ), 0.01 * double(gpu.count)) << differ << " of " << gpu.count;
+  EXPECT_LT(glm::length(gpu.centroid - host.centroid), 0.05);
+  EXPECT_GT(glm::length(gpu.centroid - unbent.centroid), 5.0);  // refraction moves it
+  std::printf("refraction: %zu of %zu pixels differ, centroids %.3f px apart (%.1f px moved)\n",
+              differ, gpu.count, glm::length(gpu.centroid - host.centroid),
+              glm::length(gpu.centroid - unbent.centroid));
 }
 
 TEST(Render, PlanesInterleavedHalfAndDeviceBuffersGiveTheSamePicture) {

@@ -10,6 +10,7 @@
 //                [--size WxH] [--camera above|oblique|side] [--stereo B] [--samples N]
 //                [--distortion K1,K2,P1,P2,K3] [--noise READ,SHOT]
 //                [--water clear|ras|turbid] [--turbidity NTU] [--dissolved A440] [--vary-optics]
+//                [--refraction]
 //                [--image-frames all|none|LIST] [--video auto|none|mp4,gif,apng]
 //                [--annotate [--formats coco,yolo,webdataset] [--depth]] [--render | --no-render]
 //                [--hand-off auto|external-memory|shared|copy] [--reference-draw]
@@ -234,7 +235,9 @@ int run_swim(const SwimOptions& options) {
         {"seed", plan.seed},
         {"fps", plan.fps},
         {"tank", {{"diameter_m", plan.hall.tank.diameter}, {"depth_m", plan.hall.tank.depth}}},
-        {"tanks", plan.hall.tanks}};
+        {"tanks", plan.hall.tanks},
+        {"vary_optics", plan.pictures.optics.vary},
+        {"refraction", plan.pictures.refraction}};
     std::unique_ptr<SwimPictureFiles> files;
     if (pictures && staging) {
       files =
@@ -491,6 +494,9 @@ Command add_swim_command(CLI::App& app) {
   swim->add_flag("--vary-optics", options->vary_optics,
                  "Each frame its own water and light, drawn from the documented ranges "
                  "(seeded by --seed)");
+  swim->add_flag("--refraction", options->refraction,
+                 "The view rays bend at the water surface (Snell's law per vertex; masks, depth "
+                 "and keypoints where the camera sees them)");
   swim->add_option("--samples", options->samples, "Multisampling of the rendered frames, 1..16")
       ->capture_default_str();
   swim->add_option("--image-frames", options->image_frames,

@@ -86,6 +86,12 @@ void plan_optics(const SwimOptions& options, SwimPlan& plan) {
     optics.base.water.dissolved_absorption_440 =
         float(parse_in_range(options.dissolved, "--dissolved", 0.0, 20.0, "per metre"));
   }
+  if (options.refraction && plan.pictures.view == pictures::CameraView::kSide) {
+    throw Error(ErrorCode::kInvalidArgument, "--refraction",
+                "--refraction bends the view rays at the water surface: the side camera looks "
+                "through the wall (use --camera above or oblique)");
+  }
+  plan.pictures.refraction = options.refraction;
   optics.vary = options.vary_optics;
   optics.seed = plan.seed;
   if (optics.vary) {

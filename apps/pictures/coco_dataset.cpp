@@ -11,6 +11,7 @@
 #include "fish_keypoints.hpp"
 #include "instance_masks.hpp"
 #include "render/png16.hpp"
+#include "render/refraction.hpp"
 #include "tar_shards.hpp"
 #include "yolo_labels.hpp"
 
@@ -239,7 +240,16 @@ CocoDataset::FrameAnnotations CocoDataset::annotate(const FrameTruth& truth) con
       }
       const glm::dvec3 p = in_camera(*read);
       camera_points.push_back({p.x, p.y, p.z});
-      glm::dvec2 uv{k.fx * p.x / p.z + k.cx, k.fy * p.y / p.z + k.cy};
+      // Seen through the water surface, the keypoint's pixel is its apparent point's
+      // (at the same depth).
+      const glm::dvec3 seen =
+          options_.refraction
+              ? glm::dvec3(camera_from_world *
+                           glm::dvec4(render::apparent_point(*options_.refraction, camera,
+                                                             glm::dvec3(vertices[*read][instance])),
+                                      1.0))
+              : p;
+      glm::dvec2 uv{k.fx * seen.x / seen.z + k.cx, k.fy * seen.y / seen.z + k.cy};
       if (lens) uv = lens->distort_pixel(uv);
       const double u = uv.x, v = uv.y;
       const bool inside = p.z > double(camera.near_plane) && u >= 0.0 && v >= 0.0 &&

@@ -45,6 +45,7 @@
 #include "lens.hpp"
 #include "render/camera.hpp"
 #include "render/id_image.hpp"
+#include "render/scene.hpp"
 #include "swim_scene.hpp"
 
 namespace finflex::pictures {
@@ -74,6 +75,9 @@ struct DatasetOptions {
   // The pictures' lens (lens.hpp; null: none), for the frame's size and camera:
   // masks, depth and keypoints go through it too.
   std::shared_ptr<const LensWarp> lens;
+  // The scene whose water surface bends the view rays (render::Scene::view_refraction,
+  // as the pictures were drawn): keypoints where the camera sees them through it.
+  std::optional<render::Scene> refraction;
   // Length-weight relations by species name; the others take LengthWeight{}.
   std::vector<std::pair<std::string, LengthWeight>> weights;
 };

@@ -37,6 +37,7 @@ TankPictures::TankPictures(render::Renderer& renderer, tank::SwimScene& scene,
       optics_settings_(settings.optics),
       cameras_{hall_view_camera(scene.hall().hall_settings(), settings.view, settings.width,
                                 settings.height)} {
+  base_look_.view_refraction = settings.refraction;
   set_frame(0);
   if (settings.stereo_baseline > 0.0) {
     cameras_.push_back(stereo_right_camera(cameras_.front(), settings.stereo_baseline));

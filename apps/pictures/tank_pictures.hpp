@@ -32,7 +32,8 @@ struct PictureSettings {
   // > 0: a rectified stereo pair, the right camera this many metres to the left one's
   // right (stereo_right_camera); 0: one camera.
   double stereo_baseline = 0.0;
-  OpticsSettings optics;  // the water and the light, the same or varied per frame
+  OpticsSettings optics;    // the water and the light, the same or varied per frame
+  bool refraction = false;  // view rays bend at the water surface (Scene::view_refraction)
 };
 
 // The renderer's settings for pictures of `settings`.

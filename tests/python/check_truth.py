@@ -86,11 +86,27 @@ def camera_of(folder, image):
     return camera["stereo"]["right"] if image.get("camera") == "right" else camera
 
 
+def refracted(eye, ray, refraction):
+    """Where the ray from the eye meets the water surface's plane, and its direction
+    beyond (Snell's law in vector form, the surface's normal up), if it bends there."""
+    if refraction is None or eye[1] <= refraction["surface_y_m"] or ray[1] >= 0:
+        return eye, ray
+    q = eye + (refraction["surface_y_m"] - eye[1]) / ray[1] * ray
+    d = ray / np.linalg.norm(ray)
+    eta = 1.0 / refraction["refractive_index"]
+    cos_in = -d[1]
+    cos_out = np.sqrt(1.0 - eta * eta * (1.0 - cos_in * cos_in))
+    return q, eta * d + (eta * cos_in - cos_out) * np.array([0.0, 1.0, 0.0])
+
+
 def floor_errors(folder, image, depth, ids):
     """On pixels that show the tank's floor (no fish at or next to them, the ray's floor
-    point well inside the wall), the depth against the ray's intersection with the plane y = 0, from camera.json
-    alone (OpenCV's axes; pixel (i, j)'s centre at i + 0.5, j + 0.5)."""
+    point well inside the wall), the depth against the ray's intersection with the plane
+    y = 0, from camera.json alone (OpenCV's axes; pixel (i, j)'s centre at i + 0.5,
+    j + 0.5; with "refraction", the ray bent at the surface)."""
     camera = camera_of(folder, image)
+    with open(os.path.join(folder, "camera.json")) as f:
+        refraction = json.load(f).get("refraction")
     k1, k2, p1, p2, k3 = camera["distortion"]
     with open(os.path.join(folder, "summary.json")) as f:
         radius = 0.5 * json.load(f)["tank"]["diameter_m"]
@@ -107,8 +123,9 @@ def floor_errors(folder, image, depth, ids):
             ray = rotation @ np.array([x, y, 1.0])
             if ray[1] >= 0:
                 continue
-            z = -eye[1] / ray[1]  # the camera depth where the ray meets y = 0
-            point = eye + z * ray
+            start, direction = refracted(eye, ray, refraction)
+            point = start - start[1] / direction[1] * direction  # where it meets y = 0
+            z = float(rotation[:, 2] @ (point - eye))  # its camera depth
             if np.hypot(point[0], point[2]) < 0.9 * radius:
                 out.append(abs(float(depth[j, i]) - z))
     return out
@@ -210,6 +227,7 @@ PURE_WATER_ABSORPTION = (0.2644, 0.0565, 0.0102)  # Pope and Fry 1997, per metre
 
 
 def check_optics(coco):
+    varied = coco["info"]["vary_optics"]
     by_frame = {}
     for image in coco["images"]:
         o = image.get("optics")
@@ -223,15 +241,18 @@ def check_optics(coco):
             if max(abs(p - q) for p, q in zip(got, (a, b, a + b))) > 1e-5 * (1 + a + b):
                 fail("image %d: water %s, its composition gives a %.5f, b %.5f at %g nm"
                      % (image["id"], got, a, b, wavelength))
-        if not (0 <= ntu <= 5 and 0 <= cdom <= 3 and 0.5 <= o["light_scale"] <= 1.5):
-            fail("image %d: optics outside the varied ranges: %s" % (image["id"], o))
         elevation = np.degrees(np.arcsin(o["direction_to_light"][1]))
-        if not 50 - 1e-3 <= elevation <= 90 + 1e-3:
-            fail("image %d: the light %.2f degrees up" % (image["id"], elevation))
+        if varied and not (0 <= ntu <= 5 and 0 <= cdom <= 3 and 0.5 <= o["light_scale"] <= 1.5
+                           and 50 - 1e-3 <= elevation <= 90 + 1e-3):
+            fail("image %d: optics outside the varied ranges: %s" % (image["id"], o))
         by_frame.setdefault(image["frame"], []).append(o)
     for frame, views in by_frame.items():
         if any(v != views[0] for v in views):
             fail("frame %d: its views have different optics" % frame)
+    if not varied:
+        if len({json.dumps(v[0]) for v in by_frame.values()}) != 1:
+            fail("without --vary-optics, the frames have different water and light")
+        return "; optics: the same in all %d frames" % len(by_frame)
     if len({json.dumps(v[0]) for v in by_frame.values()}) != len(by_frame):
         fail("with --vary-optics, frames share their water and light")
     return "; optics: %d frames, each its own water and light" % len(by_frame)
@@ -342,13 +363,15 @@ def main(folder):
     shards = check_webdataset(folder, coco, by_image)
     optics = check_optics(coco)
     medians = [float(np.median(errors[i])) if errors[i] else 0.0 for i in range(2)]
+    with open(os.path.join(folder, "camera.json")) as f:
+        refraction = "; refracted at the surface" if "refraction" in json.load(f) else ""
     print("check_truth: %d YOLO lines agree with coco.json (%d outlines with holes); depth on the "
           "floor within %.3f mm (%d pixels), at keypoints: snout median %.1f mm (%d), tail fork "
           "median %.1f mm (%d); weights follow their relation; spines %.3f to %.3f of the fork "
-          "length%s%s%s"
+          "length%s%s%s%s"
           % (lines, holes, 1e3 * max(floor), len(floor), 1e3 * medians[0], len(errors[0]),
              1e3 * medians[1], len(errors[1]), min(spine_ratios), max(spine_ratios), stereo, shards,
-             optics))
+             optics, refraction))
 
 
 if __name__ == "__main__":

@@ -2,6 +2,7 @@
 // (v_pattern, Renderer::add_mesh) and the instance's id, then lit through the water.
 // docs/rendering.md "Fish appearance" gives the pattern.
 in vec3 v_world_position;
+in vec3 v_view_origin;
 in vec3 v_normal;
 in vec3 v_albedo;
 in vec2 v_pattern;  // u: snout 0 .. tail 1; v: belly -1 .. back 1
@@ -39,5 +40,5 @@ vec3 painted_albedo() {
 
 void main() {
   vec3 albedo = u_patterned ? painted_albedo() : v_albedo;
-  o_colour = vec4(shade(albedo, v_world_position, v_normal), 1.0);
+  o_colour = vec4(shade(albedo, v_world_position, v_normal, v_view_origin), 1.0);
 }

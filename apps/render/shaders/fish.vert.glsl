@@ -24,6 +24,7 @@ uniform usamplerBuffer u_id_table;  // R32UI: FishDraw::ids, with a device list
 uniform bool u_ids_from_table;
 
 out vec3 v_world_position;
+out vec3 v_view_origin;  // refraction.glsl apparent_position
 out vec3 v_normal;
 out vec3 v_albedo;
 out vec2 v_pattern;
@@ -48,5 +49,5 @@ void main() {
   v_albedo = u_albedo;
   v_pattern = a_pattern;
   v_id = u_ids_from_table ? texelFetch(u_id_table, int(a_id)).r : a_id;
-  gl_Position = u_view_projection * world;
+  gl_Position = u_view_projection * vec4(apparent_position(world.xyz, v_view_origin), 1.0);
 }

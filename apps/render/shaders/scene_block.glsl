@@ -3,13 +3,15 @@
 layout(std140) uniform Scene {
   mat4 u_view_projection;
   vec4 u_camera_position;  // xyz: world metres
+  vec4 u_camera_forward;   // xyz: unit, the camera's axis
   vec4 u_light_direction;  // xyz: unit, towards the key light
   vec4 u_key_colour;       // rgb: key light irradiance (linear); w: specular strength
   vec4 u_sky_ambient;      // rgb: ambient from above; w: Blinn-Phong exponent
   vec4 u_ground_ambient;   // rgb: ambient from below; w: height of the water surface
   vec4 u_water_attenuation;  // rgb: beam attenuation c = a + b per metre; w: the tank's radius
   vec4 u_water_scattering;   // rgb: scattering b per metre; w: phase asymmetry g
-  vec4 u_key_in_water;       // xyz: unit, towards the key light below the surface
+  vec4 u_key_in_water;       // xyz: unit, towards the key light below the surface; w: the
+                             // refractive index when the view rays refract, else 0
   vec4 u_key_downwelling;    // rgb: the key light's diffuse attenuation K_d per metre of depth
   vec4 u_ambient_downwelling;  // rgb: the ambient light's
   vec4 u_tank_rows;        // x: tanks, y: tanks per row, z: spacing of their axes (m)

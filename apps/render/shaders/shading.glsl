@@ -5,12 +5,12 @@ const float kPi = 3.14159265;
 
 // Where the segment from the camera to p lies in the water: the cylinder of the tank's
 // radius from the floor (y = 0) to the surface, of the tank p is in. Returns the
-// parameters (t0, t1) of eye + t (p - eye) where it enters and leaves, t0 >= t1 when
-// it does not. The rest is air, which neither absorbs nor scatters (a camera above or
-// beside the tank).
-vec2 water_segment(vec3 p) {
+// parameters (t0, t1) of origin + t (p - origin) where it enters and leaves, t0 >= t1
+// when it does not. The rest is air, which neither absorbs nor scatters (a camera above
+// or beside the tank).
+vec2 water_segment(vec3 p, vec3 origin) {
   vec2 axis = nearest_tank_axis(p);
-  vec3 eye = u_camera_position.xyz - vec3(axis.x, 0.0, axis.y);
+  vec3 eye = origin - vec3(axis.x, 0.0, axis.y);
   vec3 d = p - vec3(axis.x, 0.0, axis.y) - eye;
   float radius = u_water_attenuation.w;
   float surface = u_ground_ambient.w;
@@ -56,11 +56,12 @@ vec3 exponential_integral(vec3 x, float length) {
 
 // The colour reaching the camera from a surface point p with albedo and normal n:
 // the surface's light attenuated along the view ray's water, plus the light the
-// water scatters into the ray on the way (single scattering).
-vec3 shade(vec3 albedo, vec3 p, vec3 n) {
+// water scatters into the ray on the way (single scattering). The ray reaches p in a
+// straight line from `origin`: the camera, or where it refracted at the surface.
+vec3 shade(vec3 albedo, vec3 p, vec3 n, vec3 origin) {
   n = normalize(n);
   vec3 l = u_light_direction.xyz;
-  vec3 v = normalize(u_camera_position.xyz - p);
+  vec3 v = normalize(origin - p);
   float surface = u_ground_ambient.w;
   float depth = max(surface - p.y, 0.0);
 
@@ -75,15 +76,15 @@ vec3 shade(vec3 albedo, vec3 p, vec3 n) {
   float specular = lambert > 0.0 ? u_key_colour.w * pow(max(dot(n, h), 0.0), u_sky_ambient.w) : 0.0;
   vec3 lit = albedo * (ambient + key * lambert) + key * specular;
 
-  vec2 t = water_segment(p);
+  vec2 t = water_segment(p, origin);
   if (t.x >= t.y) return lit;
-  vec3 ray = p - u_camera_position.xyz;
+  vec3 ray = p - origin;
   float in_water = length(ray) * (t.y - t.x);
   vec3 direction = normalize(ray);  // from the camera
   vec3 c = u_water_attenuation.rgb;
   // Depth where the ray enters the water (its camera end) and its rate of change per
   // metre along the ray towards p.
-  float entry_depth = max(surface - (u_camera_position.y + t.x * ray.y), 0.0);
+  float entry_depth = max(surface - (origin.y + t.x * ray.y), 0.0);
   float descent = -direction.y;
   // Per metre of the ray, the water scatters towards the camera b p(angle) of the key
   // light's irradiance (pi times key_colour, the radiance of a white surface facing it)

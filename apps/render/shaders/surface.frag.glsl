@@ -1,8 +1,9 @@
 // Every lit surface (fish and tank): linear RGB into the floating-point framebuffer.
 in vec3 v_world_position;
+in vec3 v_view_origin;
 in vec3 v_normal;
 in vec3 v_albedo;
 
 out vec4 o_colour;
 
-void main() { o_colour = vec4(shade(v_albedo, v_world_position, v_normal), 1.0); }
+void main() { o_colour = vec4(shade(v_albedo, v_world_position, v_normal, v_view_origin), 1.0); }

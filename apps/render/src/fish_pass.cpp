@@ -40,7 +40,7 @@ FishPass::FishPass(const GlLimits& limits, FishOutput output)
     : limits_(limits),
       output_(output),
       program_(output == FishOutput::kIds ? "fish ids" : "fish",
-               {"scene_block.glsl", "fish.vert.glsl"}, fragment_files(output)),
+               {"scene_block.glsl", "refraction.glsl", "fish.vert.glsl"}, fragment_files(output)),
       positions_(GlTexture::create()),
       normals_(GlTexture::create()),
       id_table_(GlTexture::create()) {

@@ -10,6 +10,7 @@ SceneBlock make_scene_block(const Scene& scene, const Camera& camera, float aspe
   SceneBlock block;
   block.view_projection = projection_matrix(camera, aspect) * view_matrix(camera);
   block.camera_position = glm::vec4(camera.position, 1.0f);
+  block.camera_forward = glm::vec4(glm::normalize(camera.target - camera.position), 0.0f);
   block.light_direction = glm::vec4(glm::normalize(light.direction_to_light), 0.0f);
   block.key_colour = glm::vec4(light.key_colour, light.specular);
   block.sky_ambient = glm::vec4(light.sky_ambient, light.shininess);
@@ -21,7 +22,8 @@ SceneBlock make_scene_block(const Scene& scene, const Camera& camera, float aspe
   const glm::vec3 to_light = glm::normalize(light.direction_to_light);
   const glm::vec2 across = glm::vec2(to_light.x, to_light.z) / water.refractive_index;
   const float up = std::sqrt(std::max(1.0f - glm::dot(across, across), 0.0f));
-  block.key_in_water = glm::vec4(across.x, up, across.y, 0.0f);
+  block.key_in_water =
+      glm::vec4(across.x, up, across.y, scene.view_refraction ? water.refractive_index : 0.0f);
   block.key_downwelling = glm::vec4(downwelling_attenuation(water, up), 0.0f);
   block.ambient_downwelling = glm::vec4(downwelling_attenuation(water, 1.0f), 0.0f);
   block.tank_rows =

@@ -11,6 +11,7 @@ namespace finflex::render::detail {
 struct SceneBlock {
   glm::mat4 view_projection;
   glm::vec4 camera_position;
+  glm::vec4 camera_forward;
   glm::vec4 light_direction;
   glm::vec4 key_colour;         // w: specular strength
   glm::vec4 sky_ambient;        // w: shininess
@@ -22,7 +23,7 @@ struct SceneBlock {
   glm::vec4 ambient_downwelling;
   glm::vec4 tank_rows;  // x: count, y: columns, z: spacing
 };
-static_assert(sizeof(SceneBlock) == 64 + 11 * 16, "std140: a mat4 and eleven vec4");
+static_assert(sizeof(SceneBlock) == 64 + 12 * 16, "std140: a mat4 and twelve vec4");
 
 SceneBlock make_scene_block(const Scene& scene, const Camera& camera, float aspect);
 

@@ -1,6 +1,7 @@
 #include "tank_mesh.hpp"
 
 #include <cmath>
+#include <vector>
 
 namespace finflex::render::detail {
 
@@ -10,26 +11,37 @@ constexpr float kPi = 3.14159265358979f;
 constexpr float kRimBand = 0.06f;      // metres of lighter wall below the rim
 constexpr float kDrainRadius = 0.08f;  // of the tank's radius
 constexpr float kDrainAlbedo = 0.4f;   // of the floor's albedo
+// Rows of the wall and rings of the floor: small enough triangles that view rays
+// refracted per vertex (Scene::view_refraction) stay within a fraction of a pixel
+// inside them (docs/rendering.md "Refraction").
+constexpr int kWallRows = 16;
+constexpr int kFloorRings = 24;
 
 glm::vec3 on_circle(float radius, float angle, float y) {
   return {radius * std::cos(angle), y, radius * std::sin(angle)};
 }
 
-// A band of the wall between heights y0 < y1, one colour, facing the axis.
-void add_wall_band(const Tank& tank, float y0, float y1, const glm::vec3& albedo, TankMesh& mesh) {
+// A band of the wall between heights y0 < y1 in `rows` rows, one colour, facing the axis.
+void add_wall_band(const Tank& tank, float y0, float y1, int rows, const glm::vec3& albedo,
+                   TankMesh& mesh) {
   const auto first = static_cast<std::uint32_t>(mesh.vertices.size());
+  const auto columns = static_cast<std::uint32_t>(rows + 1);  // vertices up each column
   for (int s = 0; s <= tank.segments; ++s) {
     const float angle = 2.0f * kPi * static_cast<float>(s) / static_cast<float>(tank.segments);
     const glm::vec3 inward{-std::cos(angle), 0.0f, -std::sin(angle)};
-    mesh.vertices.push_back({on_circle(tank.radius, angle, y0), inward, albedo});
-    mesh.vertices.push_back({on_circle(tank.radius, angle, y1), inward, albedo});
+    for (int k = 0; k <= rows; ++k) {
+      const float y = y0 + (y1 - y0) * static_cast<float>(k) / static_cast<float>(rows);
+      mesh.vertices.push_back({on_circle(tank.radius, angle, y), inward, albedo});
+    }
   }
   for (std::uint32_t s = 0; s < static_cast<std::uint32_t>(tank.segments); ++s) {
-    const std::uint32_t b0 = first + 2 * s;
-    const std::uint32_t t0 = b0 + 1;
-    const std::uint32_t b1 = b0 + 2;
-    const std::uint32_t t1 = b0 + 3;
-    mesh.indices.insert(mesh.indices.end(), {b0, b1, t1, b0, t1, t0});
+    for (std::uint32_t k = 0; k < static_cast<std::uint32_t>(rows); ++k) {
+      const std::uint32_t b0 = first + columns * s + k;
+      const std::uint32_t t0 = b0 + 1;
+      const std::uint32_t b1 = b0 + columns;
+      const std::uint32_t t1 = b1 + 1;
+      mesh.indices.insert(mesh.indices.end(), {b0, b1, t1, b0, t1, t0});
+    }
   }
 }
 
@@ -37,12 +49,17 @@ void add_wall_band(const Tank& tank, float y0, float y1, const glm::vec3& albedo
 void add_floor(const Tank& tank, TankMesh& mesh) {
   const glm::vec3 up{0.0f, 1.0f, 0.0f};
   const glm::vec3 drain = tank.floor_albedo * kDrainAlbedo;
-  const float radii[] = {kDrainRadius * tank.radius, (kDrainRadius + 0.02f) * tank.radius,
-                         tank.radius};
-  const glm::vec3 albedos[] = {drain, tank.floor_albedo, tank.floor_albedo};
+  std::vector<float> radii{kDrainRadius * tank.radius, (kDrainRadius + 0.02f) * tank.radius};
+  std::vector<glm::vec3> albedos{drain, tank.floor_albedo};
+  for (int k = 1; k <= kFloorRings; ++k) {
+    const float from = radii[1];
+    radii.push_back(from + (tank.radius - from) * static_cast<float>(k) / float(kFloorRings));
+    albedos.push_back(tank.floor_albedo);
+  }
+  const auto rings = static_cast<std::uint32_t>(radii.size());
   const auto centre = static_cast<std::uint32_t>(mesh.vertices.size());
   mesh.vertices.push_back({glm::vec3(0.0f), up, drain});
-  for (int ring = 0; ring < 3; ++ring) {
+  for (std::uint32_t ring = 0; ring < rings; ++ring) {
     for (int s = 0; s < tank.segments; ++s) {
       const float angle = 2.0f * kPi * static_cast<float>(s) / static_cast<float>(tank.segments);
       mesh.vertices.push_back({on_circle(radii[ring], angle, 0.0f), up, albedos[ring]});
@@ -54,7 +71,7 @@ void add_floor(const Tank& tank, TankMesh& mesh) {
   };
   for (std::uint32_t s = 0; s < n; ++s) {
     mesh.indices.insert(mesh.indices.end(), {centre, at(0, s + 1), at(0, s)});
-    for (std::uint32_t ring = 0; ring + 1 < 3; ++ring) {
+    for (std::uint32_t ring = 0; ring + 1 < rings; ++ring) {
       mesh.indices.insert(mesh.indices.end(), {at(ring, s), at(ring + 1, s + 1), at(ring + 1, s),
                                                at(ring, s), at(ring, s + 1), at(ring + 1, s + 1)});
     }
@@ -66,8 +83,8 @@ void add_floor(const Tank& tank, TankMesh& mesh) {
 TankMesh make_tank_mesh(const Tank& tank) {
   TankMesh mesh;
   const float rim = std::fmax(tank.wall_height - kRimBand, 0.0f);
-  add_wall_band(tank, 0.0f, rim, tank.wall_albedo, mesh);
-  add_wall_band(tank, rim, tank.wall_height, glm::min(tank.wall_albedo * 1.6f, glm::vec3(0.9f)),
+  add_wall_band(tank, 0.0f, rim, kWallRows, tank.wall_albedo, mesh);
+  add_wall_band(tank, rim, tank.wall_height, 1, glm::min(tank.wall_albedo * 1.6f, glm::vec3(0.9f)),
                 mesh);
   add_floor(tank, mesh);
   return mesh;

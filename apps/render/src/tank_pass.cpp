@@ -17,7 +17,7 @@ bool same_tank(const Tank& a, const Tank& b) {
 }  // namespace
 
 TankPass::TankPass()
-    : program_("tank", {"scene_block.glsl", "tank.vert.glsl"},
+    : program_("tank", {"scene_block.glsl", "refraction.glsl", "tank.vert.glsl"},
                {"scene_block.glsl", "shading.glsl", "surface.frag.glsl"}),
       vertex_array_(GlVertexArray::create()),
       vertices_(GlBuffer::create()),

@@ -49,6 +49,10 @@ struct Scene {
   // clear air first. In a hall, that is the water of the tank the seen point is in.
   Water water = water_optics(WaterComposition{});
   Lighting lighting;
+  // The view rays of a camera above the water bend at its flat surface by Snell's law
+  // (render/refraction.hpp; water.refractive_index), applied per vertex; false: they
+  // go straight (an ideal cut-away).
+  bool view_refraction = false;
   glm::vec3 background{0.015f, 0.017f, 0.02f};  // outside the tank: a dim room
 
   // Throws RenderError (kInvalidArgument) naming the field ("scene.tank.radius", ...)
