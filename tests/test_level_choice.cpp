@@ -112,7 +112,11 @@ TEST(LevelChoice, TheDeviceChoosesAsTheHostAndAsTheCameraSees) {
   const std::vector<Placement> placements = scattered(count, 7);
   const std::vector<PlacementRecord> records = records_of(placements);
   const cl::Buffer buffer = upload(records);
-  LevelChooser chooser(test::shared_context(), blub_levels(), count);
+  // A quarter-pixel budget: the nearest fish need the full mesh (its levels' errors are
+  // small enough that at one pixel none does in this scene).
+  LevelChoiceOptions options;
+  options.pixel_budget = 0.25;
+  LevelChooser chooser(test::shared_context(), blub_levels(), count, options);
   const std::vector<LevelView> views{camera()};
   chooser.enqueue(buffer, count, views);
   const LevelChooser::Choice choice = chooser.read();
@@ -120,7 +124,6 @@ TEST(LevelChoice, TheDeviceChoosesAsTheHostAndAsTheCameraSees) {
 
   const BodyBounds bounds = body_bounds(blub_levels().level(0).model);
   const std::vector<double> errors = level_errors(blub_levels());
-  const LevelChoiceOptions options;
   const double focal = double(kHeight) / (2.0 * std::tan(0.5 * glm::radians(kFov)));
   std::size_t visible = 0, borderline = 0;
   std::vector<std::size_t> per_level(blub_levels().size(), 0);

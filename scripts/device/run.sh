@@ -60,10 +60,10 @@
 #                          drawn only, every frame a PNG, a dataset; each on the
 #                          external-memory path and the copy path side by side
 #   render_levels  .txt    `finflex swim` drawn at 1920 x 1080 on the GPU with levels of
-#                          detail (--levels 4) beside full detail: 1,000 fish drawn only
-#                          and with a PNG a frame, 10,000 drawn only; the farm (100,000
-#                          fish in 16 tanks, --levels 6) beside full detail, and the
-#                          farm's last frame (render_levels_farm.png)
+#                          detail (--levels 4, 8) beside full detail: 1,000 fish drawn
+#                          only and with a PNG a frame, 10,000 drawn only; the farm
+#                          (100,000 fish in 16 tanks, --levels 6 and 8) beside full
+#                          detail, and the farm's last frame (render_levels_farm.png)
 #   dataset        .txt    `finflex swim --annotate` of 1,000 fish at 1280 x 720 on the GPU:
 #                          mono COCO; with YOLO and depth; a stereo pair; and with a
 #                          lens and noise (frame times side by side)
@@ -420,6 +420,8 @@ dataset() {
     dataset_swim "stereo 0.12 m, COCO, YOLO, depth, lens and noise: 15 frames" stereo-lens \
       --formats coco,yolo --depth --stereo 0.12 --distortion -0.2,0.05,0.001,-0.0005,0 \
       --noise 2,4
+    dataset_swim "mono, COCO, YOLO, depth, refraction, water and light varied: 15 frames" \
+      mono-optics --formats coco,yolo --depth --refraction --vary-optics
     for summary in "$scratch"/*/summary.json; do
       [ -e "$summary" ] || continue
       python3 - "$summary" <<'PY'
@@ -477,8 +479,12 @@ render_levels() {
     levels_swim "10,000 fish drawn only, full detail: 15 frames" 10000 --seconds 0.5 --fps 30 --render
     levels_swim "10,000 fish drawn only, --levels 4: 15 frames" 10000 --seconds 0.5 --fps 30 \
       --render --levels 4
-    levels_swim "the farm, 100,000 fish in 16 tanks drawn, --levels 6: 30 frames (the last a PNG)" \
-      100000 --tanks 16 --seconds 1 --fps 30 --levels 6 --out "$scratch/farm" --video none \
+    levels_swim "10,000 fish drawn only, --levels 8: 15 frames" 10000 --seconds 0.5 --fps 30 \
+      --render --levels 8
+    levels_swim "the farm, 100,000 fish in 16 tanks drawn only, --levels 6: 30 frames" \
+      100000 --tanks 16 --seconds 1 --fps 30 --levels 6 --render
+    levels_swim "the farm, 100,000 fish in 16 tanks drawn, --levels 8: 30 frames (the last a PNG)" \
+      100000 --tanks 16 --seconds 1 --fps 30 --levels 8 --out "$scratch/farm" --video none \
       --image-frames last
     cp "$scratch/farm/frames/frame_000029.png" "$out/render_levels_farm.png" ||
       failed+=("the farm's frame")

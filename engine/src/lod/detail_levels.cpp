@@ -23,6 +23,26 @@ constexpr float kNoErrorLimit = 1.0f;
 // A coarser level must keep at most this share of the finer level's triangles.
 constexpr double kLeastReduction = 0.75;
 
+// Whether every part with triangles of its own in `finer` keeps some in `coarser`
+// (a fin stays a fin: something of it moves with its hinge).
+bool keeps_every_part(const RiggedMesh& full, const std::vector<std::uint32_t>& finer,
+                      const std::vector<std::uint32_t>& coarser) {
+  const std::vector<std::size_t>& component_of = full.component_of_vertex();
+  const auto owned = [&](const std::vector<std::uint32_t>& indices) {
+    std::vector<bool> has(full.rig().components.size(), false);
+    for (std::size_t t = 0; t + 2 < indices.size(); t += 3) {
+      const std::size_t c = component_of[indices[t]];
+      if (component_of[indices[t + 1]] == c && component_of[indices[t + 2]] == c) has[c] = true;
+    }
+    return has;
+  };
+  const std::vector<bool> before = owned(finer), after = owned(coarser);
+  for (std::size_t c = 0; c < before.size(); ++c) {
+    if (before[c] && !after[c]) return false;
+  }
+  return true;
+}
+
 // One step of the cascade: `indices` (the finer level's triangles, input vertex ids)
 // simplified component by component towards `ratio` of each one's triangles, borders
 // locked, triangles across components kept as they are (and a component the
@@ -64,6 +84,30 @@ std::pair<std::vector<std::uint32_t>, float> simplify_step(
     worst = std::max(worst, error);
   }
   return {std::move(out), worst};
+}
+
+// The other step: the whole of the finer level's triangles simplified at once, the
+// borders between body and fins free (edges across them collapse too; every vertex
+// kept stays in its own part, so fins still follow their hinges, and triangles across
+// the parts grow), or where that stalls, clustered (meshoptimizer's sloppy
+// simplifier). Both keep a subset of the vertices. Empty when every triangle goes.
+std::pair<std::vector<std::uint32_t>, float> whole_mesh_step(
+    const RiggedMesh& full, const std::vector<std::uint32_t>& indices, double ratio) {
+  const std::vector<glm::vec3>& positions = full.mesh().positions;
+  const auto target =
+      std::max<std::size_t>(3, std::size_t(std::llround(double(indices.size() / 3) * ratio)) * 3);
+  std::vector<std::uint32_t> out(indices.size());
+  float error = 0.0f;
+  std::size_t count =
+      meshopt_simplify(out.data(), indices.data(), indices.size(), &positions[0].x,
+                       positions.size(), sizeof(glm::vec3), target, kNoErrorLimit, 0, &error);
+  if (double(count) > kLeastReduction * double(indices.size())) {
+    count =
+        meshopt_simplifySloppy(out.data(), indices.data(), indices.size(), &positions[0].x,
+                               positions.size(), sizeof(glm::vec3), target, kNoErrorLimit, &error);
+  }
+  out.resize(count);
+  return {std::move(out), error};
 }
 
 // The level over the first `vertex_count` vertices of the new order: the input's
@@ -133,7 +177,19 @@ DetailLevels make_detail_levels(const RiggedMesh& full, const LevelOptions& opti
       meshopt_simplifyScale(&mesh.positions[0].x, mesh.vertex_count(), sizeof(glm::vec3));
   for (std::size_t k = 1; k < options.levels; ++k) {
     const std::vector<std::uint32_t>& finer = indices.back();
+    // Of the two steps, the one that reaches the reduction with the smaller error and
+    // keeps every fin (the component-wise one's locked borders stall coarse levels;
+    // measured on the bundled fish in docs/levels-of-detail.md).
     auto [coarser, relative_error] = simplify_step(full, finer, options.triangle_ratio);
+    auto [whole, whole_error] = whole_mesh_step(full, finer, options.triangle_ratio);
+    const auto reduces = [&](const std::vector<std::uint32_t>& t) {
+      return !t.empty() && double(t.size()) <= kLeastReduction * double(finer.size());
+    };
+    if (reduces(whole) && keeps_every_part(full, finer, whole) &&
+        (!reduces(coarser) || whole_error < relative_error)) {
+      coarser = std::move(whole);
+      relative_error = whole_error;
+    }
     const std::size_t kept = coarser.size() / 3;
     if (double(kept) > kLeastReduction * double(finer.size() / 3)) {
       throw Error(
