@@ -66,7 +66,8 @@
 #                          detail, and the farm's last frame (render_levels_farm.png)
 #   dataset        .txt    `finflex swim --annotate` of 1,000 fish at 1280 x 720 on the GPU:
 #                          mono COCO; with YOLO and depth; a stereo pair; and with a
-#                          lens and noise (frame times side by side)
+#                          lens and noise; mono with refraction and varied optics (frame
+#                          times side by side)
 #   level_choice   .txt    levels of detail: `finflex check --levels 4` of the bundled
 #                          fish's swim rigs, and the level choice of 1,000 to 100,000
 #                          fish (bench_deform's BM_LevelChoice)

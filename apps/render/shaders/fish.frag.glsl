@@ -2,12 +2,16 @@
 // (v_pattern, Renderer::add_mesh) and the instance's id, then lit through the water.
 // docs/rendering.md "Fish appearance" gives the pattern.
 in vec3 v_world_position;
-in vec3 v_view_origin;
+#ifdef FINFLEX_REFRACTION
+in vec3 v_view_origin;  // where the seen ray starts towards the point
+#else
+#define v_view_origin u_camera_position.xyz
+#endif
 in vec3 v_normal;
-in vec3 v_albedo;
 in vec2 v_pattern;  // u: snout 0 .. tail 1; v: belly -1 .. back 1
 flat in uint v_id;
 
+uniform vec3 u_albedo;  // the species' colour
 uniform bool u_patterned;
 
 out vec4 o_colour;
@@ -26,7 +30,7 @@ vec3 painted_albedo() {
   // Each fish its own shade: brightness within +-12 %, a little warmer or cooler.
   float brightness = 1.0 + 0.24 * (hash01(v_id) - 0.5);
   float warmth = 0.12 * (hash01(v_id ^ 0x9e3779b9u) - 0.5);
-  vec3 base = v_albedo * brightness * vec3(1.0 + warmth, 1.0, 1.0 - warmth);
+  vec3 base = u_albedo * brightness * vec3(1.0 + warmth, 1.0, 1.0 - warmth);
   // Countershading: a dark back over a pale, silvery belly, blended across the flank.
   vec3 back = base * 0.45;
   vec3 belly = mix(base, vec3(0.80), 0.55);
@@ -39,6 +43,6 @@ vec3 painted_albedo() {
 }
 
 void main() {
-  vec3 albedo = u_patterned ? painted_albedo() : v_albedo;
+  vec3 albedo = u_patterned ? painted_albedo() : u_albedo;
   o_colour = vec4(shade(albedo, v_world_position, v_normal, v_view_origin), 1.0);
 }

@@ -19,14 +19,14 @@ uniform ivec4 u_position_stream;
 uniform ivec4 u_normal_stream;
 uniform bool u_positions_wide;  // four elements a texel: four times the elements a range
 uniform bool u_normals_wide;
-uniform vec3 u_albedo;
 uniform usamplerBuffer u_id_table;  // R32UI: FishDraw::ids, with a device list
 uniform bool u_ids_from_table;
 
 out vec3 v_world_position;
+#ifdef FINFLEX_REFRACTION
 out vec3 v_view_origin;  // refraction.glsl apparent_position
+#endif
 out vec3 v_normal;
-out vec3 v_albedo;
 out vec2 v_pattern;
 flat out uint v_id;
 
@@ -46,8 +46,11 @@ void main() {
   vec4 world = a_transform * vec4(position, 1.0);
   v_world_position = world.xyz;
   v_normal = mat3(a_transform) * normal;  // rotation and uniform scale: normalised when shading
-  v_albedo = u_albedo;
   v_pattern = a_pattern;
   v_id = u_ids_from_table ? texelFetch(u_id_table, int(a_id)).r : a_id;
+#ifdef FINFLEX_REFRACTION
   gl_Position = u_view_projection * vec4(apparent_position(world.xyz, v_view_origin), 1.0);
+#else
+  gl_Position = u_view_projection * world;
+#endif
 }

@@ -1,3 +1,4 @@
+#ifdef FINFLEX_REFRACTION
 // The view rays bending at the flat water surface (render/refraction.hpp, whose
 // double-precision functions are the oracle of these): per vertex, where the camera
 // sees it. u_key_in_water.w is the water's refractive index when the scene refracts
@@ -47,3 +48,4 @@ vec3 apparent_position(vec3 p, out vec3 origin) {
   vec3 forward = u_camera_forward.xyz;
   return eye + (dot(p - eye, forward) / dot(q - eye, forward)) * (q - eye);
 }
+#endif

@@ -1,6 +1,10 @@
 // Every lit surface (fish and tank): linear RGB into the floating-point framebuffer.
 in vec3 v_world_position;
-in vec3 v_view_origin;
+#ifdef FINFLEX_REFRACTION
+in vec3 v_view_origin;  // where the seen ray starts towards the point
+#else
+#define v_view_origin u_camera_position.xyz
+#endif
 in vec3 v_normal;
 in vec3 v_albedo;
 

@@ -5,7 +5,9 @@ layout(location = 1) in vec3 a_normal;
 layout(location = 2) in vec3 a_albedo;
 
 out vec3 v_world_position;
+#ifdef FINFLEX_REFRACTION
 out vec3 v_view_origin;  // refraction.glsl apparent_position
+#endif
 out vec3 v_normal;
 out vec3 v_albedo;
 
@@ -14,5 +16,9 @@ void main() {
   v_world_position = a_position + vec3(axis.x, 0.0, axis.y);
   v_normal = a_normal;
   v_albedo = a_albedo;
+#ifdef FINFLEX_REFRACTION
   gl_Position = u_view_projection * vec4(apparent_position(v_world_position, v_view_origin), 1.0);
+#else
+  gl_Position = u_view_projection * vec4(v_world_position, 1.0);
+#endif
 }

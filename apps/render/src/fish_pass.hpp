@@ -35,7 +35,9 @@ enum class FishOutput { kLitColour, kIds };
 
 class FishPass {
  public:
-  FishPass(const GlLimits& limits, FishOutput output);
+  // `refraction`: the program that bends the view rays at the water surface
+  // (Scene::view_refraction); the other keeps the straight rays' fewer varyings.
+  FishPass(const GlLimits& limits, FishOutput output, bool refraction = false);
   // `fish` passed validate_fish(). Needs the scene framebuffer bound and the Scene
   // block at binding 0.
   void draw(const std::vector<FishDraw>& fish, const std::vector<MeshResources>& meshes,

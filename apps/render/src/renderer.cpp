@@ -95,6 +95,10 @@ struct Renderer::Impl {
   GlBuffer scene_block;
   TankPass tank;
   FishPass fish;
+  // The programs that bend the view rays (Scene::view_refraction), made on first use.
+  std::unique_ptr<TankPass> tank_refracted;
+  std::unique_ptr<FishPass> fish_refracted;
+  std::unique_ptr<FishPass> fish_ids_refracted;
   EncodePass encode;
   std::unique_ptr<IdTargets> id_targets;  // the id pass's, made on its first use
   std::unique_ptr<FishPass> fish_ids;
@@ -124,6 +128,26 @@ struct Renderer::Impl {
     glBufferData(GL_UNIFORM_BUFFER, sizeof(SceneBlock), nullptr, GL_DYNAMIC_DRAW);
     glBindBuffer(GL_UNIFORM_BUFFER, 0);
     require_no_gl_error("set-up");
+  }
+
+  TankPass& tank_pass(const Scene& scene) {
+    if (!scene.view_refraction) return tank;
+    if (!tank_refracted) tank_refracted = std::make_unique<TankPass>(true);
+    return *tank_refracted;
+  }
+  FishPass& colour_pass(const Scene& scene) {
+    if (!scene.view_refraction) return fish;
+    if (!fish_refracted) {
+      fish_refracted = std::make_unique<FishPass>(limits, FishOutput::kLitColour, true);
+    }
+    return *fish_refracted;
+  }
+  FishPass& id_pass(const Scene& scene) {
+    if (!scene.view_refraction) return *fish_ids;
+    if (!fish_ids_refracted) {
+      fish_ids_refracted = std::make_unique<FishPass>(limits, FishOutput::kIds, true);
+    }
+    return *fish_ids_refracted;
   }
 
   // Every pass's start: the context current, its inputs checked.
@@ -317,8 +341,8 @@ void Renderer::render(const Scene& scene, const Camera& camera, const std::vecto
   glClearDepth(1.0);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   opaque_triangles();
-  r.tank.draw(scene.tank, scene.rows);
-  r.fish.draw(fish, r.meshes, r.buffers);
+  r.tank_pass(scene).draw(scene.tank, scene.rows);
+  r.colour_pass(scene).draw(fish, r.meshes, r.buffers);
 
   r.targets.resolve();
   r.encode.draw(r.targets);
@@ -342,9 +366,9 @@ void Renderer::render_ids(const Scene& scene, const Camera& camera,
   r.id_targets->bind_and_clear();
   opaque_triangles();
   glDrawBuffer(GL_NONE);  // the tank hides what is behind it, and writes no id
-  r.tank.draw(scene.tank, scene.rows);
+  r.tank_pass(scene).draw(scene.tank, scene.rows);
   glDrawBuffer(GL_COLOR_ATTACHMENT0);
-  r.fish_ids->draw(fish, r.meshes, r.buffers);
+  r.id_pass(scene).draw(fish, r.meshes, r.buffers);
   r.id_timer.end();
   r.id_camera = camera;
   require_no_gl_error("render_ids");

@@ -12,7 +12,7 @@ namespace finflex::render::detail {
 
 class TankPass {
  public:
-  TankPass();
+  explicit TankPass(bool refraction = false);  // as FishPass's refraction
   // Needs the scene framebuffer bound and the Scene block at binding 0.
   void draw(const Tank& tank, const TankRows& rows);
 
