@@ -126,6 +126,25 @@ struct Projection {
 // The dataset's ground truth against the engine's own geometry: the frames written
 // as whole-tank meshes (world space, the fish in tank order) projected through
 // camera.json.
+TEST(CliPictures, OnlyTheKeypointsAskedForAreAnnotated) {
+  const std::string out = test::temp_path("two_keypoints");
+  const RunResult r = run_cli(small_swim() +
+                              " --annotate --keypoints tail_fork,snout --formats "
+                              "coco,yolo --video none --out '" +
+                              out + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json coco = read_json(out + "/coco.json");
+  EXPECT_EQ(coco["categories"][0]["keypoints"], nlohmann::json({"snout", "tail_fork"}));
+  EXPECT_EQ(coco["categories"][0]["skeleton"], nlohmann::json({{1, 2}}));
+  ASSERT_FALSE(coco["annotations"].empty());
+  for (const nlohmann::json& a : coco["annotations"]) {
+    EXPECT_EQ(a["keypoints"].size(), 6u);
+    EXPECT_EQ(a["keypoints_camera_m"].size(), 2u);
+  }
+  const std::string yaml = read_text(out + "/yolo/pose/dataset.yaml");
+  EXPECT_NE(yaml.find("kpt_shape: [2, 3]\nflip_idx: [0, 1]"), std::string::npos) << yaml;
+}
+
 TEST(CliPictures, MasksBoxesAndKeypointsAgreeWithTheProjectedVertices) {
   const std::string out = test::temp_path("dataset");
   const RunResult r = run_cli(small_swim("16") +
@@ -344,6 +363,9 @@ TEST(CliPictures, BadPictureInputsExitTwoAndWriteNothing) {
       {" --water muddy", "--water 'muddy' is not a water type (clear, ras, turbid)"},
       {" --vary-optics --turbidity 2", "--turbidity with --vary-optics"},
       {" --refraction --camera side", "--refraction bends the view rays at the water surface"},
+      {" --annotate --keypoints snout,eye", "--keypoints: 'eye' is not a keypoint (snout, "},
+      {" --annotate --keypoints snout,left_pectoral_tip", "go together"},
+      {" --keypoints snout", "--keypoints is part of the dataset"},
       {" --annotate --length-weight nosuch:0.01,3", "--length-weight: no species 'nosuch'"},
       {" --annotate --length-weight blub:0.01,5", "2 <= b <= 4"},
       {" --annotate --length-weight 0.01,3", "SPECIES:A,B expected"},
@@ -366,6 +388,21 @@ TEST(CliPictures, BadPictureInputsExitTwoAndWriteNothing) {
     const std::string out = test::temp_path("never");
     expect_refused(small_swim() + arguments + " --out '" + out + "'", expected, out);
   }
+  // A rig whose tail is not named caudal_fin: no caudal tips to ask for.
+  std::string rig = read_text(test::data_path("rigs/blub_low_resolution_swim.rig.json"));
+  for (std::size_t at; (at = rig.find("\"caudal_fin\"")) != std::string::npos;) {
+    rig.replace(at, 12, "\"tail\"");
+  }
+  const std::string tailless = test::temp_path("tailless.rig.json");
+  { std::ofstream(tailless) << rig; }
+  const std::string untailed = test::temp_path("untailed");
+  expect_refused(
+      "swim --fish 4 --seconds 0.1 --fps 30 --annotate --keypoints snout,caudal_upper_tip "
+      "--species " +
+          fish(kLowResolutionBlub) + ":" + tailless + " --out '" + untailed + "'",
+      "--keypoints: no species' rig has caudal_upper_tip (it comes from a part named "
+      "caudal_fin)",
+      untailed);
   const std::string fast = test::temp_path("fast");
   expect_refused("swim --fish 4 --seconds 0.01 --fps 1000 --species " + low_resolution_species() +
                      " --out '" + fast + "'",

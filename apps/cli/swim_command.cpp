@@ -12,7 +12,8 @@
 //                [--water clear|ras|turbid] [--turbidity NTU] [--dissolved A440] [--vary-optics]
 //                [--refraction]
 //                [--image-frames all|none|LIST] [--video auto|none|mp4,gif,apng]
-//                [--annotate [--formats coco,yolo,webdataset] [--depth]] [--render | --no-render]
+//                [--annotate [--formats coco,yolo,webdataset] [--depth] [--keypoints LIST]]
+//                [--render | --no-render]
 //                [--hand-off auto|external-memory|shared|copy] [--reference-draw]
 #include <unistd.h>
 
@@ -509,6 +510,10 @@ Command add_swim_command(CLI::App& app) {
                    "With --annotate: the dataset's formats, coco, yolo (Ultralytics detect, "
                    "segment and pose) and webdataset (tar shards)")
       ->capture_default_str();
+  swim->add_option("--keypoints", options->keypoints,
+                   "With --annotate: the keypoints to annotate, a list of snout, tail_fork, "
+                   "caudal_upper_tip, caudal_lower_tip, left_pectoral_tip, right_pectoral_tip "
+                   "(default all)");
   swim->add_option("--length-weight", options->length_weights,
                    "SPECIES:A,B, with --annotate: that species' weights by W g = A (L cm)^B "
                    "(repeatable; default A 0.01, B 3)")

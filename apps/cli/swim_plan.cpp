@@ -162,7 +162,8 @@ void plan_pictures(const SwimOptions& options, SwimPlan& plan) {
   }
   files.annotate = options.annotate;
   for (const auto& [given, option] :
-       {std::pair{options.formats != "coco", "--formats"}, std::pair{options.depth, "--depth"}}) {
+       {std::pair{options.formats != "coco", "--formats"}, std::pair{options.depth, "--depth"},
+        std::pair{!options.keypoints.empty(), "--keypoints"}}) {
     if (given && !files.annotate) {
       throw Error(ErrorCode::kInvalidArgument, option,
                   std::string(option) + " is part of the dataset: it needs --annotate");
@@ -184,6 +185,9 @@ void plan_pictures(const SwimOptions& options, SwimPlan& plan) {
     start = comma + 1;
   }
   files.dataset.depth = options.depth;
+  if (!options.keypoints.empty()) {
+    files.dataset.keypoints = pictures::parse_keypoints(options.keypoints, "--keypoints");
+  }
   if (!options.length_weights.empty() && !files.annotate) {
     throw Error(ErrorCode::kInvalidArgument, "--length-weight",
                 "--length-weight is part of the dataset: it needs --annotate");

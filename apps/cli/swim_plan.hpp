@@ -45,6 +45,7 @@ struct SwimOptions {
   std::string video;
   bool annotate = false;
   std::string formats = "coco";  // with --annotate: coco, yolo
+  std::string keypoints;         // with --annotate: a list of them; empty: all
   bool depth = false;
   int render = -1;  // --render: 1, --no-render: 0, neither: -1 (on with --out)
   std::string hand_off = "auto";

@@ -23,16 +23,42 @@ namespace {
 // (metres) and belongs to something else.
 constexpr double kOcclusionTolerance = 0.005;
 
+// The rig part each keypoint comes from (none: the snout and tail fork, from the body).
+constexpr std::array<const char*, kKeypointCount> kKeypointPart{
+    "", "", "caudal_fin", "caudal_fin", "left_pectoral_fin", "right_pectoral_fin"};
+
+// The chosen keypoints' names, and the skeleton's edges between them (snout-fork,
+// fork-caudal tips, snout-pectoral tips; 1-based into the chosen, COCO's).
+nlohmann::ordered_json names_json(const std::vector<std::size_t>& chosen) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (std::size_t k : chosen) out.push_back(kKeypointNames[k]);
+  return out;
+}
+
+nlohmann::ordered_json skeleton(const std::vector<std::size_t>& chosen) {
+  constexpr std::size_t kEdges[][2] = {{0, 1}, {1, 2}, {1, 3}, {0, 4}, {0, 5}};
+  const auto at = [&](std::size_t k) {
+    return std::size_t(std::find(chosen.begin(), chosen.end(), k) - chosen.begin());
+  };
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (const auto& edge : kEdges) {
+    if (at(edge[0]) < chosen.size() && at(edge[1]) < chosen.size()) {
+      out.push_back({at(edge[0]) + 1, at(edge[1]) + 1});
+    }
+  }
+  return out;
+}
+
 nlohmann::ordered_json categories(const tank::SwimScene& scene,
-                                  const std::vector<LengthWeight>& weights) {
+                                  const std::vector<LengthWeight>& weights,
+                                  const std::vector<std::size_t>& chosen) {
   nlohmann::ordered_json out = nlohmann::ordered_json::array();
   for (std::size_t s = 0; s < scene.species().size(); ++s) {
     out.push_back({{"id", s + 1},
                    {"name", scene.species()[s].name},
                    {"supercategory", "fish"},
-                   {"keypoints", kKeypointNames},
-                   // snout-fork, fork-caudal tips, snout-pectoral tips (1-based, COCO's)
-                   {"skeleton", {{1, 2}, {2, 3}, {2, 4}, {1, 5}, {1, 6}}},
+                   {"keypoints", names_json(chosen)},
+                   {"skeleton", skeleton(chosen)},
                    {"length_weight",
                     {{"a", weights[s].a}, {"b", weights[s].b}, {"units", "W g = a (L cm)^b"}}}});
   }
@@ -120,6 +146,16 @@ CocoDataset::CocoDataset(const std::string& folder, tank::SwimScene& scene,
     }
     species_.push_back(truth);
   }
+  for (std::size_t k : options_.keypoints) {
+    const bool somewhere =
+        std::any_of(species_.begin(), species_.end(),
+                    [&](const SpeciesTruth& t) { return t.landmarks.keypoints.at(k).has_value(); });
+    if (!somewhere) {
+      throw Error(ErrorCode::kInvalidArgument, "--keypoints",
+                  std::string("--keypoints: no species' rig has ") + kKeypointNames[k] +
+                      " (it comes from a part named " + kKeypointPart[k] + ")");
+    }
+  }
   std::vector<std::size_t> per_species(scene.species().size(), 0);
   for (const tank::Fish& f : fish) {
     instance_of_fish_.push_back(per_species[f.species]++);
@@ -153,7 +189,7 @@ CocoDataset::CocoDataset(const std::string& folder, tank::SwimScene& scene,
   nlohmann::ordered_json head;
   head["info"] = info;
   head["licenses"] = nlohmann::ordered_json::array();
-  head["categories"] = categories(scene, weights_);
+  head["categories"] = categories(scene, weights_, options_.keypoints);
   const std::string text = head.dump();
   coco_ << text.substr(0, text.size() - 1) << ",\"annotations\":[";  // the object stays open
   require_written(coco_, path);
@@ -231,7 +267,8 @@ CocoDataset::FrameAnnotations CocoDataset::annotate(const FrameTruth& truth) con
       const glm::dvec3 world(vertices[read][instance]);
       return glm::dvec3(camera_from_world * glm::dvec4(world, 1.0));
     };
-    for (const std::optional<std::size_t>& read : species.keypoints) {
+    for (std::size_t chosen : options_.keypoints) {
+      const std::optional<std::size_t>& read = species.keypoints[chosen];
       if (!read) {  // a part this species lacks
         keypoints.insert(keypoints.end(), {0.0, 0.0, 0});
         yolo_keypoints.push_back({0.0, 0.0, 0.0});
@@ -375,12 +412,26 @@ void CocoDataset::finish() {
         throw Error(ErrorCode::kIo, "--out", "'" + link.string() + "': " + ec.message());
       }
     }
-    write_text(
-        (folder / "dataset.yaml").string(),
-        yolo_dataset_yaml(task, names_,
-                          std::vector<std::string>(kKeypointNames.begin(), kKeypointNames.end()),
-                          std::vector<std::size_t>(kKeypointFlip.begin(), kKeypointFlip.end())));
+    write_text((folder / "dataset.yaml").string(),
+               yolo_dataset_yaml(task, names_, keypoint_names(), keypoint_flip()));
   }
+}
+
+// The chosen keypoints' names and their mirror images' places among them.
+std::vector<std::string> CocoDataset::keypoint_names() const {
+  std::vector<std::string> out;
+  for (std::size_t k : options_.keypoints) out.emplace_back(kKeypointNames[k]);
+  return out;
+}
+
+std::vector<std::size_t> CocoDataset::keypoint_flip() const {
+  const std::vector<std::size_t>& chosen = options_.keypoints;
+  std::vector<std::size_t> out;
+  for (std::size_t k : chosen) {
+    out.push_back(
+        std::size_t(std::find(chosen.begin(), chosen.end(), kKeypointFlip[k]) - chosen.begin()));
+  }
+  return out;
 }
 
 // Each image a sample, in frame order, its files in the shard one after another.

@@ -78,6 +78,10 @@ struct DatasetOptions {
   // The scene whose water surface bends the view rays (render::Scene::view_refraction,
   // as the pictures were drawn): keypoints where the camera sees them through it.
   std::optional<render::Scene> refraction;
+  // The keypoints annotated, indices into kKeypointNames in its order (parse_keypoints):
+  // by default all. Each must be a part of some species' rig (kInvalidArgument naming
+  // "--keypoints" otherwise).
+  std::vector<std::size_t> keypoints{0, 1, 2, 3, 4, 5};
   // Length-weight relations by species name; the others take LengthWeight{}.
   std::vector<std::pair<std::string, LengthWeight>> weights;
 };
@@ -153,6 +157,8 @@ class CocoDataset {
   std::vector<LengthWeight> weights_;  // per species
   DatasetOptions options_;
   void write_shards() const;  // webdataset/: the images written, their samples
+  std::vector<std::string> keypoint_names() const;  // the chosen keypoints'
+  std::vector<std::size_t> keypoint_flip() const;   // YOLO's flip_idx of the chosen
   std::ofstream coco_;
   nlohmann::ordered_json images_ = nlohmann::ordered_json::array();
   std::size_t next_annotation_ = 1;

@@ -5,7 +5,43 @@
 #include <limits>
 #include <vector>
 
+#include "finflex/error.hpp"
+
 namespace finflex::pictures {
+
+std::vector<std::size_t> parse_keypoints(const std::string& list, const std::string& option) {
+  std::array<bool, kKeypointCount> chosen{};
+  std::size_t start = 0;
+  while (start <= list.size()) {
+    const std::size_t comma = std::min(list.find(',', start), list.size());
+    const std::string name = list.substr(start, comma - start);
+    const auto found = std::find(kKeypointNames.begin(), kKeypointNames.end(), name);
+    if (found == kKeypointNames.end()) {
+      std::string names;
+      for (const char* known : kKeypointNames)
+        names += (names.empty() ? "" : ", ") + std::string(known);
+      throw Error(ErrorCode::kInvalidArgument, option,
+                  option + ": '" + name + "' is not a keypoint (" + names + ")");
+    }
+    const auto k = std::size_t(found - kKeypointNames.begin());
+    if (chosen[k]) {
+      throw Error(ErrorCode::kInvalidArgument, option, option + ": '" + name + "' twice");
+    }
+    chosen[k] = true;
+    start = comma + 1;
+  }
+  if (chosen[4] != chosen[5]) {
+    throw Error(ErrorCode::kInvalidArgument, option,
+                option +
+                    ": left_pectoral_tip and right_pectoral_tip go together (a horizontal "
+                    "flip swaps them)");
+  }
+  std::vector<std::size_t> out;
+  for (std::size_t k = 0; k < kKeypointCount; ++k) {
+    if (chosen[k]) out.push_back(k);
+  }
+  return out;
+}
 
 std::vector<glm::dvec3> rest_in_body_frame(const RiggedMesh& model) {
   const Mesh& mesh = model.mesh();

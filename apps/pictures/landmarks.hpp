@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -27,6 +28,12 @@ constexpr std::array<const char*, kKeypointCount> kKeypointNames{"snout",
                                                                  "right_pectoral_tip"};
 constexpr std::array<std::size_t, kKeypointCount> kKeypointFlip{0, 1, 2, 3, 5, 4};
 constexpr std::size_t kSpinePoints = 16;  // from the snout to the tail fork
+
+// The keypoints named in `list` (comma-separated kKeypointNames, in that order in the
+// result whatever the list's), for a dataset that annotates only those. finflex::Error
+// (kInvalidArgument) naming `option` for a name that is not a keypoint, a name twice,
+// or one pectoral tip without the other (a horizontal flip swaps them).
+std::vector<std::size_t> parse_keypoints(const std::string& list, const std::string& option);
 
 struct FishLandmarks {
   std::uint32_t snout = 0;      // mesh vertex index

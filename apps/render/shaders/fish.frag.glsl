@@ -1,20 +1,11 @@
 // A fish's colour pass: the species' albedo painted by the vertex's place on the body
 // (v_pattern, Renderer::add_mesh) and the instance's id, then lit through the water.
-// docs/rendering.md "Fish appearance" gives the pattern.
-in vec3 v_world_position;
-#ifdef FINFLEX_REFRACTION
-in vec3 v_view_origin;  // where the seen ray starts towards the point
-#else
-#define v_view_origin u_camera_position.xyz
-#endif
-in vec3 v_normal;
+// docs/rendering.md "Fish appearance" gives the pattern (after surface_inputs.glsl).
 in vec2 v_pattern;  // u: snout 0 .. tail 1; v: belly -1 .. back 1
 flat in uint v_id;
 
 uniform vec3 u_albedo;  // the species' colour
 uniform bool u_patterned;
-
-out vec4 o_colour;
 
 // A well-mixed hash of an integer to [0, 1] (two rounds of multiply and xor-shift).
 float hash01(uint x) {

@@ -37,7 +37,8 @@ std::vector<std::string> with_refraction(bool refraction, std::vector<std::strin
 
 std::vector<std::string> fragment_files(FishOutput output, bool refraction) {
   if (output == FishOutput::kIds) return {"id.frag.glsl"};
-  return with_refraction(refraction, {"scene_block.glsl", "shading.glsl", "fish.frag.glsl"});
+  return with_refraction(
+      refraction, {"scene_block.glsl", "shading.glsl", "surface_inputs.glsl", "fish.frag.glsl"});
 }
 
 }  // namespace

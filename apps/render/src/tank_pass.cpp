@@ -24,7 +24,8 @@ std::vector<std::string> vertex_files(bool refraction) {
 }
 
 std::vector<std::string> fragment_files(bool refraction) {
-  std::vector<std::string> files{"scene_block.glsl", "shading.glsl", "surface.frag.glsl"};
+  std::vector<std::string> files{"scene_block.glsl", "shading.glsl", "surface_inputs.glsl",
+                                 "surface.frag.glsl"};
   if (refraction) files.insert(files.begin(), "refraction_on.glsl");
   return files;
 }
