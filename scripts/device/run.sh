@@ -348,6 +348,33 @@ bench_deform() {
 swim_species=(--species data/blub/fish.obj:data/rigs/blub_swim.rig.json
   --species data/barramundi/BarramundiFish.gltf:data/rigs/barramundi_swim.rig.json)
 
+# One `finflex swim` of the suites that draw: WHAT, a time limit in seconds, then the
+# options; its summary lines (not the files written). Uses the caller's $side and
+# $finflex.
+device_swim() {
+  local what=$1 limit=$2
+  shift 2
+  echo "== $what"
+  # shellcheck disable=SC2046
+  run env $(side_env "$side" -) timeout "$limit" "$finflex" swim "${swim_species[@]}" \
+    "${device_option[@]}" "$@" | grep -vE "^ *wrote|put back" || failed+=("$what")
+}
+
+# The rendering part of each summary.json under FOLDER (only KEYS, comma-separated,
+# when given).
+print_summaries() {
+  local summary
+  for summary in "$1"/*/summary.json; do
+    [ -e "$summary" ] || continue
+    python3 - "$summary" "${2:-}" <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1]))["rendering"]
+keys = sys.argv[2].split(",") if sys.argv[2] else list(s)
+print("==", sys.argv[1].split("/")[-2], json.dumps({k: s[k] for k in s if k in keys}, indent=1))
+PY
+  done
+}
+
 render_speed() {
   find_nvidia_egl
   find_nvidia_vulkan
@@ -358,11 +385,7 @@ render_speed() {
   swim_on() {
     local what=$1 path=$2 fish=$3
     shift 3
-    echo "== $what, --hand-off $path"
-    # shellcheck disable=SC2046
-    run env $(side_env "$side" -) timeout 90 "$finflex" swim --fish "$fish" "${swim_species[@]}" --size 1280x720 \
-      --hand-off "$path" "${device_option[@]}" "$@" | grep -vE "^ *wrote|put back" ||
-      failed+=("$what on $path")
+    device_swim "$what, --hand-off $path" 90 --fish "$fish" --size 1280x720 --hand-off "$path" "$@"
   }
   for side in "${sides[@]}"; do
     finflex=$(program "$side" finflex)
@@ -384,14 +407,7 @@ render_speed() {
     done
     swim_on "10,000 fish drawn only: 15 frames" external-memory 10000 --seconds 0.5 --fps 30 \
       --render
-    for summary in "$scratch"/*/summary.json; do
-      [ -e "$summary" ] || continue
-      python3 - "$summary" <<'PY'
-import json, sys
-s = json.load(open(sys.argv[1]))["rendering"]
-print("==", sys.argv[1].split("/")[-2], json.dumps(s, indent=1))
-PY
-    done
+    print_summaries "$scratch"
     rm -rf "${scratch:?}"/*
   done
   rm -rf "$scratch"
@@ -405,11 +421,8 @@ dataset() {
   dataset_swim() {
     local what=$1 name=$2
     shift 2
-    echo "== $what"
-    # shellcheck disable=SC2046
-    run env $(side_env "$side" -) timeout 120 "$finflex" swim --fish 1000 "${swim_species[@]}" \
-      --size 1280x720 --seconds 0.5 --fps 30 --annotate --video none --out "$scratch/$name" \
-      "${device_option[@]}" "$@" | grep -vE "^ *wrote|put back" || failed+=("$what")
+    device_swim "$what" 120 --fish 1000 --size 1280x720 --seconds 0.5 --fps 30 --annotate \
+      --video none --out "$scratch/$name" "$@"
   }
   for side in "${sides[@]}"; do
     finflex=$(program "$side" finflex)
@@ -423,15 +436,7 @@ dataset() {
       --noise 2,4
     dataset_swim "mono, COCO, YOLO, depth, refraction, water and light varied: 15 frames" \
       mono-optics --formats coco,yolo --depth --refraction --vary-optics
-    for summary in "$scratch"/*/summary.json; do
-      [ -e "$summary" ] || continue
-      python3 - "$summary" <<'PY'
-import json, sys
-s = json.load(open(sys.argv[1]))["rendering"]
-print("==", sys.argv[1].split("/")[-2], json.dumps({k: s[k] for k in s if k in (
-    "frames_per_second", "seconds_per_frame_mean", "share_of_frame", "gpu")}, indent=1))
-PY
-    done
+    print_summaries "$scratch" frames_per_second,seconds_per_frame_mean,share_of_frame,gpu
     rm -rf "${scratch:?}"/*
   done
   rm -rf "$scratch"
@@ -463,11 +468,7 @@ render_levels() {
   levels_swim() {
     local what=$1 fish=$2
     shift 2
-    echo "== $what"
-    # shellcheck disable=SC2046
-    run env $(side_env "$side" -) timeout 120 "$finflex" swim --fish "$fish" "${swim_species[@]}" \
-      --size 1920x1080 "${device_option[@]}" "$@" | grep -vE "^ *wrote|put back" ||
-      failed+=("$what")
+    device_swim "$what" 120 --fish "$fish" --size 1920x1080 "$@"
   }
   for side in "${sides[@]}"; do
     finflex=$(program "$side" finflex)
