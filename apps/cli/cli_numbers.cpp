@@ -48,13 +48,32 @@ double parse_number(const std::string& text, const std::string& option) {
   return value;
 }
 
-std::vector<double> parse_number_list(const std::string& text, const std::string& option,
-                                      std::size_t count) {
-  std::vector<double> out;
+std::vector<std::string> split_list(const std::string& text) {
+  std::vector<std::string> items;
   std::size_t start = 0;
   while (start <= text.size()) {
     const std::size_t comma = std::min(text.find(',', start), text.size());
-    const std::string part = text.substr(start, comma - start);
+    items.push_back(text.substr(start, comma - start));
+    start = comma + 1;
+  }
+  return items;
+}
+
+double parse_in_range(const std::string& text, const std::string& option, double low, double high,
+                      const std::string& unit) {
+  const double value = parse_number(text, option);
+  if (!(value >= low && value <= high)) {
+    throw Error(ErrorCode::kInvalidArgument, option,
+                option + " " + text + ": " + std::to_string(int(low)) + " to " +
+                    std::to_string(int(high)) + " " + unit + " expected");
+  }
+  return value;
+}
+
+std::vector<double> parse_number_list(const std::string& text, const std::string& option,
+                                      std::size_t count) {
+  std::vector<double> out;
+  for (const std::string& part : split_list(text)) {
     double value = 0.0;
     try {
       value = parse_number(part, option);
@@ -66,7 +85,6 @@ std::vector<double> parse_number_list(const std::string& text, const std::string
                   option + " '" + text + "': '" + part + "' is not a finite number");
     }
     out.push_back(value);
-    start = comma + 1;
   }
   if (out.size() != count) {
     throw Error(ErrorCode::kInvalidArgument, option,

@@ -30,6 +30,14 @@ double parse_positive(const std::string& text, const std::string& option,
 // "A,B": two finite numbers > 0.
 std::pair<double, double> parse_positive_pair(const std::string& text, const std::string& option);
 
+// A comma-separated list's items, as typed ("" gives one empty item).
+std::vector<std::string> split_list(const std::string& text);
+
+// A finite number in [low, high]; kInvalidArgument naming `option`:
+// "--turbidity -1: 0 to 100 NTU expected" (`unit` after the range).
+double parse_in_range(const std::string& text, const std::string& option, double low, double high,
+                      const std::string& unit);
+
 // "A,B,...": exactly `count` finite numbers, comma-separated. kInvalidArgument naming
 // `option`: "--noise '1,x': 'x' is not a finite number", or the count given.
 std::vector<double> parse_number_list(const std::string& text, const std::string& option,

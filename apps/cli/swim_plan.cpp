@@ -38,11 +38,7 @@ std::vector<std::string> parse_videos(const std::string& text) {
   if (text == "none") return {};
   if (text == "auto") return {render::ffmpeg_available() ? "mp4" : "png"};
   std::vector<std::string> videos;
-  std::size_t begin = 0;
-  while (begin <= text.size()) {
-    const std::size_t comma = std::min(text.find(',', begin), text.size());
-    const std::string item = text.substr(begin, comma - begin);
-    begin = comma + 1;
+  for (const std::string& item : split_list(text)) {
     if (item != "mp4" && item != "gif" && item != "apng") {
       throw Error(ErrorCode::kInvalidArgument, "--video",
                   "--video '" + text + "': '" + item +
@@ -60,18 +56,6 @@ std::vector<std::string> parse_videos(const std::string& text) {
     }
   }
   return videos;
-}
-
-// A number of `option` within low .. high (a unit for the message).
-double parse_in_range(const std::string& text, const std::string& option, double low, double high,
-                      const char* unit) {
-  const double value = parse_number(text, option);
-  if (value < low || value > high) {
-    throw Error(ErrorCode::kInvalidArgument, option,
-                option + " " + text + ": " + std::to_string(int(low)) + " to " +
-                    std::to_string(int(high)) + " " + unit + " expected");
-  }
-  return value;
 }
 
 // The water and the light of the pictures.
@@ -170,10 +154,7 @@ void plan_pictures(const SwimOptions& options, SwimPlan& plan) {
     }
   }
   // coco.json is always written: it holds the truth the other formats are made from.
-  std::size_t start = 0;
-  while (start <= options.formats.size()) {
-    const std::size_t comma = std::min(options.formats.find(',', start), options.formats.size());
-    const std::string format = options.formats.substr(start, comma - start);
+  for (const std::string& format : split_list(options.formats)) {
     if (format == "yolo") {
       files.dataset.yolo = true;
     } else if (format == "webdataset") {
@@ -182,11 +163,11 @@ void plan_pictures(const SwimOptions& options, SwimPlan& plan) {
       throw Error(ErrorCode::kInvalidArgument, "--formats",
                   "--formats: '" + format + "' is not a dataset format (coco, yolo, webdataset)");
     }
-    start = comma + 1;
   }
   files.dataset.depth = options.depth;
   if (!options.keypoints.empty()) {
-    files.dataset.keypoints = pictures::parse_keypoints(options.keypoints, "--keypoints");
+    files.dataset.keypoints =
+        pictures::chosen_keypoints(split_list(options.keypoints), "--keypoints");
   }
   if (!options.length_weights.empty() && !files.annotate) {
     throw Error(ErrorCode::kInvalidArgument, "--length-weight",

@@ -23,29 +23,33 @@ namespace {
 // (metres) and belongs to something else.
 constexpr double kOcclusionTolerance = 0.005;
 
-// The rig part each keypoint comes from (none: the snout and tail fork, from the body).
-constexpr std::array<const char*, kKeypointCount> kKeypointPart{
-    "", "", "caudal_fin", "caudal_fin", "left_pectoral_fin", "right_pectoral_fin"};
-
-// The chosen keypoints' names, and the skeleton's edges between them (snout-fork,
-// fork-caudal tips, snout-pectoral tips; 1-based into the chosen, COCO's).
-nlohmann::ordered_json names_json(const std::vector<std::size_t>& chosen) {
-  nlohmann::ordered_json out = nlohmann::ordered_json::array();
-  for (std::size_t k : chosen) out.push_back(kKeypointNames[k]);
+// The chosen keypoints (indices into kKeypointNames): their names; keypoint k's place
+// among them (chosen.size() when not chosen); the skeleton's edges between them
+// (snout-fork, fork-caudal tips, snout-pectoral tips; 1-based, COCO's); and YOLO's
+// flip_idx, each one's mirror image's place.
+std::vector<std::string> chosen_names(const std::vector<std::size_t>& chosen) {
+  std::vector<std::string> out;
+  for (std::size_t k : chosen) out.emplace_back(kKeypointNames[k]);
   return out;
+}
+
+std::size_t place_of(const std::vector<std::size_t>& chosen, std::size_t k) {
+  return std::size_t(std::find(chosen.begin(), chosen.end(), k) - chosen.begin());
 }
 
 nlohmann::ordered_json skeleton(const std::vector<std::size_t>& chosen) {
   constexpr std::size_t kEdges[][2] = {{0, 1}, {1, 2}, {1, 3}, {0, 4}, {0, 5}};
-  const auto at = [&](std::size_t k) {
-    return std::size_t(std::find(chosen.begin(), chosen.end(), k) - chosen.begin());
-  };
   nlohmann::ordered_json out = nlohmann::ordered_json::array();
   for (const auto& edge : kEdges) {
-    if (at(edge[0]) < chosen.size() && at(edge[1]) < chosen.size()) {
-      out.push_back({at(edge[0]) + 1, at(edge[1]) + 1});
-    }
+    const std::size_t a = place_of(chosen, edge[0]), b = place_of(chosen, edge[1]);
+    if (a < chosen.size() && b < chosen.size()) out.push_back({a + 1, b + 1});
   }
+  return out;
+}
+
+std::vector<std::size_t> flip_places(const std::vector<std::size_t>& chosen) {
+  std::vector<std::size_t> out;
+  for (std::size_t k : chosen) out.push_back(place_of(chosen, kKeypointFlip[k]));
   return out;
 }
 
@@ -57,7 +61,7 @@ nlohmann::ordered_json categories(const tank::SwimScene& scene,
     out.push_back({{"id", s + 1},
                    {"name", scene.species()[s].name},
                    {"supercategory", "fish"},
-                   {"keypoints", names_json(chosen)},
+                   {"keypoints", chosen_names(chosen)},
                    {"skeleton", skeleton(chosen)},
                    {"length_weight",
                     {{"a", weights[s].a}, {"b", weights[s].b}, {"units", "W g = a (L cm)^b"}}}});
@@ -153,7 +157,7 @@ CocoDataset::CocoDataset(const std::string& folder, tank::SwimScene& scene,
     if (!somewhere) {
       throw Error(ErrorCode::kInvalidArgument, "--keypoints",
                   std::string("--keypoints: no species' rig has ") + kKeypointNames[k] +
-                      " (it comes from a part named " + kKeypointPart[k] + ")");
+                      " (it comes from a part named " + kKeypointParts[k] + ")");
     }
   }
   std::vector<std::size_t> per_species(scene.species().size(), 0);
@@ -413,25 +417,9 @@ void CocoDataset::finish() {
       }
     }
     write_text((folder / "dataset.yaml").string(),
-               yolo_dataset_yaml(task, names_, keypoint_names(), keypoint_flip()));
+               yolo_dataset_yaml(task, names_, chosen_names(options_.keypoints),
+                                 flip_places(options_.keypoints)));
   }
-}
-
-// The chosen keypoints' names and their mirror images' places among them.
-std::vector<std::string> CocoDataset::keypoint_names() const {
-  std::vector<std::string> out;
-  for (std::size_t k : options_.keypoints) out.emplace_back(kKeypointNames[k]);
-  return out;
-}
-
-std::vector<std::size_t> CocoDataset::keypoint_flip() const {
-  const std::vector<std::size_t>& chosen = options_.keypoints;
-  std::vector<std::size_t> out;
-  for (std::size_t k : chosen) {
-    out.push_back(
-        std::size_t(std::find(chosen.begin(), chosen.end(), kKeypointFlip[k]) - chosen.begin()));
-  }
-  return out;
 }
 
 // Each image a sample, in frame order, its files in the shard one after another.

@@ -78,7 +78,7 @@ struct DatasetOptions {
   // The scene whose water surface bends the view rays (render::Scene::view_refraction,
   // as the pictures were drawn): keypoints where the camera sees them through it.
   std::optional<render::Scene> refraction;
-  // The keypoints annotated, indices into kKeypointNames in its order (parse_keypoints):
+  // The keypoints annotated, indices into kKeypointNames in its order (chosen_keypoints):
   // by default all. Each must be a part of some species' rig (kInvalidArgument naming
   // "--keypoints" otherwise).
   std::vector<std::size_t> keypoints{0, 1, 2, 3, 4, 5};
@@ -157,8 +157,6 @@ class CocoDataset {
   std::vector<LengthWeight> weights_;  // per species
   DatasetOptions options_;
   void write_shards() const;  // webdataset/: the images written, their samples
-  std::vector<std::string> keypoint_names() const;  // the chosen keypoints'
-  std::vector<std::size_t> keypoint_flip() const;   // YOLO's flip_idx of the chosen
   std::ofstream coco_;
   nlohmann::ordered_json images_ = nlohmann::ordered_json::array();
   std::size_t next_annotation_ = 1;

@@ -9,26 +9,24 @@
 
 namespace finflex::pictures {
 
-std::vector<std::size_t> parse_keypoints(const std::string& list, const std::string& option) {
+std::vector<std::size_t> chosen_keypoints(const std::vector<std::string>& names,
+                                          const std::string& option) {
   std::array<bool, kKeypointCount> chosen{};
-  std::size_t start = 0;
-  while (start <= list.size()) {
-    const std::size_t comma = std::min(list.find(',', start), list.size());
-    const std::string name = list.substr(start, comma - start);
+  for (const std::string& name : names) {
     const auto found = std::find(kKeypointNames.begin(), kKeypointNames.end(), name);
     if (found == kKeypointNames.end()) {
-      std::string names;
-      for (const char* known : kKeypointNames)
-        names += (names.empty() ? "" : ", ") + std::string(known);
+      std::string known;
+      for (const char* keypoint : kKeypointNames) {
+        known += (known.empty() ? "" : ", ") + std::string(keypoint);
+      }
       throw Error(ErrorCode::kInvalidArgument, option,
-                  option + ": '" + name + "' is not a keypoint (" + names + ")");
+                  option + ": '" + name + "' is not a keypoint (" + known + ")");
     }
     const auto k = std::size_t(found - kKeypointNames.begin());
     if (chosen[k]) {
       throw Error(ErrorCode::kInvalidArgument, option, option + ": '" + name + "' twice");
     }
     chosen[k] = true;
-    start = comma + 1;
   }
   if (chosen[4] != chosen[5]) {
     throw Error(ErrorCode::kInvalidArgument, option,
@@ -159,12 +157,12 @@ FishLandmarks find_landmarks(const RiggedMesh& model) {
     const auto from_attachment = [&](std::uint32_t v) {
       return glm::length(glm::dvec3(mesh.positions[v]) - component.frame.origin);
     };
-    if (component.name == "caudal_fin") {
+    if (component.name == kKeypointParts[2]) {  // the caudal fin's tips
       marks.keypoints[2] = by([&](std::uint32_t v) { return local[v].y; });
       marks.keypoints[3] = by([&](std::uint32_t v) { return -local[v].y; });
-    } else if (component.name == "left_pectoral_fin") {
+    } else if (component.name == kKeypointParts[4]) {
       marks.keypoints[4] = by(from_attachment);
-    } else if (component.name == "right_pectoral_fin") {
+    } else if (component.name == kKeypointParts[5]) {
       marks.keypoints[5] = by(from_attachment);
     }
   }

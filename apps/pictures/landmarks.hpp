@@ -29,11 +29,17 @@ constexpr std::array<const char*, kKeypointCount> kKeypointNames{"snout",
 constexpr std::array<std::size_t, kKeypointCount> kKeypointFlip{0, 1, 2, 3, 5, 4};
 constexpr std::size_t kSpinePoints = 16;  // from the snout to the tail fork
 
-// The keypoints named in `list` (comma-separated kKeypointNames, in that order in the
-// result whatever the list's), for a dataset that annotates only those. finflex::Error
-// (kInvalidArgument) naming `option` for a name that is not a keypoint, a name twice,
-// or one pectoral tip without the other (a horizontal flip swaps them).
-std::vector<std::size_t> parse_keypoints(const std::string& list, const std::string& option);
+// The rig component each keypoint comes from (none: the snout and the tail fork, from
+// the whole mesh).
+constexpr std::array<const char*, kKeypointCount> kKeypointParts{
+    "", "", "caudal_fin", "caudal_fin", "left_pectoral_fin", "right_pectoral_fin"};
+
+// The keypoints named (kKeypointNames), as indices in that order whatever the names',
+// for a dataset that annotates only those. finflex::Error (kInvalidArgument) naming
+// `option` for a name that is not a keypoint, a name twice, or one pectoral tip without
+// the other (a horizontal flip swaps them).
+std::vector<std::size_t> chosen_keypoints(const std::vector<std::string>& names,
+                                          const std::string& option);
 
 struct FishLandmarks {
   std::uint32_t snout = 0;      // mesh vertex index

@@ -38,7 +38,8 @@ TankPictures::TankPictures(render::Renderer& renderer, tank::SwimScene& scene,
       cameras_{hall_view_camera(scene.hall().hall_settings(), settings.view, settings.width,
                                 settings.height)} {
   base_look_.view_refraction = settings.refraction;
-  set_frame(0);
+  optics_ = frame_optics(optics_settings_, 0);
+  look_ = with_optics(base_look_, optics_);
   if (settings.stereo_baseline > 0.0) {
     cameras_.push_back(stereo_right_camera(cameras_.front(), settings.stereo_baseline));
   }
@@ -127,6 +128,7 @@ void TankPictures::take_lists() {
 }
 
 void TankPictures::set_frame(std::size_t frame) {
+  if (!optics_settings_.vary) return;  // every frame the base's
   optics_ = frame_optics(optics_settings_, frame);
   look_ = with_optics(base_look_, optics_);
 }

@@ -1,8 +1,8 @@
-#ifdef FINFLEX_REFRACTION
 // The view rays bending at the flat water surface (render/refraction.hpp, whose
 // double-precision functions are the oracle of these): per vertex, where the camera
-// sees it. u_key_in_water.w is the water's refractive index when the scene refracts
-// the view rays, 0 when not.
+// sees it. Only in the programs made with FINFLEX_REFRACTION defined
+// (Scene::view_refraction; shader_program.hpp refraction_defines).
+#ifdef FINFLEX_REFRACTION
 
 // The point q of the surface's plane through which the camera sees p (under the
 // surface, the camera above it): Snell's law x / sqrt(x^2 + h^2) =
@@ -12,7 +12,7 @@ bool refraction_point(vec3 p, out vec3 q) {
   float n = u_key_in_water.w;
   float surface = u_ground_ambient.w;
   vec3 eye = u_camera_position.xyz;
-  if (n == 0.0 || eye.y <= surface || p.y >= surface) return false;
+  if (eye.y <= surface || p.y >= surface) return false;
   float h = eye.y - surface;
   float d = surface - p.y;
   vec2 across = p.xz - eye.xz;

@@ -11,7 +11,7 @@ layout(std140) uniform Scene {
   vec4 u_water_attenuation;  // rgb: beam attenuation c = a + b per metre; w: the tank's radius
   vec4 u_water_scattering;   // rgb: scattering b per metre; w: phase asymmetry g
   vec4 u_key_in_water;       // xyz: unit, towards the key light below the surface; w: the
-                             // refractive index when the view rays refract, else 0
+                             // water's refractive index
   vec4 u_key_downwelling;    // rgb: the key light's diffuse attenuation K_d per metre of depth
   vec4 u_ambient_downwelling;  // rgb: the ambient light's
   vec4 u_tank_rows;        // x: tanks, y: tanks per row, z: spacing of their axes (m)

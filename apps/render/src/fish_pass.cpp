@@ -29,16 +29,9 @@ GLint shader_stride(std::size_t bytes, std::size_t element, std::size_t count) {
   return static_cast<GLint>(elements);
 }
 
-// The refracting programs (Scene::view_refraction) start with refraction_on.glsl.
-std::vector<std::string> with_refraction(bool refraction, std::vector<std::string> files) {
-  if (refraction) files.insert(files.begin(), "refraction_on.glsl");
-  return files;
-}
-
-std::vector<std::string> fragment_files(FishOutput output, bool refraction) {
+std::vector<std::string> fragment_files(FishOutput output) {
   if (output == FishOutput::kIds) return {"id.frag.glsl"};
-  return with_refraction(
-      refraction, {"scene_block.glsl", "shading.glsl", "surface_inputs.glsl", "fish.frag.glsl"});
+  return {"scene_block.glsl", "shading.glsl", "surface_inputs.glsl", "fish.frag.glsl"};
 }
 
 }  // namespace
@@ -46,10 +39,9 @@ std::vector<std::string> fragment_files(FishOutput output, bool refraction) {
 FishPass::FishPass(const GlLimits& limits, FishOutput output, bool refraction)
     : limits_(limits),
       output_(output),
-      program_(
-          output == FishOutput::kIds ? "fish ids" : "fish",
-          with_refraction(refraction, {"scene_block.glsl", "refraction.glsl", "fish.vert.glsl"}),
-          fragment_files(output, refraction)),
+      program_(output == FishOutput::kIds ? "fish ids" : "fish",
+               {"scene_block.glsl", "refraction.glsl", "fish.vert.glsl"}, fragment_files(output),
+               refraction_defines(refraction)),
       positions_(GlTexture::create()),
       normals_(GlTexture::create()),
       id_table_(GlTexture::create()) {

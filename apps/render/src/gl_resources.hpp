@@ -9,10 +9,11 @@
 
 namespace finflex::render::detail {
 
-// A species' triangles: an element buffer recorded in a vertex array with no
-// attributes (vertices come from buffer textures).
 constexpr GLuint kPatternLocation = 5;  // fish.vert.glsl's a_pattern
 
+// A species' triangles: an element buffer recorded in a vertex array whose only
+// per-vertex attribute is the pattern, when given (positions and normals come from
+// buffer textures).
 struct MeshResources {
   GlVertexArray vertex_array;
   GlBuffer indices;

@@ -1,6 +1,5 @@
 #include "render/refraction.hpp"
 
-#include <algorithm>
 #include <cmath>
 
 namespace finflex::render {
@@ -16,7 +15,7 @@ std::optional<glm::dvec3> refraction_point(const Scene& scene, const glm::dvec3&
   const double r = glm::length(across);
   double x = 0.0;  // from the eye's foot towards the point, on [0, r]
   if (r > 0.0) {
-    // f(x) = x b - n (r - x) a rises from -n r h to r d: bisection, then Newton.
+    // f(x) = x b - n (r - x) a rises from -n r h to r d: bisection to the last bits.
     double low = 0.0, high = r;
     for (int i = 0; i < 200 && high - low > 1e-15 * (1.0 + r); ++i) {
       x = 0.5 * (low + high);
@@ -25,9 +24,8 @@ std::optional<glm::dvec3> refraction_point(const Scene& scene, const glm::dvec3&
     }
     x = 0.5 * (low + high);
   }
-  const glm::dvec3 q(eye.x + (r > 0.0 ? across.x * x / r : 0.0), surface,
-                     eye.z + (r > 0.0 ? across.y * x / r : 0.0));
-  return q;
+  const glm::dvec2 towards = r > 0.0 ? across * (x / r) : glm::dvec2(0.0);
+  return glm::dvec3(eye.x + towards.x, surface, eye.z + towards.y);
 }
 
 glm::dvec3 apparent_point(const Scene& scene, const Camera& camera, const glm::dvec3& point) {

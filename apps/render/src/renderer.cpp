@@ -130,24 +130,22 @@ struct Renderer::Impl {
     require_no_gl_error("set-up");
   }
 
+  // The scene's programs: the refracting ones where it bends the view rays.
+  template <typename Pass, typename... Arguments>
+  static Pass& made(std::unique_ptr<Pass>& pass, const Arguments&... arguments) {
+    if (!pass) pass = std::make_unique<Pass>(arguments...);
+    return *pass;
+  }
   TankPass& tank_pass(const Scene& scene) {
-    if (!scene.view_refraction) return tank;
-    if (!tank_refracted) tank_refracted = std::make_unique<TankPass>(true);
-    return *tank_refracted;
+    return scene.view_refraction ? made(tank_refracted, true) : tank;
   }
   FishPass& colour_pass(const Scene& scene) {
-    if (!scene.view_refraction) return fish;
-    if (!fish_refracted) {
-      fish_refracted = std::make_unique<FishPass>(limits, FishOutput::kLitColour, true);
-    }
-    return *fish_refracted;
+    return scene.view_refraction ? made(fish_refracted, limits, FishOutput::kLitColour, true)
+                                 : fish;
   }
   FishPass& id_pass(const Scene& scene) {
-    if (!scene.view_refraction) return *fish_ids;
-    if (!fish_ids_refracted) {
-      fish_ids_refracted = std::make_unique<FishPass>(limits, FishOutput::kIds, true);
-    }
-    return *fish_ids_refracted;
+    return scene.view_refraction ? made(fish_ids_refracted, limits, FishOutput::kIds, true)
+                                 : *fish_ids;
   }
 
   // Every pass's start: the context current, its inputs checked.

@@ -22,8 +22,7 @@ SceneBlock make_scene_block(const Scene& scene, const Camera& camera, float aspe
   const glm::vec3 to_light = glm::normalize(light.direction_to_light);
   const glm::vec2 across = glm::vec2(to_light.x, to_light.z) / water.refractive_index;
   const float up = std::sqrt(std::max(1.0f - glm::dot(across, across), 0.0f));
-  block.key_in_water =
-      glm::vec4(across.x, up, across.y, scene.view_refraction ? water.refractive_index : 0.0f);
+  block.key_in_water = glm::vec4(across.x, up, across.y, water.refractive_index);
   block.key_downwelling = glm::vec4(downwelling_attenuation(water, up), 0.0f);
   block.ambient_downwelling = glm::vec4(downwelling_attenuation(water, 1.0f), 0.0f);
   block.tank_rows =

@@ -24,8 +24,10 @@ std::string info_log(GLuint object, bool is_program) {
   return log;
 }
 
-GlShader compile(const std::string& program, GLenum type, const std::vector<std::string>& files) {
+GlShader compile(const std::string& program, GLenum type, const std::vector<std::string>& files,
+                 const std::vector<std::string>& defines) {
   std::string text = "#version 330 core\n";
+  for (const std::string& define : defines) text += "#define " + define + " 1\n";
   for (const std::string& file : files) text += shader_file(file);
   GlShader shader = GlShader::create(type);
   const char* source = text.c_str();
@@ -51,9 +53,10 @@ const char* shader_file(const std::string& name) {
 }
 
 ShaderProgram::ShaderProgram(const std::string& name, const std::vector<std::string>& vertex_files,
-                             const std::vector<std::string>& fragment_files) {
-  const GlShader vertex = compile(name, GL_VERTEX_SHADER, vertex_files);
-  const GlShader fragment = compile(name, GL_FRAGMENT_SHADER, fragment_files);
+                             const std::vector<std::string>& fragment_files,
+                             const std::vector<std::string>& defines) {
+  const GlShader vertex = compile(name, GL_VERTEX_SHADER, vertex_files, defines);
+  const GlShader fragment = compile(name, GL_FRAGMENT_SHADER, fragment_files, defines);
   program_ = GlProgram::create();
   glAttachShader(program_.get(), vertex.get());
   glAttachShader(program_.get(), fragment.get());

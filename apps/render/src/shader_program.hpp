@@ -1,5 +1,6 @@
-// A linked GLSL program made of embedded files: each stage is "#version 330 core"
-// followed by its files in order (shared blocks and functions first).
+// A linked GLSL program made of embedded files: each stage is "#version 330 core",
+// a "#define NAME 1" per define, then its files in order (shared blocks and
+// functions first).
 #pragma once
 
 #include <string>
@@ -9,12 +10,20 @@
 
 namespace finflex::render::detail {
 
+// The defines of the programs that bend the view rays at the water surface
+// (Scene::view_refraction: FINFLEX_REFRACTION, shaders/refraction.glsl), or none.
+inline std::vector<std::string> refraction_defines(bool refraction) {
+  if (!refraction) return {};
+  return {"FINFLEX_REFRACTION"};
+}
+
 class ShaderProgram {
  public:
   // Throws RenderError (kGraphics) with the driver's log when a stage does not compile
   // or the program does not link; `name` says which program.
   ShaderProgram(const std::string& name, const std::vector<std::string>& vertex_files,
-                const std::vector<std::string>& fragment_files);
+                const std::vector<std::string>& fragment_files,
+                const std::vector<std::string>& defines = {});
 
   GLuint get() const { return program_.get(); }
   void use() const { glUseProgram(program_.get()); }

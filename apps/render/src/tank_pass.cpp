@@ -1,8 +1,6 @@
 #include "tank_pass.hpp"
 
 #include <cstddef>
-#include <string>
-#include <vector>
 
 #include "tank_mesh.hpp"
 
@@ -16,24 +14,12 @@ bool same_tank(const Tank& a, const Tank& b) {
          a.segments == b.segments;
 }
 
-// The refracting program (Scene::view_refraction) starts with refraction_on.glsl.
-std::vector<std::string> vertex_files(bool refraction) {
-  std::vector<std::string> files{"scene_block.glsl", "refraction.glsl", "tank.vert.glsl"};
-  if (refraction) files.insert(files.begin(), "refraction_on.glsl");
-  return files;
-}
-
-std::vector<std::string> fragment_files(bool refraction) {
-  std::vector<std::string> files{"scene_block.glsl", "shading.glsl", "surface_inputs.glsl",
-                                 "surface.frag.glsl"};
-  if (refraction) files.insert(files.begin(), "refraction_on.glsl");
-  return files;
-}
-
 }  // namespace
 
 TankPass::TankPass(bool refraction)
-    : program_("tank", vertex_files(refraction), fragment_files(refraction)),
+    : program_("tank", {"scene_block.glsl", "refraction.glsl", "tank.vert.glsl"},
+               {"scene_block.glsl", "shading.glsl", "surface_inputs.glsl", "surface.frag.glsl"},
+               refraction_defines(refraction)),
       vertex_array_(GlVertexArray::create()),
       vertices_(GlBuffer::create()),
       indices_(GlBuffer::create()) {

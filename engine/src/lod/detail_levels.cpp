@@ -23,16 +23,36 @@ constexpr float kNoErrorLimit = 1.0f;
 // A coarser level must keep at most this share of the finer level's triangles.
 constexpr double kLeastReduction = 0.75;
 
+constexpr std::size_t kAcrossParts = ~std::size_t(0);
+
+// The component whose own triangle the one at index t is (all three vertices in it),
+// else kAcrossParts.
+std::size_t part_of_triangle(const std::vector<std::size_t>& component_of,
+                             const std::vector<std::uint32_t>& indices, std::size_t t) {
+  const std::size_t c = component_of[indices[t]];
+  return component_of[indices[t + 1]] == c && component_of[indices[t + 2]] == c ? c : kAcrossParts;
+}
+
+// The simplifier's target for `indices` (a whole number of triangles, at least one).
+std::size_t index_target(const std::vector<std::uint32_t>& indices, double ratio) {
+  return std::max<std::size_t>(3,
+                               std::size_t(std::llround(double(indices.size() / 3) * ratio)) * 3);
+}
+
+// Whether `coarser` has triangles and at most kLeastReduction of `finer`'s.
+bool reduces(const std::vector<std::uint32_t>& finer, const std::vector<std::uint32_t>& coarser) {
+  return !coarser.empty() && double(coarser.size()) <= kLeastReduction * double(finer.size());
+}
+
 // Whether every part with triangles of its own in `finer` keeps some in `coarser`
 // (a fin stays a fin: something of it moves with its hinge).
 bool keeps_every_part(const RiggedMesh& full, const std::vector<std::uint32_t>& finer,
                       const std::vector<std::uint32_t>& coarser) {
-  const std::vector<std::size_t>& component_of = full.component_of_vertex();
   const auto owned = [&](const std::vector<std::uint32_t>& indices) {
     std::vector<bool> has(full.rig().components.size(), false);
     for (std::size_t t = 0; t + 2 < indices.size(); t += 3) {
-      const std::size_t c = component_of[indices[t]];
-      if (component_of[indices[t + 1]] == c && component_of[indices[t + 2]] == c) has[c] = true;
+      const std::size_t c = part_of_triangle(full.component_of_vertex(), indices, t);
+      if (c != kAcrossParts) has[c] = true;
     }
     return has;
   };
@@ -54,8 +74,8 @@ std::pair<std::vector<std::uint32_t>, float> simplify_step(
   std::vector<std::vector<std::uint32_t>> within(full.rig().components.size());
   std::vector<std::uint32_t> out;
   for (std::size_t t = 0; t + 2 < indices.size(); t += 3) {
-    const std::size_t c = component_of[indices[t]];
-    if (component_of[indices[t + 1]] == c && component_of[indices[t + 2]] == c) {
+    const std::size_t c = part_of_triangle(component_of, indices, t);
+    if (c != kAcrossParts) {
       within[c].insert(within[c].end(), indices.begin() + std::ptrdiff_t(t),
                        indices.begin() + std::ptrdiff_t(t + 3));
     } else {
@@ -68,8 +88,7 @@ std::pair<std::vector<std::uint32_t>, float> simplify_step(
   std::vector<std::uint32_t> simplified;
   for (const std::vector<std::uint32_t>& triangles : within) {
     if (triangles.empty()) continue;
-    const auto target = std::max<std::size_t>(
-        3, std::size_t(std::llround(double(triangles.size() / 3) * ratio)) * 3);
+    const std::size_t target = index_target(triangles, ratio);
     simplified.resize(triangles.size());
     float error = 0.0f;
     const std::size_t count = meshopt_simplify(
@@ -94,14 +113,15 @@ std::pair<std::vector<std::uint32_t>, float> simplify_step(
 std::pair<std::vector<std::uint32_t>, float> whole_mesh_step(
     const RiggedMesh& full, const std::vector<std::uint32_t>& indices, double ratio) {
   const std::vector<glm::vec3>& positions = full.mesh().positions;
-  const auto target =
-      std::max<std::size_t>(3, std::size_t(std::llround(double(indices.size() / 3) * ratio)) * 3);
+  const std::size_t target = index_target(indices, ratio);
   std::vector<std::uint32_t> out(indices.size());
   float error = 0.0f;
   std::size_t count =
       meshopt_simplify(out.data(), indices.data(), indices.size(), &positions[0].x,
                        positions.size(), sizeof(glm::vec3), target, kNoErrorLimit, 0, &error);
-  if (double(count) > kLeastReduction * double(indices.size())) {
+  out.resize(count);
+  if (!reduces(indices, out)) {
+    out.resize(indices.size());
     count =
         meshopt_simplifySloppy(out.data(), indices.data(), indices.size(), &positions[0].x,
                                positions.size(), sizeof(glm::vec3), target, kNoErrorLimit, &error);
@@ -182,16 +202,13 @@ DetailLevels make_detail_levels(const RiggedMesh& full, const LevelOptions& opti
     // measured on the bundled fish in docs/levels-of-detail.md).
     auto [coarser, relative_error] = simplify_step(full, finer, options.triangle_ratio);
     auto [whole, whole_error] = whole_mesh_step(full, finer, options.triangle_ratio);
-    const auto reduces = [&](const std::vector<std::uint32_t>& t) {
-      return !t.empty() && double(t.size()) <= kLeastReduction * double(finer.size());
-    };
-    if (reduces(whole) && keeps_every_part(full, finer, whole) &&
-        (!reduces(coarser) || whole_error < relative_error)) {
+    if (reduces(finer, whole) && keeps_every_part(full, finer, whole) &&
+        (!reduces(finer, coarser) || whole_error < relative_error)) {
       coarser = std::move(whole);
       relative_error = whole_error;
     }
     const std::size_t kept = coarser.size() / 3;
-    if (double(kept) > kLeastReduction * double(finer.size() / 3)) {
+    if (!reduces(finer, coarser)) {
       throw Error(
           ErrorCode::kInvalidArgument, "levels",
           "levels: level " + std::to_string(k) + " keeps " + std::to_string(kept) + " of " +
