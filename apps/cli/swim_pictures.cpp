@@ -43,6 +43,8 @@ SwimPictureFiles::SwimPictureFiles(const std::string& folder, pictures::TankPict
     videos_.push_back(
         render::open_video((fs::path(folder) / ("swim." + extension)).string(), options));
   }
+  // The surface that bends the view rays, where the pictures refract.
+  const render::Scene* refraction = pictures.look().view_refraction ? &pictures.look() : nullptr;
   if (!plan.distortion.none()) {  // one lens for both cameras of a pair: the same intrinsics
     lens_ = std::make_shared<const pictures::LensWarp>(
         plan.distortion, render::pinhole_intrinsics(pictures.camera(), size.width, size.height),
@@ -51,24 +53,19 @@ SwimPictureFiles::SwimPictureFiles(const std::string& folder, pictures::TankPict
   if (plan.annotate) {
     pictures::DatasetOptions dataset = plan.dataset;
     dataset.lens = lens_;
-    if (pictures.look().view_refraction) dataset.refraction = pictures.look();
+    if (refraction) dataset.refraction = *refraction;
     std::vector<render::Camera> cameras;
     for (std::size_t v = 0; v < pictures.views(); ++v) cameras.push_back(pictures.camera(v));
     dataset_ = std::make_unique<pictures::CocoDataset>(folder, scene, cameras, size.width,
                                                        size.height, info, dataset);
   }
   std::ofstream camera(fs::path(folder) / "camera.json");
-  nlohmann::ordered_json camera_file =
+  const nlohmann::ordered_json camera_file =
       plan.stereo_baseline > 0.0
           ? pictures::stereo_camera_json(pictures.camera(), plan.stereo_baseline, size.width,
-                                         size.height, plan.distortion)
-          : pictures::camera_json(pictures.camera(), size.width, size.height, plan.distortion);
-  const render::Scene& look = pictures.look();
-  if (look.view_refraction) {
-    camera_file["refraction"] = {{"surface_y_m", look.tank.water_depth},
-                                 {"refractive_index", look.water.refractive_index},
-                                 {"tank_radius_m", look.tank.radius}};
-  }
+                                         size.height, plan.distortion, refraction)
+          : pictures::camera_json(pictures.camera(), size.width, size.height, plan.distortion,
+                                  refraction);
   camera << camera_file.dump(1) << "\n";
   if (!camera) throw Error(ErrorCode::kIo, "--out", "'" + folder + "/camera.json': write failed");
 }

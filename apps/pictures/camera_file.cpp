@@ -17,7 +17,8 @@ nlohmann::ordered_json vector(const glm::vec3& v) {
 }  // namespace
 
 nlohmann::ordered_json camera_json(const render::Camera& camera, int width, int height,
-                                   const LensDistortion& distortion) {
+                                   const LensDistortion& distortion,
+                                   const render::Scene* refraction) {
   const render::PinholeIntrinsics k = render::pinhole_intrinsics(camera, width, height);
   const glm::dmat4 camera_from_world = render::camera_from_world(camera);
   nlohmann::ordered_json out;
@@ -47,11 +48,17 @@ nlohmann::ordered_json camera_json(const render::Camera& camera, int width, int 
        "(u, v) from the image's top-left corner; pixel (i, j) covers [i, i+1) x [j, j+1), "
        "its centre at (i + 0.5, j + 0.5); for tools whose pixel centres are integers, "
        "use cx - 0.5 and cy - 0.5"},
-      {"optics", distortion.none()
-                     ? "an ideal pinhole: no lens distortion and no refraction at the water's "
-                       "surface"
-                     : "a pinhole with lens distortion in OpenCV's model (cv::projectPoints: "
-                       "k1 k2 p1 p2 k3), no refraction at the water's surface"}};
+      {"optics", std::string(distortion.none() ? "an ideal pinhole"
+                                               : "a pinhole with lens distortion in OpenCV's model "
+                                                 "(cv::projectPoints: k1 k2 p1 p2 k3)") +
+                     (refraction ? ", the view rays refracted at the water surface by Snell's law "
+                                   "(refraction: the plane y = surface_y_m)"
+                                 : ", no refraction at the water's surface")}};
+  if (refraction) {
+    out["refraction"] = {{"surface_y_m", refraction->tank.water_depth},
+                         {"refractive_index", refraction->water.refractive_index},
+                         {"tank_radius_m", refraction->tank.radius}};
+  }
   return out;
 }
 
@@ -67,8 +74,9 @@ render::Camera stereo_right_camera(const render::Camera& left, double baseline) 
 }
 
 nlohmann::ordered_json stereo_camera_json(const render::Camera& left, double baseline, int width,
-                                          int height, const LensDistortion& distortion) {
-  nlohmann::ordered_json out = camera_json(left, width, height, distortion);
+                                          int height, const LensDistortion& distortion,
+                                          const render::Scene* refraction) {
+  nlohmann::ordered_json out = camera_json(left, width, height, distortion, refraction);
   nlohmann::ordered_json right =
       camera_json(stereo_right_camera(left, baseline), width, height, distortion);
   right.erase("conventions");

@@ -7,6 +7,7 @@
 
 #include "lens.hpp"
 #include "render/camera.hpp"
+#include "render/scene.hpp"
 
 namespace finflex::pictures {
 
@@ -14,9 +15,12 @@ namespace finflex::pictures {
 //  "distortion" (k1 k2 p1 p2 k3, OpenCV's order: lens.hpp), "camera_from_world" and
 //  "world_from_camera" (4x4 rows, OpenCV axes), "position", "target", "up", "vertical_fov_degrees",
 //  "near", "far", "conventions": {...}}. Values from render::pinhole_intrinsics and
-//  render::camera_from_world.
+//  render::camera_from_world. With `refraction` (a scene whose view rays bend at the
+//  water surface, render::Scene::view_refraction) also "refraction": {"surface_y_m",
+//  "refractive_index", "tank_radius_m"}.
 nlohmann::ordered_json camera_json(const render::Camera& camera, int width, int height,
-                                   const LensDistortion& distortion = {});
+                                   const LensDistortion& distortion = {},
+                                   const render::Scene* refraction = nullptr);
 
 // The right camera of a rectified stereo pair: `left` moved `baseline` metres along its
 // own x axis (OpenCV's: right in the image), the same orientation and intrinsics.
@@ -28,6 +32,7 @@ render::Camera stereo_right_camera(const render::Camera& left, double baseline);
 // "Q" (as cv::stereoRectify gives them for this pair: P2's last column -fx baseline),
 // "disparity"}.
 nlohmann::ordered_json stereo_camera_json(const render::Camera& left, double baseline, int width,
-                                          int height, const LensDistortion& distortion = {});
+                                          int height, const LensDistortion& distortion = {},
+                                          const render::Scene* refraction = nullptr);
 
 }  // namespace finflex::pictures
