@@ -61,7 +61,7 @@ fi
 root="$(cd "$(dirname "$0")/.." && pwd)"
 venv="$root/.venv"
 requirements="$root/tests/python/requirements.txt"
-if "$venv/bin/python" -c 'import pycocotools, PIL, numpy' 2>/dev/null; then
+if "$venv/bin/python" -c 'import pycocotools, PIL, numpy, pytest, ray' 2>/dev/null; then
   echo "install-deps: $venv has the Python packages"
 else
   python3 -m venv "$venv"

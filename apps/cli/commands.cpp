@@ -1,6 +1,7 @@
 #include "commands.hpp"
 
 #include <exception>
+#include <string>
 
 #include "cli_errors.hpp"
 #include "tool.hpp"
@@ -22,6 +23,7 @@ std::vector<std::pair<std::string, Command>> add_commands(CLI::App& app) {
 
 int run_tool(int argc, char** argv) {
   CLI::App app{"FinFlex: secant-surface deformation of fish meshes in OpenCL"};
+  app.set_version_flag("--version", std::string("finflex ") + FINFLEX_VERSION);
   app.require_subcommand(1);
   const auto commands = add_commands(app);
   try {
@@ -30,6 +32,8 @@ int run_tool(int argc, char** argv) {
     return app.exit(help);
   } catch (const CLI::CallForAllHelp& help) {
     return app.exit(help);
+  } catch (const CLI::CallForVersion& version) {
+    return app.exit(version);
   } catch (const CLI::ParseError& error) {
     const std::string command =
         app.get_subcommands().empty() ? std::string("") : app.get_subcommands().front()->get_name();

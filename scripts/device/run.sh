@@ -68,6 +68,11 @@
 #                          mono COCO; with YOLO and depth; a stereo pair; and with a
 #                          lens and noise; mono with refraction and varied optics (frame
 #                          times side by side)
+#   dataset_scaling .txt   `python -m finflex.dataset` by workers (bench/dataset_scaling.py):
+#                          400 frames of 1,000 fish at 1280 x 720 in shards of 100, the
+#                          GPU worker in process and as a Ray actor, CPU workers 1 to 8
+#                          where PoCL is installed; Ray from RAY_SITE (a folder holding
+#                          it, when python3 has none)
 #   level_choice   .txt    levels of detail: `finflex check --levels 4` of the bundled
 #                          fish's swim rigs, and the level choice of 1,000 to 100,000
 #                          fish (bench_deform's BM_LevelChoice)
@@ -442,6 +447,24 @@ dataset() {
   rm -rf "$scratch"
 }
 
+dataset_scaling() {
+  find_nvidia_egl
+  find_nvidia_vulkan
+  local py scratch
+  py=$(mktemp -d)
+  scratch=$(mktemp -d)
+  # The generator drives the finflex program and needs none of the Python module (which
+  # a bundle does not hold): the package's dataset folder alone.
+  mkdir -p "$py/finflex"
+  cp -r bindings/python/finflex/dataset "$py/finflex/"
+  : > "$py/finflex/__init__.py"
+  # shellcheck disable=SC2046
+  run env $(side_env A -) PYTHONPATH="$py${RAY_SITE:+:$RAY_SITE}" FINFLEX_DATA_DIR="$PWD/data" \
+    python3 bench/dataset_scaling.py --finflex "$(program A finflex)" --out "$scratch" \
+    --frames 400 --shard-frames 100 || failed+=("dataset_scaling")
+  rm -rf "$py" "$scratch"
+}
+
 level_choice() {
   local side mesh
   for side in "${sides[@]}"; do
@@ -688,7 +711,8 @@ for suite in "${suites[@]}"; do
         done
       done
       ;;
-    gpu_checks | cpu_checks | bench_deform | render_speed | render_levels | dataset | handoff | level_choice | remarks)
+    gpu_checks | cpu_checks | bench_deform | render_speed | render_levels | dataset | \
+      dataset_scaling | handoff | level_choice | remarks)
       text_suite "$suite" ;;
     *) echo "run.sh: '$suite' is not a suite (see --help)" >&2; exit 2 ;;
   esac
