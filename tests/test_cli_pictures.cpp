@@ -9,6 +9,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -106,6 +109,55 @@ TEST(CliPictures, SwimWritesFramesAVideoAndTheCamera) {
     beside += entry.path().filename().string().find(".partial") != std::string::npos;
   }
   EXPECT_EQ(beside, 0u);
+}
+
+// With --draw written the frames that write nothing are not drawn: the frames a run
+// writes are the same, byte for byte, as the same frames of a run that writes every frame (with
+// varied optics and noise, which are drawn per frame, and the dataset).
+TEST(CliPictures, DrawingOnlyTheWrittenFramesChangesNothingInThem) {
+  const std::string every = test::temp_path("every_frame");
+  const std::string some = test::temp_path("two_frames");
+  const std::string swim = "swim --fish 12 --seconds 0.2 --fps 30 --species " +
+                           low_resolution_species() +
+                           " --size 160x90 --video none --annotate --vary-optics --noise 1,2";
+  const RunResult all = run_cli(swim + " --out '" + every + "'");
+  ASSERT_EQ(all.exit_code, 0) << all.err;
+  const RunResult two = run_cli(swim + " --image-frames 3,5 --draw written --out '" + some + "'");
+  ASSERT_EQ(two.exit_code, 0) << two.err;
+  EXPECT_EQ(files_in(some + "/frames"), 2u);
+  for (const char* frame : {"frame_000003.png", "frame_000005.png"}) {
+    EXPECT_EQ(read_text(some + "/frames/" + frame), read_text(every + "/frames/" + frame)) << frame;
+    EXPECT_EQ(read_text(some + "/masks/" + std::string(frame)),
+              read_text(every + "/masks/" + std::string(frame)))
+        << frame;
+  }
+  // The two frames' annotations, ids aside.
+  const nlohmann::json a = read_json(some + "/coco.json"), b = read_json(every + "/coco.json");
+  std::map<int, std::string> file_of;
+  for (const nlohmann::json& image : b["images"]) file_of[image["id"]] = image["file_name"];
+  std::map<std::string, std::vector<nlohmann::json>> wanted;
+  for (nlohmann::json annotation : b["annotations"]) {
+    const std::string file = file_of[annotation["image_id"]];
+    if (file.find("000003") == std::string::npos && file.find("000005") == std::string::npos)
+      continue;
+    annotation.erase("id");
+    annotation.erase("image_id");
+    wanted[file].push_back(annotation);
+  }
+  file_of.clear();
+  for (const nlohmann::json& image : a["images"]) file_of[image["id"]] = image["file_name"];
+  std::map<std::string, std::vector<nlohmann::json>> got;
+  for (nlohmann::json annotation : a["annotations"]) {
+    const std::string file = file_of[annotation["image_id"]];
+    annotation.erase("id");
+    annotation.erase("image_id");
+    got[file].push_back(annotation);
+  }
+  EXPECT_EQ(got.size(), 2u);
+  EXPECT_EQ(got, wanted);
+  // The summary's frame times are the drawn frames' (after the first): 2 of 5.
+  EXPECT_NE(two.out.find("a drawn frame (mean of 2)"), std::string::npos) << two.out;
+  EXPECT_NE(all.out.find("a drawn frame (mean of 5)"), std::string::npos) << all.out;
 }
 
 std::vector<std::uint16_t> read_mask(const std::string& path, int& width, int& height) {
@@ -373,6 +425,8 @@ TEST(CliPictures, BadPictureInputsExitTwoAndWriteNothing) {
       {" --stereo 11", "--stereo 11: a baseline above 10 m"},
       {" --formats yolo", "--formats is part of the dataset"},
       {" --no-render --video apng", "--video draws frames"},
+      {" --draw some", "--draw 'some' is not all or written"},
+      {" --no-render --draw written", "--draw written draws the frames written: it needs --out"},
       {" --hand-off sideways",
        "--hand-off: 'sideways' is not auto, external-memory, shared or copy"},
       // PoCL has no GL sharing: asked for, the path that cannot run is named.

@@ -13,7 +13,7 @@
 //                [--refraction]
 //                [--image-frames all|none|LIST] [--video auto|none|mp4,gif,apng]
 //                [--annotate [--formats coco,yolo,webdataset] [--depth] [--keypoints LIST]]
-//                [--render | --no-render]
+//                [--render | --no-render] [--draw all|written]
 //                [--hand-off auto|external-memory|shared|copy] [--reference-draw]
 #include <unistd.h>
 
@@ -88,7 +88,8 @@ void progress(std::size_t done, std::size_t total) {
 }
 
 // Per frame, seconds of each step (frames after the first, whose kernels and shaders
-// are built on first use).
+// are built on first use): the simulation's and deformation's of every frame, the
+// rest (from draw on) of the frames drawn.
 struct FrameTimes {
   std::vector<double> simulation, enqueue, kernels, wait, hand_off, draw, draw_gpu, reference_gpu,
       id_gpu, read_back, files, annotation, total;
@@ -256,6 +257,7 @@ int run_swim(const SwimOptions& options) {
     const std::size_t track_every = std::max<std::size_t>(1, std::size_t(std::lround(plan.fps)));
     const auto start = Clock::now();
     Clock::time_point timed_start = start;
+    std::size_t timed_frames = 0;  // after the first, drawn or not
     double first_frame = 0.0;
     std::vector<std::pair<cl::Event, cl::Event>> kernel_spans;  // per timed frame
     for (std::size_t f = 0; f < plan.frames; ++f) {
@@ -272,7 +274,11 @@ int run_swim(const SwimOptions& options) {
       double reference_gpu = 0.0;
       double id_gpu = 0.0;
       PictureFileTimes file_times;
-      if (pictures) {
+      // With --draw written a frame that writes nothing (a dataset shard's warm-up
+      // before its first image) is simulated and deformed, not drawn; the first frame is
+      // drawn all the same, so that the shaders are built where the kernels are.
+      const bool drawn = pictures && (f == 0 || !plan.draw_written || files->writes(f));
+      if (drawn) {
         step = Clock::now();
         pictures->set_frame(f);
         pictures->draw();
@@ -290,12 +296,15 @@ int run_swim(const SwimOptions& options) {
         first_frame = seconds_since(frame_start);
         timed_start = Clock::now();
       } else {
+        ++timed_frames;
         t.simulation.push_back(work.simulation_seconds);
         t.enqueue.push_back(work.enqueue_seconds);
         // Read once the loop is done: reading now would wait for the device.
         kernel_spans.emplace_back(work.kernels.front(), work.kernels.back());
         t.wait.push_back(wait);
         t.hand_off.push_back(work.handoff_seconds);
+      }
+      if (f > 0 && (drawn || !pictures)) {  // the frame's steps, of the frames drawn
         t.draw.push_back(draw);
         t.draw_gpu.push_back(draw_gpu);
         t.reference_gpu.push_back(reference_gpu);
@@ -329,7 +338,7 @@ int run_swim(const SwimOptions& options) {
     const double wall = seconds_since(start);
     for (const auto& [first, last] : kernel_spans)
       t.kernels.push_back(bench::span_seconds(first, last));
-    const double timed_fps = t.total.empty() ? 0.0 : double(t.total.size()) / timed_span;
+    const double timed_fps = timed_frames == 0 ? 0.0 : double(timed_frames) / timed_span;
     const double vertices = double(scene.vertices_per_frame());
     const double kernel_median = t.kernels.empty() ? 0.0 : bench::median(t.kernels);
     std::string census;
@@ -384,7 +393,8 @@ int run_swim(const SwimOptions& options) {
                   pictures::to_string(plan.pictures.view),
                   pictures->renderer().device().gl_renderer.c_str(), timed_fps);
       std::printf(
-          "  a frame (mean of %zu): %.1f ms (CPU time %.1f ms): %s, %s, %s, %s, %s, %s; the draw "
+          "  a drawn frame (mean of %zu): %.1f ms (CPU time %.1f ms): %s, %s, %s, %s, %s, %s; the "
+          "draw "
           "on the GPU %.1f ms\n",
           t.total.size(), ms["frame"].get<double>() * 1e3,
           rendering["cpu_seconds_per_frame_mean"].get<double>() * 1e3, part("deform").c_str(),
@@ -524,6 +534,10 @@ Command add_swim_command(CLI::App& app) {
       "--render,!--no-render",
       [options](std::int64_t count) { options->render = count > 0 ? 1 : 0; },
       "Draw every frame (default with --out); without --out only the timing is printed");
+  swim->add_option("--draw", options->draw,
+                   "all: draw every frame; written: only the frames written as images or "
+                   "video (and the first), the others simulated and deformed")
+      ->capture_default_str();
   swim->add_option("--hand-off", options->hand_off,
                    "How the deformed fish reach the renderer: auto (the first that runs), "
                    "external-memory, shared or copy")

@@ -78,7 +78,7 @@ SwimPictureFiles::~SwimPictureFiles() {
 PictureFileTimes SwimPictureFiles::add_frame(std::size_t frame, double time_s) {
   PictureFileTimes times;
   const bool image = plan_.image_of(frame);
-  if (!image && videos_.empty()) return times;
+  if (!plan_.writes(frame)) return times;
   render::Renderer& renderer = pictures_.renderer();
   const std::size_t in_flight = renderer.settings().frames_in_flight;
   // The left (or only) view was drawn by the caller; a stereo pair's right one is drawn

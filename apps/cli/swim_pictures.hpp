@@ -45,6 +45,9 @@ struct PictureFiles {
   int fps = 30;  // the videos'
 
   bool image_of(std::size_t frame) const { return every_image || image_frames.count(frame) > 0; }
+  // Whether frame `frame` writes anything (an image or a video frame): the others are
+  // simulated and deformed but not drawn.
+  bool writes(std::size_t frame) const { return !videos.empty() || image_of(frame); }
 };
 
 // Seconds of the frame loop's thread that one frame's files took (the pool's work
@@ -63,12 +66,14 @@ class SwimPictureFiles {
                    const nlohmann::ordered_json& info);
 
   ~SwimPictureFiles();
-  // Frame `frame` at time_s, after pictures.draw() of it: its image, video frame and
-  // annotations as the plan says (written once the frame is taken, a few frames on).
+  // Frame `frame` at time_s, after pictures.draw() of it (only for frames the plan
+  // writes): its image, video frame and annotations as the plan says (written once the
+  // frame is taken, a few frames on).
   PictureFileTimes add_frame(std::size_t frame, double time_s);
   // Writes what is still in flight, completes the videos and coco.json.
   void finish();
 
+  bool writes(std::size_t frame) const { return plan_.writes(frame); }
   std::size_t images_written() const { return images_; }
   std::size_t annotations() const { return dataset_ ? dataset_->annotation_count() : 0; }
 

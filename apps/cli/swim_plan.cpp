@@ -113,6 +113,15 @@ void plan_pictures(const SwimOptions& options, SwimPlan& plan) {
   plan_optics(options, plan);
   plan.hand_off = pictures::parse_hand_off(options.hand_off, "--hand-off");
   plan.reference_draw = options.reference_draw;
+  if (options.draw != "all" && options.draw != "written") {
+    throw Error(ErrorCode::kInvalidArgument, "--draw",
+                "--draw '" + options.draw + "' is not all or written");
+  }
+  plan.draw_written = options.draw == "written";
+  if (plan.draw_written && (!out || !plan.render)) {
+    throw Error(ErrorCode::kInvalidArgument, "--draw",
+                "--draw written draws the frames written: it needs --out (and not --no-render)");
+  }
   for (const auto& [given, option] :
        {std::pair{!options.image_frames.empty(), "--image-frames"},
         std::pair{!options.video.empty(), "--video"}, std::pair{options.annotate, "--annotate"}}) {

@@ -49,6 +49,7 @@ struct SwimOptions {
   bool depth = false;
   int render = -1;  // --render: 1, --no-render: 0, neither: -1 (on with --out)
   std::string hand_off = "auto";
+  std::string draw = "all";  // all, written
   bool reference_draw = false;
   std::string levels;  // empty: every fish at full detail
   std::string pixel_budget = "1";
@@ -68,6 +69,7 @@ struct SwimPlan {
   bool render = false;
   std::optional<pictures::HandOffPath> hand_off;  // nullopt: the first that can run
   bool reference_draw = false;                    // each frame also the reference draw
+  bool draw_written = false;  // --draw written: only the frames written (and the first)
   pictures::PictureSettings pictures;
   PictureFiles files;
   // --levels: levels of detail and culling, chosen from the pictures' camera.

@@ -69,10 +69,12 @@
 #                          lens and noise; mono with refraction and varied optics (frame
 #                          times side by side)
 #   dataset_scaling .txt   `python -m finflex.dataset` by workers (bench/dataset_scaling.py):
-#                          400 frames of 1,000 fish at 1280 x 720 in shards of 100, the
-#                          GPU worker in process and as a Ray actor, CPU workers 1 to 8
-#                          where PoCL is installed; Ray from RAY_SITE (a folder holding
-#                          it, when python3 has none)
+#                          400 frames of 1,000 fish at 1280 x 720 in shards of 100 on
+#                          the GPU worker in process and as a Ray actor; the README's
+#                          tank (200 fish, 640 x 360) on 1, 2, 4 and 8 CPU workers of
+#                          the same cores each where PoCL is installed, the GPU alone
+#                          and both; Ray from RAY_SITE (a folder holding it, when
+#                          python3 has none)
 #   level_choice   .txt    levels of detail: `finflex check --levels 4` of the bundled
 #                          fish's swim rigs, and the level choice of 1,000 to 100,000
 #                          fish (bench_deform's BM_LevelChoice)
@@ -461,7 +463,7 @@ dataset_scaling() {
   # shellcheck disable=SC2046
   run env $(side_env A -) PYTHONPATH="$py${RAY_SITE:+:$RAY_SITE}" FINFLEX_DATA_DIR="$PWD/data" \
     python3 bench/dataset_scaling.py --finflex "$(program A finflex)" --out "$scratch" \
-    --frames 400 --shard-frames 100 || failed+=("dataset_scaling")
+    || failed+=("dataset_scaling")
   rm -rf "$py" "$scratch"
 }
 

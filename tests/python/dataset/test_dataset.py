@@ -18,6 +18,7 @@ from pycocotools.coco import COCO
 
 from finflex.dataset import DatasetError, generate
 from finflex.dataset.store import RUN_FILES, content_hash, file_digest
+from finflex.dataset.pools import choose_devices
 
 # The Ray runs must run here, not skip (Ray itself is imported by the generator, which
 # sets its authentication first).
@@ -74,8 +75,9 @@ def swim_processes():
     return found
 
 
-def wait_for_a_frame_in_staging(out: pathlib.Path, driver, timeout=120.0) -> int:
-    """The pid of a swim of `out` that has written a frame of a shard not yet complete."""
+def wait_for_a_swim_writing(out: pathlib.Path, driver, timeout=120.0) -> int:
+    """The pid of a swim of `out` that has begun writing a shard (its staging folder
+    made: camera.json, and frames once drawn) not yet complete."""
     staging = str(out / ".staging") + "/"
     deadline = time.time() + timeout
     while time.time() < deadline and driver.poll() is None:
@@ -83,10 +85,10 @@ def wait_for_a_frame_in_staging(out: pathlib.Path, driver, timeout=120.0) -> int
             if staging not in line:
                 continue
             attempt = line.split(staging, 1)[1].split()[0]
-            if any((out / ".staging").glob(f".{attempt}.partial-*/frames/*.png")):
+            if any((out / ".staging").glob(f".{attempt}.partial-*/camera.json")):
                 return pid
         time.sleep(0.01)
-    raise AssertionError("no swim was seen with a frame written")
+    raise AssertionError("no swim was seen writing")
 
 
 def test_two_ray_workers_write_the_same_files_as_one(reference, folder):
@@ -100,7 +102,7 @@ def test_two_ray_workers_write_the_same_files_as_one(reference, folder):
 def test_a_killed_ray_worker_is_replaced_and_its_shard_redone(reference, folder):
     out = folder / "killed_actor"
     driver = subprocess.Popen(command(out, write_config(folder / "c1"), "--workers", "2"))
-    swim = wait_for_a_frame_in_staging(out, driver)
+    swim = wait_for_a_swim_writing(out, driver)
     actor = int(pathlib.Path(f"/proc/{swim}/stat").read_text().rsplit(")", 1)[1].split()[2])
     os.kill(actor, signal.SIGKILL)  # the worker's swim dies with it
     assert driver.wait(timeout=300) == 0
@@ -113,7 +115,7 @@ def test_a_killed_ray_worker_is_replaced_and_its_shard_redone(reference, folder)
 def test_a_killed_swim_is_retried(reference, folder):
     out = folder / "killed_swim"
     driver = subprocess.Popen(command(out, write_config(folder / "c2"), "--workers", "1"))
-    os.kill(wait_for_a_frame_in_staging(out, driver), signal.SIGKILL)
+    os.kill(wait_for_a_swim_writing(out, driver), signal.SIGKILL)
     assert driver.wait(timeout=300) == 0
     assert json.loads((out / "run.json").read_text())["retries"] == 1
     assert dataset_files(out) == dataset_files(reference)
@@ -181,6 +183,7 @@ def test_the_merged_files_read_back(reference):
 @pytest.mark.parametrize("change, field", [
     ({"frames": 0}, "--frames"),
     ({"shard_frames": 0}, "--shard-frames"),
+    ({"cpu_threads": 0}, "--cpu-threads"),
     ({"frames": -3}, "--frames"),
     ({"formats": ("coco", "parquet")}, "--formats"),
     ({"address": "127.0.0.1:1"}, "--address"),
@@ -201,6 +204,16 @@ def test_bad_input_is_refused_naming_it_with_nothing_written(folder, change, fie
     assert field in str(error.value) and "\n" not in str(error.value)
     if arguments["out"] == out:
         assert not out.exists()
+
+
+def test_cpu_workers_get_their_cores_or_a_clear_error():
+    choices = choose_devices(3, 2, 1, list(range(8)), local=True, cpu_threads=3)
+    assert [c.kind for c in choices] == ["gpu", "cpu", "cpu"]
+    assert [c.cores for c in choices[1:]] == [(1, 2, 3), (4, 5, 6)]
+    assert all(c.threads == 3 for c in choices[1:])
+    with pytest.raises(DatasetError) as error:
+        choose_devices(2, 2, 0, list(range(8)), local=True, cpu_threads=5)
+    assert error.value.field == "--cpu-workers" and "only 8 cores" in str(error.value)
 
 
 def test_a_field_only_the_swim_checks_is_named_before_any_worker_starts(folder):

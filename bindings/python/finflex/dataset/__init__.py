@@ -90,13 +90,14 @@ def _version(cli: str) -> str:
 
 def generate(out, frames: int, shard_frames: int, seed: int = 0, workers: int | None = None,
              address: str | None = None, formats=("coco",), config=None,
-             cpu_workers: int | None = None, cli: str | None = None, use_ray: bool | None = None,
-             quiet: bool = False) -> dict:
+             cpu_workers: int | None = None, cpu_threads: int | None = None,
+             cli: str | None = None, use_ray: bool | None = None, quiet: bool = False) -> dict:
     """Writes (or completes) the dataset in `out`; the run's summary.
 
     `frames` frames in shards of `shard_frames`; `seed` the dataset's seed; `workers`
     how many workers (default: one per GPU, else one on the CPU), `cpu_workers` how
-    many of them run on the CPU (default: those beyond the GPUs); `address` a Ray
+    many of them run on the CPU (default: those beyond the GPUs), `cpu_threads` the
+    cores of each (default: an equal share); `address` a Ray
     cluster's (default: a private local one); `config` a configuration file's path (or
     a dict of fields). Ray runs the workers unless one worker runs here
     (`use_ray`: force either). DatasetError naming the option or field for bad input
@@ -110,6 +111,8 @@ def generate(out, frames: int, shard_frames: int, seed: int = 0, workers: int | 
         workers = _positive("--workers", workers)
     if cpu_workers is not None:
         cpu_workers = _positive("--cpu-workers", cpu_workers, 0)
+    if cpu_threads is not None:
+        cpu_threads = _positive("--cpu-threads", cpu_threads)
     formats = _formats(formats)
     if isinstance(config, dict):
         settings = config_file.validate(config, pathlib.Path.cwd())
@@ -145,10 +148,10 @@ def generate(out, frames: int, shard_frames: int, seed: int = 0, workers: int | 
     job = Job(cli=cli, out=str(out), config=settings, formats=formats, config_hash=config_hash,
               version=version)
     if ray_wanted:
-        pool = RayPool(job, address, workers or _default_workers(cli), cpu_workers)
+        pool = RayPool(job, address, workers or _default_workers(cli), cpu_workers, cpu_threads)
     else:
         choices = choose_devices(1, cpu_workers, _gpu_count(cli), sorted(os.sched_getaffinity(0)),
-                                 local=False)
+                                 local=False, cpu_threads=cpu_threads)
         pool = LocalPool(job, choices)
     started = time.perf_counter() - start
     progress = Progress(store, frames, len(shards), sum(s.frames for s in shards if s not in todo),

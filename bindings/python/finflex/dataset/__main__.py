@@ -1,5 +1,5 @@
 """python -m finflex.dataset --out DIR --frames N --shard-frames M --seed S
-[--workers W] [--cpu-workers C] [--address ADDR] [--formats coco,yolo,webdataset]
+[--workers W] [--cpu-workers C] [--cpu-threads T] [--address ADDR] [--formats coco,yolo,webdataset]
 [--config FILE] [--finflex PATH]
 
 Exit status 0 when the dataset is complete, 2 for bad input (one line naming the option
@@ -41,6 +41,8 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--cpu-workers", type=_count,
                    help="how many of the workers use the CPU through PoCL (default: the "
                         "workers beyond one per GPU)")
+    p.add_argument("--cpu-threads", type=_count,
+                   help="cores of each CPU worker (default: an equal share of those left)")
     p.add_argument("--address", help="a Ray cluster's HOST:PORT (default: a private local one)")
     p.add_argument("--ray", action="store_true", help="Ray even for one local worker")
     p.add_argument("--formats", default="coco", help="coco (always), yolo, webdataset")
@@ -57,7 +59,8 @@ def main(argv=None) -> int:
         summary = generate(args.out, frames=args.frames, shard_frames=args.shard_frames,
                            seed=args.seed, workers=args.workers, address=args.address,
                            formats=args.formats, config=args.config,
-                           cpu_workers=args.cpu_workers, cli=args.finflex,
+                           cpu_workers=args.cpu_workers, cpu_threads=args.cpu_threads,
+                           cli=args.finflex,
                            use_ray=True if args.ray else None, quiet=args.quiet)
     except DatasetError as error:
         sys.stderr.write(f"finflex.dataset: {error}\n")

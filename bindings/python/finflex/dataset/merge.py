@@ -8,6 +8,7 @@ from __future__ import annotations
 import json
 import os
 import pathlib
+import re
 import shutil
 
 YOLO_TASKS = ("detect", "segment", "pose")
@@ -19,29 +20,45 @@ def write_text(path: pathlib.Path, text: str) -> None:
     os.replace(partial, path)
 
 
+# A shard's coco.json as `finflex swim` writes it: the head, then
+# ,"annotations":[ ... ],"images":[ ... ]}. Each annotation starts {"id":N,"image_id":M,
+# and JSON strings hold no bare quote, so these patterns occur nowhere else.
+_ANNOTATIONS = ',"annotations":['
+_IMAGES = '],"images":'
+_ANNOTATION_START = re.compile(r'\{"id":(\d+),"image_id":(\d+),')
+
+
+def _split_shard_coco(text: str, path: pathlib.Path):
+    start, end = text.find(_ANNOTATIONS), text.rfind(_IMAGES)
+    if start < 0 or end < start:
+        raise ValueError(f"'{path}' is not a COCO file of finflex swim")
+    head = json.loads(text[:start] + "}")
+    images = json.loads(text[end + len(_IMAGES):].rstrip()[:-1])
+    return head, text[start + len(_ANNOTATIONS):end].strip(), images
+
+
 def merge_coco(out: pathlib.Path, shards: list, info: dict) -> dict:
-    """OUT/coco.json from the shards' coco.json files; the counts."""
+    """OUT/coco.json from the shards' coco.json files; the counts. The annotations are
+    copied as the shards wrote them, only their "id" and "image_id" renumbered."""
     target = out / "coco.json"
     partial = out / "coco.json.partial"
     images_part = out / ".staging" / "coco-images.partial"
-    images = annotations = 0
-    categories = None
+    counts = {"images": 0, "annotations": 0}
     with open(partial, "w") as coco, open(images_part, "w") as image_list:
         for shard in shards:
             prefix = f"shards/{shard.name}/"
-            data = json.loads((out / "shards" / shard.name / "coco.json").read_text())
-            if categories is None:
-                categories = data["categories"]
-                head = {"info": info, "licenses": data.get("licenses", []),
-                        "categories": categories}
-                text = json.dumps(head, separators=(",", ":"))
-                coco.write(text[:-1] + ',"annotations":[')
+            path = out / "shards" / shard.name / "coco.json"
+            head, annotations, images = _split_shard_coco(path.read_text(), path)
+            if shard is shards[0]:
+                first = {"info": info, "licenses": head.get("licenses", []),
+                         "categories": head["categories"]}
+                coco.write(json.dumps(first, separators=(",", ":"))[:-1] + _ANNOTATIONS)
+            images.sort(key=lambda i: i["id"])
             new_id = {}
-            for image in sorted(data["images"], key=lambda i: i["id"]):
-                images += 1
-                new_id[image["id"]] = images
-            for image in sorted(data["images"], key=lambda i: i["id"]):
-                image = dict(image)
+            for image in images:
+                counts["images"] += 1
+                new_id[image["id"]] = counts["images"]
+            for image in images:
                 image["shard"] = shard.index
                 image["shard_image_id"] = image["id"]
                 image["id"] = new_id[image["id"]]
@@ -52,19 +69,21 @@ def merge_coco(out: pathlib.Path, shards: list, info: dict) -> dict:
                     image["stereo_pair_id"] = new_id[image["stereo_pair_id"]]
                 image_list.write(("," if image["id"] > 1 else "")
                                  + json.dumps(image, separators=(",", ":")))
-            for annotation in data["annotations"]:
-                annotations += 1
-                annotation["id"] = annotations
-                annotation["image_id"] = new_id[annotation["image_id"]]
-                coco.write(("," if annotations > 1 else "")
-                           + json.dumps(annotation, separators=(",", ":")))
-        coco.write('],"images":[')
+
+            def renumber(match):
+                counts["annotations"] += 1
+                return f'{{"id":{counts["annotations"]},"image_id":{new_id[int(match[2])]},'
+
+            if annotations:
+                coco.write(("," if counts["annotations"] else "")
+                           + _ANNOTATION_START.sub(renumber, annotations))
+        coco.write(_IMAGES + "[")
     with open(partial, "a") as coco, open(images_part) as image_list:
         shutil.copyfileobj(image_list, coco)
         coco.write("]}\n")
     images_part.unlink()
     os.replace(partial, target)
-    return {"images": images, "annotations": annotations}
+    return counts
 
 
 def write_yolo(out: pathlib.Path, shards: list) -> list[str]:

@@ -58,7 +58,9 @@ def swim_arguments(config: dict, shard: Shard, formats: tuple[str, ...], out: st
             # The swim's length in frames, exactly: it rounds seconds x fps.
             "--fps", repr(swim["fps"]), "--seconds", repr(simulated / swim["fps"]),
             "--normals", swim["normals"],
+            # The warm-up frames before the first image are simulated, not drawn.
             "--image-frames", ",".join(map(str, images)), "--video", "none",
+            "--draw", "written",
             "--size", f"{camera['width']}x{camera['height']}", "--camera", camera["view"],
             "--samples", str(camera["samples"]),
             "--water", optics["water"],

@@ -107,7 +107,8 @@ class RayPool:
     """Ray actors. Local by default: a private cluster of this machine listening on
     127.0.0.1 only, with the dashboard (and with it the job-submission endpoint) off."""
 
-    def __init__(self, job: Job, address: str | None, workers: int, cpu_workers: int | None):
+    def __init__(self, job: Job, address: str | None, workers: int, cpu_workers: int | None,
+                 cpu_threads: int | None = None):
         ray = ray_module()
         self.ray = ray
         self.job = job
@@ -123,7 +124,8 @@ class RayPool:
             gpus = int(ray.cluster_resources().get("GPU", 0))
             cores = list(range(int(ray.cluster_resources().get("CPU", 1))))
         try:
-            choices = choose_devices(workers, cpu_workers, gpus, cores, local=address is None)
+            choices = choose_devices(workers, cpu_workers, gpus, cores, local=address is None,
+                                     cpu_threads=cpu_threads)
             self.actor = ray.remote(ActorBody)
             self.workers = [self._make(choice) for choice in choices]
         except BaseException:
@@ -181,9 +183,10 @@ def _devices(cli):
 
 
 def choose_devices(workers: int, cpu_workers: int | None, gpus: int, cores: list[int],
-                   local: bool) -> list[DeviceChoice]:
+                   local: bool, cpu_threads: int | None = None) -> list[DeviceChoice]:
     """The workers' devices: GPU workers first (one per GPU), then CPU workers, each
-    with an equal share of the cores left (locally, pinned to them)."""
+    with `cpu_threads` cores (default an equal share of the cores left; locally, pinned
+    to them)."""
     if cpu_workers is None:
         cpu_workers = max(0, workers - gpus)
     if cpu_workers > workers:
@@ -196,10 +199,10 @@ def choose_devices(workers: int, cpu_workers: int | None, gpus: int, cores: list
     choices = [DeviceChoice("gpu", ordinal=g) for g in range(gpu_workers)]
     free = cores[gpu_workers:] if len(cores) > gpu_workers else cores
     if cpu_workers:
-        share = max(1, len(free) // cpu_workers)
-        if len(free) < cpu_workers:
-            raise DatasetError("--cpu-workers", f"--cpu-workers {cpu_workers}: only {len(free)} "
-                               "cores are left for CPU workers")
+        share = cpu_threads or max(1, len(free) // cpu_workers)
+        if len(free) < cpu_workers * share:
+            raise DatasetError("--cpu-workers", f"--cpu-workers {cpu_workers} of {share} cores "
+                               f"each: only {len(free)} cores are left for CPU workers")
         for c in range(cpu_workers):
             mine = tuple(free[c * share:(c + 1) * share]) if local else ()
             choices.append(DeviceChoice("cpu", threads=share, cores=mine))
