@@ -76,15 +76,12 @@ def main():
                     config=config(200, 640, 360))
     # Kernels and shaders built once, before any timed run (the drivers cache them).
     warm = os.path.join(args.out, "warm")
-    if gpus:
-        generate(warm, frames=1, shard_frames=1, seed=1, cli=args.finflex, quiet=True,
-                 config=config(1000, 1280, 720), workers=1, cpu_workers=0, use_ray=False)
-        shutil.rmtree(warm, ignore_errors=True)
-    if has_cpu:
-        generate(warm, frames=1, shard_frames=1, seed=1, cli=args.finflex, quiet=True,
-                 config=config(200, 640, 360), workers=1, cpu_workers=1, cpu_threads=threads,
-                 use_ray=False)
-        shutil.rmtree(warm, ignore_errors=True)
+    for wanted, load, cpu_workers in ((gpus, gpu_load, 0), (has_cpu, cpu_load, 1)):
+        if wanted:
+            generate(warm, frames=1, shard_frames=1, seed=1, cli=args.finflex, quiet=True,
+                     config=load["config"], workers=1, cpu_workers=cpu_workers,
+                     cpu_threads=threads if cpu_workers else None, use_ray=False)
+            shutil.rmtree(warm, ignore_errors=True)
     runs = []
     if gpus:
         runs += [("GPU, in process", gpu_load, dict(workers=1, cpu_workers=0, use_ray=False)),

@@ -132,26 +132,24 @@ TEST(CliPictures, DrawingOnlyTheWrittenFramesChangesNothingInThem) {
         << frame;
   }
   // The two frames' annotations, ids aside.
-  const nlohmann::json a = read_json(some + "/coco.json"), b = read_json(every + "/coco.json");
-  std::map<int, std::string> file_of;
-  for (const nlohmann::json& image : b["images"]) file_of[image["id"]] = image["file_name"];
+  const auto by_file = [](const nlohmann::json& coco) {
+    std::map<int, std::string> file_of;
+    for (const nlohmann::json& image : coco["images"]) file_of[image["id"]] = image["file_name"];
+    std::map<std::string, std::vector<nlohmann::json>> out;
+    for (nlohmann::json annotation : coco["annotations"]) {
+      const std::string file = file_of[annotation["image_id"]];
+      annotation.erase("id");
+      annotation.erase("image_id");
+      out[file].push_back(annotation);
+    }
+    return out;
+  };
+  const auto got = by_file(read_json(some + "/coco.json"));
+  const auto every_frame = by_file(read_json(every + "/coco.json"));
   std::map<std::string, std::vector<nlohmann::json>> wanted;
-  for (nlohmann::json annotation : b["annotations"]) {
-    const std::string file = file_of[annotation["image_id"]];
-    if (file.find("000003") == std::string::npos && file.find("000005") == std::string::npos)
-      continue;
-    annotation.erase("id");
-    annotation.erase("image_id");
-    wanted[file].push_back(annotation);
-  }
-  file_of.clear();
-  for (const nlohmann::json& image : a["images"]) file_of[image["id"]] = image["file_name"];
-  std::map<std::string, std::vector<nlohmann::json>> got;
-  for (nlohmann::json annotation : a["annotations"]) {
-    const std::string file = file_of[annotation["image_id"]];
-    annotation.erase("id");
-    annotation.erase("image_id");
-    got[file].push_back(annotation);
+  for (const auto& [file, annotations] : every_frame) {
+    if (file.find("000003") != std::string::npos || file.find("000005") != std::string::npos)
+      wanted[file] = annotations;
   }
   EXPECT_EQ(got.size(), 2u);
   EXPECT_EQ(got, wanted);
@@ -425,7 +423,7 @@ TEST(CliPictures, BadPictureInputsExitTwoAndWriteNothing) {
       {" --stereo 11", "--stereo 11: a baseline above 10 m"},
       {" --formats yolo", "--formats is part of the dataset"},
       {" --no-render --video apng", "--video draws frames"},
-      {" --draw some", "--draw 'some' is not all or written"},
+      {" --draw some", "--draw 'some' is not a way to draw (expected all or written)"},
       {" --no-render --draw written", "--draw written draws the frames written: it needs --out"},
       {" --hand-off sideways",
        "--hand-off: 'sideways' is not auto, external-memory, shared or copy"},

@@ -81,19 +81,6 @@ bool parse_swim_inputs(const std::string& text, bool swim) {
               "--swim-inputs '" + text + "' is not recorded or live");
 }
 
-// One of `choices` (word, value) for `text`, else kInvalidArgument naming `option` and
-// `what` the words name.
-template <typename Value>
-Value parse_choice(const std::string& text, const std::string& option, const std::string& what,
-                   const std::vector<std::pair<std::string, Value>>& choices,
-                   const std::string& expected) {
-  for (const auto& [word, value] : choices) {
-    if (text == word) return value;
-  }
-  throw Error(ErrorCode::kInvalidArgument, option,
-              option + " '" + text + "' is not " + what + " (expected " + expected + ")");
-}
-
 // --per-item, --table-items, --lanes, --stores and --dispatch: the backend's choices, for
 // experiments. The counts' values are the library's to check (ClDeformer).
 ClTuning cl_options(const BenchOptions& options) {

@@ -1,7 +1,7 @@
-// Numbers on the command line, parsed strictly: the whole text must be the number, and
-// a count is decimal digits only, so "-1" is an error naming the option and the value
-// as typed (never 2^64 - 1), and a count past its limit is refused before anything
-// is allocated or read.
+// Numbers (and words from a fixed set) on the command line, parsed strictly: the whole
+// text must be the number, and a count is decimal digits only, so "-1" is an error
+// naming the option and the value as typed (never 2^64 - 1), and a count past its
+// limit is refused before anything is allocated or read.
 #pragma once
 
 #include <cstddef>
@@ -9,7 +9,22 @@
 #include <utility>
 #include <vector>
 
+#include "finflex/error.hpp"
+
 namespace finflex::cli {
+
+// One of `choices` (word, value) for `text`, else kInvalidArgument naming `option` and
+// `what` the words name: "--draw 'some' is not a way to draw (expected all or written)".
+template <typename Value>
+Value parse_choice(const std::string& text, const std::string& option, const std::string& what,
+                   const std::vector<std::pair<std::string, Value>>& choices,
+                   const std::string& expected) {
+  for (const auto& [word, value] : choices) {
+    if (text == word) return value;
+  }
+  throw Error(ErrorCode::kInvalidArgument, option,
+              option + " '" + text + "' is not " + what + " (expected " + expected + ")");
+}
 
 // A whole number in [minimum, maximum] written with decimal digits only (no sign,
 // space, point or exponent). Errors (field `option`): kInvalidArgument "--frames '-1':

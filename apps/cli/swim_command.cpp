@@ -277,7 +277,7 @@ int run_swim(const SwimOptions& options) {
       // With --draw written a frame that writes nothing (a dataset shard's warm-up
       // before its first image) is simulated and deformed, not drawn; the first frame is
       // drawn all the same, so that the shaders are built where the kernels are.
-      const bool drawn = pictures && (f == 0 || !plan.draw_written || files->writes(f));
+      const bool drawn = pictures && (f == 0 || !plan.draw_written || plan.files.writes(f));
       if (drawn) {
         step = Clock::now();
         pictures->set_frame(f);
@@ -393,9 +393,8 @@ int run_swim(const SwimOptions& options) {
                   pictures::to_string(plan.pictures.view),
                   pictures->renderer().device().gl_renderer.c_str(), timed_fps);
       std::printf(
-          "  a drawn frame (mean of %zu): %.1f ms (CPU time %.1f ms): %s, %s, %s, %s, %s, %s; the "
-          "draw "
-          "on the GPU %.1f ms\n",
+          "  a drawn frame (mean of %zu): %.1f ms (CPU time %.1f ms): %s, %s, %s, %s, %s, %s; "
+          "the draw on the GPU %.1f ms\n",
           t.total.size(), ms["frame"].get<double>() * 1e3,
           rendering["cpu_seconds_per_frame_mean"].get<double>() * 1e3, part("deform").c_str(),
           part("hand_off").c_str(), part("draw").c_str(), part("read_back").c_str(),

@@ -73,7 +73,6 @@ class SwimPictureFiles {
   // Writes what is still in flight, completes the videos and coco.json.
   void finish();
 
-  bool writes(std::size_t frame) const { return plan_.writes(frame); }
   std::size_t images_written() const { return images_; }
   std::size_t annotations() const { return dataset_ ? dataset_->annotation_count() : 0; }
 

@@ -113,11 +113,8 @@ void plan_pictures(const SwimOptions& options, SwimPlan& plan) {
   plan_optics(options, plan);
   plan.hand_off = pictures::parse_hand_off(options.hand_off, "--hand-off");
   plan.reference_draw = options.reference_draw;
-  if (options.draw != "all" && options.draw != "written") {
-    throw Error(ErrorCode::kInvalidArgument, "--draw",
-                "--draw '" + options.draw + "' is not all or written");
-  }
-  plan.draw_written = options.draw == "written";
+  plan.draw_written = parse_choice<bool>(options.draw, "--draw", "a way to draw",
+                                         {{"all", false}, {"written", true}}, "all or written");
   if (plan.draw_written && (!out || !plan.render)) {
     throw Error(ErrorCode::kInvalidArgument, "--draw",
                 "--draw written draws the frames written: it needs --out (and not --no-render)");

@@ -74,11 +74,11 @@ def content_files(folder: pathlib.Path) -> list[pathlib.Path]:
     return sorted(p for p in folder.rglob("*") if p.is_file() and p.name != RECORD)
 
 
-def content_hash(folder: pathlib.Path) -> str:
-    """SHA-256 over the lines 'PATH SHA256' of the shard's files in path order (PATH
-    relative to the shard, '/'-separated). The files are hashed on up to 8 threads
-    (hashlib lets go of the GIL)."""
-    files = content_files(folder)
+def content_hash(folder: pathlib.Path, files: list[pathlib.Path] | None = None) -> str:
+    """SHA-256 over the lines 'PATH SHA256' of the shard's files (`files`, default
+    content_files(folder)) in path order (PATH relative to the shard, '/'-separated).
+    The files are hashed on up to 8 threads (hashlib lets go of the GIL)."""
+    files = content_files(folder) if files is None else files
     with concurrent.futures.ThreadPoolExecutor(min(8, os.cpu_count() or 1)) as pool:
         digests = list(pool.map(file_digest, files))
     digest = hashlib.sha256()
@@ -89,10 +89,11 @@ def content_hash(folder: pathlib.Path) -> str:
 
 def shard_record(shard: Shard, config_hash: str, formats: tuple[str, ...], version: str,
                  folder: pathlib.Path) -> dict:
+    files = content_files(folder)
     return {"index": shard.index, "name": shard.name, "seed": shard.seed,
             "first_frame": shard.first_frame, "frames": shard.frames,
             "config_hash": config_hash, "formats": list(formats), "finflex_version": version,
-            "files": len(content_files(folder)), "content_hash": content_hash(folder)}
+            "files": len(files), "content_hash": content_hash(folder, files)}
 
 
 def read_record(folder: pathlib.Path) -> dict | None:
