@@ -370,6 +370,20 @@ TEST(CliPictures, TheDatasetLoadsWithPycocotools) {
   EXPECT_EQ(bent_truth.exit_code, 0) << bent_truth.out;
   EXPECT_NE(bent_truth.out.find("refracted at the surface"), std::string::npos) << bent_truth.out;
   std::printf("%s", bent_truth.out.c_str());
+
+  // From the camera in the water behind its flat port: likewise through air, the window
+  // and the water.
+  const std::string ported = test::temp_path("ported");
+  const RunResult port = run_cli(
+      "swim --fish 40 --seconds 0.05 --fps 20 --seed 3 --size 320x180 --annotate --video none "
+      "--formats coco,yolo --depth --refraction --camera underwater --port 0.03,0.012,1.52 "
+      "--species " +
+      low_resolution_species() + " --out '" + ported + "'");
+  ASSERT_EQ(port.exit_code, 0) << port.err;
+  const RunResult port_truth = check(FINFLEX_CHECK_TRUTH, ported);
+  EXPECT_EQ(port_truth.exit_code, 0) << port_truth.out;
+  EXPECT_NE(port_truth.out.find("refracted at the port"), std::string::npos) << port_truth.out;
+  std::printf("%s", port_truth.out.c_str());
 }
 
 // Runs `arguments` expecting exit 2 with one line holding `expected`, and nothing at
@@ -413,6 +427,9 @@ TEST(CliPictures, BadPictureInputsExitTwoAndWriteNothing) {
       {" --water muddy", "--water 'muddy' is not a water type (clear, ras, turbid)"},
       {" --vary-optics --turbidity 2", "--turbidity with --vary-optics"},
       {" --refraction --camera side", "--refraction bends the view rays at the water surface"},
+      {" --port 0.02,0.01,1.49", "--port is the underwater camera's housing"},
+      {" --camera underwater --refraction --port 0.02,0.01,3", "the refractive index is 1 to 2"},
+      {" --camera underwater --tanks 2", "--camera underwater is in one tank's water"},
       {" --annotate --keypoints snout,eye", "--keypoints: 'eye' is not a keypoint (snout, "},
       {" --annotate --keypoints snout,left_pectoral_tip", "go together"},
       {" --keypoints snout", "--keypoints is part of the dataset"},

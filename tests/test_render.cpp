@@ -223,18 +223,13 @@ TEST(Render, APatternPaintsTheBackDarkerThanTheBellyAndEachFishItsOwnShade) {
   }
 }
 
-TEST(Render, RefractionPerVertexIsWhereSnellsLawPutsTheFish) {
-  // The straight fish half a metre under the surface, seen obliquely from above: drawn
-  // with the view rays refracted on the GPU, and drawn straight at the apparent points
-  // the double-precision oracle gives each vertex; the silhouettes agree.
+// The straight fish half a metre under the surface (its middle at (0.3, 0.5, 0.2)) drawn
+// with the view rays refracted on the GPU, and drawn straight at the apparent points the
+// double-precision oracle gives each vertex: the silhouettes agree.
+void expect_refraction_as_the_oracle(const Scene& scene, const Camera& camera) {
   const FishPair& pair = fish_pair();
-  const glm::mat4 place = glm::translate(glm::mat4(1.0f), glm::vec3(0.3f, 0.0f, 0.2f)) *
-                          placement(pair.frame);  // its middle at y = 0.5
-  Camera camera;
-  camera.position = {0.0f, 2.2f, 1.6f};
-  camera.target = {0.3f, 0.5f, 0.2f};
-  Scene scene;
-  scene.view_refraction = true;
+  const glm::mat4 place =
+      glm::translate(glm::mat4(1.0f), glm::vec3(0.3f, 0.0f, 0.2f)) * placement(pair.frame);
   const std::size_t vertices = pair.mesh.vertex_count();
   const std::size_t plane = pair.batch.shape.plane_stride;
   std::vector<float> seen(3 * vertices);
@@ -271,7 +266,7 @@ TEST(Render, RefractionPerVertexIsWhereSnellsLawPutsTheFish) {
   oracle.positions = VertexStream::from_host(seen.data(), seen.size() * sizeof(float),
                                              StreamLayout::interleaved(vertices));
   Scene straight = scene;
-  straight.view_refraction = false;
+  straight.view_refraction = ViewRefraction::kNone;
   const Silhouette host = draw(straight, oracle);
   const Silhouette unbent = draw(straight, refracted);
   std::size_t differ = 0;
@@ -280,9 +275,32 @@ TEST(Render, RefractionPerVertexIsWhereSnellsLawPutsTheFish) {
   EXPECT_LT(double(differ), 0.01 * double(gpu.count)) << differ << " of " << gpu.count;
   EXPECT_LT(glm::length(gpu.centroid - host.centroid), 0.05);
   EXPECT_GT(glm::length(gpu.centroid - unbent.centroid), 5.0);  // refraction moves it
-  std::printf("refraction: %zu of %zu pixels differ, centroids %.3f px apart (%.1f px moved)\n",
-              differ, gpu.count, glm::length(gpu.centroid - host.centroid),
-              glm::length(gpu.centroid - unbent.centroid));
+  std::printf(
+      "refraction at the %s: %zu of %zu pixels differ, centroids %.3f px apart (%.1f px moved)\n",
+      to_string(scene.view_refraction), differ, gpu.count,
+      glm::length(gpu.centroid - host.centroid), glm::length(gpu.centroid - unbent.centroid));
+}
+
+TEST(Render, RefractionPerVertexIsWhereSnellsLawPutsTheFish) {
+  // Seen obliquely from above through the surface.
+  Camera camera;
+  camera.position = {0.0f, 2.2f, 1.6f};
+  camera.target = {0.3f, 0.5f, 0.2f};
+  Scene scene;
+  scene.view_refraction = ViewRefraction::kSurface;
+  expect_refraction_as_the_oracle(scene, camera);
+}
+
+TEST(Render, RefractionAtACameraPortIsWhereSnellsLawPutsTheFish) {
+  // From a camera in the water 0.8 m away behind a flat acrylic port, the fish off its
+  // axis (where the port moves it most).
+  Camera camera;
+  camera.position = {0.1f, 0.45f, 1.0f};
+  camera.target = {0.0f, 0.4f, 0.2f};
+  camera.near_plane = 0.03f;
+  Scene scene;
+  scene.view_refraction = ViewRefraction::kPort;
+  expect_refraction_as_the_oracle(scene, camera);
 }
 
 TEST(Render, PlanesInterleavedHalfAndDeviceBuffersGiveTheSamePicture) {

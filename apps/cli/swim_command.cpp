@@ -7,10 +7,11 @@
 //   finflex swim [--fish N] [--seconds S] [--fps F] [--species MESH:RIG ...]
 //                [--tank DIAMETER,DEPTH] [--tanks N] [--seed N] [--normals rotate|jacobian]
 //                [--device NAME] [--out DIR [--mesh-frames LIST]]
-//                [--size WxH] [--camera above|oblique|side] [--stereo B] [--samples N]
+//                [--size WxH] [--camera above|oblique|side|underwater] [--stereo B]
+//                [--samples N]
 //                [--distortion K1,K2,P1,P2,K3] [--noise READ,SHOT]
 //                [--water clear|ras|turbid] [--turbidity NTU] [--dissolved A440] [--vary-optics]
-//                [--refraction]
+//                [--refraction] [--port DISTANCE,THICKNESS,INDEX]
 //                [--image-frames all|none|LIST] [--video auto|none|mp4,gif,apng]
 //                [--annotate [--formats coco,yolo,webdataset] [--depth] [--keypoints LIST]]
 //                [--render | --no-render] [--draw all|written]
@@ -239,7 +240,7 @@ int run_swim(const SwimOptions& options) {
         {"tank", {{"diameter_m", plan.hall.tank.diameter}, {"depth_m", plan.hall.tank.depth}}},
         {"tanks", plan.hall.tanks},
         {"vary_optics", plan.pictures.optics.vary},
-        {"refraction", plan.pictures.refraction}};
+        {"refraction", render::to_string(plan.pictures.refraction)}};
     std::unique_ptr<SwimPictureFiles> files;
     if (pictures && staging) {
       files =
@@ -483,7 +484,8 @@ Command add_swim_command(CLI::App& app) {
                    "Frames to write as whole-tank meshes (e.g. 0,150,last)");
   swim->add_option("--size", options->size, "Rendered frames' size, WIDTHxHEIGHT")
       ->capture_default_str();
-  swim->add_option("--camera", options->camera, "above, oblique or side")->capture_default_str();
+  swim->add_option("--camera", options->camera, "above, oblique, side or underwater")
+      ->capture_default_str();
   swim->add_option("--stereo", options->stereo,
                    "BASELINE in metres: a rectified stereo pair, the right camera that far to "
                    "the right (frame_NNNNNN_right.png beside each image frame)");
@@ -505,8 +507,13 @@ Command add_swim_command(CLI::App& app) {
                  "Each frame its own water and light, drawn from the documented ranges "
                  "(seeded by --seed)");
   swim->add_flag("--refraction", options->refraction,
-                 "The view rays bend at the water surface (Snell's law per vertex; masks, depth "
-                 "and keypoints where the camera sees them)");
+                 "The view rays bend at the water surface, or at the underwater camera's flat "
+                 "port (Snell's law per vertex; masks, depth and keypoints where the camera "
+                 "sees them)");
+  swim->add_option("--port", options->port,
+                   "DISTANCE,THICKNESS,INDEX: the underwater camera's flat port, metres from "
+                   "the lens to the window, its thickness in metres and refractive index "
+                   "(default 0.02,0.01,1.49: acrylic)");
   swim->add_option("--samples", options->samples, "Multisampling of the rendered frames, 1..16")
       ->capture_default_str();
   swim->add_option("--image-frames", options->image_frames,

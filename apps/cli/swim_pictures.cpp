@@ -44,7 +44,8 @@ SwimPictureFiles::SwimPictureFiles(const std::string& folder, pictures::TankPict
         render::open_video((fs::path(folder) / ("swim." + extension)).string(), options));
   }
   // The surface that bends the view rays, where the pictures refract.
-  const render::Scene* refraction = pictures.look().view_refraction ? &pictures.look() : nullptr;
+  const render::Scene* refraction =
+      pictures.look().view_refraction != render::ViewRefraction::kNone ? &pictures.look() : nullptr;
   if (!plan.distortion.none()) {  // one lens for both cameras of a pair: the same intrinsics
     lens_ = std::make_shared<const pictures::LensWarp>(
         plan.distortion, render::pinhole_intrinsics(pictures.camera(), size.width, size.height),

@@ -70,12 +70,36 @@ void plan_optics(const SwimOptions& options, SwimPlan& plan) {
     optics.base.water.dissolved_absorption_440 =
         float(parse_in_range(options.dissolved, "--dissolved", 0.0, 20.0, "per metre"));
   }
-  if (options.refraction && plan.pictures.view == pictures::CameraView::kSide) {
+  const pictures::CameraView view = plan.pictures.view;
+  if (options.refraction && view == pictures::CameraView::kSide) {
     throw Error(ErrorCode::kInvalidArgument, "--refraction",
-                "--refraction bends the view rays at the water surface: the side camera looks "
-                "through the wall (use --camera above or oblique)");
+                "--refraction bends the view rays at the water surface or the underwater "
+                "camera's port: the side camera looks through the wall (use --camera above, "
+                "oblique or underwater)");
   }
-  plan.pictures.refraction = options.refraction;
+  if (options.refraction) {
+    plan.pictures.refraction = view == pictures::CameraView::kUnderwater
+                                   ? render::ViewRefraction::kPort
+                                   : render::ViewRefraction::kSurface;
+  }
+  if (!options.port.empty()) {
+    if (plan.pictures.refraction != render::ViewRefraction::kPort) {
+      throw Error(ErrorCode::kInvalidArgument, "--port",
+                  "--port is the underwater camera's housing: it needs --camera underwater "
+                  "--refraction");
+    }
+    const std::vector<double> port = parse_number_list(options.port, "--port", 3);
+    const auto check = [&](double value, double low, double high, const char* what) {
+      if (value < low || value > high) {
+        throw Error(ErrorCode::kInvalidArgument, "--port",
+                    "--port '" + options.port + "': " + what);
+      }
+    };
+    check(port[0], 1e-4, 0.5, "the distance is 0.0001 to 0.5 m");
+    check(port[1], 0.0, 0.1, "the thickness is 0 to 0.1 m");
+    check(port[2], 1.0, 2.0, "the refractive index is 1 to 2");
+    plan.pictures.port = {float(port[0]), float(port[1]), float(port[2])};
+  }
   optics.vary = options.vary_optics;
   optics.seed = plan.seed;
   if (optics.vary) {
@@ -285,6 +309,11 @@ SwimPlan plan_of(const SwimOptions& options) {
     plan.levels = levels;
   }
   plan_pictures(options, plan);
+  if (tanks > 1 && plan.pictures.view == pictures::CameraView::kUnderwater) {
+    throw Error(ErrorCode::kInvalidArgument, "--camera",
+                "--camera underwater is in one tank's water: a hall of --tanks " + options.tanks +
+                    " is seen from its own camera above");
+  }
   if (!options.out.empty()) check_output_folder(options.out, "--out");
   return plan;
 }

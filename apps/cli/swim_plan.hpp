@@ -39,7 +39,8 @@ struct SwimOptions {
   std::string turbidity;                    // NTU; empty: the water type's
   std::string dissolved;                    // a_g(440) per metre; empty: the water type's
   bool vary_optics = false;                 // each frame its own water and light
-  bool refraction = false;                  // view rays bend at the water surface
+  bool refraction = false;                  // view rays bend at the surface or the port
+  std::string port;                         // DISTANCE,THICKNESS,INDEX; empty: FlatPort's
   std::string samples = "4";
   std::string image_frames;
   std::string video;

@@ -1,5 +1,7 @@
 #include "camera_file.hpp"
 
+#include <string>
+
 namespace finflex::pictures {
 
 namespace {
@@ -12,6 +14,25 @@ nlohmann::ordered_json rows(const glm::dmat4& m) {
 
 nlohmann::ordered_json vector(const glm::vec3& v) {
   return {double(v.x), double(v.y), double(v.z)};
+}
+
+// The refraction part of the "optics" convention.
+std::string refraction_words(const render::Scene* refraction) {
+  const render::ViewRefraction kind =
+      refraction ? refraction->view_refraction : render::ViewRefraction::kNone;
+  switch (kind) {
+    case render::ViewRefraction::kSurface:
+      return ", the view rays refracted at the water surface by Snell's law (refraction: the "
+             "plane y = surface_y_m)";
+    case render::ViewRefraction::kPort:
+      return ", the camera in the water behind a flat port, the view rays refracted by Snell's "
+             "law from air into the window and from the window into the water (refraction: "
+             "the window's faces square to the camera's z axis at Z = port_distance_m and "
+             "port_distance_m + port_thickness_m)";
+    case render::ViewRefraction::kNone:
+      break;
+  }
+  return ", no refraction";
 }
 
 }  // namespace
@@ -51,11 +72,17 @@ nlohmann::ordered_json camera_json(const render::Camera& camera, int width, int 
       {"optics", std::string(distortion.none() ? "an ideal pinhole"
                                                : "a pinhole with lens distortion in OpenCV's model "
                                                  "(cv::projectPoints: k1 k2 p1 p2 k3)") +
-                     (refraction ? ", the view rays refracted at the water surface by Snell's law "
-                                   "(refraction: the plane y = surface_y_m)"
-                                 : ", no refraction at the water's surface")}};
-  if (refraction) {
-    out["refraction"] = {{"surface_y_m", refraction->tank.water_depth},
+                     refraction_words(refraction)}};
+  if (refraction && refraction->view_refraction == render::ViewRefraction::kSurface) {
+    out["refraction"] = {{"interface", "surface"},
+                         {"surface_y_m", refraction->tank.water_depth},
+                         {"refractive_index", refraction->water.refractive_index},
+                         {"tank_radius_m", refraction->tank.radius}};
+  } else if (refraction && refraction->view_refraction == render::ViewRefraction::kPort) {
+    out["refraction"] = {{"interface", "port"},
+                         {"port_distance_m", refraction->port.distance},
+                         {"port_thickness_m", refraction->port.thickness},
+                         {"port_refractive_index", refraction->port.refractive_index},
                          {"refractive_index", refraction->water.refractive_index},
                          {"tank_radius_m", refraction->tank.radius}};
   }

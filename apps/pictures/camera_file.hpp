@@ -15,9 +15,11 @@ namespace finflex::pictures {
 //  "distortion" (k1 k2 p1 p2 k3, OpenCV's order: lens.hpp), "camera_from_world" and
 //  "world_from_camera" (4x4 rows, OpenCV axes), "position", "target", "up", "vertical_fov_degrees",
 //  "near", "far", "conventions": {...}}. Values from render::pinhole_intrinsics and
-//  render::camera_from_world. With `refraction` (a scene whose view rays bend at the
-//  water surface, render::Scene::view_refraction) also "refraction": {"surface_y_m",
-//  "refractive_index", "tank_radius_m"}.
+//  render::camera_from_world. With `refraction` (a scene whose view rays bend,
+//  render::Scene::view_refraction) also "refraction": {"interface": "surface",
+//  "surface_y_m", "refractive_index", "tank_radius_m"} or {"interface": "port",
+//  "port_distance_m", "port_thickness_m", "port_refractive_index", "refractive_index",
+//  "tank_radius_m"}.
 nlohmann::ordered_json camera_json(const render::Camera& camera, int width, int height,
                                    const LensDistortion& distortion = {},
                                    const render::Scene* refraction = nullptr);

@@ -75,7 +75,7 @@ struct DatasetOptions {
   // The pictures' lens (lens.hpp; null: none), for the frame's size and camera:
   // masks, depth and keypoints go through it too.
   std::shared_ptr<const LensWarp> lens;
-  // The scene whose water surface bends the view rays (render::Scene::view_refraction,
+  // The scene whose surface or camera port bends the view rays (render::Scene::view_refraction,
   // as the pictures were drawn): keypoints where the camera sees them through it.
   std::optional<render::Scene> refraction;
   // The keypoints annotated, indices into kKeypointNames in its order (chosen_keypoints):

@@ -32,8 +32,11 @@ struct PictureSettings {
   // > 0: a rectified stereo pair, the right camera this many metres to the left one's
   // right (stereo_right_camera); 0: one camera.
   double stereo_baseline = 0.0;
-  OpticsSettings optics;    // the water and the light, the same or varied per frame
-  bool refraction = false;  // view rays bend at the water surface (Scene::view_refraction)
+  OpticsSettings optics;  // the water and the light, the same or varied per frame
+  // Where the view rays bend (Scene::view_refraction): kSurface for a camera above the
+  // water, kPort (at `port`) for the underwater one.
+  render::ViewRefraction refraction = render::ViewRefraction::kNone;
+  render::FlatPort port;
 };
 
 // The renderer's settings for pictures of `settings`.

@@ -72,6 +72,8 @@ const char* to_string(CameraView view) {
       return "above";
     case CameraView::kSide:
       return "side";
+    case CameraView::kUnderwater:
+      return "underwater";
     case CameraView::kOblique:
       break;
   }
@@ -79,11 +81,12 @@ const char* to_string(CameraView view) {
 }
 
 CameraView parse_camera_view(const std::string& text, const std::string& option) {
-  for (CameraView view : {CameraView::kAbove, CameraView::kOblique, CameraView::kSide}) {
+  for (CameraView view :
+       {CameraView::kAbove, CameraView::kOblique, CameraView::kSide, CameraView::kUnderwater}) {
     if (text == to_string(view)) return view;
   }
   throw Error(ErrorCode::kInvalidArgument, option,
-              option + " '" + text + "' is not a camera view (above, oblique or side)");
+              option + " '" + text + "' is not a camera view (above, oblique, side or underwater)");
 }
 
 render::Scene tank_scene(const tank::HallSettings& settings) {
@@ -128,6 +131,14 @@ render::Camera tank_camera(const tank::TankSettings& settings, CameraView view, 
       camera.target = {0.0f, 0.5f * depth, 0.0f};
       break;
     }
+    case CameraView::kUnderwater:
+      // 5 % of the radius in from the wall (a housing on it), looking at the axis at a
+      // tenth of the depth: about 12 degrees down for the default tank, so the frame's
+      // top edge meets the far wall below the surface (which is not drawn from below).
+      camera.position = {0.0f, 0.4f * depth, 0.95f * radius};
+      camera.target = {0.0f, 0.1f * depth, 0.0f};
+      camera.near_plane = 0.03f;  // the housing's port: nothing is seen nearer
+      break;
     case CameraView::kOblique:
       camera = fit_view(camera, glm::radians(40.0f), tank_outline(radius, rim),
                         {0.0f, depth / 3.0f, 0.0f}, width, height);

@@ -19,11 +19,16 @@ namespace finflex::pictures {
 //   kAbove:   straight down from above the rim, as the counting cameras of fish farms;
 //   kOblique: from above and to one side, 40 degrees down (the default: depth shows);
 //   kSide:    level with the middle of the water, through the near wall (drawn cut away),
-//             as through a tank window.
-enum class CameraView { kAbove, kOblique, kSide };
+//             as through a tank window;
+//   kUnderwater: in the water at the near wall, 40 % of the depth up, looking across
+//             the tank towards its axis low over the floor, as the wall-mounted cameras
+//             of RAS monitoring (in a housing whose flat port bends its view rays with
+//             Scene::view_refraction kPort).
+enum class CameraView { kAbove, kOblique, kSide, kUnderwater };
 
 const char* to_string(CameraView view);
-// "above", "oblique", "side"; kInvalidArgument naming `option` and the text otherwise.
+// "above", "oblique", "side", "underwater"; kInvalidArgument naming `option` and the text
+// otherwise.
 CameraView parse_camera_view(const std::string& text, const std::string& option);
 
 // The tank as the renderer draws it: the settings' diameter and water depth, a wall

@@ -66,8 +66,9 @@
 #                          detail, and the farm's last frame (render_levels_farm.png)
 #   dataset        .txt    `finflex swim --annotate` of 1,000 fish at 1280 x 720 on the GPU:
 #                          mono COCO; with YOLO and depth; a stereo pair; and with a
-#                          lens and noise; mono with refraction and varied optics (frame
-#                          times side by side)
+#                          lens and noise; mono with refraction and varied optics; the
+#                          underwater camera straight and behind its port (frame times
+#                          side by side)
 #   dataset_scaling .txt   `python -m finflex.dataset` by workers (bench/dataset_scaling.py):
 #                          400 frames of 1,000 fish at 1280 x 720 in shards of 100 on
 #                          the GPU worker in process and as a Ray actor; the README's
@@ -443,6 +444,10 @@ dataset() {
       --noise 2,4
     dataset_swim "mono, COCO, YOLO, depth, refraction, water and light varied: 15 frames" \
       mono-optics --formats coco,yolo --depth --refraction --vary-optics
+    dataset_swim "underwater camera, COCO, YOLO, depth: 15 frames" underwater \
+      --formats coco,yolo --depth --camera underwater
+    dataset_swim "underwater camera behind its flat port, COCO, YOLO, depth: 15 frames" \
+      underwater-port --formats coco,yolo --depth --camera underwater --refraction
     print_summaries "$scratch" frames_per_second,seconds_per_frame_mean,share_of_frame,gpu
     rm -rf "${scratch:?}"/*
   done

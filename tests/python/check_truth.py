@@ -86,24 +86,40 @@ def camera_of(folder, image):
     return camera["stereo"]["right"] if image.get("camera") == "right" else camera
 
 
-def refracted(eye, ray, refraction):
-    """Where the ray from the eye meets the water surface's plane, and its direction
-    beyond (Snell's law in vector form, the surface's normal up), if it bends there."""
-    if refraction is None or eye[1] <= refraction["surface_y_m"] or ray[1] >= 0:
-        return eye, ray
-    q = eye + (refraction["surface_y_m"] - eye[1]) / ray[1] * ray
-    d = ray / np.linalg.norm(ray)
-    eta = 1.0 / refraction["refractive_index"]
-    cos_in = -d[1]
+def snell(d, normal, eta):
+    """Unit direction d refracted through a face of unit normal `normal` (towards where d
+    comes from) from index n1 to n2, eta = n1 / n2 (Snell's law in vector form)."""
+    cos_in = -float(d @ normal)
     cos_out = np.sqrt(1.0 - eta * eta * (1.0 - cos_in * cos_in))
-    return q, eta * d + (eta * cos_in - cos_out) * np.array([0.0, 1.0, 0.0])
+    return eta * d + (eta * cos_in - cos_out) * normal
+
+
+def refracted(eye, ray, refraction, axis):
+    """Where the ray from the eye enters the water and its direction there: bent at the
+    water surface's plane (its normal up), or through the camera's flat port (air, the
+    window, water; its faces square to the camera's axis `axis`), if it bends."""
+    d = ray / np.linalg.norm(ray)
+    if refraction is None:
+        return eye, d
+    n = refraction["refractive_index"]
+    if refraction.get("interface", "surface") == "port":
+        normal = -axis
+        inner = eye + refraction["port_distance_m"] / float(d @ axis) * d
+        window = refraction["port_refractive_index"]
+        d = snell(d, normal, 1.0 / window)
+        outer = inner + refraction["port_thickness_m"] / float(d @ axis) * d
+        return outer, snell(d, normal, window / n)
+    if eye[1] <= refraction["surface_y_m"] or d[1] >= 0:
+        return eye, d
+    q = eye + (refraction["surface_y_m"] - eye[1]) / d[1] * d
+    return q, snell(d, np.array([0.0, 1.0, 0.0]), 1.0 / n)
 
 
 def floor_errors(folder, image, depth, ids):
     """On pixels that show the tank's floor (no fish at or next to them, the ray's floor
     point well inside the wall), the depth against the ray's intersection with the plane
     y = 0, from camera.json alone (OpenCV's axes; pixel (i, j)'s centre at i + 0.5,
-    j + 0.5; with "refraction", the ray bent at the surface)."""
+    j + 0.5; with "refraction", the ray bent at the surface or the camera's port)."""
     camera = camera_of(folder, image)
     with open(os.path.join(folder, "camera.json")) as f:
         refraction = json.load(f).get("refraction")
@@ -123,7 +139,7 @@ def floor_errors(folder, image, depth, ids):
             ray = rotation @ np.array([x, y, 1.0])
             if ray[1] >= 0:
                 continue
-            start, direction = refracted(eye, ray, refraction)
+            start, direction = refracted(eye, ray, refraction, rotation[:, 2])
             point = start - start[1] / direction[1] * direction  # where it meets y = 0
             z = float(rotation[:, 2] @ (point - eye))  # its camera depth
             if np.hypot(point[0], point[2]) < 0.9 * radius:
@@ -364,7 +380,8 @@ def main(folder):
     optics = check_optics(coco)
     medians = [float(np.median(errors[i])) if errors[i] else 0.0 for i in range(2)]
     with open(os.path.join(folder, "camera.json")) as f:
-        refraction = "; refracted at the surface" if "refraction" in json.load(f) else ""
+        bent = json.load(f).get("refraction")
+    refraction = "; refracted at the %s" % bent.get("interface", "surface") if bent else ""
     print("check_truth: %d YOLO lines agree with coco.json (%d outlines with holes); depth on the "
           "floor within %.3f mm (%d pixels), at keypoints: snout median %.1f mm (%d), tail fork "
           "median %.1f mm (%d); weights follow their relation; spines %.3f to %.3f of the fork "

@@ -15,6 +15,8 @@ layout(std140) uniform Scene {
   vec4 u_key_downwelling;    // rgb: the key light's diffuse attenuation K_d per metre of depth
   vec4 u_ambient_downwelling;  // rgb: the ambient light's
   vec4 u_tank_rows;        // x: tanks, y: tanks per row, z: spacing of their axes (m)
+  vec4 u_refraction;       // x: 0 straight, 1 at the surface, 2 at the port; yzw: the port's
+                           // distance (m), thickness (m), refractive index
 };
 
 // Tank t's axis on the floor, (x, z) (render/scene.hpp TankRows).

@@ -137,15 +137,17 @@ struct Renderer::Impl {
     return *pass;
   }
   TankPass& tank_pass(const Scene& scene) {
-    return scene.view_refraction ? made(tank_refracted, true) : tank;
+    return scene.view_refraction != ViewRefraction::kNone ? made(tank_refracted, true) : tank;
   }
   FishPass& colour_pass(const Scene& scene) {
-    return scene.view_refraction ? made(fish_refracted, limits, FishOutput::kLitColour, true)
-                                 : fish;
+    return scene.view_refraction != ViewRefraction::kNone
+               ? made(fish_refracted, limits, FishOutput::kLitColour, true)
+               : fish;
   }
   FishPass& id_pass(const Scene& scene) {
-    return scene.view_refraction ? made(fish_ids_refracted, limits, FishOutput::kIds, true)
-                                 : *fish_ids;
+    return scene.view_refraction != ViewRefraction::kNone
+               ? made(fish_ids_refracted, limits, FishOutput::kIds, true)
+               : *fish_ids;
   }
 
   // Every pass's start: the context current, its inputs checked.

@@ -4,6 +4,18 @@
 
 namespace finflex::render {
 
+const char* to_string(ViewRefraction refraction) {
+  switch (refraction) {
+    case ViewRefraction::kSurface:
+      return "surface";
+    case ViewRefraction::kPort:
+      return "port";
+    case ViewRefraction::kNone:
+      break;
+  }
+  return "none";
+}
+
 void Scene::validate() const {
   using namespace detail;
   require_positive("scene.tank.radius", tank.radius);
@@ -37,6 +49,9 @@ void Scene::validate() const {
   require_in_range("scene.lighting.specular", lighting.specular, 0.0f, 1.0f);
   require_in_range("scene.lighting.shininess", lighting.shininess, 1.0f, 10000.0f);
   require_non_negative("scene.background", background);
+  require_positive("scene.port.distance", port.distance);
+  require_in_range("scene.port.thickness", port.thickness, 0.0f, 1.0f);
+  require_in_range("scene.port.refractive_index", port.refractive_index, 1.0f, 2.0f);
 }
 
 }  // namespace finflex::render

@@ -27,6 +27,8 @@ SceneBlock make_scene_block(const Scene& scene, const Camera& camera, float aspe
   block.ambient_downwelling = glm::vec4(downwelling_attenuation(water, 1.0f), 0.0f);
   block.tank_rows =
       glm::vec4(float(scene.rows.count), float(scene.rows.columns), scene.rows.spacing, 0.0f);
+  block.refraction = glm::vec4(float(static_cast<int>(scene.view_refraction)), scene.port.distance,
+                               scene.port.thickness, scene.port.refractive_index);
   return block;
 }
 

@@ -21,9 +21,10 @@ struct SceneBlock {
   glm::vec4 key_in_water;
   glm::vec4 key_downwelling;
   glm::vec4 ambient_downwelling;
-  glm::vec4 tank_rows;  // x: count, y: columns, z: spacing
+  glm::vec4 tank_rows;   // x: count, y: columns, z: spacing
+  glm::vec4 refraction;  // x: ViewRefraction (0, 1, 2); yzw: the port's distance, thickness, index
 };
-static_assert(sizeof(SceneBlock) == 64 + 12 * 16, "std140: a mat4 and twelve vec4");
+static_assert(sizeof(SceneBlock) == 64 + 13 * 16, "std140: a mat4 and thirteen vec4");
 
 SceneBlock make_scene_block(const Scene& scene, const Camera& camera, float aspect);
 

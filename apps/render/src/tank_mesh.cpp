@@ -15,7 +15,7 @@ constexpr float kDrainAlbedo = 0.4f;   // of the floor's albedo
 // refracted per vertex (Scene::view_refraction) stay within a fraction of a pixel
 // inside them (docs/rendering.md "Refraction").
 constexpr int kWallRows = 16;
-constexpr int kFloorRings = 24;
+constexpr int kFloorRings = 48;
 
 glm::vec3 on_circle(float radius, float angle, float y) {
   return {radius * std::cos(angle), y, radius * std::sin(angle)};

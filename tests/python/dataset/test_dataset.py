@@ -193,6 +193,9 @@ def test_the_merged_files_read_back(reference):
     ({"config": {"tank": {"fish": 2.5}}}, "config.tank.fish"),
     ({"config": {"species": [{"mesh": "no.obj", "rig": "no.json"}]}}, "config.species[0].mesh"),
     ({"config": {"camera": {"stereo_baseline_m": 0}}}, "config.camera.stereo_baseline_m"),
+    ({"config": {"optics": {"port": {"distance_m": 0.01}}}}, "config.optics.port"),
+    ({"config": {"camera": {"view": "underwater"}, "optics": {
+        "refraction": True, "port": {"thickness_m": -1}}}}, "config.optics.port.thickness_m"),
 ])
 def test_bad_input_is_refused_naming_it_with_nothing_written(folder, change, field):
     out = folder / f"bad_{field.strip('-').replace('.', '_')}"

@@ -41,6 +41,24 @@ struct Lighting {
   float shininess = 48.0f;                           // Blinn-Phong exponent
 };
 
+// Where a camera's view rays bend on their way to what it sees (render/refraction.hpp).
+enum class ViewRefraction {
+  kNone,     // straight: an ideal cut-away seen from outside, or an ideal pinhole in the water
+  kSurface,  // at the water's flat surface, the camera above it
+  kPort,     // at the flat port of the camera's housing in the water: air inside, a
+             // window of acrylic or glass square to the camera's axis, water beyond
+};
+
+const char* to_string(ViewRefraction refraction);  // "none", "surface", "port"
+
+// A camera housing's flat port (ViewRefraction::kPort). Defaults: a 10 mm acrylic window
+// (PMMA, n = 1.49 at 589 nm) 20 mm in front of the lens's centre of projection.
+struct FlatPort {
+  float distance = 0.02f;          // m from the centre of projection to the window's inner face
+  float thickness = 0.01f;         // m of window, >= 0
+  float refractive_index = 1.49f;  // of the window, 1 .. 2
+};
+
 struct Scene {
   Tank tank;
   TankRows rows;
@@ -49,18 +67,20 @@ struct Scene {
   // clear air first. In a hall, that is the water of the tank the seen point is in.
   Water water = water_optics(WaterComposition{});
   Lighting lighting;
-  // The view rays of a camera above the water bend at its flat surface by Snell's law
-  // (render/refraction.hpp; water.refractive_index), applied per vertex; false: they
-  // go straight (an ideal cut-away).
-  bool view_refraction = false;
+  // Where the view rays bend by Snell's law (render/refraction.hpp; the water's
+  // water.refractive_index), applied per vertex: kSurface for a camera above the water,
+  // kPort for one in it behind `port`; kNone: they go straight.
+  ViewRefraction view_refraction = ViewRefraction::kNone;
+  FlatPort port;
   glm::vec3 background{0.015f, 0.017f, 0.02f};  // outside the tank: a dim room
 
   // Throws RenderError (kInvalidArgument) naming the field ("scene.tank.radius", ...)
   // when a value is not finite, a length is not > 0, water_depth exceeds wall_height,
   // a colour, absorption or scattering is negative, phase_asymmetry is outside
   // 0 .. 0.99, refractive_index outside 1 .. 2, specular outside 0 .. 1, shininess < 1,
-  // segments < 8, direction_to_light is zero, or rows ("scene.rows.count", ...) out
-  // of its ranges.
+  // segments < 8, direction_to_light is zero, rows ("scene.rows.count", ...) out of
+  // its ranges, or the port ("scene.port.distance", ...) has a distance not > 0, a
+  // negative thickness or an index outside 1 .. 2.
   void validate() const;
 };
 

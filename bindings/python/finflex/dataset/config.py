@@ -25,7 +25,7 @@ DEFAULTS: dict[str, Any] = {
     "camera": {"view": "oblique", "width": 640, "height": 360, "samples": 4,
                "stereo_baseline_m": None, "distortion": None, "noise": None},
     "optics": {"water": "ras", "turbidity_ntu": None, "dissolved_a440": None,
-               "vary": True, "refraction": False},
+               "vary": True, "refraction": False, "port": None},
     "swim": {"fps": 30.0, "warmup_frames": 30, "frame_step": 1, "normals": "jacobian"},
     "annotation": {"keypoints": list(KEYPOINTS), "depth": True, "length_weight": {}},
 }
@@ -51,6 +51,21 @@ def _choice(field: str, value: Any, choices: tuple[str, ...]) -> str:
     if value not in choices:
         raise _fail(field, f"{value!r} is not one of {', '.join(choices)}")
     return value
+
+
+def _port(value: Any) -> dict[str, float]:
+    """optics.port: {"distance_m", "thickness_m", "refractive_index"}, each optional."""
+    field = "optics.port"
+    if not isinstance(value, dict):
+        raise _fail(field, f"{value!r} is not a table of distance_m, thickness_m, refractive_index")
+    ranges = {"distance_m": (0.0001, 0.5, 0.02), "thickness_m": (0.0, 0.1, 0.01),
+              "refractive_index": (1.0, 2.0, 1.49)}
+    unknown = sorted(set(value) - set(ranges))
+    if unknown:
+        raise _fail(f"{field}.{unknown[0]}", "is not a field (distance_m, thickness_m, "
+                    "refractive_index)")
+    return {key: _number(f"{field}.{key}", value.get(key, default), low, high)
+            for key, (low, high, default) in ranges.items()}
 
 
 def _flag(field: str, value: Any) -> bool:
@@ -120,7 +135,8 @@ def validate(config: Any, base: pathlib.Path) -> dict[str, Any]:
 
     camera = _section(config, "camera")
     out["camera"] = {
-        "view": _choice("camera.view", camera["view"], ("above", "oblique", "side")),
+        "view": _choice("camera.view", camera["view"],
+                        ("above", "oblique", "side", "underwater")),
         "width": _number("camera.width", camera["width"], 16, 16384, integer=True),
         "height": _number("camera.height", camera["height"], 16, 16384, integer=True),
         "samples": _number("camera.samples", camera["samples"], 1, 16, integer=True),
@@ -141,9 +157,16 @@ def validate(config: Any, base: pathlib.Path) -> dict[str, Any]:
             "optics.dissolved_a440", optics["dissolved_a440"], 0.0, 20.0),
         "vary": _flag("optics.vary", optics["vary"]),
         "refraction": _flag("optics.refraction", optics["refraction"]),
+        "port": None if optics["port"] is None else _port(optics["port"]),
     }
     if out["optics"]["refraction"] and out["camera"]["view"] == "side":
         raise _fail("optics.refraction", "true with camera.view 'side' (it looks through the wall)")
+    if out["optics"]["port"] is not None and not (
+            out["optics"]["refraction"] and out["camera"]["view"] == "underwater"):
+        raise _fail("optics.port", "the underwater camera's housing: it needs camera.view "
+                    "'underwater' and optics.refraction true")
+    if out["camera"]["view"] == "underwater" and out["tank"]["tanks"] > 1:
+        raise _fail("camera.view", "'underwater' is in one tank's water: not with tank.tanks > 1")
 
     swim = _section(config, "swim")
     out["swim"] = {

@@ -82,6 +82,10 @@ def swim_arguments(config: dict, shard: Shard, formats: tuple[str, ...], out: st
         args.append("--vary-optics")
     if optics["refraction"]:
         args.append("--refraction")
+    if optics["port"] is not None:
+        port = optics["port"]
+        args += ["--port", ",".join(repr(port[key]) for key in
+                                    ("distance_m", "thickness_m", "refractive_index"))]
     if annotation["depth"]:
         args.append("--depth")
     for name, (a, b) in annotation["length_weight"].items():
@@ -99,7 +103,8 @@ OPTION_FIELDS = {
     "--stereo": "camera.stereo_baseline_m", "--distortion": "camera.distortion",
     "--noise": "camera.noise", "--water": "optics.water", "--turbidity": "optics.turbidity_ntu",
     "--dissolved": "optics.dissolved_a440", "--vary-optics": "optics.vary",
-    "--refraction": "optics.refraction", "--keypoints": "annotation.keypoints",
+    "--refraction": "optics.refraction", "--port": "optics.port",
+    "--keypoints": "annotation.keypoints",
     "--length-weight": "annotation.length_weight", "--species": "species",
     "--depth": "annotation.depth",
 }
