@@ -204,6 +204,36 @@ Placed place_in_rows(const std::vector<int>& level_of, const std::vector<std::si
   return out;
 }
 
+TEST(LevelChoice, EveryViewCountsOnTheDeviceAsOnTheHost) {
+  // Two to four views (a stereo pair, cameras around the tank): the device takes each
+  // fish's finest need over the views that see it, as the host does.
+  const std::size_t count = 3000;
+  const std::vector<PlacementRecord> records = records_of(scattered(count, 11));
+  const cl::Buffer buffer = upload(records);
+  LevelChoiceOptions options;
+  options.pixel_budget = 0.25;
+  const BodyBounds bounds = body_bounds(blub_levels().level(0).model);
+  const std::vector<double> errors = level_errors(blub_levels());
+  const glm::dvec3 eyes[3] = {kEye + glm::dvec3(0.3, 0.0, 0.0), glm::dvec3(4.0, 1.0, 0.0),
+                              glm::dvec3(-3.0, 2.0, -1.0)};
+  std::vector<LevelView> views{camera()};
+  for (const glm::dvec3& eye : eyes) {
+    views.push_back(
+        LevelView::look_at(eye, kTarget, {0, 1, 0}, kFov, kWidth, kHeight, kNear, kFar));
+    LevelChooser chooser(test::shared_context(), blub_levels(), count, options);
+    chooser.enqueue(buffer, count, views);
+    const LevelChooser::Choice choice = chooser.read();
+    std::size_t differ = 0, visible = 0;
+    for (std::size_t i = 0; i < count; ++i) {
+      differ += choice.level_of[i] !=
+                choose_level_on_host(records[i], bounds, errors, views, options, -1);
+      visible += choice.level_of[i] >= 0;
+    }
+    EXPECT_LE(differ, 3u) << views.size() << " views";  // float's rounding at a budget's edge
+    EXPECT_GT(visible, count / 10) << views.size() << " views";
+  }
+}
+
 TEST(LevelChoice, FishPastALevelsRowsGoToTheNextCoarserLevelWithRoom) {
   const std::size_t count = 3000;
   const cl::Buffer buffer = upload(records_of(scattered(count, 7)));

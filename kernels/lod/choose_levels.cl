@@ -26,6 +26,26 @@
 #define FF_VIEW_FLOATS 32
 #define FF_LOD_INLINE inline __attribute__((always_inline))
 
+/* Whether the sphere (centre c, radius) meets the frustum plane (a, b, c, d). */
+FF_LOD_INLINE bool within_plane(const float4 plane, const float3 c, const float radius) {
+  return dot(plane.xyz, c) + plane.w >= -radius;
+}
+
+/* The size of a body length in pixels in one view (its FF_VIEW_FLOATS floats as two
+ * float16: a holds planes 0-3, b planes 4-5, the depth row, the near depth and the focal
+ * length), or -1 where the sphere misses its frustum. Straight from the arguments: a
+ * copy of the views into a private array spilled to memory on GPUs, and cost more
+ * than the choice itself. */
+FF_LOD_INLINE float view_pixels(const float16 a, const float16 b, const float3 c,
+                                const float radius, const float length) {
+  const bool inside = within_plane(a.s0123, c, radius) && within_plane(a.s4567, c, radius) &&
+                      within_plane(a.s89ab, c, radius) && within_plane(a.scdef, c, radius) &&
+                      within_plane(b.s0123, c, radius) && within_plane(b.s4567, c, radius);
+  if (!inside) return -1.0f;
+  const float depth = dot(b.s89a, c) + b.sb - radius;
+  return length * b.sd / fmax(depth, b.sc);
+}
+
 __kernel __attribute__((reqd_work_group_size(FF_LOD_GROUP, 1, 1))) void lod_choose(
     __global const float* restrict placements, const uint instances, const float4 bounds,
     __global const float* restrict level_errors, const float16 view0_a, const float16 view0_b,
@@ -33,16 +53,6 @@ __kernel __attribute__((reqd_work_group_size(FF_LOD_GROUP, 1, 1))) void lod_choo
     const float16 view3_a, const float16 view3_b, const uint view_count, const float budget,
     const float keep_budget, __global int* restrict level_of,
     __global uint* restrict group_counts) {
-  /* The views travel as arguments (no upload to wait for): FF_VIEW_FLOATS floats each. */
-  float views[4 * FF_VIEW_FLOATS];
-  vstore16(view0_a, 0, views);
-  vstore16(view0_b, 1, views);
-  vstore16(view1_a, 2, views);
-  vstore16(view1_b, 3, views);
-  vstore16(view2_a, 4, views);
-  vstore16(view2_b, 5, views);
-  vstore16(view3_a, 6, views);
-  vstore16(view3_b, 7, views);
   __local uint counts[FF_LOD_LEVELS];
   const uint item = get_local_id(0);
   if (item < FF_LOD_LEVELS) counts[item] = 0;
@@ -57,20 +67,18 @@ __kernel __attribute__((reqd_work_group_size(FF_LOD_GROUP, 1, 1))) void lod_choo
     const float length = 1.0f / r[12];
     const float radius = length * bounds.w;
     /* The largest size of a body length in pixels over the views that see it. */
-    float pixels_per_length = -1.0f;
-    for (uint w = 0; w < view_count; ++w) {
-      const float* view = views + w * FF_VIEW_FLOATS;
-      bool inside = true;
-      for (int q = 0; q < 6; ++q) {
-        const float distance = view[4 * q] * centre.x + view[4 * q + 1] * centre.y +
-                               view[4 * q + 2] * centre.z + view[4 * q + 3];
-        inside = inside && distance >= -radius;
-      }
-      if (!inside) continue;
-      const float depth =
-          view[24] * centre.x + view[25] * centre.y + view[26] * centre.z + view[27] - radius;
-      const float nearest = fmax(depth, view[28]);
-      pixels_per_length = fmax(pixels_per_length, length * view[29] / nearest);
+    float pixels_per_length = view_pixels(view0_a, view0_b, centre, radius, length);
+    if (view_count > 1) {
+      pixels_per_length =
+          fmax(pixels_per_length, view_pixels(view1_a, view1_b, centre, radius, length));
+    }
+    if (view_count > 2) {
+      pixels_per_length =
+          fmax(pixels_per_length, view_pixels(view2_a, view2_b, centre, radius, length));
+    }
+    if (view_count > 3) {
+      pixels_per_length =
+          fmax(pixels_per_length, view_pixels(view3_a, view3_b, centre, radius, length));
     }
     int level = -1;
     if (pixels_per_length >= 0.0f) {
@@ -93,9 +101,11 @@ __kernel __attribute__((reqd_work_group_size(FF_LOD_GROUP, 1, 1))) void lod_choo
 }
 
 /* One group of FF_LOD_GROUP work-items over `groups` groups' counts: work-item j sums
- * a contiguous run of groups, work-item 0 scans the runs, each writes its groups'
- * starts. draw_arguments: per level GL's DrawElementsIndirectCommand (index count,
- * instance count, first index, base vertex, base instance). */
+ * a contiguous run of groups, an inclusive scan (Hillis-Steele, every level at once)
+ * gives each run's start and each level's total, work-item 0 carries the instances
+ * without room from level to level, each writes its groups' starts. draw_arguments: per
+ * level GL's DrawElementsIndirectCommand (index count, instance count, first index,
+ * base vertex, base instance). */
 __kernel __attribute__((reqd_work_group_size(FF_LOD_GROUP, 1, 1))) void lod_offsets(
     __global const uint* restrict group_counts, const uint groups,
     __global uint* restrict group_starts, __global const uint* restrict index_counts,
@@ -106,21 +116,27 @@ __kernel __attribute__((reqd_work_group_size(FF_LOD_GROUP, 1, 1))) void lod_offs
   const uint per_item = (groups + FF_LOD_GROUP - 1) / FF_LOD_GROUP;
   const uint first = min(groups, item * per_item);
   const uint end = min(groups, first + per_item);
+  uint own[FF_LOD_LEVELS];
   for (int k = 0; k < FF_LOD_LEVELS; ++k) {
     uint sum = 0;
     for (uint g = first; g < end; ++g) sum += group_counts[g * FF_LOD_LEVELS + k];
+    own[k] = sum;
     runs[item * FF_LOD_LEVELS + k] = sum;
+  }
+  for (uint offset = 1; offset < FF_LOD_GROUP; offset <<= 1) {
+    uint add[FF_LOD_LEVELS];
+    barrier(CLK_LOCAL_MEM_FENCE);
+    for (int k = 0; k < FF_LOD_LEVELS; ++k) {
+      add[k] = item >= offset ? runs[(item - offset) * FF_LOD_LEVELS + k] : 0u;
+    }
+    barrier(CLK_LOCAL_MEM_FENCE);
+    for (int k = 0; k < FF_LOD_LEVELS; ++k) runs[item * FF_LOD_LEVELS + k] += add[k];
   }
   barrier(CLK_LOCAL_MEM_FENCE);
   if (item == 0) {
     uint incoming = 0; /* instances that found no room in the finer levels */
     for (int k = 0; k < FF_LOD_LEVELS; ++k) {
-      uint start = 0;
-      for (uint j = 0; j < FF_LOD_GROUP; ++j) {
-        const uint run = runs[j * FF_LOD_LEVELS + k];
-        runs[j * FF_LOD_LEVELS + k] = start;
-        start += run;
-      }
+      const uint start = runs[(FF_LOD_GROUP - 1) * FF_LOD_LEVELS + k];
       own_counts[k] = start;
       const uint total = start + incoming;
       const uint placed = min(total, level_rows[k]);
@@ -134,9 +150,8 @@ __kernel __attribute__((reqd_work_group_size(FF_LOD_GROUP, 1, 1))) void lod_offs
     }
     level_counts[FF_LOD_LEVELS] = incoming; /* drawn at no level */
   }
-  barrier(CLK_LOCAL_MEM_FENCE);
   for (int k = 0; k < FF_LOD_LEVELS; ++k) {
-    uint start = runs[item * FF_LOD_LEVELS + k];
+    uint start = runs[item * FF_LOD_LEVELS + k] - own[k];
     for (uint g = first; g < end; ++g) {
       group_starts[g * FF_LOD_LEVELS + k] = start;
       start += group_counts[g * FF_LOD_LEVELS + k];
