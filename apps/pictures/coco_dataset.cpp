@@ -206,17 +206,28 @@ CocoDataset::FrameTruth CocoDataset::capture(std::size_t frame, double time_s,
   truth.view = view;
   truth.time_s = time_s;
   truth.image_file = image_file;
-  // Keypoints and spines of every fish, from the engine's deformed vertices.
-  truth.vertices.resize(scene_.species().size());
-  for (std::size_t s = 0; s < scene_.species().size(); ++s) {
-    tank::Species& species = scene_.species()[s];
-    if (!species.deformer) continue;
-    cl::CommandQueue& queue = species.deformer->context().queue();
-    const tank::BatchReading reading(species);
-    for (std::uint32_t slot : species_[s].slots) {
-      truth.vertices[s].push_back(read_slot_positions(queue, species.batch(), slot));
+  // Keypoints and spines of every fish, from the engine's deformed vertices: read once
+  // a frame, whatever its views.
+  if (!captured_ || captured_frame_ != frame) {
+    auto vertices =
+        std::make_shared<std::vector<std::vector<std::vector<glm::vec3>>>>(scene_.species().size());
+    for (std::size_t s = 0; s < scene_.species().size(); ++s) {
+      tank::Species& species = scene_.species()[s];
+      if (!species.deformer) continue;
+      SpeciesTruth& truth_of = species_[s];
+      const DeviceBatch& batch = species.batch();
+      if (!truth_of.reader) {
+        truth_of.reader = std::make_shared<SlotPositionReader>(
+            species.deformer->context(), truth_of.slots, batch.shape.instance_count,
+            batch.shape.plane_stride);
+      }
+      const tank::BatchReading reading(species);
+      (*vertices)[s] = truth_of.reader->read(species.deformer->context().queue(), batch);
     }
+    captured_ = std::move(vertices);
+    captured_frame_ = frame;
   }
+  truth.vertices = captured_;
   return truth;
 }
 
@@ -266,7 +277,7 @@ CocoDataset::FrameAnnotations CocoDataset::annotate(const FrameTruth& truth) con
     std::vector<std::array<double, 3>> yolo_keypoints;
     int labelled = 0;
     const SpeciesTruth& species = species_[one.species];
-    const std::vector<std::vector<glm::vec3>>& vertices = truth.vertices[one.species];
+    const std::vector<std::vector<glm::vec3>>& vertices = (*truth.vertices)[one.species];
     const auto in_camera = [&](std::size_t read) {
       const glm::dvec3 world(vertices[read][instance]);
       return glm::dvec3(camera_from_world * glm::dvec4(world, 1.0));

@@ -41,6 +41,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "fish_keypoints.hpp"
 #include "landmarks.hpp"
 #include "lens.hpp"
 #include "render/camera.hpp"
@@ -109,8 +110,8 @@ class CocoDataset {
     std::string image_file;
     render::IdImage ids;
     // Per species, per vertex read (its keypoints' and its spine's), per instance: the
-    // deformed vertex.
-    std::vector<std::vector<std::vector<glm::vec3>>> vertices;
+    // deformed vertex. The views of one frame share them.
+    std::shared_ptr<const std::vector<std::vector<std::vector<glm::vec3>>>> vertices;
     // The image's water and light (frame_optics.hpp optics_json), or null.
     nlohmann::ordered_json optics;
   };
@@ -138,6 +139,7 @@ class CocoDataset {
     std::vector<std::uint32_t> slots;  // the slots read each frame, each once
     std::array<std::optional<std::size_t>, kKeypointCount> keypoints;  // index into slots
     std::array<std::array<std::size_t, 2>, kSpinePoints> spine{};      // index into slots
+    std::shared_ptr<SlotPositionReader> reader;                        // made on the first capture
   };
 
   std::string folder_;
@@ -147,6 +149,9 @@ class CocoDataset {
   int height_;
   std::vector<glm::dmat4> camera_from_world_;  // per camera
   std::vector<SpeciesTruth> species_;
+  // The last capture's frame and vertices: a stereo pair's second view reads nothing.
+  std::size_t captured_frame_ = 0;
+  std::shared_ptr<const std::vector<std::vector<std::vector<glm::vec3>>>> captured_;
   std::vector<std::size_t> instance_of_fish_;  // per tank fish, its index in its species
   struct FishTruth {
     std::size_t species = 0;
