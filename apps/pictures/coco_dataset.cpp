@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <string_view>
 
 #include "fish_keypoints.hpp"
 #include "instance_masks.hpp"
@@ -355,7 +356,7 @@ CocoDataset::FrameAnnotations CocoDataset::annotate(const FrameTruth& truth) con
     }
     annotation["spine_camera_m"] = spine;
     annotation["spine_length_m"] = spine_length;
-    out.annotations.push_back(std::move(annotation));
+    out.annotations.push_back(annotation.dump());
   }
   if (options_.yolo) {  // every image gets its label file, empty when no fish is seen
     for (std::size_t t = 0; t < kYoloTasks.size(); ++t) {
@@ -392,17 +393,27 @@ std::string sample_key(const nlohmann::ordered_json& image) {
 }  // namespace
 
 void CocoDataset::append(FrameAnnotations frame) {
-  for (nlohmann::ordered_json& annotation : frame.annotations) {
-    annotation["id"] = next_annotation_++;
-    coco_ << (annotation_count() == 1 ? "\n" : ",\n") << annotation.dump();
+  constexpr std::string_view kUnnumbered = "{\"id\":0";
+  for (std::string& annotation : frame.annotations) {
+    if (annotation.compare(0, kUnnumbered.size(), kUnnumbered) != 0) {
+      throw Error(ErrorCode::kInvalidArgument, "annotations",
+                  "annotations: an annotation not made by annotate");
+    }
+    annotation.replace(0, kUnnumbered.size(), "{\"id\":" + std::to_string(next_annotation_++));
+    coco_ << (annotation_count() == 1 ? "\n" : ",\n") << annotation;
   }
   if (options_.webdataset) {  // the sample's JSON until the shards are packed
-    const nlohmann::ordered_json sample = {{"image", frame.image},
-                                           {"annotations", frame.annotations}};
+    // As nlohmann's dump of {"image": ..., "annotations": [...]} writes it.
+    std::string sample = "{\"image\":" + frame.image.dump() + ",\"annotations\":[";
+    for (std::size_t k = 0; k < frame.annotations.size(); ++k) {
+      if (k > 0) sample += ',';
+      sample += frame.annotations[k];
+    }
+    sample += "]}";
     write_text((std::filesystem::path(folder_) / "webdataset" / "samples" /
                 (sample_key(frame.image) + ".json"))
                    .string(),
-               sample.dump());
+               sample);
   }
   images_.push_back(std::move(frame.image));
   require_written(coco_, folder_ + "/coco.json");

@@ -120,7 +120,9 @@ class CocoDataset {
   // the mask file and the frame's annotations (any thread; several frames at once;
   // kInvalidArgument naming "ids" unless they are the dataset's width x height),
   struct FrameAnnotations {
-    std::vector<nlohmann::ordered_json> annotations;  // their "id"s are given by append
+    // Each annotation as coco.json's text (dumped on the annotating thread), starting
+    // {"id":0, where append gives it its id.
+    std::vector<std::string> annotations;
     nlohmann::ordered_json image;
   };
   FrameAnnotations annotate(const FrameTruth& truth) const;
