@@ -356,34 +356,28 @@ TEST(CliPictures, TheDatasetLoadsWithPycocotools) {
   EXPECT_NE(truth.out.find("webdataset: 1 shard(s), 4 samples"), std::string::npos) << truth.out;
   std::printf("%s", truth.out.c_str());
 
-  // Seen from above through the water surface: the floor's depth against rays bent by
-  // Snell's law in check_truth.py, the keypoints on their fish.
-  const std::string refracted = test::temp_path("refracted");
-  const RunResult bent = run_cli(
-      "swim --fish 40 --seconds 0.05 --fps 20 --seed 3 --size 320x180 --annotate --video none "
-      "--formats coco,yolo --depth --refraction --camera above --species " +
-      low_resolution_species() + " --out '" + refracted + "'");
-  ASSERT_EQ(bent.exit_code, 0) << bent.err;
-  const RunResult bent_coco = check(FINFLEX_CHECK_COCO, refracted);
-  EXPECT_EQ(bent_coco.exit_code, 0) << bent_coco.out;
-  const RunResult bent_truth = check(FINFLEX_CHECK_TRUTH, refracted);
-  EXPECT_EQ(bent_truth.exit_code, 0) << bent_truth.out;
-  EXPECT_NE(bent_truth.out.find("refracted at the surface"), std::string::npos) << bent_truth.out;
-  std::printf("%s", bent_truth.out.c_str());
-
-  // From the camera in the water behind its flat port: likewise through air, the window
-  // and the water.
-  const std::string ported = test::temp_path("ported");
-  const RunResult port = run_cli(
-      "swim --fish 40 --seconds 0.05 --fps 20 --seed 3 --size 320x180 --annotate --video none "
-      "--formats coco,yolo --depth --refraction --camera underwater --port 0.03,0.012,1.52 "
-      "--species " +
-      low_resolution_species() + " --out '" + ported + "'");
-  ASSERT_EQ(port.exit_code, 0) << port.err;
-  const RunResult port_truth = check(FINFLEX_CHECK_TRUTH, ported);
-  EXPECT_EQ(port_truth.exit_code, 0) << port_truth.out;
-  EXPECT_NE(port_truth.out.find("refracted at the port"), std::string::npos) << port_truth.out;
-  std::printf("%s", port_truth.out.c_str());
+  // Seen from above through the water surface, and from the camera in the water behind
+  // its flat port (through air, the window and the water): the floor's depth against
+  // rays bent by Snell's law in check_truth.py, the keypoints on their fish.
+  for (const auto& [camera, interface] :
+       {std::pair{"--camera above", "surface"},
+        std::pair{"--camera underwater --port 0.03,0.012,1.52", "port"}}) {
+    SCOPED_TRACE(camera);
+    const std::string refracted = test::temp_path(std::string("refracted-") + interface);
+    const RunResult bent = run_cli(
+        "swim --fish 40 --seconds 0.05 --fps 20 --seed 3 --size 320x180 --annotate --video none "
+        "--formats coco,yolo --depth --refraction " +
+        std::string(camera) + " --species " + low_resolution_species() + " --out '" + refracted +
+        "'");
+    ASSERT_EQ(bent.exit_code, 0) << bent.err;
+    const RunResult bent_coco = check(FINFLEX_CHECK_COCO, refracted);
+    EXPECT_EQ(bent_coco.exit_code, 0) << bent_coco.out;
+    const RunResult bent_truth = check(FINFLEX_CHECK_TRUTH, refracted);
+    EXPECT_EQ(bent_truth.exit_code, 0) << bent_truth.out;
+    EXPECT_NE(bent_truth.out.find(std::string("refracted at the ") + interface), std::string::npos)
+        << bent_truth.out;
+    std::printf("%s", bent_truth.out.c_str());
+  }
 }
 
 // Runs `arguments` expecting exit 2 with one line holding `expected`, and nothing at
