@@ -77,9 +77,10 @@ def content_files(folder: pathlib.Path) -> list[pathlib.Path]:
 def content_hash(folder: pathlib.Path, files: list[pathlib.Path] | None = None) -> str:
     """SHA-256 over the lines 'PATH SHA256' of the shard's files (`files`, default
     content_files(folder)) in path order (PATH relative to the shard, '/'-separated).
-    The files are hashed on up to 8 threads (hashlib lets go of the GIL)."""
+    The files are hashed on a thread per core the process may run on (hashlib lets go
+    of the GIL)."""
     files = content_files(folder) if files is None else files
-    with concurrent.futures.ThreadPoolExecutor(min(8, os.cpu_count() or 1)) as pool:
+    with concurrent.futures.ThreadPoolExecutor(len(os.sched_getaffinity(0))) as pool:
         digests = list(pool.map(file_digest, files))
     digest = hashlib.sha256()
     for path, file_hash in zip(files, digests):
