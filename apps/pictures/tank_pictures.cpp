@@ -39,7 +39,6 @@ TankPictures::TankPictures(render::Renderer& renderer, tank::SwimScene& scene,
                                 settings.height)} {
   base_look_.view_refraction = settings.refraction;
   base_look_.port = settings.port;
-  base_look_.validate();
   optics_ = frame_optics(optics_settings_, 0);
   look_ = with_optics(base_look_, optics_);
   if (settings.stereo_baseline > 0.0) {

@@ -18,12 +18,12 @@
  * Generated before this file: FF_LOD_GROUP (work-items per group, a power of two) and
  * FF_LOD_LEVELS (1..8).
  *
- * A view (at most 4) is FF_VIEW_FLOATS floats: 6 frustum planes (a, b, c, d; a point is inside
- * where a x + b y + c z + d >= 0, (a, b, c) of unit length), the view depth row
+ * A view (at most 4) is 32 floats (two float16 arguments): 6 frustum planes (a, b, c,
+ * d; a point is inside where a x + b y + c z + d >= 0, (a, b, c) of unit length), the
+ * view depth row
  * (depth = dot(row.xyz, p) + row.w: the distance in front of the camera), the near
  * plane's depth and the focal length in pixels. A placement record: kernels/common/
  * placement.cl (columns of L Q at 0-8, the position at 9-11, 1 / L at 12). */
-#define FF_VIEW_FLOATS 32
 #define FF_LOD_INLINE inline __attribute__((always_inline))
 
 /* Whether the sphere (centre c, radius) meets the frustum plane (a, b, c, d). */
@@ -31,7 +31,7 @@ FF_LOD_INLINE bool within_plane(const float4 plane, const float3 c, const float 
   return dot(plane.xyz, c) + plane.w >= -radius;
 }
 
-/* The size of a body length in pixels in one view (its FF_VIEW_FLOATS floats as two
+/* The size of a body length in pixels in one view (its 32 floats as two
  * float16: a holds planes 0-3, b planes 4-5, the depth row, the near depth and the focal
  * length), or -1 where the sphere misses its frustum. Straight from the arguments: a
  * copy of the views into a private array spilled to memory on GPUs, and cost more

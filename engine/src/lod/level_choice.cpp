@@ -15,7 +15,7 @@ namespace finflex {
 
 namespace {
 
-constexpr std::size_t kViewFloats = 32;  // kernels/lod/choose_levels.cl FF_VIEW_FLOATS
+constexpr std::size_t kViewFloats = 32;  // kernels/lod/choose_levels.cl: two float16 a view
 
 [[noreturn]] void invalid(const std::string& field, const std::string& why) {
   throw Error(ErrorCode::kInvalidArgument, field, field + ": " + why);
