@@ -169,7 +169,11 @@ TEST(Cli, BenchFarmComparesLevelsWithFullDetail) {
   const nlohmann::ordered_json j = nlohmann::ordered_json::parse(r.out);
   EXPECT_EQ(j.at("fish").get<std::size_t>(), 64u);
   EXPECT_EQ(j.at("tanks").get<std::size_t>(), 4u);
-  EXPECT_EQ(j.at("levels").size(), 3u);
+  // 3 levels of the mesh and the coarsest again with its fins frozen.
+  ASSERT_EQ(j.at("levels").size(), 4u);
+  EXPECT_FALSE(j.at("levels")[2].at("fins_frozen").get<bool>());
+  EXPECT_TRUE(j.at("levels")[3].at("fins_frozen").get<bool>());
+  EXPECT_EQ(j.at("levels")[3].at("vertices"), j.at("levels")[2].at("vertices"));
   std::size_t drawn = 0, fewer = 0;
   for (const auto& level : j.at("levels")) drawn += level.at("fish").get<std::size_t>();
   EXPECT_EQ(drawn, j.at("fish_drawn").get<std::size_t>());

@@ -4,8 +4,10 @@
 // exactly as the full mesh deforms it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdio>
 #include <limits>
 #include <set>
 #include <string>
@@ -137,7 +139,71 @@ TEST_P(BundledLevels, EachLevelDeformsOnTheDeviceAsTheReferenceAndAsTheFullMesh)
   }
 }
 
+// The frozen-fin level: the coarsest mesh again with only the body's stages, its error
+// the coarsest's plus a bound that holds over swimming frames, its deformation on the
+// device the reference's.
+TEST_P(BundledLevels, FrozenFinsMoveNoFurtherThanTheirBoundAndDeformAsTheReference) {
+  const RiggedMesh& full = model();
+  const SwimModel swim(full);
+  LevelOptions options;
+  options.freeze_fins = true;
+  options.value_bounds = swim.value_bounds();
+  const DetailLevels levels = make_detail_levels(full, options);
+  ASSERT_EQ(levels.size(), options.levels + 1);
+  const DetailLevel& coarsest = levels.level(options.levels - 1);
+  const DetailLevel& frozen = levels.level(options.levels);
+  EXPECT_FALSE(coarsest.fins_frozen);
+  EXPECT_TRUE(frozen.fins_frozen);
+  EXPECT_EQ(frozen.vertex_count, coarsest.vertex_count);
+  EXPECT_EQ(frozen.model.mesh().indices, coarsest.model.mesh().indices);
+  const Rig& rig = frozen.model.rig();
+  EXPECT_EQ(rig.components.front().chain.size(), full.rig().components.front().chain.size());
+  for (std::size_t c = 1; c < rig.components.size(); ++c)
+    EXPECT_TRUE(rig.components[c].chain.empty()) << rig.components[c].name;
+  const double bound = frozen_fin_error(coarsest.model, options.value_bounds);
+  EXPECT_GT(bound, 0.0);
+  EXPECT_DOUBLE_EQ(frozen.geometric_error, coarsest.geometric_error + bound);
+  // Swimming frames, slow (the pectoral fins beating) to fast, turning both ways.
+  constexpr std::size_t kFish = 12;
+  SwimReference fish(swim, std::vector<float>(kFish, 0.3f));
+  std::vector<SwimInput> inputs(kFish);
+  for (std::size_t i = 0; i < kFish; ++i) {
+    inputs[i].speed = 0.05f * float(i);
+    inputs[i].turn_rate = (i % 2 ? 1.0f : -1.0f) * 0.2f * float(i % 4);
+  }
+  double moved = 0.0;
+  for (int frame = 0; frame < 24; ++frame) {
+    fish.step(inputs, 1.0 / 24.0);
+    const DeformedBatch<double> moving =
+        run_reference(coarsest.model, fish.parameters(), NormalMode::kRotate);
+    const DeformedBatch<double> still =
+        run_reference(frozen.model, fish.parameters(), NormalMode::kRotate);
+    for (std::size_t i = 0; i < kFish; ++i) {
+      for (std::size_t v = 0; v < frozen.vertex_count; ++v)
+        moved = std::max(moved, glm::length(moving.position(i, v) - still.position(i, v)));
+    }
+  }
+  std::printf("frozen fins: moved %.4g, bound %.4g (mesh units)\n", moved, bound);
+  EXPECT_GT(moved, 0.0);
+  EXPECT_LE(moved, bound);
+  // On the device, as the reference of its own rig.
+  const RigParameters values = test::at_fractions_of_the_limits(full, {0.0, 0.45, -0.8, 1.0});
+  ClDeformer deformer(test::shared_context(), frozen.model);
+  const DeformedBatch<float> device = test::run_on_device(deformer, values, NormalMode::kRotate);
+  const AccuracyReport report =
+      compare_to_reference(frozen.model, values.view(), NormalMode::kRotate, device,
+                           run_reference(frozen.model, values, NormalMode::kRotate));
+  EXPECT_TRUE(report.within_tolerance())
+      << "position " << report.max_position_error << ", normal " << report.max_normal_error;
+}
+
 INSTANTIATE_TEST_SUITE_P(DetailLevels, BundledLevels, ::testing::Values("blub", "barramundi"));
+
+LevelOptions one_level() {
+  LevelOptions options;
+  options.levels = 1;
+  return options;
+}
 
 std::string field_of(const RiggedMesh& model, const LevelOptions& options) {
   try {
@@ -147,6 +213,27 @@ std::string field_of(const RiggedMesh& model, const LevelOptions& options) {
     return e.field();
   }
   return "accepted";
+}
+
+TEST(DetailLevels, BadValueBoundsAreNamed) {
+  LevelOptions options;
+  options.freeze_fins = true;
+  options.value_bounds = {0.1};
+  EXPECT_EQ(field_of(blub(), options), "value_bounds");
+  options.value_bounds = SwimModel(blub()).value_bounds();
+  EXPECT_EQ(field_of(blub(), options), "accepted");
+  for (double bad :
+       {-0.1, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    options.value_bounds[1] = bad;
+    EXPECT_EQ(field_of(blub(), options), "value_bounds[1]") << bad;
+  }
+  // A rig with nothing below its root: no frozen level.
+  const RiggedMesh bend =
+      RiggedMesh::single_bend(blub().mesh(), find_body_frame(blub().mesh()), BendMode::kExact);
+  LevelOptions two;
+  two.levels = 2;
+  two.freeze_fins = true;
+  EXPECT_EQ(make_detail_levels(bend, two).size(), 2u);
 }
 
 TEST(DetailLevels, BadOptionsAndMeshesTooSmallAreNamed) {
@@ -174,9 +261,9 @@ TEST(DetailLevels, BadOptionsAndMeshesTooSmallAreNamed) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("level 1 keeps"), std::string::npos) << e.what();
   }
-  const DetailLevels one = make_detail_levels(blub(), LevelOptions{1, 0.25});
+  const DetailLevels one = make_detail_levels(blub(), one_level());
   EXPECT_EQ(one.size(), 1u);
-  EXPECT_EQ(field_of(blub(), LevelOptions{1, 0.25}), "accepted");
+  EXPECT_EQ(field_of(blub(), one_level()), "accepted");
   try {
     (void)one.level(1);
     ADD_FAILURE() << "level 1 of 1";

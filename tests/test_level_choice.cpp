@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <functional>
 #include <limits>
 #include <random>
@@ -107,26 +108,28 @@ glm::dvec3 sphere_centre(const Placement& p, const BodyBounds& bounds) {
          double(p.length) * (glm::mat3_cast(glm::dquat(p.orientation)) * bounds.centre);
 }
 
-TEST(LevelChoice, TheDeviceChoosesAsTheHostAndAsTheCameraSees) {
+// The choice of `levels` at `budget` pixels against the host's and the camera's, its
+// lists and draw arguments; with `every_level`, the scene puts fish at every level.
+// `fish_per_level`: the fish at each level.
+void check_choice(const DetailLevels& levels, double budget, bool every_level,
+                  std::vector<std::size_t>* fish_per_level = nullptr) {
   const std::size_t count = 3000;
   const std::vector<Placement> placements = scattered(count, 7);
   const std::vector<PlacementRecord> records = records_of(placements);
   const cl::Buffer buffer = upload(records);
-  // A quarter-pixel budget: the nearest fish need the full mesh (its levels' errors are
-  // small enough that at one pixel none does in this scene).
   LevelChoiceOptions options;
-  options.pixel_budget = 0.25;
-  LevelChooser chooser(test::shared_context(), blub_levels(), count, options);
+  options.pixel_budget = budget;
+  LevelChooser chooser(test::shared_context(), levels, count, options);
   const std::vector<LevelView> views{camera()};
   chooser.enqueue(buffer, count, views);
   const LevelChooser::Choice choice = chooser.read();
   ASSERT_EQ(choice.level_of.size(), count);
 
-  const BodyBounds bounds = body_bounds(blub_levels().level(0).model);
-  const std::vector<double> errors = level_errors(blub_levels());
+  const BodyBounds bounds = body_bounds(levels.level(0).model);
+  const std::vector<double> errors = level_errors(levels);
   const double focal = double(kHeight) / (2.0 * std::tan(0.5 * glm::radians(kFov)));
   std::size_t visible = 0, borderline = 0;
-  std::vector<std::size_t> per_level(blub_levels().size(), 0);
+  std::vector<std::size_t> per_level(levels.size(), 0);
   for (std::size_t i = 0; i < count; ++i) {
     const int level = choice.level_of[i];
     const int host = choose_level_on_host(records[i], bounds, errors, views, options, -1);
@@ -157,17 +160,18 @@ TEST(LevelChoice, TheDeviceChoosesAsTheHostAndAsTheCameraSees) {
   // The scene exercises every outcome: culled fish, and fish at every level.
   EXPECT_GT(visible, count / 10);
   EXPECT_LT(visible, count);
-  for (std::size_t k = 0; k < per_level.size(); ++k) EXPECT_GT(per_level[k], 0u) << "level " << k;
+  for (std::size_t k = 0; every_level && k < per_level.size(); ++k)
+    EXPECT_GT(per_level[k], 0u) << "level " << k;
 
   // The lists: each level's instances, ascending; their counts in the draw arguments.
-  ASSERT_EQ(choice.lists.size(), blub_levels().size());
+  ASSERT_EQ(choice.lists.size(), levels.size());
   for (std::size_t k = 0; k < choice.lists.size(); ++k) {
     std::vector<std::uint32_t> expected;
     for (std::size_t i = 0; i < count; ++i) {
       if (choice.level_of[i] == int(k)) expected.push_back(std::uint32_t(i));
     }
     EXPECT_EQ(choice.lists[k], expected) << "level " << k;
-    EXPECT_EQ(choice.draw_arguments[5 * k], blub_levels().level(k).triangle_count * 3);
+    EXPECT_EQ(choice.draw_arguments[5 * k], levels.level(k).triangle_count * 3);
     EXPECT_EQ(choice.draw_arguments[5 * k + 1], expected.size());
     for (int c = 2; c < 5; ++c) EXPECT_EQ(choice.draw_arguments[5 * k + std::size_t(c)], 0u);
   }
@@ -178,6 +182,29 @@ TEST(LevelChoice, TheDeviceChoosesAsTheHostAndAsTheCameraSees) {
   const LevelChooser::Choice again = chooser.read();
   EXPECT_EQ(again.level_of, choice.level_of);
   EXPECT_EQ(again.lists, choice.lists);
+  if (fish_per_level) *fish_per_level = per_level;
+}
+
+TEST(LevelChoice, TheDeviceChoosesAsTheHostAndAsTheCameraSees) {
+  // A quarter-pixel budget: the nearest fish need the full mesh (its levels' errors are
+  // small enough that at one pixel none does in this scene).
+  check_choice(blub_levels(), 0.25, true);
+}
+
+TEST(LevelChoice, NineLevelsChooseAsTheHost) {
+  // 8 levels of the mesh and the frozen-fin one: the kernels' wider per-level counts.
+  LevelOptions options;
+  options.levels = 8;
+  options.triangle_ratio = 0.5;
+  options.freeze_fins = true;
+  options.value_bounds = SwimModel(blub()).value_bounds();
+  const DetailLevels nine = make_detail_levels(blub(), options);
+  ASSERT_EQ(nine.size(), 9u);
+  // At 4 pixels the farthest fish take the frozen level (the ninth list).
+  std::vector<std::size_t> per_level(9, 0);
+  check_choice(nine, 4.0, false, &per_level);
+  EXPECT_GT(per_level[8], 0u);
+  EXPECT_GT(per_level[7], 0u);
 }
 
 // The lists as the room rule says, from each instance's level: a level's own instances

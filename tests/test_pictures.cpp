@@ -295,7 +295,8 @@ tank::SwimScene small_scene(Context& context, const tank::OutputsFactory& output
 // Three levels of half the triangles, a budget of `pixels`.
 tank::SceneLevels three_levels(double pixels) {
   tank::SceneLevels levels;
-  levels.levels = {3, 0.5};
+  levels.levels.levels = 3;
+  levels.levels.triangle_ratio = 0.5;
   levels.choice.pixel_budget = pixels;
   return levels;
 }
@@ -352,6 +353,14 @@ TEST(TankPictures, TheDeformationWritesTheRenderersBuffersOnTheFirstPathThatRuns
   if (tank.hand_off.path == HandOffPath::kCopy) {
     EXPECT_FALSE(tank.hand_off.why_not_shared.empty());
   }
+  // External memory ordered on the GPU alternates two sets of buffers (a frame's
+  // kernels never wait for the last frame's draw); otherwise one set, or none.
+  const auto* outputs = dynamic_cast<GlSpeciesOutputs*>(tank.scene.species()[0].outputs.get());
+  ASSERT_NE(outputs, nullptr);
+  const std::size_t sets = tank.hand_off.path != HandOffPath::kExternal ? 0
+                           : tank.pictures.device_ordered()             ? 2
+                                                                        : 1;
+  EXPECT_EQ(outputs->buffer_sets(), sets);
   // A scene whose outputs are the engine's own device buffers cannot be drawn.
   tank::SwimScene plain = small_scene(test::shared_context());
   try {

@@ -57,6 +57,7 @@ struct BenchOptions {
   std::string tanks = "16";
   std::string levels = "6";  // the farm's: 6 levels of half the triangles (benchmarks.md)
   std::string triangle_ratio = "0.5";
+  bool freeze_fins = true;
   std::string pixel_budget = "1";
   std::string layout = "planes";
   std::string order = "slots";
@@ -182,7 +183,7 @@ bench::FarmSettings check_farm(const BenchOptions& options,
                 "--instances '" + std::to_string(farm.fish) + "': every one of the " +
                     std::to_string(farm.tanks) + " tanks needs a fish");
   }
-  farm.levels = parse_level_options(options.levels, options.triangle_ratio);
+  farm.levels = parse_level_options(options.levels, options.triangle_ratio, options.freeze_fins);
   farm.choice.pixel_budget = parse_positive(options.pixel_budget, "--pixel-budget");
   return farm;
 }
@@ -334,6 +335,9 @@ Command add_bench_command(CLI::App& app) {
       ->add_option("--triangle-ratio", options->triangle_ratio,
                    "With --farm: each level's share of the finer level's triangles")
       ->capture_default_str();
+  bench->add_flag(kFreezeFinsFlag, options->freeze_fins,
+                  "With --farm: one more level after the coarsest, its fins frozen (only the "
+                  "body's stages), its error bound added (default on)");
   bench
       ->add_option("--pixel-budget", options->pixel_budget,
                    "With --farm: the error a level may show, in pixels of a 1920x1080 image")

@@ -25,6 +25,7 @@ struct CheckOptions {
   std::string device;
   std::string levels = "1";
   std::string triangle_ratio = "0.25";
+  bool freeze_fins = true;
 };
 
 // Instance k: every parameter at a fraction of its limit (0, 0.1, -0.35, 0.6, -0.85
@@ -119,8 +120,8 @@ int run_check(const CheckOptions& options) {
     } else {
       const RiggedMesh model(
           rest, resolve_rig(for_option("--rig", [&] { return load_rig_file(options.rig); }), rest));
-      const LevelOptions level_options =
-          parse_level_options(options.levels, options.triangle_ratio);
+      const LevelOptions level_options = frozen_fin_bounds(
+          parse_level_options(options.levels, options.triangle_ratio, options.freeze_fins), model);
       if (level_options.levels == 1) {
         all_within = check_model(context, model, "rig") && all_within;
       } else {
@@ -160,6 +161,7 @@ Command add_check_command(CLI::App& app) {
       ->add_option("--triangle-ratio", options->triangle_ratio,
                    "Each level's triangles as a fraction of the finer level's")
       ->capture_default_str();
+  check->add_flag(kFreezeFinsFlag, options->freeze_fins, kFreezeFinsHelp);
   return {[options] { check_check(*options); }, [options] { return run_check(*options); }};
 }
 

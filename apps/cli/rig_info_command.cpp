@@ -25,6 +25,7 @@ struct RigInfoOptions {
   std::string labels;
   std::string levels = "4";
   std::string triangle_ratio = "0.25";
+  bool freeze_fins = true;
 };
 
 void print_frame(const BodyFrame& f) {
@@ -94,7 +95,10 @@ int run_rig_info(const RigInfoOptions& options) {
                             [&] {
                               return make_detail_levels(
                                   model,
-                                  parse_level_options(options.levels, options.triangle_ratio));
+                                  frozen_fin_bounds(
+                                      parse_level_options(options.levels, options.triangle_ratio,
+                                                          options.freeze_fins),
+                                      model));
                             }),
                  length);
     return kExitSuccess;
@@ -120,6 +124,7 @@ Command add_rig_info_command(CLI::App& app) {
       ->add_option("--triangle-ratio", options->triangle_ratio,
                    "Each level's triangles as a fraction of the finer level's")
       ->capture_default_str();
+  command->add_flag(kFreezeFinsFlag, options->freeze_fins, kFreezeFinsHelp);
   return {[options] { check_rig_info(*options); }, [options] { return run_rig_info(*options); }};
 }
 

@@ -36,6 +36,7 @@
 #include "commands.hpp"
 #include "finflex/finflex.hpp"
 #include "finflex/gl_outputs.hpp"
+#include "level_flags.hpp"
 #include "staging_folder.hpp"
 #include "swim_pictures.hpp"
 #include "swim_plan.hpp"
@@ -551,6 +552,7 @@ Command add_swim_command(CLI::App& app) {
   swim->add_option("--levels", options->levels,
                    "Levels of detail (1 to 8) with culling, chosen from the camera each frame "
                    "(default: every fish at full detail)");
+  swim->add_flag(kFreezeFinsFlag, options->freeze_fins, kFreezeFinsHelp);
   swim->add_option("--pixel-budget", options->pixel_budget,
                    "With --levels: the error a level may show, in pixels")
       ->capture_default_str();

@@ -291,7 +291,8 @@ SwimPlan plan_of(const SwimOptions& options) {
   plan.mesh_frames = parse_frames(options.mesh_frames, plan.frames, "--mesh-frames");
   if (!options.levels.empty()) {
     tank::SceneLevels levels;
-    levels.levels = parse_level_options(options.levels, options.triangle_ratio);
+    levels.levels =
+        parse_level_options(options.levels, options.triangle_ratio, options.freeze_fins);
     levels.choice.pixel_budget = parse_positive(options.pixel_budget, "--pixel-budget");
     if (!plan.mesh_frames.empty()) {
       throw Error(ErrorCode::kInvalidArgument, "--mesh-frames",

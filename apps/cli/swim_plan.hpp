@@ -55,6 +55,7 @@ struct SwimOptions {
   std::string levels;  // empty: every fish at full detail
   std::string pixel_budget = "1";
   std::string triangle_ratio = "0.5";
+  bool freeze_fins = true;
 };
 
 // What the command runs, every value checked.

@@ -125,29 +125,15 @@ GlSpeciesOutputs::GlSpeciesOutputs(render::Renderer& renderer, const HandOff& ha
       normal_layout_(stream_layout(layout_.normals)),
       instances_(instances) {
   if (path_ == HandOffPath::kExternal) {
-    external_ = std::make_unique<ExternalOutputs>(deformer, instances, layout_, *hand_off.device,
-                                                  std::array<std::size_t, 4>{0, 1, 2, 3}, 256,
-                                                  kListEntries + 4 * instances);
-    std::vector<render::BufferId> imported;
-    for (std::size_t b = 0; b < external_->buffer_count(); ++b) {
-      const vulkan::ExternalBuffer& buffer = external_->buffer(b);
-      const std::size_t bytes =
-          b == 0 ? external_->side_offset() + external_->side_bytes() : external_->data_bytes(b);
-      imported.push_back(renderer.import_buffer(buffer.export_fd(), buffer.memory_bytes(), bytes));
-    }
-    side_buffer_ = imported[0];
-    positions_ = imported[external_->buffer_of(0)];
-    normals_ = imported[external_->buffer_of(1)];
-    device_ordered_ = external_->device_ordered() && renderer.external_support().semaphores;
-    if (!external_->device_ordered()) {
-      why_not_ordered_ = external_->semaphores_why_not();
+    sets_.push_back(make_set(hand_off, deformer));
+    const ExternalOutputs& first = *sets_.front().outputs;
+    device_ordered_ = first.device_ordered() && renderer.external_support().semaphores;
+    if (!first.device_ordered()) {
+      why_not_ordered_ = first.semaphores_why_not();
     } else if (!renderer.external_support().semaphores) {
       why_not_ordered_ = "OpenGL has no GL_EXT_semaphore_fd";
     }
-    if (device_ordered_) {
-      kernels_done_ = renderer.import_semaphore(external_->kernels_done()->export_fd());
-      drawn_ = renderer.import_semaphore(external_->consumer_done()->export_fd());
-    }
+    if (device_ordered_) sets_.push_back(make_set(hand_off, deformer));
     return;
   }
   positions_ = renderer.create_buffer(buffer_bytes(deformer, layout_.positions, instances));
@@ -158,10 +144,34 @@ GlSpeciesOutputs::GlSpeciesOutputs(render::Renderer& renderer, const HandOff& ha
       GlBuffers{renderer.gl_buffer(positions_), renderer.gl_buffer(normals_), 0, 0});
 }
 
+GlSpeciesOutputs::ExternalSet GlSpeciesOutputs::make_set(const HandOff& hand_off,
+                                                         ClDeformer& deformer) {
+  ExternalSet set;
+  set.outputs = std::make_unique<ExternalOutputs>(deformer, instances_, layout_, *hand_off.device,
+                                                  std::array<std::size_t, 4>{0, 1, 2, 3}, 256,
+                                                  kListEntries + 4 * instances_);
+  const ExternalOutputs& outputs = *set.outputs;
+  std::vector<render::BufferId> imported;
+  for (std::size_t b = 0; b < outputs.buffer_count(); ++b) {
+    const vulkan::ExternalBuffer& buffer = outputs.buffer(b);
+    const std::size_t bytes =
+        b == 0 ? outputs.side_offset() + outputs.side_bytes() : outputs.data_bytes(b);
+    imported.push_back(renderer_.import_buffer(buffer.export_fd(), buffer.memory_bytes(), bytes));
+  }
+  set.side = imported[0];
+  set.positions = imported[outputs.buffer_of(0)];
+  set.normals = imported[outputs.buffer_of(1)];
+  if (outputs.device_ordered() && renderer_.external_support().semaphores) {
+    set.kernels_done = renderer_.import_semaphore(outputs.kernels_done()->export_fd());
+    set.drawn = renderer_.import_semaphore(outputs.consumer_done()->export_fd());
+  }
+  return set;
+}
+
 void GlSpeciesOutputs::set_list_sources(const cl::Buffer& command, std::size_t command_offset,
                                         const cl::Buffer& entries, std::size_t entries_offset,
                                         std::size_t rows) {
-  if (!external_) {
+  if (sets_.empty()) {
     throw Error(ErrorCode::kInvalidArgument, "list",
                 std::string("list: the ") + to_string(path_) + " hand-off has no device list");
   }
@@ -176,71 +186,96 @@ void GlSpeciesOutputs::set_list_sources(const cl::Buffer& command, std::size_t c
 
 render::DeviceList GlSpeciesOutputs::device_list() const {
   render::DeviceList list;
-  if (!external_) return list;
-  list.buffer = side_buffer_;
-  list.command_offset = external_->side_offset();
-  list.entries_offset = external_->side_offset() + kListEntries;
+  if (sets_.empty()) return list;
+  const ExternalSet& set = sets_[current_];
+  list.buffer = set.side;
+  list.command_offset = set.outputs->side_offset();
+  list.entries_offset = set.outputs->side_offset() + kListEntries;
   return list;
 }
 
-DeviceBatch& GlSpeciesOutputs::batch() { return external_ ? external_->batch() : gl_->batch(); }
+render::BufferId GlSpeciesOutputs::positions() const {
+  return sets_.empty() ? positions_ : sets_[current_].positions;
+}
+
+render::BufferId GlSpeciesOutputs::normals() const {
+  return sets_.empty() ? normals_ : sets_[current_].normals;
+}
+
+DeviceBatch& GlSpeciesOutputs::batch() {
+  return sets_.empty() ? gl_->batch() : sets_[current_].outputs->batch();
+}
 
 double GlSpeciesOutputs::handoff_seconds() const {
   return gl_ ? gl_->last_handoff_seconds() : 0.0;  // external memory: nothing to hand over
 }
 
+void GlSpeciesOutputs::signal_drawn(ExternalSet& set) {
+  renderer_.signal_semaphore(set.drawn, {set.positions, set.normals});
+  set.outputs->consumer_signalled();
+  set.gl_used = false;
+}
+
 cl::Event GlSpeciesOutputs::enqueue(ClDeformer& /*deformer: the outputs'*/, const ClJob& job,
                                     std::vector<cl::Event>* kernel_events) {
   renderer_.make_current();
-  if (!external_) {
+  if (sets_.empty()) {
     drawable_ = gl_->enqueue(job, kernel_events);
     return drawable_;
   }
+  const std::size_t next = frames_ == 0 ? 0 : (current_ + 1) % sets_.size();
+  ExternalSet& set = sets_[next];
+  ClJob into = job;
+  into.outputs = &set.outputs->batch();
   if (device_ordered_) {
-    // A binary semaphore is waited for once per signal: a frame GL never drew is
-    // waited for now, and GL's signal after its last use lets the kernels go on.
-    if (kernels_signalled_) wait_until_drawable();
-    if (gl_used_frame_) {
-      renderer_.signal_semaphore(drawn_, {positions_, normals_});
-      external_->consumer_signalled();
-      gl_used_frame_ = false;
+    // GL is done with the last frame once the commands so far are in: its signal now.
+    if (sets_[current_].gl_used) signal_drawn(sets_[current_]);
+    // A binary semaphore is waited for once per signal: a frame of this set that GL
+    // never drew is waited for now, and GL's signal after it lets the kernels go on.
+    if (set.kernels_signalled) {
+      renderer_.wait_semaphore(set.kernels_done, {set.positions, set.normals});
+      set.kernels_signalled = false;
+      signal_drawn(set);
     }
-    drawable_ = external_->enqueue(job, kernel_events, list_copies_);
-    kernels_signalled_ = true;
-    return drawable_;
+    drawable_ = set.outputs->enqueue(into, kernel_events, list_copies_);
+    set.kernels_signalled = true;
+  } else {
+    renderer_.finish();  // GL is done with the memory the kernels now write
+    drawable_ = set.outputs->enqueue(into, kernel_events, list_copies_);
   }
-  renderer_.finish();  // GL is done with the memory the kernels now write
-  drawable_ = external_->enqueue(job, kernel_events, list_copies_);
+  current_ = next;
+  ++frames_;
   return drawable_;
 }
 
 void GlSpeciesOutputs::wait_until_drawable() {
-  if (device_ordered_) {
-    if (!kernels_signalled_) return;
-    renderer_.wait_semaphore(kernels_done_, {positions_, normals_});
-    kernels_signalled_ = false;
-    gl_used_frame_ = true;
+  if (sets_.empty()) {
+    if (drawable_() != nullptr) check_cl(drawable_.wait(), "clWaitForEvents");
     return;
   }
-  if (external_) {
-    external_->wait_for_frame();
+  ExternalSet& set = sets_[current_];
+  if (!device_ordered_) {
+    set.outputs->wait_for_frame();
     return;
   }
-  if (drawable_() != nullptr) check_cl(drawable_.wait(), "clWaitForEvents");
+  if (!set.kernels_signalled) return;
+  renderer_.wait_semaphore(set.kernels_done, {set.positions, set.normals});
+  set.kernels_signalled = false;
+  set.gl_used = true;
 }
 
 void GlSpeciesOutputs::begin_reading() {
   renderer_.make_current();
-  if (external_) {
-    external_->begin_reading();  // GL only reads the memory too: no wait for it
+  if (!sets_.empty()) {
+    sets_[current_].outputs->begin_reading();  // GL only reads the memory too: no wait for it
     return;
   }
   gl_->begin_reading();
 }
 
 void GlSpeciesOutputs::end_reading() {
-  if (external_) {
-    external_->end_reading();
+  if (!sets_.empty()) {
+    sets_[current_].outputs->end_reading();
     return;
   }
   gl_->end_reading();
@@ -274,16 +309,21 @@ SpeciesDrawing prepare_drawing(render::Renderer& renderer, const ClDeformer& def
 }
 
 render::FishDraw fish_draw(const SpeciesDrawing& drawing) {
-  const GlSpeciesOutputs& outputs = *drawing.outputs;
   render::FishDraw draw;
   draw.mesh = drawing.mesh;
   draw.albedo = drawing.albedo;
-  draw.instance_count = outputs.instance_count();
+  draw.instance_count = drawing.outputs->instance_count();
+  draw.ids = drawing.ids.data();
+  point_at_last_frame(drawing, draw);
+  return draw;
+}
+
+void point_at_last_frame(const SpeciesDrawing& drawing, render::FishDraw& draw) {
+  const GlSpeciesOutputs& outputs = *drawing.outputs;
   draw.positions =
       render::VertexStream::from_buffer(outputs.positions(), outputs.position_layout());
   draw.normals = render::VertexStream::from_buffer(outputs.normals(), outputs.normal_layout());
-  draw.ids = drawing.ids.data();
-  return draw;
+  if (draw.list.buffer != render::kNoBuffer) draw.list = outputs.device_list();
 }
 
 }  // namespace finflex::pictures

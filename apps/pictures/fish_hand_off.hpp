@@ -12,9 +12,13 @@
 //    memory of the OpenCL device (matched by UUID), imported by OpenCL and by GL
 //    (GL_EXT_memory_object_fd). With semaphores on both sides (NVIDIA) the frame
 //    orders itself on the GPU: GL waits for the kernels' semaphore before drawing and
-//    signals its own before the next frame's kernels, which wait for it; nothing
-//    waits on the host. A CPU device (PoCL) writes the memory through its host
-//    mapping (Mesa's lavapipe and llvmpipe share it), waited for on the host.
+//    signals its own once it has drawn, and the kernels that next write those buffers
+//    wait for it. Two sets of buffers, alternate frames: frame f + 1's kernels write
+//    one set while GL still draws frame f from the other, so neither the host nor the
+//    GPU waits for the draw before the next deformation (NVIDIA's semaphore wait
+//    blocks the host until it is signalled). A CPU device (PoCL) writes the memory
+//    through its host mapping (Mesa's lavapipe and llvmpipe share it), one set,
+//    waited for on the host.
 //  - shared (cl_khr_gl_sharing): the kernels write the GL buffers between an acquire
 //    and a release (GlOutputs).
 //  - copy: the kernels write a device mirror of each GL buffer, mapped for reading and
@@ -78,7 +82,7 @@ class GlSpeciesOutputs : public tank::SpeciesOutputs {
   // the host for the commands before its semaphore calls.
   bool waits_for_device() const override {
     return path_ == HandOffPath::kCopy ||
-           (external_ && external_->import() == ExternalImport::kImported);
+           (!sets_.empty() && sets_.front().outputs->import() == ExternalImport::kImported);
   }
   void begin_reading() override;
   void end_reading() override;
@@ -87,12 +91,16 @@ class GlSpeciesOutputs : public tank::SpeciesOutputs {
   // External memory: beside the outputs, room for a draw list of instance_count() rows
   // (its command and entries, filled each frame by OpenCL copies ordered as the
   // outputs are: device_list() is what the renderer reads). Elsewhere none.
-  bool has_device_list() const { return external_ != nullptr; }
+  bool has_device_list() const { return !sets_.empty(); }
   // Each frame's copies: the 20-byte command at `command` + command_offset, and
   // `rows` (at most instance_count()) entries at `entries` + entries_offset.
   void set_list_sources(const cl::Buffer& command, std::size_t command_offset,
                         const cl::Buffer& entries, std::size_t entries_offset, std::size_t rows);
+  // The last frame's list (external memory: its set of buffers).
   render::DeviceList device_list() const;
+  // External memory: the sets of buffers that frames take in turn (2 where semaphores
+  // order the frames, else 1); 0 on the other paths.
+  std::size_t buffer_sets() const { return sets_.size(); }
   // External memory: whether semaphores order the frame on the GPU, and why not.
   bool device_ordered() const { return device_ordered_; }
   const std::string& why_not_device_ordered() const { return why_not_ordered_; }
@@ -101,33 +109,45 @@ class GlSpeciesOutputs : public tank::SpeciesOutputs {
   void wait_until_drawable();
 
   const OutputLayout& layout() const { return layout_; }
-  render::BufferId positions() const { return positions_; }
-  render::BufferId normals() const { return normals_; }
+  // The buffers of the last frame enqueued (external memory: its set).
+  render::BufferId positions() const;
+  render::BufferId normals() const;
   const render::StreamLayout& position_layout() const { return position_layout_; }
   const render::StreamLayout& normal_layout() const { return normal_layout_; }
   std::size_t instance_count() const { return instances_; }
 
  private:
+  // External memory: one set of buffers, GL's imports of them and of the semaphores,
+  // and where the set stands.
+  struct ExternalSet {
+    std::unique_ptr<ExternalOutputs> outputs;
+    render::BufferId side = render::kNoBuffer;  // buffer 0, with the list
+    render::BufferId positions = render::kNoBuffer;
+    render::BufferId normals = render::kNoBuffer;
+    render::SemaphoreId kernels_done = 0;  // with semaphores
+    render::SemaphoreId drawn = 0;
+    bool kernels_signalled = false;  // by its last frame's kernels, not yet waited for by GL
+    bool gl_used = false;            // GL has waited for its frame: its drawn signal is owed
+  };
+  ExternalSet make_set(const HandOff& hand_off, ClDeformer& deformer);
+  // GL signals `set`'s semaphore after its commands so far (they read its last frame).
+  void signal_drawn(ExternalSet& set);
+
   render::Renderer& renderer_;
   HandOffPath path_;
   OutputLayout layout_;
-  render::BufferId positions_ = render::kNoBuffer;
+  render::BufferId positions_ = render::kNoBuffer;  // kShared, kCopy
   render::BufferId normals_ = render::kNoBuffer;
   render::StreamLayout position_layout_;
   render::StreamLayout normal_layout_;
   std::size_t instances_ = 0;
-  std::unique_ptr<ExternalOutputs> external_;         // kExternal
-  render::BufferId side_buffer_ = render::kNoBuffer;  // kExternal: buffer 0, with the list
+  std::vector<ExternalSet> sets_;  // kExternal
+  std::size_t current_ = 0;        // the set of the last frame enqueued
+  std::size_t frames_ = 0;         // frames enqueued
   std::vector<SideCopy> list_copies_;
   std::unique_ptr<GlOutputs> gl_;  // kShared, kCopy
-  // kExternal with semaphores: GL's imports of the kernels' and its own, and whether
-  // the kernels' is signalled and not yet waited for, and GL has drawn since.
-  render::SemaphoreId kernels_done_ = 0;
-  render::SemaphoreId drawn_ = 0;
   bool device_ordered_ = false;
   std::string why_not_ordered_;
-  bool kernels_signalled_ = false;
-  bool gl_used_frame_ = false;
   cl::Event drawable_;
 };
 
@@ -151,5 +171,8 @@ SpeciesDrawing prepare_drawing(render::Renderer& renderer, const ClDeformer& def
 
 // The draw of a species' last frame, straight from its outputs' buffers.
 render::FishDraw fish_draw(const SpeciesDrawing& drawing);
+// Points `draw` (fish_draw's) at the buffers and list of its outputs' last frame,
+// which alternate between two sets on the external path; the rest stays.
+void point_at_last_frame(const SpeciesDrawing& drawing, render::FishDraw& draw);
 
 }  // namespace finflex::pictures

@@ -134,15 +134,27 @@ void TankPictures::set_frame(std::size_t frame) {
   look_ = with_optics(base_look_, optics_);
 }
 
+void TankPictures::point_at_last_frame() {
+  for (std::size_t d = 0; d < drawings_.size(); ++d)
+    pictures::point_at_last_frame(drawings_[d], draws_[d]);
+}
+
 void TankPictures::draw() {
   take_lists();
   for (SpeciesDrawing& drawing : drawings_) drawing.outputs->wait_until_drawable();
+  point_at_last_frame();
   renderer_.render(look_, cameras_.front(), draws_);
 }
 
-void TankPictures::draw_view(std::size_t view) { renderer_.render(look_, camera(view), draws_); }
+void TankPictures::draw_view(std::size_t view) {
+  point_at_last_frame();
+  renderer_.render(look_, camera(view), draws_);
+}
 
-void TankPictures::draw_reference() { renderer_.render_reference(look_, cameras_.front(), draws_); }
+void TankPictures::draw_reference() {
+  point_at_last_frame();
+  renderer_.render_reference(look_, cameras_.front(), draws_);
+}
 
 const render::Image& TankPictures::read_image() {
   renderer_.read_image(image_);
@@ -150,12 +162,14 @@ const render::Image& TankPictures::read_image() {
 }
 
 const render::IdImage& TankPictures::draw_ids(std::size_t view) {
+  point_at_last_frame();
   renderer_.render_ids(look_, camera(view), draws_);
   renderer_.read_ids(ids_);
   return ids_;
 }
 
 void TankPictures::request_ids(std::size_t view) {
+  point_at_last_frame();
   renderer_.render_ids(look_, camera(view), draws_);
   renderer_.request_ids();
 }

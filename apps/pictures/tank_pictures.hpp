@@ -106,6 +106,8 @@ class TankPictures {
   };
   std::vector<LeveledSpecies> leveled_;
   void take_lists();
+  // Every draw pointed at its outputs' last frame (point_at_last_frame).
+  void point_at_last_frame();
   HandOffPath path_ = HandOffPath::kCopy;
   bool device_ordered_ = true;
   std::string why_not_ordered_;

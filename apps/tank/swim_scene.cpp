@@ -116,8 +116,10 @@ SwimScene::SwimScene(Context& context, const std::vector<SpeciesFiles>& files, s
     ClDeviceInputs inputs{&sp.driver->parameter_buffer(), &sp.driver->placement_buffer(),
                           sp.driver->derived_buffer()};
     if (levels) {
-      auto lv =
-          std::make_unique<SpeciesLevels>(make_detail_levels(sp.swim.model(), levels->levels));
+      LevelOptions level_options = levels->levels;
+      if (level_options.freeze_fins && level_options.value_bounds.empty())
+        level_options.value_bounds = sp.swim.value_bounds();  // what the driver gives the fins
+      auto lv = std::make_unique<SpeciesLevels>(make_detail_levels(sp.swim.model(), level_options));
       LevelChoiceOptions choice = levels->choice;
       if (choice.level_rows.empty()) choice.level_rows = scene_level_rows(lv->levels, counts[s]);
       lv->deformer =

@@ -80,7 +80,8 @@ using OutputsFactory = std::function<std::unique_ptr<SpeciesOutputs>(
 // frame the fish its views see, at their levels, deformed into each level's outputs;
 // no full-detail outputs.
 struct SceneLevels {
-  LevelOptions levels;        // make_detail_levels'
+  LevelOptions levels;        // make_detail_levels' (freeze_fins without value_bounds:
+                              // each species' SwimModel::value_bounds)
   LevelChoiceOptions choice;  // level_rows empty: scene_level_rows
 };
 

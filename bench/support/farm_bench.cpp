@@ -107,6 +107,7 @@ nlohmann::ordered_json measure_farm(Context& context, const std::string& mesh,
   for (std::size_t k = 0; k < counts.per_level.size(); ++k) {
     per_level.push_back({{"vertices", levels.level(k).vertex_count},
                          {"triangles", levels.level(k).triangle_count},
+                         {"fins_frozen", levels.level(k).fins_frozen},
                          {"rows", leveled.species().front().leveled->deformer->chooser().rows(k)},
                          {"fish", counts.per_level[k]}});
     drawn += counts.per_level[k];

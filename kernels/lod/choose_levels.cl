@@ -16,7 +16,7 @@
  * in level k - 1's (in that level's sequence order): an instance past the rows of its
  * level is drawn at the next coarser level with room, or not at all (counted).
  * Generated before this file: FF_LOD_GROUP (work-items per group, a power of two) and
- * FF_LOD_LEVELS (1..8).
+ * FF_LOD_LEVELS (1..16).
  *
  * A view (at most 4) is 32 floats (two float16 arguments): 6 frustum planes (a, b, c,
  * d; a point is inside where a x + b y + c z + d >= 0, (a, b, c) of unit length), the
@@ -160,21 +160,50 @@ __kernel __attribute__((reqd_work_group_size(FF_LOD_GROUP, 1, 1))) void lod_offs
 }
 
 /* Each level's count of the group's instances before this one, for all levels at once:
- * 16 bits a level in a uint4 (a group's counts are at most FF_LOD_GROUP <= 256),
- * summed by an inclusive scan (Hillis-Steele) in local memory. */
-FF_LOD_INLINE uint4 one_hot(int level) {
-  uint4 v = (uint4)(0);
+ * 16 bits a level in a uint4 (up to 8 levels) or a uint8 (up to 16; a group's counts
+ * are at most FF_LOD_GROUP <= 256), summed by an inclusive scan (Hillis-Steele) in
+ * local memory. */
+#if FF_LOD_LEVELS <= 8
+typedef uint4 LodFields;
+#else
+typedef uint8 LodFields;
+#endif
+
+FF_LOD_INLINE LodFields one_hot(int level) {
+  LodFields v = (LodFields)(0);
   if (level < 0) return v;
   const uint bit = 1u << (16 * (level & 1));
-  if (level < 2) v.x = bit;
-  else if (level < 4) v.y = bit;
-  else if (level < 6) v.z = bit;
-  else v.w = bit;
+  switch (level >> 1) {
+    case 0: v.s0 = bit; break;
+    case 1: v.s1 = bit; break;
+    case 2: v.s2 = bit; break;
+    case 3: v.s3 = bit; break;
+#if FF_LOD_LEVELS > 8
+    case 4: v.s4 = bit; break;
+    case 5: v.s5 = bit; break;
+    case 6: v.s6 = bit; break;
+    default: v.s7 = bit; break;
+#endif
+  }
   return v;
 }
 
-FF_LOD_INLINE uint field(uint4 v, int level) {
-  const uint word = level < 2 ? v.x : level < 4 ? v.y : level < 6 ? v.z : v.w;
+FF_LOD_INLINE uint field(LodFields v, int level) {
+  uint word;
+  switch (level >> 1) {
+    case 0: word = v.s0; break;
+    case 1: word = v.s1; break;
+    case 2: word = v.s2; break;
+#if FF_LOD_LEVELS > 8
+    case 3: word = v.s3; break;
+    case 4: word = v.s4; break;
+    case 5: word = v.s5; break;
+    case 6: word = v.s6; break;
+    default: word = v.s7; break;
+#else
+    default: word = v.s3; break;
+#endif
+  }
   return (word >> (16 * (level & 1))) & 0xffffu;
 }
 
@@ -182,15 +211,15 @@ __kernel __attribute__((reqd_work_group_size(FF_LOD_GROUP, 1, 1))) void lod_scat
     __global const int* restrict level_of, const uint instances,
     __global const uint* restrict group_starts, __global const uint* restrict level_rows,
     __global const uint* restrict own_counts, __global uint* restrict instance_lists) {
-  __local uint4 scan[FF_LOD_GROUP];
+  __local LodFields scan[FF_LOD_GROUP];
   const uint item = get_local_id(0);
   const size_t i = get_global_id(0);
   const int level = i < instances ? level_of[i] : -1;
-  const uint4 mine = one_hot(level);
+  const LodFields mine = one_hot(level);
   scan[item] = mine;
   for (uint offset = 1; offset < FF_LOD_GROUP; offset <<= 1) {
     barrier(CLK_LOCAL_MEM_FENCE);
-    const uint4 add = item >= offset ? scan[item - offset] : (uint4)(0);
+    const LodFields add = item >= offset ? scan[item - offset] : (LodFields)(0);
     barrier(CLK_LOCAL_MEM_FENCE);
     scan[item] += add;
   }

@@ -21,6 +21,10 @@
 // - Each level's geometric_error: an upper bound, in mesh units, on how far its
 //   surface is from the full mesh's (meshoptimizer's error of each step of the
 //   cascade, as a distance, summed); 0 for level 0.
+// - With freeze_fins, one more level after the coarsest: the coarsest mesh with the
+//   stages of every component below the root dropped (the fins stay at rest on the
+//   body, which still swims: the paper's deformations insignificant for the task,
+//   skipped). Its geometric_error is the coarsest level's plus frozen_fin_error.
 //
 // Cost: O(triangles log triangles) per level, once per species (about 30 ms for the
 // bundled Blub's 21,000 triangles); no device work.
@@ -38,11 +42,19 @@ namespace finflex {
 constexpr std::size_t kMaxDetailLevels = 8;
 
 struct LevelOptions {
-  // Levels, the full mesh included: 1..kMaxDetailLevels.
+  // Levels of the mesh, the full mesh included: 1..kMaxDetailLevels.
   std::size_t levels = 4;
   // Each level's target triangle count as a fraction of the finer level's: (0, 1).
   double triangle_ratio = 0.25;
-  // Throws kInvalidArgument naming "levels" or "triangle_ratio" and the value.
+  // One more level, the coarsest mesh with its fins frozen (the contract above); none
+  // is added for a rig without stages below its root.
+  bool freeze_fins = false;
+  // Per parameter of the rig, the largest |value| its frames give it (for a swim rig
+  // SwimModel::value_bounds()); empty: each parameter's limit. The frozen level's
+  // error follows from these.
+  std::vector<double> value_bounds;
+  // Throws kInvalidArgument naming "levels", "triangle_ratio" or "value_bounds[i]" and
+  // the value (a bound must be finite and >= 0).
   void validate() const;
 };
 
@@ -51,7 +63,20 @@ struct DetailLevel {
   std::size_t vertex_count = 0;  // model.vertex_count()
   std::size_t triangle_count = 0;
   double geometric_error = 0.0;  // mesh units; 0 for level 0
+  bool fins_frozen = false;      // the freeze_fins level: only the root's stages
 };
+
+// How far, in mesh units, dropping the stages below the root of `model`'s rig can move
+// a vertex, every parameter within `value_bounds` (one per parameter; empty: their
+// limits): per vertex, the displacement each dropped stage gives its rest position at
+// the bound's either sign (the largest, for a turn that grows with |value|: the bend,
+// the hinge, a spine's table all at the bound), carried through the stages above it
+// at most doubled by each (their stretch across the spine, 1 - z k, stays within (0, 2)
+// while |z k| < 1: the swim driver's fold limit). The largest over the vertices; 0
+// without such stages. kInvalidArgument "value_bounds" for a count other than the
+// rig's parameters.
+FINFLEX_API double frozen_fin_error(const RiggedMesh& model,
+                                    const std::vector<double>& value_bounds = {});
 
 class FINFLEX_API DetailLevels {
  public:
@@ -68,7 +93,8 @@ class FINFLEX_API DetailLevels {
   std::vector<std::uint32_t> full_vertex_of_;
 };
 
-// The levels of `full` (see the contract above). Errors: options.validate()'s; and
+// The levels of `full` (see the contract above). Errors: options.validate()'s,
+// frozen_fin_error's; and
 // kInvalidArgument naming "levels" when a level cannot be made coarser than the one
 // before (the simplifier keeps more than 3/4 of its triangles: a mesh too small, or
 // all border), e.g. "levels: level 2 keeps 380 of 412 triangles (target 103)".

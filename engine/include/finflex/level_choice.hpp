@@ -50,6 +50,8 @@
 namespace finflex {
 
 constexpr std::size_t kMaxLevelViews = 4;
+// The most levels one chooser takes (kMaxDetailLevels and a frozen-fin level fit).
+constexpr std::size_t kMaxChosenLevels = 16;
 
 struct FINFLEX_API LevelView {
   glm::dmat4 view_from_world{1.0};  // a rigid motion; the camera looks down its -z (OpenGL)

@@ -118,6 +118,11 @@ class FINFLEX_API SwimModel {
   std::size_t tail_offset() const { return tail_offset_; }
   std::size_t right_pectoral_offset() const { return right_offset_; }
   std::size_t left_pectoral_offset() const { return left_offset_; }
+  // Per parameter of the rig (Rig::parameters), the largest |value| the swim gives it:
+  // the caudal fin's caudal_amplitude, a pectoral fin's |pectoral_rest| +
+  // pectoral_amplitude (each within the parameter's limit), the rest their limits.
+  // For LevelOptions::value_bounds.
+  std::vector<double> value_bounds() const;
 
  private:
   RiggedMesh model_;

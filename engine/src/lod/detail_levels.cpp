@@ -160,7 +160,71 @@ RiggedMesh level_model(const RiggedMesh& full, const std::vector<std::uint32_t>&
   return RiggedMesh(std::move(mesh), std::move(rig));
 }
 
+void check_bound_count(const Rig& rig, const std::vector<double>& value_bounds) {
+  if (value_bounds.size() != rig.parameters.size()) {
+    throw Error(ErrorCode::kInvalidArgument, "value_bounds",
+                "value_bounds: " + std::to_string(value_bounds.size()) + " values for a rig of " +
+                    std::to_string(rig.parameters.size()) + " parameters");
+  }
+}
+
+// The coarsest level again, its rig without the stages below the root.
+DetailLevel frozen_level(const DetailLevel& coarsest, const std::vector<double>& value_bounds) {
+  Rig rig = coarsest.model.rig();
+  for (std::size_t c = 1; c < rig.components.size(); ++c) rig.components[c].chain.clear();
+  DetailLevel frozen{RiggedMesh(coarsest.model.mesh(), std::move(rig)), coarsest.vertex_count,
+                     coarsest.triangle_count, 0.0, true};
+  frozen.geometric_error =
+      coarsest.geometric_error + frozen_fin_error(coarsest.model, value_bounds);
+  return frozen;
+}
+
+bool has_stages_below_root(const Rig& rig) {
+  for (std::size_t c = 1; c < rig.components.size(); ++c) {
+    if (!rig.components[c].chain.empty()) return true;
+  }
+  return false;
+}
+
+// How far `stage` moves the rest point `p` (mesh coordinates) at every value `value`,
+// in mesh units.
+double stage_displacement(const RigStage& stage, const glm::dvec3& p, double value) {
+  const glm::dvec3 local = stage.frame.point_to_local(p);
+  const std::vector<double> values(stage.deformer->value_count(stage.options), value);
+  const SecantSample s =
+      stage.deformer->secant(local.x, values.data(), stage.options, stage.geometry);
+  const glm::dvec3 moved = s.f + glm::dvec3(0.0, local.y, 0.0) + local.z * s.n;
+  return glm::length(moved - local) * stage.frame.length;
+}
+
 }  // namespace
+
+double frozen_fin_error(const RiggedMesh& model, const std::vector<double>& value_bounds) {
+  const Rig& rig = model.rig();
+  if (!value_bounds.empty()) check_bound_count(rig, value_bounds);
+  const auto bound_of = [&](std::size_t param) {
+    return value_bounds.empty() ? rig.parameters[param].limit : value_bounds[param];
+  };
+  const std::vector<glm::vec3>& positions = model.mesh().positions;
+  double worst = 0.0;
+  for (std::size_t v = 0; v < positions.size(); ++v) {
+    const std::size_t component = model.component_of_vertex()[v];
+    if (component == 0) continue;  // the root's vertices keep every stage they have
+    double moved = 0.0;
+    for (const StageRef& ref : rig.path(component)) {
+      const RigStage& stage = rig.stage(ref);
+      if (ref.component == 0) {
+        moved *= 2.0;  // the body's stretch, 1 - z k < 2
+        continue;
+      }
+      const double bound = bound_of(stage.param);
+      moved = 2.0 * moved + std::max(stage_displacement(stage, positions[v], bound),
+                                     stage_displacement(stage, positions[v], -bound));
+    }
+    worst = std::max(worst, moved);
+  }
+  return worst;
+}
 
 void LevelOptions::validate() const {
   if (levels < 1 || levels > kMaxDetailLevels) {
@@ -171,6 +235,13 @@ void LevelOptions::validate() const {
   if (!(triangle_ratio > 0.0 && triangle_ratio < 1.0)) {
     throw Error(ErrorCode::kInvalidArgument, "triangle_ratio",
                 "triangle_ratio: " + std::to_string(triangle_ratio) + " is not in (0, 1)");
+  }
+  for (std::size_t p = 0; p < value_bounds.size(); ++p) {
+    if (!(std::isfinite(value_bounds[p]) && value_bounds[p] >= 0.0)) {
+      const std::string field = "value_bounds[" + std::to_string(p) + "]";
+      throw Error(ErrorCode::kInvalidArgument, field,
+                  field + ": " + std::to_string(value_bounds[p]) + " is not a finite value >= 0");
+    }
   }
 }
 
@@ -189,6 +260,7 @@ const DetailLevel& DetailLevels::level(std::size_t k) const {
 
 DetailLevels make_detail_levels(const RiggedMesh& full, const LevelOptions& options) {
   options.validate();
+  if (!options.value_bounds.empty()) check_bound_count(full.rig(), options.value_bounds);
   const Mesh& mesh = full.mesh();
   // The cascade: each level from the one before, its error the sum of the steps'.
   std::vector<std::vector<std::uint32_t>> indices{mesh.indices};
@@ -244,7 +316,10 @@ DetailLevels make_detail_levels(const RiggedMesh& full, const LevelOptions& opti
   std::vector<DetailLevel> levels;
   for (std::size_t k = 0; k < options.levels; ++k) {
     levels.push_back(DetailLevel{level_model(full, new_of, full_of, prefix[k], indices[k], k == 0),
-                                 prefix[k], indices[k].size() / 3, errors[k]});
+                                 prefix[k], indices[k].size() / 3, errors[k], false});
+  }
+  if (options.freeze_fins && has_stages_below_root(full.rig())) {
+    levels.push_back(frozen_level(levels.back(), options.value_bounds));
   }
   return DetailLevels(std::move(levels), std::move(full_of));
 }

@@ -272,6 +272,10 @@ struct LevelChooser::Impl {
 LevelChooser::LevelChooser(Context& context, const DetailLevels& levels, std::size_t capacity,
                            const LevelChoiceOptions& options) {
   options.validate();
+  if (levels.size() > kMaxChosenLevels) {
+    invalid("levels", std::to_string(levels.size()) + " levels, more than the " +
+                          std::to_string(kMaxChosenLevels) + " a choice takes");
+  }
   if (capacity == 0 || capacity > std::size_t(std::numeric_limits<cl_int>::max())) {
     invalid("capacity", std::to_string(capacity) + " is not 1 to 2^31 - 1 instances");
   }

@@ -1,5 +1,6 @@
 // SwimModel (finflex/swim.hpp): a rigged mesh checked as a swim rig, with the spine's
 // samples and fold limits measured once.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -99,6 +100,22 @@ SwimModel::SwimModel(const RiggedMesh& model, const SwimKinematics& kinematics,
   tail_offset_ = fin_offset(rig, binding.tail, "swim.tail");
   right_offset_ = fin_offset(rig, binding.right_pectoral, "swim.right_pectoral");
   left_offset_ = fin_offset(rig, binding.left_pectoral, "swim.left_pectoral");
+}
+
+std::vector<double> SwimModel::value_bounds() const {
+  const Rig& rig = model_.rig();
+  std::vector<double> bounds;
+  const SwimKinematics& k = kinematics_;
+  for (const RigParameter& parameter : rig.parameters) {
+    double bound = parameter.limit;
+    if (parameter.offset == tail_offset_) {
+      bound = std::min(bound, k.caudal_amplitude);
+    } else if (parameter.offset == right_offset_ || parameter.offset == left_offset_) {
+      bound = std::min(bound, std::fabs(k.pectoral_rest) + k.pectoral_amplitude);
+    }
+    bounds.push_back(bound);
+  }
+  return bounds;
 }
 
 }  // namespace finflex
