@@ -139,6 +139,65 @@ TEST_P(BundledLevels, EachLevelDeformsOnTheDeviceAsTheReferenceAndAsTheFullMesh)
   }
 }
 
+// The distance from p to the triangle abc, independently of the engine's: the
+// projection onto the plane where it falls inside, else the nearest of the three edges.
+double to_triangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
+                   const glm::dvec3& c) {
+  const auto to_segment = [&](const glm::dvec3& u, const glm::dvec3& w) {
+    const glm::dvec3 d = w - u;
+    const double t =
+        glm::dot(d, d) > 0.0 ? std::clamp(glm::dot(p - u, d) / glm::dot(d, d), 0.0, 1.0) : 0.0;
+    return glm::length(p - (u + t * d));
+  };
+  const glm::dvec3 n = glm::cross(b - a, c - a);
+  const double area2 = glm::dot(n, n);
+  if (area2 > 0.0) {
+    const glm::dvec3 q = p - glm::dot(p - a, n) / area2 * n;
+    const double u = glm::dot(glm::cross(c - b, q - b), n),
+                 v = glm::dot(glm::cross(a - c, q - c), n),
+                 w = glm::dot(glm::cross(b - a, q - a), n);
+    if (u >= 0.0 && v >= 0.0 && w >= 0.0) return glm::length(p - q);
+  }
+  return std::min({to_segment(a, b), to_segment(b, c), to_segment(c, a)});
+}
+
+double farthest(const std::vector<glm::dvec3>& points, const Mesh& mesh) {
+  double worst = 0.0;
+  for (const glm::dvec3& p : points) {
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+      best = std::min(best, to_triangle(p, glm::dvec3(mesh.positions[mesh.indices[t]]),
+                                        glm::dvec3(mesh.positions[mesh.indices[t + 1]]),
+                                        glm::dvec3(mesh.positions[mesh.indices[t + 2]])));
+    }
+    worst = std::max(worst, best);
+  }
+  return worst;
+}
+
+// A level's error covers the distance between its surface and the full mesh's, both
+// ways, measured here by brute force (the coarsest level: every triangle of the other).
+TEST_P(BundledLevels, TheErrorCoversTheMeasuredDistanceBetweenTheSurfaces) {
+  const RiggedMesh& full = model();
+  const DetailLevels levels = make_detail_levels(full, LevelOptions{});
+  const DetailLevel& coarsest = levels.level(levels.size() - 1);
+  const Mesh& fine = levels.level(0).model.mesh();
+  const Mesh& coarse = coarsest.model.mesh();
+  std::vector<glm::dvec3> fine_points(fine.positions.begin(), fine.positions.end());
+  std::vector<glm::dvec3> coarse_points;
+  for (std::size_t t = 0; t + 2 < coarse.indices.size(); t += 3) {
+    const glm::dvec3 a(coarse.positions[coarse.indices[t]]),
+        b(coarse.positions[coarse.indices[t + 1]]), c(coarse.positions[coarse.indices[t + 2]]);
+    coarse_points.push_back((a + b + c) / 3.0);
+    coarse_points.push_back((a + b) / 2.0);
+  }
+  const double measured = std::max(farthest(fine_points, coarse), farthest(coarse_points, fine));
+  std::printf("coarsest level: error %.4g, measured %.4g (mesh units)\n", coarsest.geometric_error,
+              measured);
+  EXPECT_GE(coarsest.geometric_error, measured * (1.0 - 1e-9));
+  EXPECT_LT(coarsest.geometric_error, 2.0 * measured);  // and not far above it
+}
+
 // The frozen-fin level: the coarsest mesh again with only the body's stages, its error
 // the coarsest's plus a bound that holds over swimming frames, its deformation on the
 // device the reference's.

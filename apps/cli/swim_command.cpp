@@ -25,6 +25,7 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <memory>
 #include <numeric>
 #include <string>
@@ -262,10 +263,27 @@ int run_swim(const SwimOptions& options) {
     std::size_t timed_frames = 0;  // after the first, drawn or not
     double first_frame = 0.0;
     std::vector<std::pair<cl::Event, cl::Event>> kernel_spans;  // per timed frame
+    // Drawn, the next frame's hall steps on a thread while this frame is drawn (nothing
+    // of the draw reads the hall), unless the annotations read this frame's fish.
+    const bool step_ahead = pictures && !plan.files.annotate;
+    std::future<double> next_step;  // its seconds
     for (std::size_t f = 0; f < plan.frames; ++f) {
       const auto frame_start = Clock::now();
       const double cpu_start = process_cpu_seconds();
-      const tank::FrameWork work = scene.enqueue_frame(dt, true);
+      const double step_seconds = next_step.valid() ? next_step.get() : scene.step_hall(dt);
+      tank::FrameWork work = scene.enqueue_stepped_frame(dt, true);
+      work.simulation_seconds += step_seconds;
+      const double time = scene.hall().time();
+      if (f % track_every == 0) {
+        const std::vector<tank::Fish>& fish = scene.hall().fish();
+        for (std::size_t i = 0; i < fish.size(); ++i) {
+          tracks[i]["samples"].push_back({time, fish[i].position.x, fish[i].position.y,
+                                          fish[i].position.z, fish[i].yaw, fish[i].speed});
+        }
+      }
+      if (step_ahead && f + 1 < plan.frames) {
+        next_step = std::async(std::launch::async, [&scene, dt] { return scene.step_hall(dt); });
+      }
       Clock::time_point step = Clock::now();
       // Drawn, the frame orders itself (fish_hand_off.hpp) and nothing waits for the
       // device here; else the loop's frame is the deformation's.
@@ -290,7 +308,7 @@ int run_swim(const SwimOptions& options) {
           pictures->draw_reference();
           reference_gpu = pictures->renderer().gpu_reference_seconds();
         }
-        if (files) file_times = files->add_frame(f, scene.hall().time());
+        if (files) file_times = files->add_frame(f, time);
         if (files && plan.files.annotate) id_gpu = pictures->renderer().gpu_id_seconds();
       }
       if (f == 0) {
@@ -316,14 +334,6 @@ int run_swim(const SwimOptions& options) {
         t.annotation.push_back(file_times.annotation);
         t.total.push_back(seconds_since(frame_start));
         t.cpu.push_back(process_cpu_seconds() - cpu_start);
-      }
-      if (f % track_every == 0) {
-        const std::vector<tank::Fish>& fish = scene.hall().fish();
-        for (std::size_t i = 0; i < fish.size(); ++i) {
-          tracks[i]["samples"].push_back({scene.hall().time(), fish[i].position.x,
-                                          fish[i].position.y, fish[i].position.z, fish[i].yaw,
-                                          fish[i].speed});
-        }
       }
       if (plan.mesh_frames.count(f)) {
         char name[64];

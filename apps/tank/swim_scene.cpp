@@ -146,15 +146,23 @@ SwimScene::SwimScene(Context& context, const std::vector<SpeciesFiles>& files, s
 }
 
 FrameWork SwimScene::enqueue_frame(double dt, bool profile) {
-  const auto start = std::chrono::steady_clock::now();
-  hall_->step(dt);
-  const double step_seconds = seconds_since(start);
-  // The hall writes the inputs straight into the drivers' staging memory.
-  FrameWork work = enqueue_frame(
-      dt, [this](std::size_t species, SwimInput* staged) { hall_->inputs(species, staged); },
-      profile);
+  const double step_seconds = step_hall(dt);
+  FrameWork work = enqueue_stepped_frame(dt, profile);
   work.simulation_seconds += step_seconds;
   return work;
+}
+
+double SwimScene::step_hall(double dt) {
+  const auto start = std::chrono::steady_clock::now();
+  hall_->step(dt);
+  return seconds_since(start);
+}
+
+FrameWork SwimScene::enqueue_stepped_frame(double dt, bool profile) {
+  // The hall writes the inputs straight into the drivers' staging memory.
+  return enqueue_frame(
+      dt, [this](std::size_t species, SwimInput* staged) { hall_->inputs(species, staged); },
+      profile);
 }
 
 FrameWork SwimScene::enqueue_frame(double dt, const InputWriter& write_inputs, bool profile) {

@@ -162,6 +162,11 @@ class SwimScene {
   // the device); nothing waits, unless the outputs' hand-off does. With `profile`,
   // every kernel's event goes to the result.
   FrameWork enqueue_frame(double dt, bool profile = false);
+  // The same in two steps, so that the next frame's step can run on another thread
+  // while this frame is drawn: the hall's step (its seconds), then the frame of the
+  // hall as it stands (its simulation time: writing the inputs).
+  double step_hall(double dt);
+  FrameWork enqueue_stepped_frame(double dt, bool profile = false);
 
   // Writes species `species`' swim inputs of this frame, one per fish of that species,
   // into `staged` (its driver's staging memory, ClSwimDriver::staged_inputs).

@@ -62,8 +62,9 @@
 #   render_levels  .txt    `finflex swim` drawn at 1920 x 1080 on the GPU with levels of
 #                          detail (--levels 4, 8) beside full detail: 1,000 fish drawn
 #                          only and with a PNG a frame, 10,000 drawn only; the farm
-#                          (100,000 fish in 16 tanks, --levels 6 and 8) beside full
-#                          detail, and the farm's last frame (render_levels_farm.png)
+#                          (100,000 fish in 16 tanks, --levels 6 and 8, and 8 at a
+#                          2-pixel budget) beside full detail, and the farm's last
+#                          frame (render_levels_farm.png)
 #   dataset        .txt    `finflex swim --annotate` of 1,000 fish at 1280 x 720 on the GPU:
 #                          mono COCO; with YOLO and depth; a stereo pair; and with a
 #                          lens and noise; mono with refraction and varied optics; the
@@ -520,6 +521,8 @@ render_levels() {
       --image-frames last
     cp "$scratch/farm/frames/frame_000029.png" "$out/render_levels_farm.png" ||
       failed+=("the farm's frame")
+    levels_swim "the farm, 100,000 fish in 16 tanks drawn only, --levels 8 --pixel-budget 2: 60 frames" \
+      100000 --tanks 16 --seconds 2 --fps 30 --levels 8 --pixel-budget 2 --render
     levels_swim "the farm, 100,000 fish in 16 tanks drawn only, full detail: 4 frames" 100000 \
       --tanks 16 --seconds 1 --fps 4 --render
   done

@@ -18,16 +18,19 @@
 // - Triangles are simplified within one component at a time, with the component's
 //   border (its seam with other components, and the mesh's own open edges) locked and
 //   triangles across components kept: a fin stays a fin, attached where it was.
-// - Each level's geometric_error: an upper bound, in mesh units, on how far its
-//   surface is from the full mesh's (meshoptimizer's error of each step of the
-//   cascade, as a distance, summed); 0 for level 0.
+// - Each level's geometric_error, in mesh units: how far its surface is from the full
+//   mesh's, the larger of meshoptimizer's error of each step of the cascade (as a
+//   distance, summed) and the two-sided distance measured between the two surfaces
+//   (from every vertex of each, and the middle and edge midpoints of each of the
+//   level's triangles, to the other's nearest point); never below a finer level's;
+//   0 for level 0.
 // - With freeze_fins, one more level after the coarsest: the coarsest mesh with the
 //   stages of every component below the root dropped (the fins stay at rest on the
 //   body, which still swims: the paper's deformations insignificant for the task,
 //   skipped). Its geometric_error is the coarsest level's plus frozen_fin_error.
 //
-// Cost: O(triangles log triangles) per level, once per species (about 30 ms for the
-// bundled Blub's 21,000 triangles); no device work.
+// Cost: O(triangles log triangles) per level and the distances' grid queries, once
+// per species; no device work.
 #pragma once
 
 #include <cstddef>

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "finflex/error.hpp"
+#include "surface_distance.hpp"
 
 namespace finflex {
 
@@ -317,6 +318,16 @@ DetailLevels make_detail_levels(const RiggedMesh& full, const LevelOptions& opti
   for (std::size_t k = 0; k < options.levels; ++k) {
     levels.push_back(DetailLevel{level_model(full, new_of, full_of, prefix[k], indices[k], k == 0),
                                  prefix[k], indices[k].size() / 3, errors[k], false});
+  }
+  // Each level's error: the cascade's estimate, or the measured distance between its
+  // surface and the full mesh's where that is larger, and never below a finer level's.
+  const detail::SurfaceView finest{&levels.front().model.mesh().positions,
+                                   &levels.front().model.mesh().indices};
+  for (std::size_t k = 1; k < levels.size(); ++k) {
+    const Mesh& coarse = levels[k].model.mesh();
+    const double measured = detail::surface_distance({&coarse.positions, &coarse.indices}, finest);
+    levels[k].geometric_error =
+        std::max({levels[k].geometric_error, measured, levels[k - 1].geometric_error});
   }
   if (options.freeze_fins && has_stages_below_root(full.rig())) {
     levels.push_back(frozen_level(levels.back(), options.value_bounds));
