@@ -88,6 +88,22 @@ TEST(CliPictures, SwimWritesFramesAVideoAndTheCamera) {
     EXPECT_GE(summary["rendering"]["share_of_frame"][share].get<double>(), 0.0) << share;
   }
   EXPECT_GT(summary["rendering"]["frames_per_second"].get<double>(), 0.0);
+  // Drawn, the next frame's tank steps on a thread beside the draw: the last frame's
+  // fish, the tracks and the corrections are those of a run that draws nothing.
+  const std::string drawn = test::temp_path("tank_drawn"),
+                    undrawn = test::temp_path("tank_undrawn");
+  const std::string frames = " --mesh-frames last --out '";
+  ASSERT_EQ(run_cli(small_swim() + " --size 160x90 --video none" + frames + drawn + "'").exit_code,
+            0);
+  ASSERT_EQ(run_cli(small_swim() + " --no-render" + frames + undrawn + "'").exit_code, 0);
+  const std::string last = read_text(drawn + "/tank_frame_000002.glb");
+  EXPECT_FALSE(last.empty());
+  EXPECT_EQ(last, read_text(undrawn + "/tank_frame_000002.glb"));
+  const nlohmann::json with = read_json(drawn + "/summary.json"),
+                       without = read_json(undrawn + "/summary.json");
+  EXPECT_EQ(with["tracks"], without["tracks"]);
+  EXPECT_EQ(with["corrections"], without["corrections"]);
+  EXPECT_EQ(with["brakes"], without["brakes"]);
   // The hand-off's path (beside PoCL: external memory where Mesa's lavapipe is
   // installed, else the copy), why each path before it could not run, and its time.
   const nlohmann::json& hand_off = summary["rendering"]["hand_off"];
