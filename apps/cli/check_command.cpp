@@ -120,13 +120,14 @@ int run_check(const CheckOptions& options) {
     } else {
       const RiggedMesh model(
           rest, resolve_rig(for_option("--rig", [&] { return load_rig_file(options.rig); }), rest));
-      const LevelOptions level_options = frozen_fin_bounds(
-          parse_level_options(options.levels, options.triangle_ratio, options.freeze_fins), model);
+      const LevelOptions level_options =
+          parse_level_options(options.levels, options.triangle_ratio, options.freeze_fins);
       if (level_options.levels == 1) {
         all_within = check_model(context, model, "rig") && all_within;
       } else {
-        const DetailLevels levels =
-            for_option("--levels", [&] { return make_detail_levels(model, level_options); });
+        const DetailLevels levels = for_option("--levels", [&] {
+          return make_detail_levels(model, frozen_fin_bounds(level_options, model));
+        });
         for (std::size_t k = 0; k < levels.size(); ++k) {
           all_within =
               check_model(context, levels.level(k).model, "rig level " + std::to_string(k)) &&

@@ -280,19 +280,31 @@ void ClDeformer::Impl::check_buffer_sizes(const DeviceBatch& batch) {
   // hand keeps its serial).
   const std::array<cl_mem, 4> buffers = {batch.positions(), batch.normals(), batch.tangents(),
                                          batch.previous_positions()};
-  if (batch.serial == validated_.serial && batch.outputs == validated_.outputs &&
-      buffers == validated_.buffers && batch.shape.instance_count == validated_.instances) {
-    return;
+  const auto passed = [&](const ValidatedBatch& v) {
+    return batch.serial == v.serial && batch.outputs == v.outputs && buffers == v.buffers &&
+           batch.shape.instance_count == v.instances;
+  };
+  if (passed(validated_[0])) return;
+  if (passed(validated_[1])) {
+    std::swap(validated_[0], validated_[1]);
+  } else {
+    detail::check_outputs(batch, output_vertices(batch.outputs.order), tangents_, "job.outputs");
+    validated_[1] = std::move(validated_[0]);
+    validated_[0] = {batch.serial, batch.outputs, buffers, batch.shape.instance_count,
+                     batch_state(batch)};
   }
-  detail::check_outputs(batch, output_vertices(batch.outputs.order), tangents_, "job.outputs");
-  validated_ = {batch.serial, batch.outputs, buffers, batch.shape.instance_count};
+  ++generation_;  // kernels take the batch's arguments again
+}
+
+ClDeformer::Impl::BatchState ClDeformer::Impl::batch_state(const DeviceBatch& batch) const {
+  BatchState state;
   // Slot s is mesh vertex s (a plain bend): mesh order is slot order without the
   // padding, stored without the vertex_of_slot indirection (and by kernels of more than
   // one lane as vectors, as slot order is).
   const bool mesh_as_slots = writes_mesh_as_slots(batch.outputs);
   DeviceBatch written = batch;
   if (mesh_as_slots) written.outputs.order = VertexOrder::kSlots;
-  batch_options_ =
+  state.options =
       output_build_options(written.outputs) + staged_struct_options(written, stages_structs()) +
       (writes_lane_words(written) ? lane_struct_options(written) : std::string()) +
       (mesh_as_slots
@@ -300,11 +312,11 @@ void ClDeformer::Impl::check_buffer_sizes(const DeviceBatch& batch) {
            : detail::plane_stride_option(batch.outputs, shape(1, NormalFormat::kFloat32)));
   // Lanes (and their kind of store) for this batch (lanes(outputs): FinFlex's planes as
   // vectors, other layouts lane by lane or with one lane).
-  batch_lanes_ = lanes(batch.outputs);
-  batch_streams_ = streams_outputs(batch);
-  batch_per_item_ = {per_item(batch.outputs, NormalMode::kRotate),
-                     per_item(batch.outputs, NormalMode::kJacobian)};
-  ++generation_;  // kernels take the batch's arguments again
+  state.lanes = lanes(batch.outputs);
+  state.streams = streams_outputs(batch);
+  state.per_item = {per_item(batch.outputs, NormalMode::kRotate),
+                    per_item(batch.outputs, NormalMode::kJacobian)};
+  return state;
 }
 
 void ClDeformer::Impl::check_shape(const ClJob& job) const {
@@ -372,8 +384,8 @@ void ClDeformer::Impl::check(const ClJob& job) const {
 ClDeformer::Impl::BoundKernel& ClDeformer::Impl::kernel(std::size_t index, const ClJob& job) {
   const bool placed = job.placements != nullptr || job.device.placements != nullptr;
   const detail::KernelVariant variant{
-      index,  job.normals,  batch_options_, batch_per_item(job.normals),
-      placed, batch_lanes_, batch_streams_, job.list.entries != nullptr};
+      index,  job.normals,           current_batch().options, batch_per_item(job.normals),
+      placed, current_batch().lanes, current_batch().streams, job.list.entries != nullptr};
   auto found = kernels_.find(variant);
   if (found == kernels_.end()) {
     const std::size_t fused = fused_launches_.size();
@@ -437,7 +449,7 @@ void ClDeformer::Impl::prepare_derived(const ClJob& job, const FrameInputs& inpu
     // build when they have one lane): it works on instances, not on vertex slots.
     const bool placed = job.placements != nullptr || job.device.placements != nullptr;
     const detail::KernelVariant variant{
-        0, job.normals, batch_options_, batch_per_item(job.normals), placed, 1};
+        0, job.normals, current_batch().options, batch_per_item(job.normals), placed, 1};
     prepare_ = context.kernel("rig_prepare", program_, variant.options());
   }
   cl_uint arg = 0;
@@ -526,7 +538,7 @@ void ClDeformer::Impl::launch(BoundKernel& bound, const ClJob& job, std::size_t 
   // components apart by work-group (kernels/rig.cl).
   // With lanes, kLaneGroupRows instance rows (the kernels skip those past the
   // last instance).
-  const std::size_t items_per_group = kWorkGroupSize / batch_lanes_;
+  const std::size_t items_per_group = kWorkGroupSize / current_batch().lanes;
   const cl::NDRange offset(first_group * items_per_group, 0);
   std::size_t rows = (job.instances + per - 1) / per;
   if (job.list.entries != nullptr) {
@@ -538,10 +550,11 @@ void ClDeformer::Impl::launch(BoundKernel& bound, const ClJob& job, std::size_t 
     rows = std::min(rows, std::max<std::size_t>(1, most_groups / (end_group - first_group)));
   }
   const cl::NDRange global((end_group - first_group) * items_per_group,
-                           internal::launch_rows(rows, batch_lanes_));
+                           internal::launch_rows(rows, current_batch().lanes));
   check_cl(context.queue().enqueueNDRangeKernel(
                bound.kernel, offset, global,
-               cl::NDRange(items_per_group, internal::group_rows(batch_lanes_)), nullptr, event),
+               cl::NDRange(items_per_group, internal::group_rows(current_batch().lanes)), nullptr,
+               event),
            "clEnqueueNDRangeKernel");
   if (kernel_events) kernel_events->push_back(*event);
 }
@@ -658,7 +671,7 @@ cl::Event ClDeformer::Impl::enqueue(const ClJob& job, std::vector<cl::Event>* ke
     // Shared code (RigDispatch::kByPathShape) has a kernel per launch of the plan for
     // one lane, and for more one kernel, rig_fused_0, over every work-group
     // (detail::rig_dispatch_source; the single bend's one launch is that already).
-    if (tuning.dispatch == RigDispatch::kByPathShape && batch_lanes_ > 1) {
+    if (tuning.dispatch == RigDispatch::kByPathShape && current_batch().lanes > 1) {
       run(0, 0, slot_count_ / kWorkGroupSize, true, &done);
     } else {
       for (std::size_t r = 0; r < fused_launches_.size(); ++r) {

@@ -121,22 +121,29 @@ class ClDeformer::Impl {
   // Bumped whenever the parameter buffer or the scratch sets are replaced: kernels set
   // up for an older generation get their arguments again.
   std::uint64_t generation_ = 1;
-  // The batch the last check passed, as it was then.
+  // What the kernels take from a batch's layout, worked out when the batch is checked.
+  struct BatchState {
+    std::string options;    // output_build_options() and the rest of its build options
+    std::size_t lanes = 1;  // lanes(outputs)
+    bool streams = false;   // streams_outputs()
+    // per_item(outputs, normals) by normal mode (rotate, Jacobian).
+    std::array<std::size_t, 2> per_item = {1, 1};
+  };
+  // A batch a check passed, as it was then, and its state.
   struct ValidatedBatch {
     std::uint64_t serial = 0;
     OutputLayout outputs;
     std::array<cl_mem, 4> buffers{};
     std::size_t instances = 0;
+    BatchState state;
   };
-  ValidatedBatch validated_;
-  std::string batch_options_;    // output_build_options() of the batch validated last
-  std::size_t batch_lanes_ = 1;  // lanes(outputs) of the batch validated last
-  bool batch_streams_ = false;   // streams_outputs() of the batch validated last
-  // per_item(outputs, normals) of the batch validated last, by normal mode (rotate,
-  // Jacobian): a frame's kernels take it without working it out again.
-  std::array<std::size_t, 2> batch_per_item_ = {1, 1};
+  // The last two batches checked, the latest first: outputs that alternate between two
+  // batches (a renderer's two sets of buffers) are checked once each.
+  std::array<ValidatedBatch, 2> validated_;
+  // The latest batch's state: a frame's kernels take it without working it out again.
+  const BatchState& current_batch() const { return validated_[0].state; }
   std::size_t batch_per_item(NormalMode normals) const {
-    return batch_per_item_[normals == NormalMode::kJacobian ? 1 : 0];
+    return current_batch().per_item[normals == NormalMode::kJacobian ? 1 : 0];
   }
   // Per slot its mesh vertex (0xffffffff for padding): outputs in mesh order.
   cl::Buffer vertex_of_slot_;
@@ -151,6 +158,7 @@ class ClDeformer::Impl {
     return job.list.entries != nullptr ? job.list.sources : job.instances;
   }
   void check_buffer_sizes(const DeviceBatch& batch);
+  BatchState batch_state(const DeviceBatch& batch) const;
   BoundKernel& kernel(std::size_t index, const ClJob& job);
   void ensure_scratch(std::size_t instances);
   void ensure_derived(std::size_t instances);
