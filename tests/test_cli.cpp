@@ -169,6 +169,7 @@ TEST(Cli, BenchFarmComparesLevelsWithFullDetail) {
   const nlohmann::ordered_json j = nlohmann::ordered_json::parse(r.out);
   EXPECT_EQ(j.at("fish").get<std::size_t>(), 64u);
   EXPECT_EQ(j.at("tanks").get<std::size_t>(), 4u);
+  EXPECT_TRUE(j.at("wall_occlusion").get<bool>());
   // 3 levels of the mesh and the coarsest again with its fins frozen.
   ASSERT_EQ(j.at("levels").size(), 4u);
   EXPECT_FALSE(j.at("levels")[2].at("fins_frozen").get<bool>());

@@ -261,6 +261,70 @@ TEST(LevelChoice, EveryViewCountsOnTheDeviceAsOnTheHost) {
   }
 }
 
+TEST(LevelChoice, WallsHideFishOnTheDeviceAsOnTheHost) {
+  // A hall of 4 x 4 tanks (the farm's: 3.66 m across, 1.34 m walls, 1 m walkways), fish
+  // in their water, seen from the gangway 4 m up: the far rows' fish behind the nearer
+  // tanks' walls are culled on the device as on the host.
+  const double spacing = 4.66, radius = 1.83, wall_height = 1.34;
+  std::vector<WallOccluder> walls;
+  for (int t = 0; t < 16; ++t) {
+    walls.push_back({{(t % 4) * spacing, 0.0, -(t / 4) * spacing}, radius, wall_height, 96});
+  }
+  const std::size_t count = 4000;
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<Placement> placements(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    const WallOccluder& tank = walls[i % walls.size()];
+    const double r = 1.5 * std::sqrt(unit(random)), a = 6.283185307179586 * unit(random);
+    placements[i].position = glm::vec3(glm::dvec3(
+        tank.base.x + r * std::cos(a), 0.15 + 0.9 * unit(random), tank.base.z + r * std::sin(a)));
+    placements[i].orientation = glm::quat(glm::vec3(0.0f, float(a), 0.0f));
+    placements[i].length = 0.3f;
+  }
+  const std::vector<PlacementRecord> records = records_of(placements);
+  const cl::Buffer buffer = upload(records);
+  const std::vector<LevelView> views{
+      LevelView::look_at({1.5 * spacing, 4.0, 3.0}, {1.5 * spacing, 0.0, -3.0 * spacing}, {0, 1, 0},
+                         50.0, kWidth, kHeight, 0.1, 60.0)};
+  LevelChoiceOptions options;
+  LevelChooser chooser(test::shared_context(), blub_levels(), count, options);
+  chooser.set_occluders(walls);
+  EXPECT_EQ(chooser.occluder_count(), walls.size());
+  chooser.enqueue(buffer, count, views);
+  const std::vector<int> with_walls = chooser.read().level_of;
+  chooser.set_occluders({});
+  chooser.forget();
+  chooser.enqueue(buffer, count, views);
+  const std::vector<int> without = chooser.read().level_of;
+  const BodyBounds bounds = body_bounds(blub_levels().level(0).model);
+  const std::vector<double> errors = level_errors(blub_levels());
+  std::size_t hidden = 0, seen = 0, differ = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    const int host = choose_level_on_host(records[i], bounds, errors, views, options, -1, walls);
+    differ += with_walls[i] != host;
+    if (without[i] >= 0) ++seen;
+    if (without[i] >= 0 && with_walls[i] < 0) {
+      ++hidden;
+      // Hidden by a wall: the same as the host's test of some wall, in double.
+      const glm::dvec3 centre = sphere_centre(placements[i], bounds);
+      bool any = false;
+      for (const WallOccluder& wall : walls) {
+        any = any || wall_hides_sphere(views[0].eye(), centre,
+                                       double(placements[i].length) * bounds.radius, wall);
+      }
+      EXPECT_TRUE(any) << "instance " << i;
+    }
+    if (with_walls[i] >= 0) {
+      EXPECT_EQ(with_walls[i], without[i]) << "instance " << i;
+    }
+  }
+  std::printf("%zu of %zu fish in view hidden by walls\n", hidden, seen);
+  EXPECT_LE(differ, 3u);  // float's rounding at a wall's edge
+  EXPECT_GT(hidden, seen / 10);
+  EXPECT_LT(hidden, seen);
+}
+
 TEST(LevelChoice, FishPastALevelsRowsGoToTheNextCoarserLevelWithRoom) {
   const std::size_t count = 3000;
   const cl::Buffer buffer = upload(records_of(scattered(count, 7)));
@@ -399,6 +463,13 @@ TEST(LevelChoice, BadInputIsNamedAndNothingIsEnqueued) {
               (void)LevelView::look_at(kEye, kTarget, {0, 1, 0}, kFov, kWidth, kHeight, 0.0, kFar);
             }),
             "view.clip_from_view");
+  // A bad wall: named, and the walls stay as they were (none).
+  EXPECT_EQ(
+      field_of([&] {
+        chooser.set_occluders({{{0.0, 0.0, 0.0}, 1.0, 1.0, 96}, {{0.0, 0.0, 0.0}, 0.0, 1.0, 96}});
+      }),
+      "occluders[1].radius");
+  EXPECT_EQ(chooser.occluder_count(), 0u);
   // Nothing was chosen: every list is empty.
   const LevelChooser::Choice nothing = chooser.read();
   for (const std::vector<std::uint32_t>& list : nothing.lists) EXPECT_TRUE(list.empty());

@@ -283,13 +283,16 @@ const PictureSettings kAbove = [] {
   return settings;
 }();
 
+// `fish` low-resolution Blubs in `hall` (one default tank unless given).
 tank::SwimScene small_scene(Context& context, const tank::OutputsFactory& outputs = {},
-                            const std::optional<tank::SceneLevels>& levels = std::nullopt) {
+                            const std::optional<tank::SceneLevels>& levels = std::nullopt,
+                            const tank::HallSettings& hall = tank::TankSettings{},
+                            std::size_t fish = 8) {
   return tank::SwimScene(context,
                          {{test::data_path("blub/fish_low_resolution.obj"),
                            test::data_path("rigs/blub_low_resolution_swim.rig.json")}},
-                         8, tank::TankSettings{}, 3, NormalMode::kJacobian, NormalFormat::kFloat32,
-                         {}, outputs, levels);
+                         fish, hall, 3, NormalMode::kJacobian, NormalFormat::kFloat32, {}, outputs,
+                         levels);
 }
 
 // Three levels of half the triangles, a budget of `pixels`.
@@ -306,6 +309,7 @@ tank::SceneLevels three_levels(double pixels) {
 // or the first that runs: external memory where Vulkan and GL can import, as Mesa's
 // lavapipe and llvmpipe can beside PoCL), and the species' deformations writing the
 // renderer's buffers.
+// (Or `fish` fish in `hall`, seen as `view` says.)
 struct SmallTank {
   render::Renderer renderer;
   GlSharingContext opencl;
@@ -313,13 +317,15 @@ struct SmallTank {
   tank::SwimScene scene;
   TankPictures pictures;
   explicit SmallTank(std::optional<HandOffPath> wanted = std::nullopt,
-                     const std::optional<tank::SceneLevels>& levels = std::nullopt)
-      : renderer(render_settings(kAbove)),
+                     const std::optional<tank::SceneLevels>& levels = std::nullopt,
+                     const tank::HallSettings& hall = tank::TankSettings{}, std::size_t fish = 8,
+                     const PictureSettings& view = kAbove)
+      : renderer(render_settings(view)),
         opencl(make_gl_sharing_context(test::shared_context().description().device_name,
                                        renderer.egl_display(), renderer.egl_context())),
         hand_off(choose_hand_off(renderer, *opencl.context, opencl.why_not, wanted)),
-        scene(small_scene(*opencl.context, gl_outputs(renderer, hand_off), levels)),
-        pictures(renderer, scene, kAbove) {
+        scene(small_scene(*opencl.context, gl_outputs(renderer, hand_off), levels, hall, fish)),
+        pictures(renderer, scene, view) {
     for (int frame = 0; frame < kFrames; ++frame) scene.enqueue_frame(1.0 / 30.0);
   }
 };
@@ -647,6 +653,44 @@ TEST(TankPictures, FishAtTheirLevelsCoverWhatTheFullMeshCovers) {
       }
     }
   }
+}
+
+TEST(TankPictures, FishBehindOtherTanksWallsAreCulledAndNothingSeenChanges) {
+  // A hall of 3 x 3 tanks from its gangway: the second row's fish behind the first
+  // row's walls are neither deformed nor drawn, and the picture and the ids are the
+  // full-detail frame's, pixel for pixel (at a budget no coarse level meets).
+  tank::HallSettings hall;
+  hall.tanks = 9;
+  hall.columns = 3;
+  hall.tank.diameter = 6.0;  // tanks as deep as a farm's of 6,000 fish (the gangway's
+  hall.tank.depth = 2.0;     // camera 4 m up sees less of the far rows over them)
+  PictureSettings view;
+  view.width = 320;
+  view.height = 180;
+  const std::size_t fish = 270;
+  SmallTank full(std::nullopt, std::nullopt, hall, fish, view);
+  full.pictures.draw();
+  const render::IdImage want = full.pictures.draw_ids();
+  const auto drawn = [](const tank::SwimScene& scene) {
+    std::size_t n = 0;
+    for (std::size_t count : scene.level_counts(0).per_level) n += count;
+    return n;
+  };
+  tank::SceneLevels open = three_levels(0.01);
+  open.wall_occlusion = false;
+  SmallTank without(std::nullopt, open, hall, fish, view);
+  SmallTank with(std::nullopt, three_levels(0.01), hall, fish, view);
+  with.pictures.draw();
+  const render::IdImage got = with.pictures.draw_ids();
+  const std::size_t in_view = drawn(without.scene), hidden = in_view - drawn(with.scene);
+  std::printf("of %zu fish %zu in view, %zu of them hidden by walls\n", fish, in_view, hidden);
+  EXPECT_GT(hidden, in_view / 10);
+  EXPECT_EQ(with.scene.level_counts(0).per_level[0], drawn(with.scene));
+  EXPECT_EQ(got.ids, want.ids);
+  EXPECT_EQ(with.pictures.read_image().rgb, full.pictures.read_image().rgb);
+  std::set<std::uint32_t> seen(want.ids.begin(), want.ids.end());
+  seen.erase(0);
+  EXPECT_GT(seen.size(), fish / 4);
 }
 
 TEST(TankPictures, IdPassesInFlightComeBackInTheirOrderAsDrawn) {

@@ -45,6 +45,13 @@ TEST(Hall, EachTanksFishSwimInThatTankWhereTheHallPutsIt) {
   ASSERT_EQ(hall.tank_count(), 6u);
   EXPECT_DOUBLE_EQ(hall.spacing(), settings.tank.diameter + settings.walkway);
   EXPECT_EQ(hall.centre(4), glm::dvec3(hall.spacing(), 0.0, -hall.spacing()));
+  // Each tank's wall as an occluder: its axis, radius, rim (10 % above the water), faces.
+  const std::vector<WallOccluder> walls = hall.walls();
+  ASSERT_EQ(walls.size(), 6u);
+  EXPECT_EQ(walls[4].base, hall.centre(4));
+  EXPECT_DOUBLE_EQ(walls[4].radius, 0.5 * settings.tank.diameter);
+  EXPECT_DOUBLE_EQ(walls[4].height, 1.1 * settings.tank.depth);
+  EXPECT_EQ(walls[4].sides, 96);
   for (int step = 0; step < 60; ++step) hall.step(1.0 / 30.0);
   ASSERT_EQ(hall.fish().size(), 3000u);
   std::size_t index = 0;
@@ -211,6 +218,12 @@ TEST(Tank, BadSettingsAreNamed) {
   TankSettings nan_depth;
   nan_depth.depth = NAN;
   EXPECT_EQ(field_of(nan_depth, {10}), "tank.depth");
+  TankSettings rimless;
+  rimless.freeboard = -0.1;
+  EXPECT_EQ(field_of(rimless, {10}), "tank.freeboard");
+  TankSettings faceted;
+  faceted.wall_faces = 4;
+  EXPECT_EQ(field_of(faceted, {10}), "tank.wall_faces");
   EXPECT_EQ(field_of(TankSettings{}, {0, 0}), "fish");
   EXPECT_EQ(field_of(TankSettings{}, {1}), "accepted");
   Tank tank(TankSettings{}, {1}, 1);

@@ -58,6 +58,7 @@ struct BenchOptions {
   std::string levels = "6";  // the farm's: 6 levels of half the triangles (benchmarks.md)
   std::string triangle_ratio = "0.5";
   bool freeze_fins = true;
+  bool wall_occlusion = true;
   std::string pixel_budget = "1";
   std::string layout = "planes";
   std::string order = "slots";
@@ -185,6 +186,7 @@ bench::FarmSettings check_farm(const BenchOptions& options,
   }
   farm.levels = parse_level_options(options.levels, options.triangle_ratio, options.freeze_fins);
   farm.choice.pixel_budget = parse_positive(options.pixel_budget, "--pixel-budget");
+  farm.wall_occlusion = options.wall_occlusion;
   return farm;
 }
 
@@ -338,6 +340,8 @@ Command add_bench_command(CLI::App& app) {
   bench->add_flag(kFreezeFinsFlag, options->freeze_fins,
                   "With --farm: one more level after the coarsest, its fins frozen (only the "
                   "body's stages), its error bound added (default on)");
+  bench->add_flag(kWallOcclusionFlag, options->wall_occlusion,
+                  "With --farm: fish behind other tanks' walls are culled (default on)");
   bench
       ->add_option("--pixel-budget", options->pixel_budget,
                    "With --farm: the error a level may show, in pixels of a 1920x1080 image")

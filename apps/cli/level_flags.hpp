@@ -24,6 +24,11 @@ constexpr const char* kFreezeFinsHelp =
     "With levels: one more level after the coarsest, its fins frozen (only the body's "
     "stages), its error bound added (default on)";
 
+// The commands' --wall-occlusion / --no-wall-occlusion (default on) and their help.
+constexpr const char* kWallOcclusionFlag = "--wall-occlusion,!--no-wall-occlusion";
+constexpr const char* kWallOcclusionHelp =
+    "With levels: fish behind other tanks' walls are culled (default on; off with --refraction)";
+
 // One line per level: vertices, triangles, the geometric error in mesh units and as a
 // fraction of `body_length` (the root frame's length), and whether its fins move.
 void print_levels(const DetailLevels& levels, double body_length);

@@ -251,12 +251,11 @@ int run_swim(const SwimOptions& options) {
 
     const double dt = 1.0 / plan.fps;
     FrameTimes t;
-    nlohmann::ordered_json tracks = nlohmann::ordered_json::array();
-    for (const tank::Fish& fish : scene.hall().fish()) {
-      tracks.push_back({{"species", scene.species()[fish.species].name},
-                        {"length_m", fish.length},
-                        {"samples", nlohmann::ordered_json::array()}});
-    }
+    // The tracks of summary.json (with --out): once a simulated second, every fish's
+    // time, position, yaw and speed, kept as numbers until the summary is written.
+    const bool tracked = !options.out.empty();
+    constexpr std::size_t kTrackColumns = 6;
+    std::vector<double> track_samples;  // per tracked frame, per fish, kTrackColumns
     const std::size_t track_every = std::max<std::size_t>(1, std::size_t(std::lround(plan.fps)));
     const auto start = Clock::now();
     Clock::time_point timed_start = start;
@@ -274,11 +273,10 @@ int run_swim(const SwimOptions& options) {
       tank::FrameWork work = scene.enqueue_stepped_frame(dt, true);
       work.simulation_seconds += step_seconds;
       const double time = scene.hall().time();
-      if (f % track_every == 0) {
-        const std::vector<tank::Fish>& fish = scene.hall().fish();
-        for (std::size_t i = 0; i < fish.size(); ++i) {
-          tracks[i]["samples"].push_back({time, fish[i].position.x, fish[i].position.y,
-                                          fish[i].position.z, fish[i].yaw, fish[i].speed});
+      if (tracked && f % track_every == 0) {
+        for (const tank::Fish& fish : scene.hall().fish()) {
+          track_samples.insert(track_samples.end(), {time, fish.position.x, fish.position.y,
+                                                     fish.position.z, fish.yaw, fish.speed});
         }
       }
       if (step_ahead && f + 1 < plan.frames) {
@@ -456,6 +454,20 @@ int run_swim(const SwimOptions& options) {
       summary["corrections"] = scene.hall().corrections();
       summary["brakes"] = scene.hall().brakes();
       summary["track_columns"] = {"time_s", "x_m", "y_m", "z_m", "yaw_rad", "speed_m_per_s"};
+      const std::vector<tank::Fish>& fish = scene.hall().fish();
+      nlohmann::ordered_json tracks = nlohmann::ordered_json::array();
+      for (std::size_t i = 0; i < fish.size(); ++i) {
+        nlohmann::ordered_json samples = nlohmann::ordered_json::array();
+        for (std::size_t at = i * kTrackColumns; at < track_samples.size();
+             at += fish.size() * kTrackColumns) {
+          samples.push_back(
+              std::vector<double>(track_samples.begin() + std::ptrdiff_t(at),
+                                  track_samples.begin() + std::ptrdiff_t(at + kTrackColumns)));
+        }
+        tracks.push_back({{"species", scene.species()[fish[i].species].name},
+                          {"length_m", fish[i].length},
+                          {"samples", std::move(samples)}});
+      }
       summary["tracks"] = tracks;
       write_text(folder / "summary.json", summary.dump(1) + "\n");
       staging->commit();
@@ -563,6 +575,7 @@ Command add_swim_command(CLI::App& app) {
                    "Levels of detail (1 to 8) with culling, chosen from the camera each frame "
                    "(default: every fish at full detail)");
   swim->add_flag(kFreezeFinsFlag, options->freeze_fins, kFreezeFinsHelp);
+  swim->add_flag(kWallOcclusionFlag, options->wall_occlusion, kWallOcclusionHelp);
   swim->add_option("--pixel-budget", options->pixel_budget,
                    "With --levels: the error a level may show, in pixels")
       ->capture_default_str();

@@ -294,6 +294,7 @@ SwimPlan plan_of(const SwimOptions& options) {
     levels.levels =
         parse_level_options(options.levels, options.triangle_ratio, options.freeze_fins);
     levels.choice.pixel_budget = parse_positive(options.pixel_budget, "--pixel-budget");
+    levels.wall_occlusion = options.wall_occlusion;
     if (!plan.mesh_frames.empty()) {
       throw Error(ErrorCode::kInvalidArgument, "--mesh-frames",
                   "--mesh-frames writes every fish at full detail: not with --levels");

@@ -56,6 +56,7 @@ struct SwimOptions {
   std::string pixel_budget = "1";
   std::string triangle_ratio = "0.5";
   bool freeze_fins = true;
+  bool wall_occlusion = true;
 };
 
 // What the command runs, every value checked.

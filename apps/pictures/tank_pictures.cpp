@@ -108,6 +108,9 @@ TankPictures::TankPictures(render::Renderer& renderer, tank::SwimScene& scene,
                                          c.far_plane));
     }
     scene.set_views(views);
+    // The walls' test follows straight sight lines: refracted views see past them
+    // elsewhere, so nothing is hidden by them there.
+    if (settings.refraction != render::ViewRefraction::kNone) scene.set_occluders({});
   }
 }
 

@@ -11,8 +11,7 @@ namespace finflex::pictures {
 namespace {
 
 constexpr float kVerticalFovDegrees = 40.0f;
-constexpr float kFreeboard = 0.10f;  // the wall above the water, a fraction of the depth
-constexpr float kMargin = 1.06f;     // room around the tank in the frame
+constexpr float kMargin = 1.06f;  // room around the tank in the frame
 
 // tan of half the narrower field of view (vertical, or horizontal in a portrait image).
 float half_view_tangent(int width, int height) {
@@ -94,7 +93,8 @@ render::Scene tank_scene(const tank::HallSettings& settings) {
   const auto depth = static_cast<float>(settings.tank.depth);
   scene.tank.radius = static_cast<float>(0.5 * settings.tank.diameter);
   scene.tank.water_depth = depth;
-  scene.tank.wall_height = depth * (1.0f + kFreeboard);
+  scene.tank.wall_height = static_cast<float>(settings.tank.wall_height());
+  scene.tank.segments = settings.tank.wall_faces;
   scene.rows.count = static_cast<int>(settings.tanks);
   scene.rows.columns = static_cast<int>(settings.columns);
   scene.rows.spacing = static_cast<float>(settings.tank.diameter + settings.walkway);
@@ -105,7 +105,7 @@ render::Camera tank_camera(const tank::TankSettings& settings, CameraView view, 
                            int height) {
   const auto radius = static_cast<float>(0.5 * settings.diameter);
   const auto depth = static_cast<float>(settings.depth);
-  const float rim = depth * (1.0f + kFreeboard);
+  const auto rim = static_cast<float>(settings.wall_height());
   const float tangent = half_view_tangent(width, height);
   render::Camera camera;
   camera.vertical_fov_degrees = kVerticalFovDegrees;

@@ -90,6 +90,15 @@ glm::dvec3 Hall::centre(std::size_t t) const {
   return {double(column) * spacing(), 0.0, -double(row) * spacing()};
 }
 
+std::vector<WallOccluder> Hall::walls() const {
+  const TankSettings& tank = settings_.tank;
+  std::vector<WallOccluder> out;
+  for (std::size_t t = 0; t < tanks_.size(); ++t) {
+    out.push_back({centre(t), 0.5 * tank.diameter, tank.wall_height(), tank.wall_faces});
+  }
+  return out;
+}
+
 void Hall::step(double dt) {
   // The tanks share nothing: with several, they step on threads of their own, each
   // thread a fixed share of the tanks (the same result on any count of threads).

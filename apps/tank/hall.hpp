@@ -14,6 +14,7 @@
 
 #include <glm/glm.hpp>
 
+#include "finflex/wall_occlusion.hpp"
 #include "tank.hpp"
 
 namespace finflex::tank {
@@ -67,6 +68,9 @@ class Hall {
   // Tank t's axis on the floor, and the distance between neighbouring axes.
   glm::dvec3 centre(std::size_t t) const;
   double spacing() const;
+  // Every tank's wall (radius, floor to rim, wall_faces) as an occluder, as the
+  // pictures' cut-away tanks draw it (LevelChooser::set_occluders).
+  std::vector<WallOccluder> walls() const;
   // Every fish in hall coordinates, tank by tank.
   const std::vector<Fish>& fish() const;
   double time() const { return tanks_.front().time(); }

@@ -28,8 +28,13 @@ void NeighbourGrid::build(const std::vector<glm::dvec3>& points) {
   }
   for (std::size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
   order_.resize(points.size());
+  sorted_.resize(points.size());
   std::vector<std::size_t> next(start_.begin(), start_.end() - 1);
-  for (std::size_t i = 0; i < points.size(); ++i) order_[next[cells[i]]++] = i;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const std::size_t at = next[cells[i]]++;
+    order_[at] = i;
+    sorted_[at] = points[i];
+  }
 }
 
 }  // namespace finflex::tank

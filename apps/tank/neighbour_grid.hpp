@@ -15,16 +15,19 @@ class NeighbourGrid {
   // Cells of `cell` metres over the box [low, high].
   void reset(const glm::dvec3& low, const glm::dvec3& high, double cell);
   void build(const std::vector<glm::dvec3>& points);
-  // Calls visit(j) for every point j in the cells around `p` (within one cell).
+  // Calls visit(j, point j) for every point j in the cells around `p` (within one
+  // cell), cell by cell in x, then y, then z, and within a cell in the points' order.
+  // The three cells of a row are neighbours in the sorted points: one run each.
   template <typename Visit>
   void around(const glm::dvec3& p, Visit visit) const {
     const glm::ivec3 c = cell_of(p);
-    for (int z = c.z - 1; z <= c.z + 1; ++z) {
-      for (int y = c.y - 1; y <= c.y + 1; ++y) {
-        for (int x = c.x - 1; x <= c.x + 1; ++x) {
-          if (x < 0 || y < 0 || z < 0 || x >= size_.x || y >= size_.y || z >= size_.z) continue;
-          const std::size_t index = flat(glm::ivec3(x, y, z));
-          for (std::size_t k = start_[index]; k < start_[index + 1]; ++k) visit(order_[k]);
+    const glm::ivec3 low = glm::max(c - 1, glm::ivec3(0));
+    const glm::ivec3 high = glm::min(c + 1, size_ - 1);
+    for (int z = low.z; z <= high.z; ++z) {
+      for (int y = low.y; y <= high.y; ++y) {
+        const std::size_t end = start_[flat(glm::ivec3(high.x, y, z)) + 1];
+        for (std::size_t k = start_[flat(glm::ivec3(low.x, y, z))]; k < end; ++k) {
+          visit(order_[k], sorted_[k]);
         }
       }
     }
@@ -36,6 +39,7 @@ class NeighbourGrid {
   glm::ivec3 size_{1};
   std::vector<std::size_t> start_;  // per cell, its first entry in order_ (+ the end)
   std::vector<std::size_t> order_;  // point indices sorted by cell
+  std::vector<glm::dvec3> sorted_;  // the points in that order
 
   glm::ivec3 cell_of(const glm::dvec3& p) const;
   std::size_t flat(const glm::ivec3& c) const {

@@ -131,6 +131,7 @@ SwimScene::SwimScene(Context& context, const std::vector<SpeciesFiles>& files, s
         lv->jobs.push_back(lv->deformer->job(k, inputs, counts[s], normals));
         lv->jobs.back().outputs = &lv->outputs.back()->batch();
       }
+      if (levels->wall_occlusion) lv->deformer->chooser().set_occluders(hall_->walls());
       sp.leveled = std::move(lv);
       continue;
     }
@@ -215,6 +216,12 @@ FrameWork SwimScene::enqueue_frame(double dt, const InputWriter& write_inputs, b
   work.enqueue_seconds =
       std::max(0.0, seconds_since(enqueue_start) - work.handoff_seconds) + staging_seconds;
   return work;
+}
+
+void SwimScene::set_occluders(const std::vector<WallOccluder>& walls) {
+  for (Species& sp : species_) {
+    if (sp.leveled) sp.leveled->deformer->chooser().set_occluders(walls);
+  }
 }
 
 bool SwimScene::has_levels() const {

@@ -83,6 +83,10 @@ struct SceneLevels {
   LevelOptions levels;        // make_detail_levels' (freeze_fins without value_bounds:
                               // each species' SwimModel::value_bounds)
   LevelChoiceOptions choice;  // level_rows empty: scene_level_rows
+  // The hall's tank walls hide the fish behind them from the views (Hall::walls; a
+  // caller whose views see the tanks otherwise, through refraction, clears them with
+  // set_occluders).
+  bool wall_occlusion = true;
 };
 
 // Each level's rows for `fish` fish: every level's outputs as large as the coarsest
@@ -155,6 +159,9 @@ class SwimScene {
   // them each frame).
   void set_views(const std::vector<LevelView>& views) { views_ = views; }
   const std::vector<LevelView>& views() const { return views_; }
+  // The walls that hide fish from the views, for every species' choice (with levels:
+  // the hall's walls when SceneLevels::wall_occlusion, else none).
+  void set_occluders(const std::vector<WallOccluder>& walls);
   bool has_levels() const;
 
   // One frame: the tank steps by dt, then each species' driver and deformation are

@@ -39,12 +39,13 @@ void check(const TankSettings& s) {
       fail(name, "= " + std::to_string(value) + " must be finite and > 0");
     }
   }
+  if (s.wall_faces < 8 || s.wall_faces > 4096) {
+    fail("tank.wall_faces", "= " + std::to_string(s.wall_faces) + " must be 8 to 4096");
+  }
   const std::pair<const char*, double> non_negative[] = {
-      {"tank.wall_current", s.wall_current},
-      {"tank.length_cv", s.length_cv},
-      {"tank.speed_variation", s.speed_variation},
-      {"tank.burst_rate", s.burst_rate},
-      {"tank.alignment", s.alignment},
+      {"tank.wall_current", s.wall_current}, {"tank.freeboard", s.freeboard},
+      {"tank.length_cv", s.length_cv},       {"tank.speed_variation", s.speed_variation},
+      {"tank.burst_rate", s.burst_rate},     {"tank.alignment", s.alignment},
       {"tank.cohesion", s.cohesion}};
   for (const auto& [name, value] : non_negative) {
     if (!std::isfinite(value) || value < 0.0) {
@@ -128,14 +129,18 @@ void Tank::steer(Fish& fish, double dt) {
   want -= outward * 3.0 * std::clamp((wall_margin - (radius - r)) / wall_margin, 0.0, 1.0);
   double vertical_push = 0.0;
   glm::dvec3 headings(0.0), towards(0.0);  // the neighbours' headings; their offsets
-  grid_.around(p, [&](std::size_t j) {
-    const glm::dvec3 away = p - fish_[j].position;
+  // Neighbours surely farther than the distance are passed over on their squared
+  // distance (with a margin over its rounding: the others are judged as before).
+  const double beyond_squared = neighbour_distance_ * neighbour_distance_ * (1.0 + 1e-9);
+  grid_.around(p, [&](std::size_t j, const glm::dvec3& position) {
+    const glm::dvec3 away = p - position;
+    if (glm::dot(away, away) > beyond_squared) return;
     const double distance = glm::length(away);
     if (distance <= 1e-9 || distance >= neighbour_distance_) return;
     const double weight = 2.0 * (neighbour_distance_ - distance) / neighbour_distance_;
     want += glm::dvec3(away.x, 0.0, away.z) / distance * weight;
     vertical_push += away.y / distance * weight;
-    headings += heading(fish_[j].yaw);
+    headings += headings_[j];
     towards -= glm::dvec3(away.x, 0.0, away.z);
   });
   // Schooling: towards the neighbours' mean heading and their centre.
@@ -175,9 +180,13 @@ void Tank::steer(Fish& fish, double dt) {
 
 // The current's part of a step: the solid-body rotation turned exactly (an Euler
 // step would carry every fish outwards by r (w dt)^2 / 2 a step).
-glm::dvec3 Tank::carried(const glm::dvec3& p, double dt) const {
+glm::dvec2 Tank::current_turn(double dt) const {
   const double angle = settings_.wall_current / (0.5 * settings_.diameter) * dt;
-  const double c = std::cos(angle), s = std::sin(angle);
+  return {std::cos(angle), std::sin(angle)};
+}
+
+glm::dvec3 Tank::carried(const glm::dvec3& p, const glm::dvec2& turn) {
+  const double c = turn.x, s = turn.y;
   return {p.x * c + p.z * s, p.y, -p.x * s + p.z * c};
 }
 
@@ -227,16 +236,20 @@ void Tank::keep_inside(Fish& fish) {
 
 void Tank::step(double dt) {
   if (!std::isfinite(dt) || !(dt > 0.0)) fail("dt", "= " + std::to_string(dt) + " must be > 0");
-  std::vector<glm::dvec3> positions;
-  positions.reserve(fish_.size());
-  for (const Fish& fish : fish_) positions.push_back(fish.position);
-  grid_.build(positions);
+  positions_.clear();
+  headings_.clear();
+  for (const Fish& fish : fish_) {
+    positions_.push_back(fish.position);
+    headings_.push_back(heading(fish.yaw));  // steer() leaves every yaw as it is
+  }
+  grid_.build(positions_);
   for (Fish& fish : fish_) steer(fish, dt);
+  const glm::dvec2 turn = current_turn(dt);
   for (Fish& fish : fish_) {
     fish.yaw = wrapped_angle(fish.yaw + fish.turn_rate * dt);
     const glm::dvec3 swim = fish.speed * std::cos(fish.pitch) * heading(fish.yaw) +
                             glm::dvec3(0.0, fish.speed * std::sin(fish.pitch), 0.0);
-    fish.position = swum(fish, carried(fish.position, dt), swim * dt);
+    fish.position = swum(fish, carried(fish.position, turn), swim * dt);
     keep_inside(fish);
   }
   time_ += dt;

@@ -28,6 +28,11 @@ struct TankSettings {
   // 35-75 kg/m^3 of commercial salmon RAS.
   double diameter = 3.66;
   double depth = 1.22;
+  // The wall above the water, a fraction of the depth: the rim at depth (1 + freeboard).
+  double freeboard = 0.10;
+  double wall_height() const { return depth * (1.0 + freeboard); }
+  // The wall's flat faces around, as pictures draw it (8 to 4096).
+  int wall_faces = 96;
   // Rotational current u(r) = wall_current r / R, uniform with depth (Davidson &
   // Summerfelt 2004): 1 body length per second at the wall for 0.4 m fish.
   double wall_current = 0.4;
@@ -112,12 +117,18 @@ class Tank {
   std::mt19937_64 random_;
   NeighbourGrid grid_;
   double neighbour_distance_ = 0.0;  // m
+  // The step's fish positions and headings (heading(yaw)), made once per step for the
+  // neighbour queries (contiguous: no Fish read per neighbour, no sine per neighbour).
+  std::vector<glm::dvec3> positions_;
+  std::vector<glm::dvec3> headings_;
   double time_ = 0.0;
   std::size_t corrections_ = 0;
   std::size_t brakes_ = 0;
 
   void steer(Fish& fish, double dt);
-  glm::dvec3 carried(const glm::dvec3& p, double dt) const;
+  // The current's turn of one step dt, as a rotation about +y (its cosine and sine).
+  glm::dvec2 current_turn(double dt) const;
+  static glm::dvec3 carried(const glm::dvec3& p, const glm::dvec2& turn);
   glm::dvec3 swum(const Fish& fish, const glm::dvec3& p, const glm::dvec3& step);
   void keep_inside(Fish& fish);
 };

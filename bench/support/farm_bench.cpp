@@ -64,9 +64,9 @@ nlohmann::ordered_json measure_farm(Context& context, const std::string& mesh,
   }
   const tank::HallSettings hall = tank::HallSettings::farm(settings.tanks, settings.fish);
   const std::vector<tank::SpeciesFiles> species{{mesh, rig}};
-  tank::SwimScene leveled(context, species, settings.fish, hall, 1, settings.normals,
-                          settings.format, {}, {},
-                          tank::SceneLevels{settings.levels, settings.choice});
+  tank::SwimScene leveled(
+      context, species, settings.fish, hall, 1, settings.normals, settings.format, {}, {},
+      tank::SceneLevels{settings.levels, settings.choice, settings.wall_occlusion});
   const LevelView camera = farm_camera(leveled.hall(), settings.width, settings.height);
   leveled.set_views({camera});
   tank::SwimScene full(context, species, settings.fish, hall, 1, settings.normals, settings.format);
@@ -99,6 +99,7 @@ nlohmann::ordered_json measure_farm(Context& context, const std::string& mesh,
   out["tank_depth_m"] = hall.tank.depth;
   out["image"] = std::to_string(settings.width) + "x" + std::to_string(settings.height);
   out["pixel_budget"] = settings.choice.pixel_budget;
+  out["wall_occlusion"] = settings.wall_occlusion;
   out["frames"] = settings.frames;
   const tank::SwimScene::LevelCounts counts = leveled.level_counts(0);
   const DetailLevels& levels = leveled.species().front().leveled->levels;

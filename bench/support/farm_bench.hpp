@@ -27,6 +27,7 @@ struct FarmSettings {
   NormalFormat format = NormalFormat::kFloat32;
   LevelOptions levels;
   LevelChoiceOptions choice;
+  bool wall_occlusion = true;  // tank::SceneLevels::wall_occlusion
 };
 
 // The hall's camera (tank::hall_camera) for an image of width x height.

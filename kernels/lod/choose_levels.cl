@@ -3,7 +3,7 @@
  * choose_level_on_host in engine/src/lod/level_choice.cpp). Three kernels, over
  * groups of FF_LOD_GROUP instances:
  *   lod_choose   per instance: culled (-1) unless its bounding sphere meets a view's
- *                frustum; else the coarsest level whose error, projected at the
+ *                frustum where no wall hides it; else the coarsest level whose error, projected at the
  *                sphere's nearest depth in the views that see it, is within the pixel
  *                budget, held where the finer level it had is (hysteresis). Counts
  *                the group's instances per level.
@@ -20,9 +20,10 @@
  *
  * A view (at most 4) is 32 floats (two float16 arguments): 6 frustum planes (a, b, c,
  * d; a point is inside where a x + b y + c z + d >= 0, (a, b, c) of unit length), the
- * view depth row
- * (depth = dot(row.xyz, p) + row.w: the distance in front of the camera), the near
- * plane's depth and the focal length in pixels. A placement record: kernels/common/
+ * view depth row (depth = dot(row.xyz, p) + row.w: the distance in front of the
+ * camera), the near plane's depth and the focal length in pixels; its eye is a float4
+ * argument of its own (for the walls, lod/wall_occlusion.cl, generated before this
+ * file with the rest). A placement record: kernels/common/
  * placement.cl (columns of L Q at 0-8, the position at 9-11, 1 / L at 12). */
 #define FF_LOD_INLINE inline __attribute__((always_inline))
 
@@ -33,15 +34,16 @@ FF_LOD_INLINE bool within_plane(const float4 plane, const float3 c, const float 
 
 /* The size of a body length in pixels in one view (its 32 floats as two
  * float16: a holds planes 0-3, b planes 4-5, the depth row, the near depth and the focal
- * length), or -1 where the sphere misses its frustum. Straight from the arguments: a
+ * length), or -1 where the sphere misses its frustum or a wall hides it. Straight from the arguments: a
  * copy of the views into a private array spilled to memory on GPUs, and cost more
  * than the choice itself. */
-FF_LOD_INLINE float view_pixels(const float16 a, const float16 b, const float3 c,
-                                const float radius, const float length) {
+FF_LOD_INLINE float view_pixels(const float16 a, const float16 b, const float4 eye,
+                                const float3 c, const float radius, const float length,
+                                __global const float4* restrict walls, const uint wall_count) {
   const bool inside = within_plane(a.s0123, c, radius) && within_plane(a.s4567, c, radius) &&
                       within_plane(a.s89ab, c, radius) && within_plane(a.scdef, c, radius) &&
                       within_plane(b.s0123, c, radius) && within_plane(b.s4567, c, radius);
-  if (!inside) return -1.0f;
+  if (!inside || walls_hide(eye.xyz, c, radius, walls, wall_count)) return -1.0f;
   const float depth = dot(b.s89a, c) + b.sb - radius;
   return length * b.sd / fmax(depth, b.sc);
 }
@@ -50,7 +52,9 @@ __kernel __attribute__((reqd_work_group_size(FF_LOD_GROUP, 1, 1))) void lod_choo
     __global const float* restrict placements, const uint instances, const float4 bounds,
     __global const float* restrict level_errors, const float16 view0_a, const float16 view0_b,
     const float16 view1_a, const float16 view1_b, const float16 view2_a, const float16 view2_b,
-    const float16 view3_a, const float16 view3_b, const uint view_count, const float budget,
+    const float16 view3_a, const float16 view3_b, const float4 eye0, const float4 eye1,
+    const float4 eye2, const float4 eye3, const uint view_count,
+    __global const float4* restrict walls, const uint wall_count, const float budget,
     const float keep_budget, __global int* restrict level_of,
     __global uint* restrict group_counts) {
   __local uint counts[FF_LOD_LEVELS];
@@ -67,18 +71,19 @@ __kernel __attribute__((reqd_work_group_size(FF_LOD_GROUP, 1, 1))) void lod_choo
     const float length = 1.0f / r[12];
     const float radius = length * bounds.w;
     /* The largest size of a body length in pixels over the views that see it. */
-    float pixels_per_length = view_pixels(view0_a, view0_b, centre, radius, length);
+    float pixels_per_length =
+        view_pixels(view0_a, view0_b, eye0, centre, radius, length, walls, wall_count);
     if (view_count > 1) {
-      pixels_per_length =
-          fmax(pixels_per_length, view_pixels(view1_a, view1_b, centre, radius, length));
+      pixels_per_length = fmax(pixels_per_length, view_pixels(view1_a, view1_b, eye1, centre,
+                                                              radius, length, walls, wall_count));
     }
     if (view_count > 2) {
-      pixels_per_length =
-          fmax(pixels_per_length, view_pixels(view2_a, view2_b, centre, radius, length));
+      pixels_per_length = fmax(pixels_per_length, view_pixels(view2_a, view2_b, eye2, centre,
+                                                              radius, length, walls, wall_count));
     }
     if (view_count > 3) {
-      pixels_per_length =
-          fmax(pixels_per_length, view_pixels(view3_a, view3_b, centre, radius, length));
+      pixels_per_length = fmax(pixels_per_length, view_pixels(view3_a, view3_b, eye3, centre,
+                                                              radius, length, walls, wall_count));
     }
     int level = -1;
     if (pixels_per_length >= 0.0f) {

@@ -46,9 +46,9 @@
 #                          frame loop, half and Jacobian normals, 2 and 4 instances per
 #                          work-item; the swim rig alone and the bend at the same count
 #   farm           .jsonl  `finflex bench --farm`: 100,000 fish in a hall of 16 tanks
-#                          (GPUs; 2,000 on CPUs) with levels of detail at 1 and 2 pixels,
-#                          half normals and 4 coarser levels, each beside the same hall
-#                          at full detail
+#                          (GPUs; 2,000 on CPUs) with levels of detail at 1 pixel (with
+#                          and without the walls' occlusion) and 2 pixels, half normals
+#                          and 4 coarser levels, each beside the same hall at full detail
 #   layouts        .jsonl  the hand-off's output layouts (docs/handoff.md), bend and rig,
 #                          slot and mesh order, previous positions, half interleaved
 #   sweep          .jsonl  instances 1 to 4,000 x the bundled meshes and a 112,642-vertex
@@ -62,9 +62,9 @@
 #   render_levels  .txt    `finflex swim` drawn at 1920 x 1080 on the GPU with levels of
 #                          detail (--levels 4, 8) beside full detail: 1,000 fish drawn
 #                          only and with a PNG a frame, 10,000 drawn only; the farm
-#                          (100,000 fish in 16 tanks, --levels 6 and 8, and 8 at a
-#                          2-pixel budget) beside full detail, and the farm's last
-#                          frame (render_levels_farm.png)
+#                          (100,000 fish in 16 tanks, --levels 6 and 8, 8 without the
+#                          walls' occlusion, and 8 at a 2-pixel budget) beside full
+#                          detail, and the farm's last frame (render_levels_farm.png)
 #   dataset        .txt    `finflex swim --annotate` of 1,000 fish at 1280 x 720 on the GPU:
 #                          mono COCO; with YOLO and depth; a stereo pair; and with a
 #                          lens and noise; mono with refraction and varied optics; the
@@ -516,11 +516,13 @@ render_levels() {
       --render --levels 8
     levels_swim "the farm, 100,000 fish in 16 tanks drawn only, --levels 6: 30 frames" \
       100000 --tanks 16 --seconds 1 --fps 30 --levels 6 --render
-    levels_swim "the farm, 100,000 fish in 16 tanks drawn, --levels 8: 30 frames (the last a PNG)" \
-      100000 --tanks 16 --seconds 1 --fps 30 --levels 8 --out "$scratch/farm" --video none \
+    levels_swim "the farm, 100,000 fish in 16 tanks drawn, --levels 8: 60 frames (the last a PNG)" \
+      100000 --tanks 16 --seconds 2 --fps 30 --levels 8 --out "$scratch/farm" --video none \
       --image-frames last
-    cp "$scratch/farm/frames/frame_000029.png" "$out/render_levels_farm.png" ||
+    cp "$scratch/farm/frames/frame_000059.png" "$out/render_levels_farm.png" ||
       failed+=("the farm's frame")
+    levels_swim "the farm, 100,000 fish in 16 tanks drawn only, --levels 8 --no-wall-occlusion: 60 frames" \
+      100000 --tanks 16 --seconds 2 --fps 30 --levels 8 --no-wall-occlusion --render
     levels_swim "the farm, 100,000 fish in 16 tanks drawn only, --levels 8 --pixel-budget 2: 60 frames" \
       100000 --tanks 16 --seconds 2 --fps 30 --levels 8 --pixel-budget 2 --render
     levels_swim "the farm, 100,000 fish in 16 tanks drawn only, full detail: 4 frames" 100000 \
@@ -648,6 +650,7 @@ for suite in "${suites[@]}"; do
       suite_frames=${frames:-20}
       if [ $cpu = 1 ]; then suite_instances=${instances:-2000}; else suite_instances=${instances:-100000}; fi
       bench_suite "farm, 1 pixel|--rig $swim --farm" \
+        "farm, 1 pixel, no wall occlusion|--rig $swim --farm --no-wall-occlusion" \
         "farm, 2 pixels|--rig $swim --farm --pixel-budget 2" \
         "farm, half normals|--rig $swim --farm --normal-format half" \
         "farm, 4 levels of a quarter of the triangles|--rig $swim --farm --levels 4 --triangle-ratio 0.25"

@@ -15,7 +15,7 @@
 //   models      model                         a mesh with its rig: what a job deforms
 //   lod         detail_levels                 levels of detail of a rigged mesh
 //   parameters  parameters                    per-instance parameter values and their checks
-//   placement   placement                     world placement of an instance
+//   placement   placement, wall_occlusion     placement of an instance; walls that hide it
 //   outputs     output_layout, batch          where outputs are written; batches on the host
 //   jobs        job                           the job both backends run
 //   reference   reference, accuracy, instance_mesh
@@ -55,3 +55,4 @@
 #include "finflex/rig.hpp"
 #include "finflex/subdivide.hpp"
 #include "finflex/swim.hpp"
+#include "finflex/wall_occlusion.hpp"

@@ -13,7 +13,8 @@
 // The choice, per instance (choose_level_on_host is the same on the host):
 // - Its bounding sphere (body_bounds: body-local, placed with the instance's record) is
 //   culled unless it meets the frustum of at least one view (sphere against the six
-//   planes; conservative near the corners).
+//   planes; conservative near the corners) where none of the walls set by
+//   set_occluders hides it from the view's eye (finflex/wall_occlusion.hpp).
 // - Visible, a level's error in pixels is its geometric error (body lengths) times the
 //   instance's length, times the view's focal length in pixels, over the depth of the
 //   sphere's nearest point (at least the near plane's), the largest over the views that
@@ -46,6 +47,7 @@
 #include "finflex/detail_levels.hpp"
 #include "finflex/export.hpp"
 #include "finflex/placement.hpp"
+#include "finflex/wall_occlusion.hpp"
 
 namespace finflex {
 
@@ -69,6 +71,8 @@ struct FINFLEX_API LevelView {
   void validate(const std::string& field) const;
   // The near plane's depth, from the projection.
   double near_plane() const;
+  // The camera's position in the world (view_from_world's inverse at the origin).
+  glm::dvec3 eye() const;
 };
 
 struct FINFLEX_API LevelChoiceOptions {
@@ -99,7 +103,8 @@ FINFLEX_API std::vector<double> level_errors(const DetailLevels& levels);
 FINFLEX_API int choose_level_on_host(const PlacementRecord& record, const BodyBounds& bounds,
                                      const std::vector<double>& errors,
                                      const std::vector<LevelView>& views,
-                                     const LevelChoiceOptions& options, int previous);
+                                     const LevelChoiceOptions& options, int previous,
+                                     const std::vector<WallOccluder>& occluders = {});
 
 class FINFLEX_API LevelChooser {
  public:
@@ -128,6 +133,11 @@ class FINFLEX_API LevelChooser {
                     const std::vector<LevelView>& views,
                     const std::vector<cl::Event>* wait = nullptr,
                     std::vector<cl::Event>* kernels = nullptr);
+  // The walls that hide instances from every later enqueue's views (none at first;
+  // an empty list clears them). kInvalidArgument naming "occluders[i]..." (validate),
+  // nothing changed. Cost: per instance and view that sees it, a test per wall.
+  void set_occluders(const std::vector<WallOccluder>& occluders);
+  std::size_t occluder_count() const;
   // The next enqueue without hysteresis (every instance chosen afresh).
   void forget();
 

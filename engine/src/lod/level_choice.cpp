@@ -108,6 +108,11 @@ double LevelView::near_plane() const {
   return clip_from_view[3][2] / (clip_from_view[2][2] - 1.0);
 }
 
+glm::dvec3 LevelView::eye() const {
+  const glm::dmat3 r(view_from_world);
+  return -(glm::transpose(r) * glm::dvec3(view_from_world[3]));
+}
+
 void LevelView::validate(const std::string& field) const {
   if (!finite(view_from_world)) invalid(field + ".view_from_world", "not finite");
   if (!finite(clip_from_view)) invalid(field + ".clip_from_view", "not finite");
@@ -176,7 +181,8 @@ std::vector<double> level_errors(const DetailLevels& levels) {
 
 int choose_level_on_host(const PlacementRecord& r, const BodyBounds& bounds,
                          const std::vector<double>& errors, const std::vector<LevelView>& views,
-                         const LevelChoiceOptions& options, int previous) {
+                         const LevelChoiceOptions& options, int previous,
+                         const std::vector<WallOccluder>& occluders) {
   const glm::dvec3 centre = glm::dvec3(r[9], r[10], r[11]) +
                             bounds.centre.x * glm::dvec3(r[0], r[1], r[2]) +
                             bounds.centre.y * glm::dvec3(r[3], r[4], r[5]) +
@@ -193,6 +199,11 @@ int choose_level_on_host(const PlacementRecord& r, const BodyBounds& bounds,
       inside = inside && distance >= -radius;
     }
     if (!inside) continue;
+    const glm::dvec3 eye = view.eye();
+    const auto hides = [&](const WallOccluder& wall) {
+      return wall_hides_sphere(eye, centre, radius, wall);
+    };
+    if (std::any_of(occluders.begin(), occluders.end(), hides)) continue;
     const double depth = v[24] * centre.x + v[25] * centre.y + v[26] * centre.z + v[27] - radius;
     pixels_per_length = std::max(pixels_per_length, length * v[29] / std::max(depth, v[28]));
   }
@@ -211,6 +222,8 @@ struct LevelChooser::Impl {
   std::vector<std::size_t> rows, firsts;  // per level: its list's rows and first entry
   cl::Buffer errors, index_counts, level_rows, own_counts, level_of, group_counts, group_starts,
       lists, counts, draw_arguments;
+  cl::Buffer walls;  // two float4 a wall (lod/wall_occlusion.cl), room for one at least
+  std::size_t wall_count = 0;
   cl::Kernel choose, offsets, scatter;
 
   Impl(Context& c, const DetailLevels& detail, std::size_t instances, const LevelChoiceOptions& o)
@@ -259,7 +272,8 @@ struct LevelChooser::Impl {
                                  zeros.data());
     draw_arguments = detail::make_buffer(cl_context, CL_MEM_READ_WRITE,
                                          5 * levels * sizeof(cl_uint), zeros.data());
-    const ProgramSource source{{"lod/choose_levels.cl"},
+    walls = detail::make_buffer(cl_context, CL_MEM_READ_ONLY, 2 * sizeof(cl_float4));
+    const ProgramSource source{{"lod/wall_occlusion.cl", "lod/choose_levels.cl"},
                                "#define FF_LOD_GROUP " + std::to_string(group) +
                                    "\n#define FF_LOD_LEVELS " + std::to_string(levels) + "\n",
                                ""};
@@ -307,6 +321,28 @@ const cl::Buffer& LevelChooser::lists() const { return impl_->lists; }
 const cl::Buffer& LevelChooser::counts() const { return impl_->counts; }
 const cl::Buffer& LevelChooser::draw_arguments() const { return impl_->draw_arguments; }
 
+std::size_t LevelChooser::occluder_count() const { return impl_->wall_count; }
+
+void LevelChooser::set_occluders(const std::vector<WallOccluder>& occluders) {
+  for (std::size_t w = 0; w < occluders.size(); ++w) {
+    occluders[w].validate("occluders[" + std::to_string(w) + "]");
+  }
+  Impl& d = *impl_;
+  std::vector<cl_float4> packed;
+  for (const WallOccluder& wall : occluders) {
+    const double inner =
+        wall.sides == 0 ? wall.radius : wall.radius * std::cos(3.14159265358979323846 / wall.sides);
+    packed.push_back(
+        {{float(wall.base.x), float(wall.base.y), float(wall.base.z), float(wall.height)}});
+    packed.push_back({{float(wall.radius), float(inner), 0.0f, 0.0f}});
+  }
+  if (!packed.empty()) {
+    d.walls = detail::make_buffer(d.context.context(), CL_MEM_READ_ONLY,
+                                  packed.size() * sizeof(cl_float4), packed.data());
+  }
+  d.wall_count = occluders.size();
+}
+
 void LevelChooser::forget() {
   Impl& d = *impl_;
   const cl_int none = -1;
@@ -330,7 +366,10 @@ cl::Event LevelChooser::enqueue(const cl::Buffer& placements, std::size_t instan
   }
   check_views(views);
   std::array<cl_float16, 2 * kMaxLevelViews> packed{};
+  std::array<cl_float4, kMaxLevelViews> eyes{};
   for (std::size_t w = 0; w < views.size(); ++w) {
+    const glm::dvec3 eye = views[w].eye();
+    eyes[w] = {{float(eye.x), float(eye.y), float(eye.z), 0.0f}};
     const std::array<double, kViewFloats> record = view_record(views[w]);
     for (std::size_t k = 0; k < 16; ++k) {
       packed[2 * w].s[k] = float(record[k]);
@@ -341,11 +380,11 @@ cl::Event LevelChooser::enqueue(const cl::Buffer& placements, std::size_t instan
   const std::size_t groups = std::max<std::size_t>(1, (instances + d.group - 1) / d.group);
   const cl_float4 bounds{{float(d.bounds.centre.x), float(d.bounds.centre.y),
                           float(d.bounds.centre.z), float(d.bounds.radius)}};
-  set_arguments(d.choose, placements, cl_uint(instances), bounds, d.errors, packed[0], packed[1],
-                packed[2], packed[3], packed[4], packed[5], packed[6], packed[7],
-                cl_uint(views.size()), float(d.options.pixel_budget),
-                float(d.options.pixel_budget * (1.0 - d.options.hysteresis)), d.level_of,
-                d.group_counts);
+  set_arguments(
+      d.choose, placements, cl_uint(instances), bounds, d.errors, packed[0], packed[1], packed[2],
+      packed[3], packed[4], packed[5], packed[6], packed[7], eyes[0], eyes[1], eyes[2], eyes[3],
+      cl_uint(views.size()), d.walls, cl_uint(d.wall_count), float(d.options.pixel_budget),
+      float(d.options.pixel_budget * (1.0 - d.options.hysteresis)), d.level_of, d.group_counts);
   set_arguments(d.offsets, d.group_counts, cl_uint(groups), d.group_starts, d.index_counts,
                 d.level_rows, d.own_counts, d.counts, d.draw_arguments);
   set_arguments(d.scatter, d.level_of, cl_uint(instances), d.group_starts, d.level_rows,
