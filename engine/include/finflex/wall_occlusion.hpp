@@ -38,6 +38,9 @@ struct FINFLEX_API WallOccluder {
   double height = 1.0;   // floor to rim (> 0)
   int sides = 0;         // faces around, >= 3; 0: a true cylinder
 
+  // The radius of the circle inscribed in the faces: radius cos(pi / sides).
+  double inner_radius() const;
+
   // kInvalidArgument naming `field` and the part: a non-finite base, a radius or height
   // not > 0, sides 1 or 2 or below 0.
   void validate(const std::string& field) const;

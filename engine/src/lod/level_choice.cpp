@@ -330,11 +330,9 @@ void LevelChooser::set_occluders(const std::vector<WallOccluder>& occluders) {
   Impl& d = *impl_;
   std::vector<cl_float4> packed;
   for (const WallOccluder& wall : occluders) {
-    const double inner =
-        wall.sides == 0 ? wall.radius : wall.radius * std::cos(3.14159265358979323846 / wall.sides);
     packed.push_back(
         {{float(wall.base.x), float(wall.base.y), float(wall.base.z), float(wall.height)}});
-    packed.push_back({{float(wall.radius), float(inner), 0.0f, 0.0f}});
+    packed.push_back({{float(wall.radius), float(wall.inner_radius()), 0.0f, 0.0f}});
   }
   if (!packed.empty()) {
     d.walls = detail::make_buffer(d.context.context(), CL_MEM_READ_ONLY,

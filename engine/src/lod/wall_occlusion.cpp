@@ -25,6 +25,10 @@ double exit_distance(double m, double cos_phi, double sin_phi, double r) {
 
 }  // namespace
 
+double WallOccluder::inner_radius() const {
+  return sides == 0 ? radius : radius * std::cos(kPi / double(sides));
+}
+
 void WallOccluder::validate(const std::string& field) const {
   if (!(std::isfinite(base.x) && std::isfinite(base.y) && std::isfinite(base.z))) {
     invalid(field + ".base", "not finite");
@@ -43,7 +47,7 @@ void WallOccluder::validate(const std::string& field) const {
 bool wall_hides_sphere(const glm::dvec3& eye, const glm::dvec3& centre, double radius,
                        const WallOccluder& wall) {
   const double outer = wall.radius;
-  const double inner = wall.sides == 0 ? outer : outer * std::cos(kPi / double(wall.sides));
+  const double inner = wall.inner_radius();
   const glm::dvec2 to_axis(wall.base.x - eye.x, wall.base.z - eye.z);
   const glm::dvec2 to_sphere(centre.x - eye.x, centre.z - eye.z);
   const double d = glm::length(to_sphere);
