@@ -21,17 +21,17 @@ glm::ivec3 NeighbourGrid::cell_of(const glm::dvec3& p) const {
 
 void NeighbourGrid::build(const std::vector<glm::dvec3>& points) {
   std::fill(start_.begin(), start_.end(), 0);
-  std::vector<std::size_t> cells(points.size());
+  cells_.resize(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
-    cells[i] = flat(cell_of(points[i]));
-    ++start_[cells[i] + 1];
+    cells_[i] = flat(cell_of(points[i]));
+    ++start_[cells_[i] + 1];
   }
   for (std::size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
   order_.resize(points.size());
   sorted_.resize(points.size());
-  std::vector<std::size_t> next(start_.begin(), start_.end() - 1);
+  next_.assign(start_.begin(), start_.end() - 1);
   for (std::size_t i = 0; i < points.size(); ++i) {
-    const std::size_t at = next[cells[i]]++;
+    const std::size_t at = next_[cells_[i]]++;
     order_[at] = i;
     sorted_[at] = points[i];
   }

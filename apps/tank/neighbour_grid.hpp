@@ -40,6 +40,8 @@ class NeighbourGrid {
   std::vector<std::size_t> start_;  // per cell, its first entry in order_ (+ the end)
   std::vector<std::size_t> order_;  // point indices sorted by cell
   std::vector<glm::dvec3> sorted_;  // the points in that order
+  // build()'s scratch, kept between steps: each point's cell, each cell's next entry.
+  std::vector<std::size_t> cells_, next_;
 
   glm::ivec3 cell_of(const glm::dvec3& p) const;
   std::size_t flat(const glm::ivec3& c) const {

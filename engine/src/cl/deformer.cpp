@@ -545,7 +545,7 @@ void ClDeformer::Impl::launch(BoundKernel& bound, const ClJob& job, std::size_t 
     // A list's length is known on the device only: rows enough to fill the device,
     // striding over the list (kernels/common/instance_list.cl).
     // GPUs: 8,192 groups of 64, twice what an H200 holds at once (132 SMs of 32): an
-    // empty list costs a launch of 8.5 us there, a full one 4 % more than with 32,768
+    // empty list costs a launch of 8.7 us there, a full one 4 % more than with 32,768
     // groups, whose empty launch took 23.4 us (docs/levels-of-detail.md "The farm").
     const std::size_t most_groups = context.description().is_gpu() ? 8192 : 4096;
     rows = std::min(rows, std::max<std::size_t>(1, most_groups / (end_group - first_group)));
